@@ -1,0 +1,41 @@
+#include "pipeline/build_lock.hpp"
+
+#include <cerrno>
+#include <cstring>
+#include <string>
+
+#include <fcntl.h>
+#include <sys/file.h>
+#include <unistd.h>
+
+#include <fmt/format.h>
+
+namespace fibermold {
+
+BuildLock::BuildLock(const std::filesystem::path& build_dir)
+{
+  std::filesystem::create_directories(build_dir);
+  const std::filesystem::path path = build_dir / ".lock";
+  fd_ = ::open(path.c_str(), O_RDWR | O_CREAT | O_CLOEXEC, 0644);
+  if (fd_ < 0) throw BuildLocked(fmt::format("cannot open {}: {}", path.string(), std::strerror(errno)));
+  if (::flock(fd_, LOCK_EX | LOCK_NB) != 0) {
+    char buffer[32] = {};
+    const ssize_t n = ::pread(fd_, buffer, sizeof buffer - 1, 0);
+    ::close(fd_);
+    fd_ = -1;
+    const std::string holder = n > 0 ? std::string(buffer, static_cast<std::size_t>(n)) : "unknown";
+    throw BuildLocked(fmt::format("another fibermold (pid {}) is working in {}; wait for it to finish",
+                                  holder, build_dir.string()));
+  }
+  const std::string pid = std::to_string(::getpid());
+  if (::ftruncate(fd_, 0) != 0 || ::pwrite(fd_, pid.data(), pid.size(), 0) < 0) {
+    // The pid is only for the message; the lock itself is held.
+  }
+}
+
+BuildLock::~BuildLock()
+{
+  if (fd_ >= 0) ::close(fd_);
+}
+
+} // namespace fibermold

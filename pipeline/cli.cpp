@@ -1,0 +1,207 @@
+#include "pipeline/cli.hpp"
+
+#include <csignal>
+#include <cstdio>
+#include <iostream>
+
+#include <CLI/CLI.hpp>
+#include <fmt/format.h>
+#include <fmt/ranges.h>
+#include <spdlog/spdlog.h>
+#include <unistd.h>
+
+#include "core/input_error.hpp"
+#include "pipeline/build_lock.hpp"
+#include "pipeline/design_file.hpp"
+#include "pipeline/runner.hpp"
+#include "pipeline/stages.hpp"
+#include "pipeline/terminal_progress.hpp"
+
+#ifndef FIBERMOLD_DEFAULT_DESIGN
+#define FIBERMOLD_DEFAULT_DESIGN "examples/twisting-bar/design.toml"
+#endif
+
+namespace fibermold {
+
+namespace fs = std::filesystem;
+
+namespace {
+
+void on_signal(int) { request_interrupt(); }
+
+/// Ctrl-C (or SIGTERM) asks the running stage to stop at its next checkpoint; a second Ctrl-C
+/// kills at once (SA_RESETHAND), still leaving the previous outputs and a stale stamp.
+void install_signal_handlers()
+{
+  struct sigaction action {};
+  action.sa_handler = on_signal;
+  action.sa_flags = SA_RESETHAND;
+  sigemptyset(&action.sa_mask);
+  sigaction(SIGINT, &action, nullptr);
+  sigaction(SIGTERM, &action, nullptr);
+}
+
+/// `[DESIGN] [STAGE...]`: the first word is the design when it names a file or ends in .toml.
+struct DesignAndStages {
+  fs::path design;
+  std::vector<std::string> stages;
+};
+
+DesignAndStages split_arguments(const std::vector<std::string>& words, const fs::path& default_design)
+{
+  DesignAndStages result{default_design, {}};
+  std::size_t first = 0;
+  std::error_code ec;
+  if (!words.empty() && (words[0].ends_with(".toml") || fs::is_regular_file(words[0], ec))) {
+    result.design = words[0];
+    first = 1;
+  }
+  result.stages.assign(words.begin() + static_cast<std::ptrdiff_t>(first), words.end());
+  return result;
+}
+
+fs::path build_dir_for(const Design& design, const std::string& option)
+{
+  return option.empty() ? fs::path("out") / design.design.name : fs::path(option);
+}
+
+void print_status(const std::vector<StageStatus>& statuses)
+{
+  std::size_t width = 0;
+  for (const StageStatus& s : statuses) width = std::max(width, s.stage.size());
+  for (const StageStatus& s : statuses) {
+    if (s.fresh) {
+      fmt::print("{:<{}}  fresh\n", s.stage, width);
+      continue;
+    }
+    std::vector<std::string> shown(s.reasons.begin(), s.reasons.begin() + std::min<std::ptrdiff_t>(3, std::ssize(s.reasons)));
+    std::string more = s.reasons.size() > 3 ? fmt::format("; and {} more", s.reasons.size() - 3) : "";
+    fmt::print("{:<{}}  stale ({}{})\n", s.stage, width, fmt::join(shown, "; "), more);
+  }
+}
+
+void print_design_summary(const Design& d)
+{
+  fmt::print("{}: ok\n", d.file.string());
+  fmt::print("  design {}: surface {} ({}), basis {}, {} fixed region(s), {} fiber(s), {} target(s), "
+             "{} tracking curve(s)\n",
+             d.design.name, d.design.surface.filename().string(), d.design.units, d.sim.basis, d.fixed.size(),
+             d.fibers.size(), d.targets.size(), d.tracking_curves.size());
+}
+
+ProgressFactory terminal_progress()
+{
+  const bool tty = ::isatty(STDERR_FILENO) != 0;
+  return [tty](const std::string& stage) { return std::make_unique<TerminalProgress>(stage, stderr, tty); };
+}
+
+int report_input_error(const InputError& e)
+{
+  for (const Diagnostic& d : e.diagnostics()) fmt::print(stderr, "{}\n", d.to_string());
+  return 2;
+}
+
+} // namespace
+
+int fibermold_main(int argc, char** argv)
+{
+  spdlog::set_pattern("%v");
+  CLI::App app{"fibermold: from a soft robot's body to printable mold parts.\n"
+               "Stages: mesh → targets → optimize → collide → molds → export; only stale stages run.",
+               "fibermold"};
+  app.require_subcommand(1);
+  app.set_version_flag("--version", Runner::default_program());
+  app.footer("Exit codes: 0 done, 1 a stage failed, 2 bad command line or design file, 130 interrupted.\n"
+             "DESIGN defaults to the bundled demo, " FIBERMOLD_DEFAULT_DESIGN ".");
+
+  std::vector<std::string> words;
+  std::string build_dir_option;
+  bool force = false;
+
+  CLI::App* make = app.add_subcommand("make", "Run what is stale, up to STAGE (default: every stage)");
+  make->add_option("DESIGN_AND_STAGES", words, "[DESIGN] [STAGE...]");
+  make->add_flag("--force", force, "Rerun the selected stages even when fresh");
+  make->add_option("--build-dir", build_dir_option, "Build folder (default: out/<design name>)");
+
+  CLI::App* status = app.add_subcommand("status", "Each stage: fresh, or stale and which input changed");
+  status->add_option("DESIGN_AND_STAGES", words, "[DESIGN] [STAGE...]");
+  status->add_option("--build-dir", build_dir_option, "Build folder (default: out/<design name>)");
+
+  CLI::App* clean = app.add_subcommand("clean", "Remove the outputs, stamps and logs of stages (default: all)");
+  clean->add_option("DESIGN_AND_STAGES", words, "[DESIGN] [STAGE...]");
+  clean->add_option("--build-dir", build_dir_option, "Build folder (default: out/<design name>)");
+
+  CLI::App* check = app.add_subcommand("check", "Validate the design file and its files; run nothing");
+  check->add_option("DESIGN", words, "[DESIGN]")->expected(0, 1);
+
+  std::string target;
+  std::vector<std::string> pressures;
+  CLI::App* simulate = app.add_subcommand("simulate", "Forward simulation of a design only");
+  simulate->add_option("DESIGN", words, "DESIGN")->expected(0, 1);
+  simulate->add_option("--target", target, "Simulate this target's loads");
+  simulate->add_option("--pressure", pressures, "FIBER=kPa, repeatable");
+
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::ParseError& e) {
+    const int code = app.exit(e);
+    return code == 0 ? 0 : 2;
+  }
+
+  install_signal_handlers();
+  const DesignAndStages args = split_arguments(words, FIBERMOLD_DEFAULT_DESIGN);
+  try {
+    if (simulate->parsed()) {
+      fmt::print(stderr, "fibermold simulate: the simulator (sim/) is not part of this build yet\n");
+      return 1;
+    }
+    const Design design = load_design(args.design);
+    if (check->parsed()) {
+      print_design_summary(design);
+      return 0;
+    }
+    const Runner runner(shipped_stages());
+    const fs::path build_dir = build_dir_for(design, build_dir_option);
+    if (status->parsed()) {
+      if (runner.stage_names().empty()) fmt::print("this build of fibermold has no stages yet\n");
+      print_status(runner.status(design, build_dir, args.stages));
+      return 0;
+    }
+    if (clean->parsed()) {
+      runner.clean(build_dir, args.stages);
+      fmt::print("cleaned {}\n", build_dir.string());
+      return 0;
+    }
+    if (runner.closure(args.stages).empty()) {
+      fmt::print("nothing to do: this build of fibermold has no stages yet\n");
+      return 0;
+    }
+    const auto runs = runner.make(design, {build_dir, args.stages, force}, terminal_progress());
+    double seconds = 0;
+    int ran = 0;
+    for (const StageRun& r : runs) {
+      seconds += r.seconds;
+      ran += r.ran ? 1 : 0;
+      if (r.ran) fmt::print("{}: done in {:.2f} s\n", r.stage, r.seconds);
+    }
+    fmt::print("make: {} stage(s) ran, {} fresh, {:.2f} s; outputs in {}\n", ran, runs.size() - ran, seconds,
+               build_dir.string());
+    return 0;
+  } catch (const InputError& e) {
+    return report_input_error(e);
+  } catch (const StageFailed& e) {
+    fmt::print(stderr, "fibermold: stage {} failed: {}\n  log: {}\n", e.stage(), e.what(), e.log().string());
+    return 1;
+  } catch (const BuildLocked& e) {
+    fmt::print(stderr, "fibermold: {}\n", e.what());
+    return 1;
+  } catch (const Interrupted&) {
+    fmt::print(stderr, "fibermold: interrupted; the stage that was running is stale, its previous outputs kept\n");
+    return 130;
+  } catch (const std::exception& e) {
+    fmt::print(stderr, "fibermold: error: {}\n", e.what());
+    return 1;
+  }
+}
+
+} // namespace fibermold

@@ -1,0 +1,182 @@
+#pragma once
+// The design file turned into plain option structs, one per section, in SI units.
+// docs/design-file.md documents every key: meaning, unit in the file, default.
+
+#include <array>
+#include <filesystem>
+#include <map>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include <Eigen/Core>
+
+namespace fibermold {
+
+using Vec3 = Eigen::Vector3d;
+
+struct DesignOptions {
+  std::string name;
+  std::filesystem::path surface;  ///< absolute
+  std::string units = "mm";       ///< units of the surface file: mm | cm | m | in
+  double surface_scale = 1e-3;    ///< metres per surface-file unit
+};
+
+struct MaterialOptions {
+  std::string model = "neo-hookean";
+  double youngs_modulus = 86.4e3;  ///< Pa
+  double poisson_ratio = 0.47;
+  double density = 1070;           ///< kg/m³
+  Vec3 gravity{0, 0, -9.81};       ///< m/s²
+};
+
+struct MeshOptions {
+  std::optional<double> edge_length;  ///< m; absent: the mesh stage derives it from the body's size
+  double radius_edge_ratio = 1.5;     ///< TetGen quality bound
+  bool repair = false;
+  bool remesh = false;                ///< isotropic remeshing to edge_length during repair
+};
+
+struct SimOptions {
+  std::string basis = "mls-linear";   ///< mls-linear | mls-quadratic | fem-p1 | fem-p2
+  double mls_radius = 1.7;            ///< × mean edge length
+  int quadrature_points = 8;
+};
+
+/// An axis-aligned box, or a set of surface vertices (0-based indices into the surface file).
+struct Region {
+  std::optional<std::array<Vec3, 2>> box;  ///< min, max in m
+  std::vector<int> vertices;
+  std::optional<Vec3> point;               ///< m; for point loads
+};
+
+struct FixedRegion {
+  std::string name;
+  Region region;
+};
+
+/// Coefficients of the two-piece line a·p + b (p in Pa), smoothed with the log-cosh formula (appendix).
+struct TwoPieceLine {
+  double slope_low, intercept_low, slope_high, intercept_high;
+};
+
+struct MuscleOptions {
+  double diameter = 3e-3;             ///< m
+  double max_pressure = 425e3;        ///< Pa
+  double segments_per_length = 500;   ///< segments per m (0.5 per mm)
+  TwoPieceLine stiffness{-549.92, 73.068e6, 26.36, 4.40e6};       ///< E(p), Pa
+  TwoPieceLine taut{-23.91e3, 4067.66e6, -986.60, 833.51e6};      ///< A(p), Pa
+  double rest_strain_slope = -0.512e-6;  ///< ε_L(p) = slope·p + intercept, 1/Pa
+  double rest_strain_intercept = 0;
+  double smoothing = 10e3;            ///< ρ of the log-cosh smoothing, Pa
+};
+
+struct Fiber {
+  std::string name;
+  std::vector<Vec3> points;    ///< m; first and last stay fixed
+  std::vector<Vec3> tangents;  ///< m; empty: Catmull–Rom tangents from the points
+};
+
+struct TrackingCurve {
+  std::string name;
+  std::vector<Vec3> points;    ///< m
+  int samples = 40;
+  double weight_position = 1.0;
+  double weight_orientation = 0.1;
+};
+
+struct Load {
+  Region region;
+  std::optional<Vec3> force;   ///< N, total over the region
+  std::optional<Vec3> torque;  ///< N·m, about the region's centroid
+};
+
+struct FiberActuation {
+  std::string name;
+  std::vector<Vec3> points;    ///< m; empty: the [[fiber]] of that name
+  double pressure = 0;         ///< Pa
+};
+
+struct Target {
+  std::string name;
+  std::string kind;                        ///< forces | surface | fibers
+  std::vector<Load> loads;                 ///< kind = forces
+  std::filesystem::path surface;           ///< kind = surface; absolute
+  double strain_penalty = 0;               ///< kind = surface; weight of the large-strain penalty
+  std::vector<FiberActuation> fibers;      ///< kind = fibers
+};
+
+struct OptimizeOptions {
+  bool enabled = true;
+  std::string strategy = "simultaneous";   ///< simultaneous | sequential
+  int max_iterations = 400;
+  double gradient_tolerance = 1e-6;
+  double relative_tolerance = 1e-9;
+  double weight_curvature = 1e-3;
+  double weight_skin_barrier = 1.0;
+  double weight_pressure_barrier = 1.0;
+};
+
+struct CollideOptions {
+  double clearance = 1e-3;   ///< m, between muscle surfaces and to the skin
+  bool reoptimize = false;
+};
+
+struct PartingPlane {
+  Vec3 point;    ///< m
+  Vec3 normal;   ///< unit
+};
+
+struct MoldOptions {
+  double wall = 4e-3;                       ///< m
+  double voxel = 0.2e-3;                    ///< m
+  Vec3 pull{0, 0, 1};                       ///< unit
+  std::optional<PartingPlane> parting;      ///< absent: "auto"
+  int keys = 4;
+  std::string key_shape = "cone";           ///< cone | hemisphere
+  double key_diameter = 6e-3;               ///< m
+  double key_clearance = 0.2e-3;            ///< m
+  double sprue_diameter = 4e-3;             ///< m
+  int vents = 2;
+  double vent_diameter = 1.5e-3;            ///< m
+  double groove_clearance = 0.3e-3;         ///< m
+  double end_channel_length = 5e-3;         ///< m
+  double end_channel_diameter = 4e-3;       ///< m
+  int screw_holes = 0;
+  double screw_diameter = 3.4e-3;           ///< m
+  double draft_deg = 0;                     ///< degrees
+  double shrink = 0;                        ///< linear shrink of the silicone, fraction
+};
+
+struct ExportOptions {
+  std::vector<std::string> formats{"stl"};  ///< stl | 3mf
+  Vec3 printer_volume{0.25, 0.21, 0.21};    ///< m
+  double min_wall = 1e-3;                   ///< m, the printer's thinnest reliable wall
+};
+
+/// A validated design: every section with defaults filled in, paths absolute, units SI.
+struct Design {
+  std::filesystem::path file;    ///< the design file, absolute
+  std::filesystem::path folder;  ///< relative paths resolve against it
+
+  DesignOptions design;
+  MaterialOptions material;
+  MeshOptions mesh;
+  SimOptions sim;
+  std::vector<FixedRegion> fixed;
+  MuscleOptions muscle;
+  std::vector<Fiber> fibers;
+  std::vector<TrackingCurve> tracking_curves;
+  std::vector<Target> targets;
+  OptimizeOptions optimize;
+  CollideOptions collide;
+  MoldOptions mold;
+  ExportOptions export_;
+
+  /// Every key's effective value (defaults included) as written in the design file's units,
+  /// e.g. "mold.wall" → "4.0", "fiber.m1.points" → "[[0, 0, 0], ...]". The runner hashes these to
+  /// decide which stages are stale and names the key that changed.
+  std::map<std::string, std::string> values;
+};
+
+} // namespace fibermold

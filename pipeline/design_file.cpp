@@ -1,0 +1,889 @@
+#include "pipeline/design_file.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <set>
+
+#include <fmt/format.h>
+#include <fmt/ranges.h>
+#include <toml++/toml.h>
+
+#include "core/atomic_file.hpp"
+#include "core/input_error.hpp"
+#include "core/units.hpp"
+#include "pipeline/did_you_mean.hpp"
+
+namespace fibermold {
+
+namespace fs = std::filesystem;
+
+namespace {
+
+/// A unit in the design file and its factor to SI.
+struct Unit {
+  double to_si;
+  const char* label;
+};
+constexpr Unit kMm{units::mm, " mm"};
+constexpr Unit kKPa{units::kPa, " kPa"};
+constexpr Unit kNone{1.0, ""};
+constexpr Unit kPa{1.0, " Pa"};
+
+/// An interval of admissible values, in design-file units.
+struct Range {
+  double lo = -HUGE_VAL, hi = HUGE_VAL;
+  bool lo_open = false, hi_open = false;
+
+  bool contains(double v) const
+  {
+    return (lo_open ? v > lo : v >= lo) && (hi_open ? v < hi : v <= hi);
+  }
+  std::string describe(const Unit& unit) const
+  {
+    const bool has_lo = std::isfinite(lo), has_hi = std::isfinite(hi);
+    if (has_lo && has_hi)
+      return fmt::format("in {}{}, {}{}{}", lo_open ? "(" : "[", lo, hi, hi_open ? ")" : "]", unit.label);
+    if (has_lo) return fmt::format("{} {}{}", lo_open ? ">" : "≥", lo, unit.label);
+    return fmt::format("{} {}{}", hi_open ? "<" : "≤", hi, unit.label);
+  }
+};
+Range positive() { return {0, HUGE_VAL, true, false}; }
+Range non_negative() { return {0, HUGE_VAL, false, false}; }
+Range any() { return {}; }
+Range closed(double lo, double hi) { return {lo, hi, false, false}; }
+
+std::string format_number(double v) { return fmt::format("{}", v); }
+std::string format_vec3(const Vec3& v)
+{
+  return fmt::format("[{}, {}, {}]", format_number(v.x()), format_number(v.y()), format_number(v.z()));
+}
+std::string format_points(const std::vector<Vec3>& points, double from_si)
+{
+  std::vector<std::string> parts;
+  for (const Vec3& p : points) parts.push_back(format_vec3(p / from_si));
+  return fmt::format("[{}]", fmt::join(parts, ", "));
+}
+
+/// What all sections share: the file, its folder, the problems found, the effective values.
+struct Context {
+  fs::path file;
+  fs::path folder;
+  std::vector<Diagnostic> problems;
+  std::map<std::string, std::string> values;
+
+  void error(const toml::source_region& where, std::string key, std::string message)
+  {
+    problems.push_back({file, static_cast<int>(where.begin.line), static_cast<int>(where.begin.column),
+                        std::move(key), std::move(message)});
+  }
+};
+
+/// One table of the design file. Reads keys with defaults and checks, records each key's effective
+/// value, and on finish() reports every key that nobody asked for, with the closest valid key.
+class Section {
+public:
+  Section(Context& ctx, const toml::table* table, std::string display, toml::source_region where)
+      : ctx_(ctx), table_(table), display_(std::move(display)), where_(where)
+  {
+  }
+
+  const std::string& display() const { return display_; }
+  const toml::source_region& where() const { return where_; }
+  Context& context() { return ctx_; }
+
+  /// The raw node of `key`, or null. Marks the key as known.
+  const toml::node* node(std::string_view key)
+  {
+    known_.emplace_back(key);
+    return table_ ? table_->get(key) : nullptr;
+  }
+
+  toml::source_region where_of(const toml::node* n) const { return n ? n->source() : where_; }
+  std::string key_name(std::string_view key) const { return display_ + "." + std::string(key); }
+
+  void error(const toml::node* n, std::string_view key, std::string message)
+  {
+    ctx_.error(where_of(n), key_name(key), std::move(message));
+  }
+  void record(std::string_view key, std::string value) { ctx_.values[key_name(key)] = std::move(value); }
+
+  void missing(std::string_view key, std::string_view what)
+  {
+    ctx_.error(where_, key_name(key), fmt::format("missing; required ({})", what));
+  }
+
+  std::optional<double> read_number(const toml::node* n, std::string_view key, const Range& range,
+                                    const Unit& unit)
+  {
+    if (!n->is_number()) {
+      error(n, key, fmt::format("expected a number, got {}", type_name(*n)));
+      return std::nullopt;
+    }
+    const double v = *n->value<double>();
+    if (!std::isfinite(v) || !range.contains(v)) {
+      error(n, key, fmt::format("must be {}, got {}", range.describe(unit), format_number(v)));
+      return std::nullopt;
+    }
+    return v;
+  }
+
+  /// A number in design units, returned in SI.
+  double number(std::string_view key, double fallback, const Range& range, const Unit& unit = kNone)
+  {
+    double v = fallback;
+    if (const toml::node* n = node(key))
+      if (auto read = read_number(n, key, range, unit)) v = *read;
+    record(key, format_number(v));
+    return v * unit.to_si;
+  }
+
+  std::optional<double> optional_number(std::string_view key, const Range& range, const Unit& unit = kNone)
+  {
+    const toml::node* n = node(key);
+    std::optional<double> v = n ? read_number(n, key, range, unit) : std::nullopt;
+    record(key, v ? format_number(*v) : "auto");
+    if (v) return *v * unit.to_si;
+    return std::nullopt;
+  }
+
+  int integer(std::string_view key, int fallback, int lo, int hi)
+  {
+    int v = fallback;
+    if (const toml::node* n = node(key)) {
+      if (!n->is_integer()) {
+        error(n, key, fmt::format("expected an integer, got {}", type_name(*n)));
+      } else {
+        const auto read = *n->value<std::int64_t>();
+        if (read < lo || read > hi)
+          error(n, key, fmt::format("must be in [{}, {}], got {}", lo, hi, read));
+        else
+          v = static_cast<int>(read);
+      }
+    }
+    record(key, std::to_string(v));
+    return v;
+  }
+
+  bool boolean(std::string_view key, bool fallback)
+  {
+    bool v = fallback;
+    if (const toml::node* n = node(key)) {
+      if (!n->is_boolean())
+        error(n, key, fmt::format("expected true or false, got {}", type_name(*n)));
+      else
+        v = *n->value<bool>();
+    }
+    record(key, v ? "true" : "false");
+    return v;
+  }
+
+  std::optional<std::string> read_string(const toml::node* n, std::string_view key)
+  {
+    if (!n->is_string()) {
+      error(n, key, fmt::format("expected a string, got {}", type_name(*n)));
+      return std::nullopt;
+    }
+    return *n->value<std::string>();
+  }
+
+  /// A string; required when `fallback` is empty.
+  std::string string(std::string_view key, std::optional<std::string> fallback, std::string_view what = "")
+  {
+    std::optional<std::string> v = fallback;
+    if (const toml::node* n = node(key)) {
+      if (auto read = read_string(n, key)) {
+        if (read->empty())
+          error(n, key, "must not be empty");
+        else
+          v = std::move(read);
+      }
+    } else if (!fallback) {
+      missing(key, what);
+    }
+    record(key, fmt::format("\"{}\"", v.value_or("")));
+    return v.value_or("");
+  }
+
+  std::string choice(std::string_view key, std::string fallback, const std::vector<std::string>& allowed)
+  {
+    std::string v = fallback;
+    if (const toml::node* n = node(key)) {
+      if (auto read = read_string(n, key)) {
+        if (std::find(allowed.begin(), allowed.end(), *read) != allowed.end()) {
+          v = *read;
+        } else {
+          std::string message = fmt::format("unknown value \"{}\"; expected one of: {}", *read,
+                                            fmt::join(allowed, ", "));
+          if (auto hint = closest_match(*read, allowed)) message += fmt::format(" (did you mean \"{}\"?)", *hint);
+          error(n, key, message);
+        }
+      }
+    }
+    record(key, fmt::format("\"{}\"", v));
+    return v;
+  }
+
+  std::optional<Vec3> read_vec3(const toml::node* n, std::string_view key, const Unit& unit)
+  {
+    const toml::array* a = n->as_array();
+    if (!a || a->size() != 3 || !std::all_of(a->begin(), a->end(), [](const toml::node& e) { return e.is_number(); })) {
+      error(n, key, fmt::format("expected three numbers [x, y, z]{}", unit.label[0] ? fmt::format(" in{}", unit.label) : ""));
+      return std::nullopt;
+    }
+    Vec3 v(*(*a)[0].value<double>(), *(*a)[1].value<double>(), *(*a)[2].value<double>());
+    if (!v.allFinite()) {
+      error(n, key, "coordinates must be finite");
+      return std::nullopt;
+    }
+    return v;
+  }
+
+  /// Three numbers in design units, returned in SI. `unit_length`: normalised, must be non-zero.
+  Vec3 vec3(std::string_view key, const Vec3& fallback, const Unit& unit, bool unit_length = false)
+  {
+    Vec3 v = fallback;
+    if (const toml::node* n = node(key)) {
+      if (auto read = read_vec3(n, key, unit)) {
+        if (unit_length && read->norm() == 0)
+          error(n, key, "must not be the zero vector");
+        else
+          v = *read;
+      }
+    }
+    record(key, format_vec3(v));
+    if (unit_length && v.norm() > 0) return v.normalized();
+    return v * unit.to_si;
+  }
+
+  std::optional<Vec3> optional_vec3(std::string_view key, const Unit& unit)
+  {
+    const toml::node* n = node(key);
+    if (!n) return std::nullopt;
+    auto v = read_vec3(n, key, unit);
+    if (v) record(key, format_vec3(*v));
+    if (v) return *v * unit.to_si;
+    return std::nullopt;
+  }
+
+  /// A list of at least `min_count` points [[x, y, z], ...] in design units, returned in SI.
+  std::vector<Vec3> points(std::string_view key, const Unit& unit, std::size_t min_count, bool required)
+  {
+    std::vector<Vec3> points;
+    const toml::node* n = node(key);
+    if (!n) {
+      if (required) missing(key, fmt::format("a list of at least {} points [x, y, z]", min_count));
+      return points;
+    }
+    const toml::array* a = n->as_array();
+    if (!a) {
+      error(n, key, fmt::format("expected a list of points [[x, y, z], ...], got {}", type_name(*n)));
+      return points;
+    }
+    bool ok = true;
+    for (const toml::node& element : *a) {
+      auto p = read_vec3(&element, fmt::format("{}[{}]", key, points.size() + 1), unit);
+      ok = ok && p.has_value();
+      points.push_back(p.value_or(Vec3::Zero()));
+    }
+    if (ok && points.size() < min_count)
+      error(n, key, fmt::format("needs at least {} points, got {}", min_count, points.size()));
+    record(key, format_points(points, 1.0));
+    for (Vec3& p : points) p *= unit.to_si;
+    return ok ? points : std::vector<Vec3>{};
+  }
+
+  /// A file path, resolved against the design file's folder; must exist.
+  fs::path file(std::string_view key, bool required, std::string_view what)
+  {
+    const toml::node* n = node(key);
+    if (!n) {
+      if (required) missing(key, what);
+      return {};
+    }
+    auto name = read_string(n, key);
+    if (!name) return {};
+    record(key, fmt::format("\"{}\"", *name));
+    fs::path path = fs::path(*name).is_absolute() ? fs::path(*name) : ctx_.folder / *name;
+    path = path.lexically_normal();
+    std::error_code ec;
+    if (!fs::exists(path, ec)) {
+      error(n, key, fmt::format("file not found: {}", path.string()));
+      return {};
+    }
+    if (!fs::is_regular_file(path, ec)) {
+      error(n, key, fmt::format("not a regular file: {}", path.string()));
+      return {};
+    }
+    return path;
+  }
+
+  /// A sub-table (inline `{...}` or `[a.b]`), or null after reporting a type error.
+  const toml::table* table(std::string_view key)
+  {
+    const toml::node* n = node(key);
+    if (!n) return nullptr;
+    if (!n->is_table()) {
+      error(n, key, fmt::format("expected a table {{ ... }}, got {}", type_name(*n)));
+      return nullptr;
+    }
+    return n->as_table();
+  }
+
+  /// Reports every key of this table that was never asked for.
+  void finish()
+  {
+    if (!table_) return;
+    for (auto&& [key, value] : *table_) {
+      const std::string name(key.str());
+      if (std::find(known_.begin(), known_.end(), name) != known_.end()) continue;
+      std::string message = fmt::format("unknown key '{}' in {}", name, display_);
+      if (auto hint = closest_match(name, known_)) message += fmt::format("; did you mean '{}'?", *hint);
+      else message += fmt::format("; valid keys: {}", fmt::join(known_, ", "));
+      ctx_.error(key.source(), display_ + "." + name, message);
+    }
+  }
+
+  static std::string type_name(const toml::node& n)
+  {
+    switch (n.type()) {
+    case toml::node_type::table: return "a table";
+    case toml::node_type::array: return "an array";
+    case toml::node_type::string: return "a string";
+    case toml::node_type::integer: return "an integer";
+    case toml::node_type::floating_point: return "a number";
+    case toml::node_type::boolean: return "a boolean";
+    default: return "a date or time";
+    }
+  }
+
+private:
+  Context& ctx_;
+  const toml::table* table_;
+  std::string display_;
+  toml::source_region where_;
+  std::vector<std::string> known_;
+};
+
+const std::vector<std::string> kSections = {"design", "material", "mesh",     "sim",     "fixed",
+                                            "muscle", "fiber",    "tracking_curve", "target", "optimize",
+                                            "collide", "mold",    "export"};
+const std::vector<std::string> kArraySections = {"fixed", "fiber", "tracking_curve", "target"};
+
+std::string default_design_name(const fs::path& file)
+{
+  const std::string stem = file.stem().string();
+  if (stem == "design" && file.parent_path().has_filename()) return file.parent_path().filename().string();
+  return stem;
+}
+
+DesignOptions read_design(Section s, const fs::path& file)
+{
+  DesignOptions o;
+  o.name = s.string("name", default_design_name(file));
+  o.surface = s.file("surface", true, "the body's closed surface mesh, e.g. surface = \"body.stl\"");
+  o.units = s.choice("units", "mm", {"mm", "cm", "m", "in"});
+  o.surface_scale = o.units == "mm" ? 1e-3 : o.units == "cm" ? 1e-2 : o.units == "m" ? 1.0 : 0.0254;
+  s.finish();
+  return o;
+}
+
+MaterialOptions read_material(Section s)
+{
+  MaterialOptions o;
+  o.model = s.choice("model", o.model, {"neo-hookean"});
+  o.youngs_modulus = s.number("youngs_modulus", o.youngs_modulus, positive(), kPa);
+  o.poisson_ratio = s.number("poisson_ratio", o.poisson_ratio, {0.0, 0.5, false, true});
+  o.density = s.number("density", o.density, non_negative());
+  o.gravity = s.vec3("gravity", o.gravity, {1.0, " m/s²"});
+  s.finish();
+  return o;
+}
+
+MeshOptions read_mesh(Section s)
+{
+  MeshOptions o;
+  o.edge_length = s.optional_number("edge_length", positive(), kMm);
+  o.radius_edge_ratio = s.number("radius_edge_ratio", o.radius_edge_ratio, closed(1.1, 10.0));
+  o.repair = s.boolean("repair", o.repair);
+  o.remesh = s.boolean("remesh", o.remesh);
+  s.finish();
+  return o;
+}
+
+SimOptions read_sim(Section s)
+{
+  SimOptions o;
+  o.basis = s.choice("basis", o.basis, {"mls-linear", "mls-quadratic", "fem-p1", "fem-p2"});
+  o.mls_radius = s.number("mls_radius", o.mls_radius, {1.0, 10.0, true, false});
+  const toml::node* q = s.node("quadrature_points");
+  o.quadrature_points = s.integer("quadrature_points", o.quadrature_points, 1, 8);
+  if (o.quadrature_points != 1 && o.quadrature_points != 4 && o.quadrature_points != 8) {
+    s.error(q, "quadrature_points", fmt::format("must be 1, 4 or 8, got {}", o.quadrature_points));
+  }
+  s.finish();
+  return o;
+}
+
+/// A region: exactly one of box = { min, max }, vertices = [...], or (for loads) point = [...].
+Region read_region(Section& s, bool allow_point)
+{
+  Region r;
+  int given = 0;
+  if (const toml::table* box = s.table("box")) {
+    ++given;
+    Section b(s.context(), box, s.display() + ".box", box->source());
+    const toml::node* min_node = b.node("min");
+    Vec3 lo = b.vec3("min", Vec3::Zero(), kMm);
+    Vec3 hi = b.vec3("max", Vec3::Zero(), kMm);
+    if (!box->get("min")) b.missing("min", "the box's lower corner [x, y, z] in mm");
+    if (!box->get("max")) b.missing("max", "the box's upper corner [x, y, z] in mm");
+    if (box->get("min") && box->get("max") && !(lo.array() < hi.array()).all())
+      b.error(min_node, "min", "must be below max in every coordinate");
+    b.finish();
+    r.box = std::array<Vec3, 2>{lo, hi};
+  }
+  if (const toml::node* n = s.node("vertices")) {
+    ++given;
+    const toml::array* a = n->as_array();
+    if (!a || a->empty() || !std::all_of(a->begin(), a->end(), [](const toml::node& e) {
+          return e.is_integer() && *e.value<std::int64_t>() >= 0;
+        })) {
+      s.error(n, "vertices", "expected a non-empty list of surface vertex indices (integers ≥ 0)");
+    } else {
+      for (const toml::node& e : *a) r.vertices.push_back(static_cast<int>(*e.value<std::int64_t>()));
+      s.record("vertices", fmt::format("[{}]", fmt::join(r.vertices, ", ")));
+    }
+  }
+  if (allow_point) {
+    if (auto p = s.optional_vec3("point", kMm)) {
+      ++given;
+      r.point = p;
+    }
+  }
+  if (given != 1) {
+    s.context().error(s.where(), s.display(),
+                      fmt::format("give exactly one of box = {{ min, max }}, vertices = [...]{}; got {}",
+                                  allow_point ? ", point = [x, y, z]" : "", given));
+  }
+  return r;
+}
+
+/// Reads an array of tables ([[name]]) into one Section per entry, named by its `name` key or its
+/// 1-based index. Reports a plain table where an array of tables is expected.
+template <typename Read>
+void for_each_entry(Context& ctx, const toml::table& root, const std::string& name, Read read)
+{
+  const toml::node* n = root.get(name);
+  if (!n) return;
+  const toml::array* a = n->as_array();
+  if (!a || !a->is_array_of_tables()) {
+    ctx.error(n->source(), "[" + name + "]", fmt::format("must be an array of tables: write [[{}]]", name));
+    return;
+  }
+  for (std::size_t i = 0; i < a->size(); ++i) {
+    const toml::table& t = *(*a)[i].as_table();
+    std::string id = std::to_string(i + 1);
+    if (const toml::node* nn = t.get("name"); nn && nn->is_string() && !nn->value<std::string>()->empty())
+      id = *nn->value<std::string>();
+    read(Section(ctx, &t, fmt::format("[{}.{}]", name, id), t.source()), i + 1);
+  }
+}
+
+std::string entry_name(Section& s, std::string_view kind, std::size_t index, bool required)
+{
+  const std::string fallback = fmt::format("{}{}", kind, index);
+  if (required) return s.string("name", std::nullopt, "a unique name");
+  return s.string("name", fallback);
+}
+
+MuscleOptions read_muscle(Section s)
+{
+  MuscleOptions o;
+  o.diameter = s.number("diameter", o.diameter / units::mm, positive(), kMm);
+  o.max_pressure = s.number("max_pressure", o.max_pressure / units::kPa, positive(), kKPa);
+  o.segments_per_length = s.number("segments_per_mm", o.segments_per_length * units::mm, positive()) / units::mm;
+  auto line = [&](std::string_view key, TwoPieceLine fallback) {
+    std::array<double, 4> c{fallback.slope_low, fallback.intercept_low, fallback.slope_high, fallback.intercept_high};
+    if (const toml::node* n = s.node(key)) {
+      const toml::array* a = n->as_array();
+      const auto pair = [](const toml::node& e) {
+        const toml::array* p = e.as_array();
+        return p && p->size() == 2 && (*p)[0].is_number() && (*p)[1].is_number();
+      };
+      if (!a || a->size() != 2 || !std::all_of(a->begin(), a->end(), pair)) {
+        s.error(n, key, "expected two lines [[slope_low, intercept_low Pa], [slope_high, intercept_high Pa]]");
+      } else {
+        for (int i = 0; i < 2; ++i)
+          for (int j = 0; j < 2; ++j) c[2 * i + j] = *(*(*a)[i].as_array())[j].value<double>();
+        if (!std::all_of(c.begin(), c.end(), [](double v) { return std::isfinite(v); }))
+          s.error(n, key, "coefficients must be finite");
+      }
+    }
+    s.record(key, fmt::format("[[{}, {}], [{}, {}]]", c[0], c[1], c[2], c[3]));
+    return TwoPieceLine{c[0], c[1], c[2], c[3]};
+  };
+  o.stiffness = line("stiffness", o.stiffness);
+  o.taut = line("taut", o.taut);
+  o.rest_strain_slope = s.number("rest_strain_slope", o.rest_strain_slope, any(), {1.0, " 1/Pa"});
+  o.rest_strain_intercept = s.number("rest_strain_intercept", o.rest_strain_intercept, closed(-0.9, 0.9));
+  o.smoothing = s.number("smoothing", o.smoothing / units::kPa, positive(), kKPa);
+  s.finish();
+  return o;
+}
+
+std::vector<FixedRegion> read_fixed(Context& ctx, const toml::table& root)
+{
+  std::vector<FixedRegion> fixed;
+  for_each_entry(ctx, root, "fixed", [&](Section s, std::size_t i) {
+    FixedRegion f;
+    f.name = entry_name(s, "fixed", i, false);
+    f.region = read_region(s, false);
+    s.finish();
+    fixed.push_back(std::move(f));
+  });
+  return fixed;
+}
+
+std::vector<Fiber> read_fibers(Context& ctx, const toml::table& root)
+{
+  std::vector<Fiber> fibers;
+  for_each_entry(ctx, root, "fiber", [&](Section s, std::size_t i) {
+    Fiber f;
+    f.name = entry_name(s, "fiber", i, true);
+    f.points = s.points("points", kMm, 2, true);
+    f.tangents = s.points("tangents", kMm, 0, false);
+    if (!f.tangents.empty() && f.tangents.size() != f.points.size())
+      s.error(s.node("tangents"), "tangents",
+              fmt::format("needs one tangent per point: {} points, {} tangents", f.points.size(), f.tangents.size()));
+    s.finish();
+    fibers.push_back(std::move(f));
+  });
+  return fibers;
+}
+
+std::vector<TrackingCurve> read_tracking_curves(Context& ctx, const toml::table& root)
+{
+  std::vector<TrackingCurve> curves;
+  for_each_entry(ctx, root, "tracking_curve", [&](Section s, std::size_t i) {
+    TrackingCurve c;
+    c.name = entry_name(s, "curve", i, false);
+    c.points = s.points("points", kMm, 2, true);
+    c.samples = s.integer("samples", c.samples, 2, 100000);
+    c.weight_position = s.number("weight_position", c.weight_position, non_negative());
+    c.weight_orientation = s.number("weight_orientation", c.weight_orientation, non_negative());
+    s.finish();
+    curves.push_back(std::move(c));
+  });
+  return curves;
+}
+
+Load read_load(Section s)
+{
+  Load l;
+  l.region = read_region(s, true);
+  l.force = s.optional_vec3("force", {1.0, " N"});
+  l.torque = s.optional_vec3("torque", {1.0, " N·m"});
+  if (!l.force && !l.torque)
+    s.context().error(s.where(), s.display(), "give force = [x, y, z] (N) and/or torque = [x, y, z] (N·m)");
+  if (l.region.point && l.torque)
+    s.context().error(s.where(), s.display(), "a point load takes a force, not a torque; use a box region");
+  s.finish();
+  return l;
+}
+
+Target read_target(Section s, std::size_t index, const MuscleOptions& muscle, const std::vector<Fiber>& fibers)
+{
+  Target t;
+  t.name = entry_name(s, "target", index, true);
+  t.kind = s.choice("kind", "", {"forces", "surface", "fibers"});
+  if (t.kind.empty()) s.missing("kind", "forces | surface | fibers");
+
+  if (const toml::node* n = s.node("load")) {
+    const toml::array* a = n->as_array();
+    if (!a || !a->is_array_of_tables() || a->empty()) {
+      s.error(n, "load", "expected a list of loads [{ box = {...}, force = [...] }, ...]");
+    } else {
+      for (std::size_t i = 0; i < a->size(); ++i) {
+        const toml::table& lt = *(*a)[i].as_table();
+        t.loads.push_back(read_load(Section(s.context(), &lt, fmt::format("{}.load[{}]", s.display(), i + 1), lt.source())));
+      }
+    }
+  }
+  t.surface = s.file("surface", false, "");
+  t.strain_penalty = s.number("strain_penalty", 0.0, non_negative());
+
+  if (const toml::node* n = s.node("fibers")) {
+    const toml::array* a = n->as_array();
+    if (!a || !a->is_array_of_tables() || a->empty()) {
+      s.error(n, "fibers", "expected a list of actuations [{ name = \"m1\", pressure = 300 }, ...]");
+    } else {
+      for (std::size_t i = 0; i < a->size(); ++i) {
+        const toml::table& ft = *(*a)[i].as_table();
+        Section f(s.context(), &ft, fmt::format("{}.fibers[{}]", s.display(), i + 1), ft.source());
+        FiberActuation act;
+        act.name = f.string("name", std::nullopt, "the fiber's name");
+        act.pressure = f.number("pressure", 0.0, closed(0, muscle.max_pressure / units::kPa), kKPa);
+        if (!ft.get("pressure")) f.missing("pressure", "in kPa");
+        act.points = f.points("points", kMm, 2, false);
+        const bool known = std::any_of(fibers.begin(), fibers.end(), [&](const Fiber& fb) { return fb.name == act.name; });
+        if (act.points.empty() && !known && !act.name.empty())
+          f.error(ft.get("name"), "name", fmt::format("no [[fiber]] named \"{}\" and no points given", act.name));
+        f.finish();
+        t.fibers.push_back(std::move(act));
+      }
+    }
+  }
+
+  const auto forbid = [&](bool present, std::string_view key) {
+    if (present) s.error(s.node(key), key, fmt::format("not used by kind = \"{}\"", t.kind));
+  };
+  if (t.kind == "forces") {
+    if (t.loads.empty() && !s.node("load")) s.missing("load", "the loads that make this target");
+    forbid(!t.surface.empty(), "surface");
+    forbid(!t.fibers.empty(), "fibers");
+  } else if (t.kind == "surface") {
+    if (!s.node("surface")) s.missing("surface", "the deformed copy of the body's surface");
+    forbid(!t.loads.empty(), "load");
+    forbid(!t.fibers.empty(), "fibers");
+  } else if (t.kind == "fibers") {
+    if (!s.node("fibers")) s.missing("fibers", "the fibers and pressures that make this target");
+    forbid(!t.loads.empty(), "load");
+    forbid(!t.surface.empty(), "surface");
+  }
+  s.finish();
+  return t;
+}
+
+OptimizeOptions read_optimize(Section s)
+{
+  OptimizeOptions o;
+  o.enabled = s.boolean("enabled", o.enabled);
+  o.strategy = s.choice("strategy", o.strategy, {"simultaneous", "sequential"});
+  o.max_iterations = s.integer("max_iterations", o.max_iterations, 0, 1000000);
+  o.gradient_tolerance = s.number("gradient_tolerance", o.gradient_tolerance, positive());
+  o.relative_tolerance = s.number("relative_tolerance", o.relative_tolerance, positive());
+  o.weight_curvature = s.number("weight_curvature", o.weight_curvature, non_negative());
+  o.weight_skin_barrier = s.number("weight_skin_barrier", o.weight_skin_barrier, non_negative());
+  o.weight_pressure_barrier = s.number("weight_pressure_barrier", o.weight_pressure_barrier, non_negative());
+  s.finish();
+  return o;
+}
+
+CollideOptions read_collide(Section s)
+{
+  CollideOptions o;
+  o.clearance = s.number("clearance", o.clearance / units::mm, non_negative(), kMm);
+  o.reoptimize = s.boolean("reoptimize", o.reoptimize);
+  s.finish();
+  return o;
+}
+
+MoldOptions read_mold(Section s)
+{
+  MoldOptions o;
+  const auto mm = [&](std::string_view key, double si, Range r) { return s.number(key, si / units::mm, r, kMm); };
+  o.wall = mm("wall", o.wall, positive());
+  o.voxel = mm("voxel", o.voxel, closed(0.01, 5.0));
+  o.pull = s.vec3("pull", o.pull, kNone, true);
+  if (const toml::node* n = s.node("parting")) {
+    if (n->is_string()) {
+      if (*n->value<std::string>() != "auto")
+        s.error(n, "parting", "expected \"auto\" or { point = [x, y, z], normal = [x, y, z] }");
+      s.record("parting", "\"auto\"");
+    } else if (const toml::table* t = n->as_table()) {
+      Section p(s.context(), t, s.display() + ".parting", t->source());
+      if (!t->get("point")) p.missing("point", "a point on the parting plane, mm");
+      if (!t->get("normal")) p.missing("normal", "the parting plane's normal");
+      PartingPlane plane{p.vec3("point", Vec3::Zero(), kMm), p.vec3("normal", Vec3::UnitZ(), kNone, true)};
+      p.finish();
+      o.parting = plane;
+    } else {
+      s.error(n, "parting", "expected \"auto\" or { point = [x, y, z], normal = [x, y, z] }");
+    }
+  } else {
+    s.record("parting", "\"auto\"");
+  }
+  o.keys = s.integer("keys", o.keys, 0, 16);
+  o.key_shape = s.choice("key_shape", o.key_shape, {"cone", "hemisphere"});
+  o.key_diameter = mm("key_diameter", o.key_diameter, positive());
+  o.key_clearance = mm("key_clearance", o.key_clearance, non_negative());
+  o.sprue_diameter = mm("sprue_diameter", o.sprue_diameter, positive());
+  o.vents = s.integer("vents", o.vents, 0, 16);
+  o.vent_diameter = mm("vent_diameter", o.vent_diameter, positive());
+  o.groove_clearance = mm("groove_clearance", o.groove_clearance, non_negative());
+  o.end_channel_length = mm("end_channel_length", o.end_channel_length, non_negative());
+  o.end_channel_diameter = mm("end_channel_diameter", o.end_channel_diameter, positive());
+  o.screw_holes = s.integer("screw_holes", o.screw_holes, 0, 16);
+  o.screw_diameter = mm("screw_diameter", o.screw_diameter, positive());
+  o.draft_deg = s.number("draft_deg", o.draft_deg, {0.0, 15.0, false, false}, {1.0, "°"});
+  o.shrink = s.number("shrink", o.shrink, {0.0, 0.2, false, false});
+  s.finish();
+  return o;
+}
+
+ExportOptions read_export(Section s)
+{
+  ExportOptions o;
+  const std::vector<std::string> allowed{"stl", "3mf"};
+  if (const toml::node* n = s.node("formats")) {
+    const toml::array* a = n->as_array();
+    std::vector<std::string> formats;
+    bool ok = a && !a->empty();
+    if (ok) {
+      for (const toml::node& e : *a) {
+        auto f = e.value<std::string>();
+        if (!f || std::find(allowed.begin(), allowed.end(), *f) == allowed.end()) {
+          s.error(&e, "formats", fmt::format("unknown format; expected some of: {}", fmt::join(allowed, ", ")));
+          ok = false;
+        } else if (std::find(formats.begin(), formats.end(), *f) == formats.end()) {
+          formats.push_back(*f);
+        }
+      }
+    } else {
+      s.error(n, "formats", "expected a non-empty list, e.g. [\"stl\", \"3mf\"]");
+    }
+    if (ok) o.formats = formats;
+  }
+  std::vector<std::string> quoted;
+  for (const std::string& f : o.formats) quoted.push_back("\"" + f + "\"");
+  s.record("formats", fmt::format("[{}]", fmt::join(quoted, ", ")));
+  o.printer_volume = s.vec3("printer_volume", o.printer_volume / units::mm, kMm);
+  if (!(o.printer_volume.array() > 0).all())
+    s.error(s.node("printer_volume"), "printer_volume", "every side must be > 0 mm");
+  o.min_wall = s.number("min_wall", o.min_wall / units::mm, positive(), kMm);
+  s.finish();
+  return o;
+}
+
+template <typename T>
+void check_unique_names(Context& ctx, const std::vector<T>& items, std::string_view section)
+{
+  std::set<std::string> seen;
+  for (const T& item : items) {
+    if (item.name.empty()) continue;
+    if (!seen.insert(item.name).second)
+      ctx.error({}, fmt::format("[{}.{}]", section, item.name), fmt::format("the name \"{}\" is used twice", item.name));
+  }
+}
+
+/// Cross-section checks that no single section can make.
+void check_design(Context& ctx, const Design& d)
+{
+  check_unique_names(ctx, d.fibers, "fiber");
+  check_unique_names(ctx, d.targets, "target");
+  check_unique_names(ctx, d.tracking_curves, "tracking_curve");
+  check_unique_names(ctx, d.fixed, "fixed");
+  if (d.mold.wall < d.export_.min_wall)
+    ctx.error({}, "[mold].wall",
+              fmt::format("{} mm is below the printer's minimum wall [export].min_wall = {} mm",
+                          d.mold.wall / units::mm, d.export_.min_wall / units::mm));
+}
+
+/// Section tables of the root, or null when absent; reports a section of the wrong type.
+const toml::table* section_table(Context& ctx, const toml::table& root, const std::string& name)
+{
+  const toml::node* n = root.get(name);
+  if (!n) return nullptr;
+  if (!n->is_table()) {
+    ctx.error(n->source(), "[" + name + "]", fmt::format("must be a table: write [{}] on a line of its own", name));
+    return nullptr;
+  }
+  return n->as_table();
+}
+
+void check_sections(Context& ctx, const toml::table& root)
+{
+  for (auto&& [key, value] : root) {
+    const std::string name(key.str());
+    if (std::find(kSections.begin(), kSections.end(), name) != kSections.end()) continue;
+    std::string message = fmt::format("unknown section [{}]", name);
+    if (auto hint = closest_match(name, kSections)) {
+      const bool array = std::find(kArraySections.begin(), kArraySections.end(), *hint) != kArraySections.end();
+      message += fmt::format("; did you mean {}{}{}?", array ? "[[" : "[", *hint, array ? "]]" : "]");
+    } else {
+      message += fmt::format("; valid sections: {}", fmt::join(kSections, ", "));
+    }
+    ctx.error(key.source(), "[" + name + "]", message);
+  }
+}
+
+Design read_root(Context& ctx, const toml::table& root, const fs::path& file)
+{
+  check_sections(ctx, root);
+  const auto section = [&](const std::string& name) {
+    const toml::table* t = section_table(ctx, root, name);
+    return Section(ctx, t, "[" + name + "]", t ? t->source() : toml::source_region{});
+  };
+  Design d;
+  d.file = file;
+  d.folder = file.parent_path();
+  d.design = read_design(section("design"), file);
+  d.material = read_material(section("material"));
+  d.mesh = read_mesh(section("mesh"));
+  d.sim = read_sim(section("sim"));
+  d.fixed = read_fixed(ctx, root);
+  d.muscle = read_muscle(section("muscle"));
+  d.fibers = read_fibers(ctx, root);
+  d.tracking_curves = read_tracking_curves(ctx, root);
+  for_each_entry(ctx, root, "target", [&](Section s, std::size_t i) {
+    d.targets.push_back(read_target(std::move(s), i, d.muscle, d.fibers));
+  });
+  d.optimize = read_optimize(section("optimize"));
+  d.collide = read_collide(section("collide"));
+  d.mold = read_mold(section("mold"));
+  d.export_ = read_export(section("export"));
+  check_design(ctx, d);
+  return d;
+}
+
+Design parse(std::string_view text, const fs::path& path)
+{
+  const fs::path file = fs::absolute(path).lexically_normal();
+  Context ctx{file, file.parent_path(), {}, {}};
+  toml::table root;
+  try {
+    root = toml::parse(text, file.string());
+  } catch (const toml::parse_error& e) {
+    ctx.error(e.source(), "", fmt::format("not valid TOML: {}", e.description()));
+    throw InputError(std::move(ctx.problems));
+  }
+  Design d = read_root(ctx, root, file);
+  if (!ctx.problems.empty()) {
+    std::stable_sort(ctx.problems.begin(), ctx.problems.end(),
+                     [](const Diagnostic& a, const Diagnostic& b) { return a.line < b.line; });
+    throw InputError(std::move(ctx.problems));
+  }
+  d.values = std::move(ctx.values);
+  return d;
+}
+
+} // namespace
+
+Design parse_design(std::string_view toml_text, const fs::path& path) { return parse(toml_text, path); }
+
+Design load_design(const fs::path& path)
+{
+  std::error_code ec;
+  if (!fs::exists(path, ec))
+    throw InputError(Diagnostic{path, 0, 0, "", "design file not found"});
+  if (!fs::is_regular_file(path, ec))
+    throw InputError(Diagnostic{path, 0, 0, "", "not a regular file"});
+  std::string text;
+  try {
+    text = read_file(path);
+  } catch (const std::exception& e) {
+    throw InputError(Diagnostic{path, 0, 0, "", e.what()});
+  }
+  return parse(text, path);
+}
+
+bool design_key_matches(std::string_view key, std::string_view prefix)
+{
+  std::string flat;
+  for (char c : key)
+    if (c != '[' && c != ']') flat += c;
+  if (!flat.starts_with(prefix)) return false;
+  return flat.size() == prefix.size() || flat[prefix.size()] == '.' || flat[prefix.size()] == '[';
+}
+
+} // namespace fibermold

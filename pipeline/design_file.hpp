@@ -1,0 +1,22 @@
+#pragma once
+// Reading and validating the design file (TOML). Every problem is reported up front, all at once,
+// as `file:line:column: [section].key: what is wrong`; the CLI exits with code 2.
+
+#include <filesystem>
+#include <string_view>
+
+#include "pipeline/design.hpp"
+
+namespace fibermold {
+
+/// Parses and validates `path`. Throws InputError listing every problem found.
+Design load_design(const std::filesystem::path& path);
+
+/// Parses and validates TOML text as if it were the file `path` (which need not exist; relative
+/// paths in the text resolve against its folder).
+Design parse_design(std::string_view toml_text, const std::filesystem::path& path);
+
+/// True when design-value `key` ("[fiber.m1].points") lies under `prefix` ("fiber", "sim.basis").
+bool design_key_matches(std::string_view key, std::string_view prefix);
+
+} // namespace fibermold

@@ -1,0 +1,3 @@
+#include "pipeline/cli.hpp"
+
+int main(int argc, char** argv) { return fibermold::fibermold_main(argc, argv); }

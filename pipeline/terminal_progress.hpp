@@ -1,0 +1,29 @@
+#pragma once
+// Progress of a stage on the terminal: one redrawn line on a TTY, plain lines otherwise
+// (when the message changes or another tenth of the work is done).
+
+#include <chrono>
+#include <cstdio>
+#include <string>
+
+#include "core/progress.hpp"
+
+namespace fibermold {
+
+class TerminalProgress final : public Progress {
+public:
+  TerminalProgress(std::string stage, std::FILE* out, bool tty);
+  ~TerminalProgress() override;
+  void update(double fraction, std::string_view what) override;
+
+private:
+  std::string stage_;
+  std::FILE* out_;
+  bool tty_;
+  bool line_open_ = false;
+  std::string last_what_;
+  int last_tenth_ = -1;
+  std::chrono::steady_clock::time_point last_draw_{};
+};
+
+} // namespace fibermold

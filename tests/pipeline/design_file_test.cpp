@@ -1,0 +1,210 @@
+#include "pipeline/design_file.hpp"
+
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+
+#include "core/input_error.hpp"
+#include "test_support.hpp"
+
+namespace fibermold {
+namespace {
+
+using ::testing::HasSubstr;
+namespace fs = std::filesystem;
+
+const char* kMinimal = R"(
+[design]
+surface = "body.stl"
+)";
+
+class DesignFileTest : public ::testing::Test {
+protected:
+  void SetUp() override { test::write_text(dir_ / "body.stl", "solid x\nendsolid x\n"); }
+
+  Design parse(const std::string& text) { return parse_design(text, dir_ / "design.toml"); }
+
+  /// The problems reported for `text`; fails the test when it parses.
+  std::vector<Diagnostic> problems(const std::string& text)
+  {
+    try {
+      parse(text);
+    } catch (const InputError& e) {
+      return e.diagnostics();
+    }
+    ADD_FAILURE() << "expected an InputError for:\n" << text;
+    return {};
+  }
+
+  /// The one problem reported for `text`, formatted.
+  std::string problem(const std::string& text)
+  {
+    auto p = problems(text);
+    EXPECT_EQ(p.size(), 1u);
+    return p.empty() ? "" : p.front().to_string();
+  }
+
+  test::TempDir dir_;
+};
+
+TEST_F(DesignFileTest, DemoParsesIntoSIUnits)
+{
+  const Design d = load_design(fs::path(FIBERMOLD_SOURCE_DIR) / "examples/twisting-bar/design.toml");
+  EXPECT_EQ(d.design.name, "twisting-bar");
+  EXPECT_EQ(d.design.surface, fs::path(FIBERMOLD_SOURCE_DIR) / "examples/twisting-bar/bar.stl");
+  EXPECT_DOUBLE_EQ(d.design.surface_scale, 1e-3);
+  EXPECT_DOUBLE_EQ(d.material.youngs_modulus, 86.4e3);
+  EXPECT_DOUBLE_EQ(*d.mesh.edge_length, 6.0e-3);
+  EXPECT_DOUBLE_EQ(d.muscle.diameter, 3.0e-3);
+  EXPECT_DOUBLE_EQ(d.muscle.max_pressure, 425e3);
+  ASSERT_EQ(d.fibers.size(), 1u);
+  ASSERT_EQ(d.fibers[0].points.size(), 4u);
+  EXPECT_DOUBLE_EQ(d.fibers[0].points[3].x(), 0.129);
+  ASSERT_EQ(d.targets.size(), 1u);
+  ASSERT_EQ(d.targets[0].loads.size(), 1u);
+  EXPECT_DOUBLE_EQ(d.targets[0].loads[0].torque->x(), 0.0035);
+  EXPECT_DOUBLE_EQ((*d.targets[0].loads[0].region.box)[0].x(), 0.127);
+  EXPECT_DOUBLE_EQ(d.mold.wall, 4e-3);
+  EXPECT_DOUBLE_EQ(d.mold.voxel, 0.2e-3);
+  EXPECT_DOUBLE_EQ(d.export_.printer_volume.x(), 0.25);
+}
+
+TEST_F(DesignFileTest, DefaultsFillEverySectionAndAreRecorded)
+{
+  const Design d = parse(kMinimal);
+  EXPECT_EQ(d.design.name, dir_.path().filename().string());  // design.toml: named after its folder
+  EXPECT_EQ(d.sim.basis, "mls-linear");
+  EXPECT_DOUBLE_EQ(d.sim.mls_radius, 1.7);
+  EXPECT_FALSE(d.mesh.edge_length.has_value());
+  EXPECT_DOUBLE_EQ(d.material.poisson_ratio, 0.47);
+  EXPECT_DOUBLE_EQ(d.material.gravity.z(), -9.81);
+  EXPECT_DOUBLE_EQ(d.collide.clearance, 1e-3);
+  EXPECT_DOUBLE_EQ(d.muscle.segments_per_length, 500.0);
+  EXPECT_DOUBLE_EQ(d.muscle.stiffness.slope_low, -549.92);
+  EXPECT_FALSE(d.mold.parting.has_value());
+  // The runner hashes effective values, so a default written out explicitly changes nothing.
+  EXPECT_EQ(d.values.at("[mold].wall"), "4");
+  EXPECT_EQ(d.values.at("[mold].parting"), "\"auto\"");
+  EXPECT_EQ(d.values.at("[mesh].edge_length"), "auto");
+  const Design explicit_default = parse(std::string(kMinimal) + "[mold]\nwall = 4.0\n");
+  EXPECT_EQ(explicit_default.values, d.values);
+}
+
+TEST_F(DesignFileTest, RelativePathsResolveAgainstTheDesignFolder)
+{
+  test::write_text(dir_ / "shapes" / "body.obj", "o x\n");
+  const Design d = parse_design("[design]\nsurface = \"../shapes/body.obj\"\n", dir_ / "sub" / "design.toml");
+  EXPECT_EQ(d.design.surface, dir_.path() / "shapes" / "body.obj");
+}
+
+TEST_F(DesignFileTest, MisspelledKeyNamesLineAndClosestKey)
+{
+  const std::string message = problem(std::string(kMinimal) + "[mold]\nwal = 4.0\n");
+  EXPECT_THAT(message, HasSubstr((dir_ / "design.toml").string() + ":5:1: [mold].wal: unknown key 'wal'"));
+  EXPECT_THAT(message, HasSubstr("did you mean 'wall'?"));
+}
+
+TEST_F(DesignFileTest, MisspelledSectionSuggestsArrayOfTables)
+{
+  EXPECT_THAT(problem(std::string(kMinimal) + "[[fibre]]\nname = \"a\"\n"), HasSubstr("did you mean [[fiber]]?"));
+  EXPECT_THAT(problem(std::string(kMinimal) + "[colide]\n"), HasSubstr("did you mean [collide]?"));
+  EXPECT_THAT(problem(std::string(kMinimal) + "[fiber]\nname = \"a\"\n"), HasSubstr("write [[fiber]]"));
+}
+
+TEST_F(DesignFileTest, WrongTypesAndRangesNameKeyLineAndBound)
+{
+  EXPECT_THAT(problem(std::string(kMinimal) + "[mold]\nkeys = \"four\"\n"),
+              HasSubstr(":5:8: [mold].keys: expected an integer, got a string"));
+  EXPECT_THAT(problem(std::string(kMinimal) + "[mold]\nwall = -1\n"), HasSubstr("[mold].wall: must be > 0 mm, got -1"));
+  EXPECT_THAT(problem(std::string(kMinimal) + "[material]\npoisson_ratio = 0.5\n"),
+              HasSubstr("[material].poisson_ratio: must be in [0, 0.5)"));
+  EXPECT_THAT(problem(std::string(kMinimal) + "[sim]\nbasis = \"mls-linaer\"\n"),
+              HasSubstr("did you mean \"mls-linear\"?"));
+  EXPECT_THAT(problem(std::string(kMinimal) + "[mold]\npull = [0, 0]\n"), HasSubstr("expected three numbers"));
+  EXPECT_THAT(problem(std::string(kMinimal) + "[mold]\npull = [0, 0, 0]\n"), HasSubstr("must not be the zero vector"));
+  EXPECT_THAT(problem(std::string(kMinimal) + "[sim]\nquadrature_points = 5\n"), HasSubstr("must be 1, 4 or 8"));
+}
+
+TEST_F(DesignFileTest, MissingRequiredKeysAndFiles)
+{
+  EXPECT_THAT(problem("[mesh]\nrepair = true\n"), HasSubstr("[design].surface: missing; required"));
+  EXPECT_THAT(problem("[design]\nsurface = \"nope.stl\"\n"), HasSubstr(":2:11: [design].surface: file not found"));
+  EXPECT_THAT(problem(std::string(kMinimal) + "[[fiber]]\npoints = [[0,0,0],[1,0,0]]\n"),
+              HasSubstr("[fiber.1].name: missing; required"));
+  EXPECT_THAT(problem(std::string(kMinimal) + "[[fiber]]\nname = \"m\"\npoints = [[0,0,0]]\n"),
+              HasSubstr("[fiber.m].points: needs at least 2 points, got 1"));
+}
+
+TEST_F(DesignFileTest, EveryProblemIsReportedAtOnceInLineOrder)
+{
+  const auto p = problems(std::string(kMinimal) + "[mold]\nwal = 4\nkeys = -1\n[sim]\nbasis = 3\n");
+  ASSERT_EQ(p.size(), 3u);
+  EXPECT_EQ(p[0].line, 5);
+  EXPECT_EQ(p[1].line, 6);
+  EXPECT_EQ(p[2].line, 8);
+}
+
+TEST_F(DesignFileTest, InvalidTomlNamesTheLine)
+{
+  EXPECT_THAT(problem("[design]\nsurface = \"body.stl\"\nname = \n"), HasSubstr(":3:"));
+  EXPECT_THAT(problem("[design]\nsurface = \"body.stl\"\nname = \n"), HasSubstr("not valid TOML"));
+}
+
+TEST_F(DesignFileTest, TargetsAreCheckedByKind)
+{
+  const std::string fiber = "[[fiber]]\nname = \"m1\"\npoints = [[0,0,0],[10,0,0]]\n";
+  const Design d = parse(std::string(kMinimal) + fiber +
+                         "[[target]]\nname = \"t\"\nkind = \"fibers\"\nfibers = [{ name = \"m1\", pressure = 300 }]\n");
+  ASSERT_EQ(d.targets[0].fibers.size(), 1u);
+  EXPECT_DOUBLE_EQ(d.targets[0].fibers[0].pressure, 300e3);
+
+  EXPECT_THAT(problem(std::string(kMinimal) + fiber +
+                      "[[target]]\nname = \"t\"\nkind = \"fibers\"\nfibers = [{ name = \"m1\", pressure = 500 }]\n"),
+              HasSubstr("pressure: must be in [0, 425] kPa, got 500"));
+  EXPECT_THAT(problem(std::string(kMinimal) +
+                      "[[target]]\nname = \"t\"\nkind = \"fibers\"\nfibers = [{ name = \"m9\", pressure = 5 }]\n"),
+              HasSubstr("no [[fiber]] named \"m9\""));
+  EXPECT_THAT(problem(std::string(kMinimal) + "[[target]]\nname = \"t\"\nkind = \"forces\"\n"),
+              HasSubstr("[target.t].load: missing; required"));
+  EXPECT_THAT(problem(std::string(kMinimal) +
+                      "[[target]]\nname = \"t\"\nkind = \"forces\"\nload = [{ point = [0,0,0], torque = [1,0,0] }]\n"),
+              HasSubstr("a point load takes a force, not a torque"));
+  EXPECT_THAT(problem(std::string(kMinimal) + "[[target]]\nname = \"t\"\nkind = \"forces\"\n"
+                                              "load = [{ box = { min = [0,0,0], max = [1,1,1] }, vertices = [1], force = [1,0,0] }]\n"),
+              HasSubstr("give exactly one of box"));
+}
+
+TEST_F(DesignFileTest, NamesMustBeUnique)
+{
+  const std::string fiber = "[[fiber]]\nname = \"m1\"\npoints = [[0,0,0],[10,0,0]]\n";
+  EXPECT_THAT(problem(std::string(kMinimal) + fiber + fiber), HasSubstr("the name \"m1\" is used twice"));
+}
+
+TEST_F(DesignFileTest, MoldWallBelowPrinterMinimumIsRejected)
+{
+  EXPECT_THAT(problem(std::string(kMinimal) + "[mold]\nwall = 0.5\n[export]\nmin_wall = 0.8\n"),
+              HasSubstr("[mold].wall: 0.5 mm is below the printer's minimum wall"));
+}
+
+TEST_F(DesignFileTest, PartingPlaneAndFormats)
+{
+  const Design d = parse(std::string(kMinimal) +
+                         "[mold]\nparting = { point = [0, 0, 5], normal = [0, 0, 2] }\n[export]\nformats = [\"stl\", \"3mf\"]\n");
+  ASSERT_TRUE(d.mold.parting.has_value());
+  EXPECT_DOUBLE_EQ(d.mold.parting->point.z(), 5e-3);
+  EXPECT_DOUBLE_EQ(d.mold.parting->normal.z(), 1.0);
+  EXPECT_EQ(d.export_.formats, (std::vector<std::string>{"stl", "3mf"}));
+  EXPECT_THAT(problem(std::string(kMinimal) + "[export]\nformats = [\"stp\"]\n"), HasSubstr("unknown format"));
+}
+
+TEST(DesignKeyMatches, SectionAndKeyPrefixes)
+{
+  EXPECT_TRUE(design_key_matches("[mold].wall", "mold"));
+  EXPECT_TRUE(design_key_matches("[mold].wall", "mold.wall"));
+  EXPECT_FALSE(design_key_matches("[mold].wall", "mold.wal"));
+  EXPECT_FALSE(design_key_matches("[molds].wall", "mold"));
+  EXPECT_TRUE(design_key_matches("[fiber.m1].points", "fiber"));
+  EXPECT_TRUE(design_key_matches("[target.t].load[1].box.min", "target"));
+}
+
+} // namespace
+} // namespace fibermold
