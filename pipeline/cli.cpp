@@ -13,6 +13,7 @@
 #include "core/input_error.hpp"
 #include "pipeline/build_lock.hpp"
 #include "pipeline/design_file.hpp"
+#include "pipeline/mesh_stage.hpp"
 #include "pipeline/runner.hpp"
 #include "pipeline/stages.hpp"
 #include "pipeline/terminal_progress.hpp"
@@ -158,6 +159,12 @@ int fibermold_main(int argc, char** argv)
     const Design design = load_design(args.design);
     if (check->parsed()) {
       print_design_summary(design);
+      std::vector<std::string> repairs;
+      const SurfaceCheck surface = check_design_surface(design, repairs);
+      fmt::print("  surface: closed, manifold, outward, no self-intersections; {} component(s), {:.6g} mm³\n",
+                 surface.components, surface.volume / 1e-9);
+      for (const std::string& w : surface.warnings) fmt::print("  warning: {}\n", w);
+      for (const std::string& r : repairs) fmt::print("  repair would: {}\n", r);
       return 0;
     }
     const Runner runner(shipped_stages());

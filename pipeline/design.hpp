@@ -33,6 +33,7 @@ struct MaterialOptions {
 struct MeshOptions {
   std::optional<double> edge_length;  ///< m; absent: the mesh stage derives it from the body's size
   double radius_edge_ratio = 1.5;     ///< TetGen quality bound
+  double min_dihedral_deg = 10;       ///< TetGen quality bound on dihedral angles, degrees
   bool repair = false;
   bool remesh = false;                ///< isotropic remeshing to edge_length during repair
 };

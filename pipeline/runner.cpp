@@ -9,6 +9,7 @@
 
 #include <fmt/format.h>
 #include <spdlog/sinks/basic_file_sink.h>
+#include <spdlog/sinks/stdout_sinks.h>
 #include <spdlog/spdlog.h>
 
 #include "core/atomic_file.hpp"
@@ -274,7 +275,10 @@ StageRun Runner::run_stage(const Stage& stage, const Design& design, const fs::p
   fs::create_directories(log_path(build_dir, name).parent_path());
 
   auto sink = std::make_shared<spdlog::sinks::basic_file_sink_mt>(log_path(build_dir, name).string(), true);
-  spdlog::logger log(name, {sink});
+  auto console = std::make_shared<spdlog::sinks::stderr_sink_mt>();
+  console->set_level(spdlog::level::warn);
+  console->set_pattern("[%n] %l: %v");
+  spdlog::logger log(name, {sink, console});
   log.set_level(spdlog::level::debug);
   log.flush_on(spdlog::level::info);
   std::unique_ptr<Progress> reporter = progress ? progress(name) : nullptr;

@@ -1,5 +1,7 @@
 #include "pipeline/stages.hpp"
 
+#include "pipeline/mesh_stage.hpp"
+
 namespace fibermold {
 
 // Only real stages are registered here; each arrives with its module (mesh, targets, optimize,
@@ -7,6 +9,7 @@ namespace fibermold {
 std::vector<std::unique_ptr<Stage>> shipped_stages()
 {
   std::vector<std::unique_ptr<Stage>> stages;
+  stages.push_back(std::make_unique<MeshStage>());
   return stages;
 }
 

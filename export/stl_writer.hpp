@@ -1,0 +1,14 @@
+#pragma once
+// Binary STL, in millimetres, the format slicers expect.
+
+#include <filesystem>
+#include <string>
+
+#include "mesh/surface_mesh.hpp"
+
+namespace fibermold {
+
+/// Writes `surface` (metres) as binary STL in millimetres, atomically.
+void write_stl(const std::filesystem::path& path, const SurfaceMesh& surface, const std::string& header = "fibermold");
+
+} // namespace fibermold

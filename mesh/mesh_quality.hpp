@@ -1,0 +1,23 @@
+#pragma once
+// Size and quality figures of a tetrahedral mesh, for the mesh report.
+
+#include "mesh/tet_mesh.hpp"
+
+namespace fibermold {
+
+struct MeshQuality {
+  double volume = 0;                  ///< m³
+  double mean_edge_length = 0;        ///< m, over the unique corner edges
+  double min_dihedral_deg = 0, max_dihedral_deg = 0;
+  double mean_radius_edge_ratio = 0;  ///< circumradius / shortest edge; 0.612 for a regular tet
+  double max_radius_edge_ratio = 0;
+  Eigen::Index inverted_tets = 0;     ///< non-positive volume
+};
+
+MeshQuality mesh_quality(const TetMesh& mesh);
+
+/// Circumradius over shortest edge of the tet with corners a, b, c, d.
+double radius_edge_ratio(const Eigen::Vector3d& a, const Eigen::Vector3d& b, const Eigen::Vector3d& c,
+                         const Eigen::Vector3d& d);
+
+} // namespace fibermold

@@ -1,0 +1,122 @@
+#include "mesh/surface_import.hpp"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <map>
+
+#include <assimp/Importer.hpp>
+#include <assimp/postprocess.h>
+#include <assimp/scene.h>
+#include <fmt/format.h>
+#include <fmt/ranges.h>
+
+#include "core/input_error.hpp"
+
+namespace fibermold {
+
+namespace fs = std::filesystem;
+
+namespace {
+
+[[noreturn]] void fail(const fs::path& file, const std::string& message)
+{
+  throw InputError(Diagnostic{file, 0, 0, "", message});
+}
+
+std::string lower(std::string s)
+{
+  std::transform(s.begin(), s.end(), s.begin(), [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+  return s;
+}
+
+} // namespace
+
+std::vector<std::string> supported_surface_extensions()
+{
+  Assimp::Importer importer;
+  std::string list;  // "*.3d;*.3ds;..."
+  importer.GetExtensionList(list);
+  std::vector<std::string> extensions;
+  std::size_t start = 0;
+  while (start < list.size()) {
+    std::size_t end = list.find(';', start);
+    if (end == std::string::npos) end = list.size();
+    std::string e = list.substr(start, end - start);
+    if (e.starts_with("*")) e.erase(0, 1);
+    if (!e.empty()) extensions.push_back(lower(e));
+    start = end + 1;
+  }
+  return extensions;
+}
+
+SurfaceMesh import_surface(const fs::path& file, double metres_per_unit)
+{
+  std::error_code ec;
+  if (!fs::exists(file, ec)) fail(file, "surface file not found");
+  if (!fs::is_regular_file(file, ec)) fail(file, "surface is not a regular file");
+  if (fs::file_size(file, ec) == 0) fail(file, "surface file is empty");
+  const std::string extension = lower(file.extension().string());
+  Assimp::Importer importer;
+  if (extension.empty() || !importer.IsExtensionSupported(extension)) {
+    fail(file, fmt::format("unsupported surface format '{}'; use one of: .stl .obj .ply .off .3mf .gltf .glb "
+                           "(and the other formats assimp reads)",
+                           extension));
+  }
+  // Keep only positions: normals and texture coordinates would stop identical positions from welding.
+  importer.SetPropertyInteger(AI_CONFIG_PP_RVC_FLAGS, aiComponent_NORMALS | aiComponent_TEXCOORDS |
+                                                          aiComponent_COLORS | aiComponent_TANGENTS_AND_BITANGENTS);
+  const unsigned flags = aiProcess_Triangulate | aiProcess_JoinIdenticalVertices | aiProcess_DropNormals |
+                         aiProcess_RemoveComponent | aiProcess_PreTransformVertices;
+  const aiScene* scene = importer.ReadFile(file.string(), flags);
+  if (!scene) fail(file, fmt::format("cannot read the surface: {}", importer.GetErrorString()));
+
+  // Merge all meshes, welding vertices with identical coordinates across them.
+  std::map<std::array<double, 3>, int> index_of;
+  std::vector<Eigen::Vector3d> vertices;
+  std::vector<Eigen::Vector3i> faces;
+  std::size_t non_triangles = 0, non_finite = 0;
+  Eigen::Vector3d first_non_finite = Eigen::Vector3d::Zero();
+  for (unsigned m = 0; m < scene->mNumMeshes; ++m) {
+    const aiMesh* mesh = scene->mMeshes[m];
+    std::vector<int> local(mesh->mNumVertices);
+    for (unsigned v = 0; v < mesh->mNumVertices; ++v) {
+      const aiVector3D& p = mesh->mVertices[v];
+      const std::array<double, 3> key{p.x, p.y, p.z};
+      if (!std::isfinite(key[0]) || !std::isfinite(key[1]) || !std::isfinite(key[2])) {
+        if (non_finite++ == 0) first_non_finite = {key[0], key[1], key[2]};
+        local[v] = 0;
+        continue;
+      }
+      auto [it, inserted] = index_of.emplace(key, static_cast<int>(vertices.size()));
+      if (inserted) vertices.emplace_back(key[0], key[1], key[2]);
+      local[v] = it->second;
+    }
+    for (unsigned f = 0; f < mesh->mNumFaces; ++f) {
+      const aiFace& face = mesh->mFaces[f];
+      if (face.mNumIndices != 3) {
+        ++non_triangles;
+        continue;
+      }
+      faces.emplace_back(local[face.mIndices[0]], local[face.mIndices[1]], local[face.mIndices[2]]);
+    }
+  }
+  if (non_finite > 0)
+    fail(file, fmt::format("{} vertices have coordinates that are not finite numbers, e.g. ({}, {}, {})", non_finite,
+                           first_non_finite.x(), first_non_finite.y(), first_non_finite.z()));
+  if (faces.empty()) fail(file, "the surface has no triangles");
+  if (non_triangles > 0)
+    fail(file, fmt::format("the surface has {} point or line elements; only a closed triangle surface can be meshed",
+                           non_triangles));
+
+  SurfaceMesh surface;
+  surface.source = file;
+  surface.vertices.resize(static_cast<Eigen::Index>(vertices.size()), 3);
+  surface.faces.resize(static_cast<Eigen::Index>(faces.size()), 3);
+  for (std::size_t i = 0; i < vertices.size(); ++i)
+    surface.vertices.row(static_cast<Eigen::Index>(i)) = vertices[i].transpose() * metres_per_unit;
+  for (std::size_t i = 0; i < faces.size(); ++i) surface.faces.row(static_cast<Eigen::Index>(i)) = faces[i].transpose();
+  return surface;
+}
+
+} // namespace fibermold

@@ -1,0 +1,21 @@
+#pragma once
+// Importing the body's surface from any triangle format assimp reads (STL ascii and binary, OBJ,
+// PLY, OFF, 3MF, glTF, ...). Duplicate vertices (same coordinates) are welded, polygons
+// triangulated, scene transforms applied.
+
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include "mesh/surface_mesh.hpp"
+
+namespace fibermold {
+
+/// Reads `file`, scaled by `metres_per_unit`. Throws InputError naming the file for a missing,
+/// empty, unreadable or unsupported file, one without triangles, or non-finite coordinates.
+SurfaceMesh import_surface(const std::filesystem::path& file, double metres_per_unit);
+
+/// File extensions assimp reads here, lower case with the dot (".stl").
+std::vector<std::string> supported_surface_extensions();
+
+} // namespace fibermold

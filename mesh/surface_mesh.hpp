@@ -1,0 +1,23 @@
+#pragma once
+// A triangle surface: the body's skin as the user gave it, in metres.
+
+#include <filesystem>
+
+#include <Eigen/Core>
+
+namespace fibermold {
+
+struct SurfaceMesh {
+  Eigen::MatrixX3d vertices;        ///< m
+  Eigen::MatrixX3i faces;           ///< counter-clockwise seen from outside
+  std::filesystem::path source;     ///< the file it came from, for messages
+
+  Eigen::Index num_vertices() const { return vertices.rows(); }
+  Eigen::Index num_faces() const { return faces.rows(); }
+};
+
+/// Volume enclosed by a closed, consistently oriented surface (divergence theorem); negative when
+/// the faces point inward.
+double signed_volume(const SurfaceMesh& surface);
+
+} // namespace fibermold

@@ -1,0 +1,133 @@
+#include "mesh/surface_repair.hpp"
+
+#include <numeric>
+
+#include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
+#include <CGAL/Polygon_mesh_processing/detect_features.h>
+#include <CGAL/Polygon_mesh_processing/orient_polygon_soup.h>
+#include <CGAL/Polygon_mesh_processing/orientation.h>
+#include <CGAL/Polygon_mesh_processing/polygon_soup_to_polygon_mesh.h>
+#include <CGAL/Polygon_mesh_processing/remesh.h>
+#include <CGAL/Polygon_mesh_processing/repair_polygon_soup.h>
+#include <CGAL/Polygon_mesh_processing/stitch_borders.h>
+#include <CGAL/Surface_mesh.h>
+#include <fmt/format.h>
+#include <nanoflann.hpp>
+
+#include "core/units.hpp"
+
+namespace fibermold {
+
+namespace {
+
+using Kernel = CGAL::Exact_predicates_inexact_constructions_kernel;
+using Point = Kernel::Point_3;
+using Mesh = CGAL::Surface_mesh<Point>;
+using Polygon = std::vector<std::size_t>;
+namespace PMP = CGAL::Polygon_mesh_processing;
+
+/// Replaces every vertex by the lowest-numbered vertex within `radius` of it (kd-tree, nanoflann).
+std::vector<int> merge_close_vertices(const Eigen::MatrixX3d& vertices, double radius, std::size_t& merged)
+{
+  using Tree = nanoflann::KDTreeEigenMatrixAdaptor<Eigen::MatrixX3d>;
+  Tree tree(3, std::cref(vertices), 16);
+  std::vector<int> target(static_cast<std::size_t>(vertices.rows()));
+  std::iota(target.begin(), target.end(), 0);
+  std::vector<std::pair<Eigen::Index, double>> found;
+  for (Eigen::Index v = 0; v < vertices.rows(); ++v) {
+    if (target[v] != v) continue;
+    const Eigen::RowVector3d p = vertices.row(v);
+    found.clear();
+    tree.index->radiusSearch(p.data(), radius * radius, found, nanoflann::SearchParams());
+    for (const auto& [w, d2] : found)
+      if (w > v && target[w] == w) {
+        target[w] = static_cast<int>(v);
+        ++merged;
+      }
+  }
+  return target;
+}
+
+} // namespace
+
+std::vector<std::string> RepairReport::changes() const
+{
+  std::vector<std::string> lines;
+  if (merged_vertices) lines.push_back(fmt::format("merged {} vertices into their close neighbours", merged_vertices));
+  if (removed_faces) lines.push_back(fmt::format("removed {} degenerate or duplicate faces", removed_faces));
+  if (removed_vertices) lines.push_back(fmt::format("removed {} vertices that no face used", removed_vertices));
+  if (reoriented) lines.push_back("flipped faces to agree with their neighbours");
+  if (stitched_edges) lines.push_back(fmt::format("stitched {} pairs of border edges", stitched_edges));
+  if (turned_outward) lines.push_back("turned the surface outward (it was inside out)");
+  if (remeshed) lines.push_back(fmt::format("remeshed isotropically: {} → {} faces", faces_before, faces_after));
+  return lines;
+}
+
+SurfaceMesh repair_surface(const SurfaceMesh& surface, const RepairOptions& options, RepairReport& report)
+{
+  report = RepairReport{};
+  report.faces_before = static_cast<std::size_t>(surface.num_faces());
+  const double diagonal = (surface.vertices.colwise().maxCoeff() - surface.vertices.colwise().minCoeff()).norm();
+  const std::vector<int> target =
+      merge_close_vertices(surface.vertices, options.merge_tolerance * diagonal, report.merged_vertices);
+
+  std::vector<Point> points;
+  for (Eigen::Index v = 0; v < surface.num_vertices(); ++v)
+    points.emplace_back(surface.vertices(v, 0), surface.vertices(v, 1), surface.vertices(v, 2));
+  std::vector<Polygon> polygons;
+  for (Eigen::Index f = 0; f < surface.num_faces(); ++f)
+    polygons.push_back({static_cast<std::size_t>(target[surface.faces(f, 0)]),
+                        static_cast<std::size_t>(target[surface.faces(f, 1)]),
+                        static_cast<std::size_t>(target[surface.faces(f, 2)])});
+
+  const std::size_t points_before = points.size(), polygons_before = polygons.size();
+  PMP::repair_polygon_soup(points, polygons);  // duplicate points and polygons, degenerate polygons, unused points
+  report.removed_faces = polygons_before - polygons.size();
+  report.removed_vertices = points_before - points.size() - report.merged_vertices;
+
+  std::vector<Polygon> before_orientation = polygons;
+  PMP::orient_polygon_soup(points, polygons);
+  report.reoriented = polygons != before_orientation;
+
+  Mesh mesh;
+  PMP::polygon_soup_to_polygon_mesh(points, polygons, mesh);
+  report.stitched_edges = PMP::stitch_borders(mesh);
+  if (CGAL::is_closed(mesh)) {
+    const bool outward = PMP::is_outward_oriented(mesh);
+    if (!outward) {
+      PMP::reverse_face_orientations(mesh);
+      report.turned_outward = true;
+    }
+  }
+  if (options.remesh_edge_length && CGAL::is_closed(mesh)) {
+    // Sharp edges (dihedral angle beyond 60°) stay on their polylines, so corners are kept.
+    auto sharp = mesh.add_property_map<Mesh::Edge_index, bool>("e:sharp", false).first;
+    PMP::detect_sharp_edges(mesh, 60.0, sharp);
+    PMP::isotropic_remeshing(faces(mesh), *options.remesh_edge_length, mesh,
+                             CGAL::parameters::number_of_iterations(3).edge_is_constrained_map(sharp));
+    mesh.collect_garbage();
+    report.remeshed = true;
+  }
+
+  SurfaceMesh repaired;
+  repaired.source = surface.source;
+  repaired.vertices.resize(static_cast<Eigen::Index>(mesh.number_of_vertices()), 3);
+  std::vector<int> index(mesh.num_vertices(), -1);
+  Eigen::Index next = 0;
+  for (Mesh::Vertex_index v : mesh.vertices()) {
+    const Point& p = mesh.point(v);
+    repaired.vertices.row(next) << p.x(), p.y(), p.z();
+    index[v.idx()] = static_cast<int>(next++);
+  }
+  repaired.faces.resize(static_cast<Eigen::Index>(mesh.number_of_faces()), 3);
+  Eigen::Index f = 0;
+  for (Mesh::Face_index face : mesh.faces()) {
+    int k = 0;
+    for (Mesh::Vertex_index v : CGAL::vertices_around_face(mesh.halfedge(face), mesh)) repaired.faces(f, k++) = index[v.idx()];
+    ++f;
+  }
+  report.faces_after = static_cast<std::size_t>(repaired.num_faces());
+  return repaired;
+}
+
+} // namespace fibermold

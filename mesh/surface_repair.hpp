@@ -1,0 +1,35 @@
+#pragma once
+// Repairing a surface on request ([mesh] repair = true), never silently: merge vertices closer than
+// a tolerance, drop degenerate and duplicate faces and unused vertices, make the orientation
+// consistent, stitch borders, orient outward, and optionally remesh isotropically (CGAL).
+
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "mesh/surface_mesh.hpp"
+
+namespace fibermold {
+
+struct RepairOptions {
+  double merge_tolerance = 1e-6;             ///< × bounding-box diagonal
+  std::optional<double> remesh_edge_length;  ///< m; isotropic remeshing when set
+};
+
+struct RepairReport {
+  std::size_t merged_vertices = 0;
+  std::size_t removed_faces = 0;     ///< degenerate or duplicate
+  std::size_t removed_vertices = 0;  ///< used by no face
+  bool reoriented = false;           ///< some faces flipped to agree with their neighbours
+  std::size_t stitched_edges = 0;
+  bool turned_outward = false;       ///< the whole surface was inside out
+  bool remeshed = false;
+  std::size_t faces_before = 0, faces_after = 0;
+
+  /// What changed, one line per change; empty when nothing did.
+  std::vector<std::string> changes() const;
+};
+
+SurfaceMesh repair_surface(const SurfaceMesh& surface, const RepairOptions& options, RepairReport& report);
+
+} // namespace fibermold

@@ -1,0 +1,30 @@
+#pragma once
+// The volumetric mesh of the body that later stages simulate on: nodes, tetrahedra (4 or 10
+// nodes), boundary faces, and where each surface vertex went.
+
+#include <filesystem>
+
+#include <Eigen/Core>
+
+namespace fibermold {
+
+struct TetMesh {
+  Eigen::MatrixX3d nodes;                                          ///< m
+  Eigen::Matrix<int, Eigen::Dynamic, Eigen::Dynamic> tets;         ///< 4 columns (linear) or 10 (quadratic, VTK order)
+  Eigen::MatrixX3i boundary_faces;                                 ///< corner nodes, outward
+  Eigen::VectorXi surface_to_node;                                 ///< input surface vertex → node
+
+  int nodes_per_tet() const { return static_cast<int>(tets.cols()); }
+  Eigen::Index num_tets() const { return tets.rows(); }
+
+  /// Signed volume of tet t from its four corners (positive when positively oriented).
+  double tet_volume(Eigen::Index t) const;
+  double volume() const;
+};
+
+/// Binary artifact for later stages (mesh/body.tetmesh): little-endian, versioned, with a checksum.
+void save_tet_mesh(const TetMesh& mesh, const std::filesystem::path& path);
+/// Throws std::runtime_error naming the file when it is missing, truncated or corrupt.
+TetMesh load_tet_mesh(const std::filesystem::path& path);
+
+} // namespace fibermold

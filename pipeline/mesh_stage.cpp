@@ -1,0 +1,143 @@
+#include "pipeline/mesh_stage.hpp"
+
+#include <chrono>
+#include <cmath>
+
+#include <fmt/format.h>
+#include <nlohmann/json.hpp>
+#include <spdlog/spdlog.h>
+
+#include "core/atomic_file.hpp"
+#include "core/input_error.hpp"
+#include "core/units.hpp"
+#include "export/vtu_writer.hpp"
+#include "mesh/mesh_quality.hpp"
+#include "mesh/surface_import.hpp"
+#include "mesh/surface_repair.hpp"
+#include "mesh/tetrahedralize.hpp"
+
+namespace fibermold {
+
+namespace {
+
+using Clock = std::chrono::steady_clock;
+double since(Clock::time_point t) { return std::chrono::duration<double>(Clock::now() - t).count(); }
+
+/// Import, check, and repair when asked; throws InputError when the result cannot be meshed.
+SurfaceMesh prepared_surface(const Design& d, SurfaceCheck& check, RepairReport& repair, nlohmann::json& seconds)
+{
+  auto t = Clock::now();
+  SurfaceMesh surface = import_surface(d.design.surface, d.design.surface_scale);
+  seconds["import"] = since(t);
+  t = Clock::now();
+  check = check_surface(surface);
+  seconds["check"] = since(t);
+  if (d.mesh.repair) {
+    t = Clock::now();
+    RepairOptions options;
+    if (d.mesh.remesh) options.remesh_edge_length = target_edge_length(d, std::abs(signed_volume(surface)));
+    surface = repair_surface(surface, options, repair);
+    check = check_surface(surface);
+    seconds["repair"] = since(t);
+  }
+  require_valid_surface(check, surface, d.mesh.repair);
+  return surface;
+}
+
+nlohmann::json point_mm(const Eigen::Vector3d& p)
+{
+  return {p.x() / units::mm, p.y() / units::mm, p.z() / units::mm};
+}
+
+} // namespace
+
+double target_edge_length(const Design& design, double body_volume)
+{
+  if (design.mesh.edge_length) return *design.mesh.edge_length;
+  // V / (a³/(6√2)) = 5000
+  return std::cbrt(body_volume / 5000.0 * 6.0 * std::sqrt(2.0));
+}
+
+SurfaceCheck check_design_surface(const Design& design, std::vector<std::string>& repairs)
+{
+  SurfaceCheck check;
+  RepairReport repair;
+  nlohmann::json seconds;
+  prepared_surface(design, check, repair, seconds);
+  repairs = repair.changes();
+  return check;
+}
+
+void MeshStage::run(StageContext& ctx) const
+{
+  const Design& d = ctx.design;
+  const auto start = Clock::now();
+  nlohmann::ordered_json report;
+  nlohmann::json seconds;
+  SurfaceCheck check;
+  RepairReport repair;
+  ctx.progress.checkpoint(0.0, "importing " + d.design.surface.filename().string());
+  const SurfaceMesh surface = prepared_surface(d, check, repair, seconds);
+  for (const std::string& w : check.warnings) ctx.log.warn("surface {}: {}", surface.source.filename().string(), w);
+  for (const std::string& change : repair.changes()) ctx.log.info("repair: {}", change);
+
+  const double edge = target_edge_length(d, check.volume);
+  ctx.log.info("surface: {} vertices, {} faces, volume {:.6g} mm³; target edge {:.4g} mm", surface.num_vertices(),
+               surface.num_faces(), check.volume / 1e-9, edge / units::mm);
+  auto t = Clock::now();
+  ctx.progress.checkpoint(0.1, "tetrahedralizing");
+  const TetMesh mesh = tetrahedralize(surface, {edge, d.mesh.radius_edge_ratio, d.mesh.min_dihedral_deg, d.sim.basis == "fem-p2"}, ctx.progress);
+  seconds["tetrahedralize"] = since(t);
+  ctx.progress.checkpoint(0.8, "measuring quality");
+  const MeshQuality q = mesh_quality(mesh);
+  if (q.inverted_tets > 0) throw std::runtime_error(fmt::format("TetGen produced {} inverted tets", q.inverted_tets));
+  const double volume_error = std::abs(q.volume - check.volume) / check.volume;
+  if (volume_error > 1e-9)
+    throw std::runtime_error(fmt::format("tet volume {:.9g} mm³ differs from the surface's {:.9g} mm³ (relative {:.2e})",
+                                         q.volume / 1e-9, check.volume / 1e-9, volume_error));
+
+  ctx.progress.checkpoint(0.9, "writing");
+  save_tet_mesh(mesh, ctx.output_dir / "body.tetmesh");
+  VtuGrid grid(mesh.nodes);
+  grid.add_cells(mesh.tets, mesh.nodes_per_tet() == 10 ? VtkCell::quadratic_tetra : VtkCell::tetra);
+  Eigen::MatrixXd ratio(mesh.num_tets(), 1), volume(mesh.num_tets(), 1);
+  for (Eigen::Index i = 0; i < mesh.num_tets(); ++i) {
+    const auto corner = [&](int k) { return Eigen::Vector3d(mesh.nodes.row(mesh.tets(i, k))); };
+    ratio(i, 0) = radius_edge_ratio(corner(0), corner(1), corner(2), corner(3));
+    volume(i, 0) = mesh.tet_volume(i) / 1e-9;
+  }
+  grid.add_cell_field("radius_edge_ratio", ratio);
+  grid.add_cell_field("volume_mm3", volume);
+  grid.write(ctx.output_dir / "body.vtu");
+
+  seconds["total"] = since(start);
+  report["surface"] = {{"file", d.design.surface.string()},
+                       {"units", d.design.units},
+                       {"vertices", surface.num_vertices()},
+                       {"faces", surface.num_faces()},
+                       {"components", check.components},
+                       {"volume_mm3", check.volume / 1e-9},
+                       {"bounds_mm", {{"min", point_mm(check.min)}, {"max", point_mm(check.max)}}},
+                       {"warnings", check.warnings},
+                       {"repaired", repair.changes()}};
+  report["mesh"] = {{"nodes", mesh.nodes.rows()},
+                    {"tets", mesh.num_tets()},
+                    {"nodes_per_tet", mesh.nodes_per_tet()},
+                    {"boundary_faces", mesh.boundary_faces.rows()},
+                    {"volume_mm3", q.volume / 1e-9},
+                    {"volume_mL", q.volume / 1e-6},
+                    {"target_edge_length_mm", edge / units::mm},
+                    {"mean_edge_length_mm", q.mean_edge_length / units::mm},
+                    {"min_dihedral_deg", q.min_dihedral_deg},
+                    {"max_dihedral_deg", q.max_dihedral_deg},
+                    {"radius_edge_ratio", {{"mean", q.mean_radius_edge_ratio}, {"max", q.max_radius_edge_ratio},
+                                           {"bound", d.mesh.radius_edge_ratio}}},
+                    {"min_dihedral_bound_deg", d.mesh.min_dihedral_deg}};
+  report["seconds"] = seconds;
+  write_file_atomic(ctx.output_dir / "report.json", report.dump(2) + "\n");
+  ctx.log.info("mesh: {} nodes, {} tets, volume {:.6g} mL, dihedral angles {:.1f}°–{:.1f}°, in {:.2f} s",
+               mesh.nodes.rows(), mesh.num_tets(), q.volume / 1e-6, q.min_dihedral_deg, q.max_dihedral_deg,
+               since(start));
+}
+
+} // namespace fibermold

@@ -1,0 +1,29 @@
+#pragma once
+// Closed, outward-oriented triangle surfaces for tests (metres), and ways to break them.
+
+#include <filesystem>
+#include <string>
+
+#include "mesh/surface_mesh.hpp"
+
+namespace fibermold::test {
+
+/// Box [lo, hi] with each face a grid of `n` × `n` cells (cells along each edge).
+SurfaceMesh box(const Eigen::Vector3d& lo, const Eigen::Vector3d& hi, int n = 2);
+/// Cylinder along z from 0 to `height`, `segments` around, `rings` along, fan-triangulated caps.
+SurfaceMesh cylinder(double radius, double height, int segments = 24, int rings = 6);
+/// UV sphere centred at the origin.
+SurfaceMesh sphere(double radius, int segments = 24, int stacks = 12);
+/// Torus about z: tube radius `r` around a circle of radius `R`.
+SurfaceMesh torus(double R, double r, int segments = 32, int sides = 12);
+
+/// Both surfaces in one (their vertices and faces appended).
+SurfaceMesh combine(const SurfaceMesh& a, const SurfaceMesh& b);
+
+/// Writers for import tests; coordinates written in `units_per_metre` (1000: mm).
+void write_ascii_stl(const std::filesystem::path& path, const SurfaceMesh& s, double units_per_metre = 1000);
+void write_obj(const std::filesystem::path& path, const SurfaceMesh& s, double units_per_metre = 1000);
+void write_off(const std::filesystem::path& path, const SurfaceMesh& s, double units_per_metre = 1000);
+void write_ply(const std::filesystem::path& path, const SurfaceMesh& s, double units_per_metre = 1000);
+
+} // namespace fibermold::test
