@@ -19,5 +19,6 @@ function(fibermold_test name)
   target_compile_definitions(${name} PRIVATE
     FIBERMOLD_SOURCE_DIR="${PROJECT_SOURCE_DIR}"
     FIBERMOLD_BINARY="$<TARGET_FILE:fibermold>")
-  gtest_discover_tests(${name} DISCOVERY_TIMEOUT 60 PROPERTIES ${T_PROPERTIES})
+  # A test that hangs fails after 5 minutes instead of stalling CI.
+  gtest_discover_tests(${name} DISCOVERY_TIMEOUT 60 PROPERTIES TIMEOUT 300 ${T_PROPERTIES})
 endfunction()

@@ -192,7 +192,7 @@ SurfaceCheck check_surface(const SurfaceMesh& s)
   }
   const double size = (check.max - check.min).maxCoeff();
   if (size < 1 * units::mm || size > 2.0)
-    check.warnings.push_back(fmt::format("the body is {:.4g} mm across: is [design].units right?", size / units::mm));
+    check.warnings.push_back(fmt::format("the body is {:.6g} mm across: is [design].units right?", size / units::mm));
   if (check.components > 1)
     check.warnings.push_back(fmt::format("the surface has {} separate components", check.components));
   return check;

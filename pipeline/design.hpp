@@ -34,6 +34,7 @@ struct MeshOptions {
   std::optional<double> edge_length;  ///< m; absent: the mesh stage derives it from the body's size
   double radius_edge_ratio = 1.5;     ///< TetGen quality bound
   double min_dihedral_deg = 10;       ///< TetGen quality bound on dihedral angles, degrees
+  int max_tets = 2'000'000;          ///< refuse to start TetGen on a mesh expected to be larger
   bool repair = false;
   bool remesh = false;                ///< isotropic remeshing to edge_length during repair
 };

@@ -405,6 +405,7 @@ MeshOptions read_mesh(Section s)
   o.edge_length = s.optional_number("edge_length", positive(), kMm);
   o.radius_edge_ratio = s.number("radius_edge_ratio", o.radius_edge_ratio, closed(1.1, 10.0));
   o.min_dihedral_deg = s.number("min_dihedral_deg", o.min_dihedral_deg, closed(0, 18), {1.0, "°"});
+  o.max_tets = s.integer("max_tets", o.max_tets, 1000, 100'000'000);
   o.repair = s.boolean("repair", o.repair);
   o.remesh = s.boolean("remesh", o.remesh);
   s.finish();

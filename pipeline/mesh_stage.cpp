@@ -82,6 +82,12 @@ void MeshStage::run(StageContext& ctx) const
   for (const std::string& change : repair.changes()) ctx.log.info("repair: {}", change);
 
   const double edge = target_edge_length(d, check.volume);
+  const double expected_tets = 1.2 * check.volume / regular_tet_volume(edge);
+  if (expected_tets > d.mesh.max_tets)
+    throw InputError(Diagnostic{d.file, 0, 0, "[mesh].edge_length",
+                                fmt::format("{:.4g} mm for a body of {:.4g} mm³ would make about {:.3g} tets, more than "
+                                            "[mesh].max_tets = {}; raise edge_length, or check [design].units",
+                                            edge / units::mm, check.volume / 1e-9, expected_tets, d.mesh.max_tets)});
   ctx.log.info("surface: {} vertices, {} faces, volume {:.6g} mm³; target edge {:.4g} mm", surface.num_vertices(),
                surface.num_faces(), check.volume / 1e-9, edge / units::mm);
   auto t = Clock::now();

@@ -278,9 +278,11 @@ StageRun Runner::run_stage(const Stage& stage, const Design& design, const fs::p
   auto console = std::make_shared<spdlog::sinks::stderr_sink_mt>();
   console->set_level(spdlog::level::warn);
   console->set_pattern("[%n] %l: %v");
-  spdlog::logger log(name, {sink, console});
+  spdlog::logger log(name, {sink, console});  // the stage's own messages; warnings reach the terminal
   log.set_level(spdlog::level::debug);
   log.flush_on(spdlog::level::info);
+  spdlog::logger record(name, sink);  // the runner's record of the run: the CLI reports failures itself
+  record.flush_on(spdlog::level::info);
   std::unique_ptr<Progress> reporter = progress ? progress(name) : nullptr;
   NullProgress silent;
   Progress& p = reporter ? *reporter : silent;
@@ -288,15 +290,14 @@ StageRun Runner::run_stage(const Stage& stage, const Design& design, const fs::p
   const Stamp inputs = current_inputs(stage, design, build_dir);
   const auto start = std::chrono::steady_clock::now();
   const auto elapsed = [&] { return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count(); };
-  log.info("{} stage v{} in {}", program_, stage.version(), build_dir.string());
+  record.info("{} stage v{} in {}", program_, stage.version(), build_dir.string());
   try {
     StageContext ctx{design, build_dir, staging, p, log};
     stage.run(ctx);
     p.update(1.0, "done");
   } catch (const std::exception& e) {
     const bool interrupted = dynamic_cast<const Interrupted*>(&e) != nullptr;
-    log.error("{} after {:.2f} s: {}", interrupted ? "interrupted" : "failed", elapsed(), e.what());
-    log.flush();
+    record.error("{} after {:.2f} s: {}", interrupted ? "interrupted" : "failed", elapsed(), e.what());
     fs::remove_all(staging);
     append_make_log(build_dir, fmt::format("{} {} {:.3f}", name, interrupted ? "interrupted" : "failed", elapsed()));
     if (interrupted || dynamic_cast<const InputError*>(&e)) throw;
@@ -317,7 +318,7 @@ StageRun Runner::run_stage(const Stage& stage, const Design& design, const fs::p
   stamp.seconds = elapsed();
   stamp.finished = utc_now();
   write_file_atomic(stamp_file, stamp.to_json());
-  log.info("done in {:.2f} s, {} output file(s)", stamp.seconds, stamp.outputs.size());
+  record.info("done in {:.2f} s, {} output file(s)", stamp.seconds, stamp.outputs.size());
   append_make_log(build_dir, fmt::format("{} ran {:.3f}", name, stamp.seconds));
   return {name, true, stamp.seconds};
 }

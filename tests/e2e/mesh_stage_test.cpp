@@ -1,0 +1,213 @@
+// The mesh stage as a user runs it: `fibermold make DESIGN mesh` on good and bad surfaces.
+#include <random>
+
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
+
+#include "export/stl_writer.hpp"
+#include "mesh/tet_mesh.hpp"
+#include "primitives.hpp"
+#include "test_support.hpp"
+
+namespace fibermold {
+namespace {
+
+using ::testing::HasSubstr;
+namespace fs = std::filesystem;
+
+class MeshStageE2E : public ::testing::Test {
+protected:
+  /// Writes design.toml naming `surface`, with extra [mesh] lines.
+  void design(const std::string& surface, const std::string& mesh = "edge_length = 5.0")
+  {
+    test::write_text(dir_ / "design.toml",
+                     "[design]\nname = \"body\"\nsurface = \"" + surface + "\"\n[mesh]\n" + mesh + "\n");
+  }
+  test::CommandResult make() { return test::run_fibermold("make design.toml mesh --build-dir build", dir_.path()); }
+
+  /// `make` fails with exit code 2, says `message`, and leaves no mesh outputs.
+  void expect_rejected(const std::string& message)
+  {
+    const auto r = make();
+    EXPECT_EQ(r.exit_code, 2) << r.err;
+    EXPECT_THAT(r.err, HasSubstr(message));
+    EXPECT_FALSE(fs::exists(dir_ / "build" / "mesh" / "body.vtu"));
+    EXPECT_FALSE(fs::exists(dir_ / "build" / ".stamps" / "mesh.json"));
+  }
+
+  test::TempDir dir_;
+  const SurfaceMesh box_ = test::box({0, 0, 0}, {0.04, 0.02, 0.02}, 4);
+};
+
+TEST_F(MeshStageE2E, MeshesABoxAndReportsIt)
+{
+  write_stl(dir_ / "box.stl", box_);
+  design("box.stl");
+  const auto r = make();
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const TetMesh mesh = load_tet_mesh(dir_ / "build" / "mesh" / "body.tetmesh");
+  EXPECT_NEAR(mesh.volume(), 16e-6, 1e-9 * 16e-6);
+  EXPECT_EQ(mesh.surface_to_node.size(), box_.num_vertices());
+  const auto report = nlohmann::json::parse(test::read_text(dir_ / "build" / "mesh" / "report.json"));
+  EXPECT_NEAR(report["mesh"]["volume_mm3"].get<double>(), 16000.0, 1e-4);
+  EXPECT_NEAR(report["mesh"]["volume_mL"].get<double>(), 16.0, 1e-7);
+  EXPECT_EQ(report["mesh"]["tets"].get<int>(), mesh.num_tets());
+  EXPECT_EQ(report["surface"]["faces"].get<int>(), box_.num_faces());
+  EXPECT_GE(report["mesh"]["min_dihedral_deg"].get<double>(), 1.0);
+  EXPECT_THAT(test::read_text(dir_ / "build" / "mesh" / "body.vtu"), HasSubstr("<VTKFile type=\"UnstructuredGrid\""));
+}
+
+TEST_F(MeshStageE2E, EditingMeshOptionsRerunsTheStage)
+{
+  write_stl(dir_ / "box.stl", box_);
+  design("box.stl");
+  ASSERT_EQ(make().exit_code, 0);
+  EXPECT_THAT(test::run_fibermold("status design.toml --build-dir build", dir_.path()).out, HasSubstr("mesh  fresh"));
+  design("box.stl", "edge_length = 4.0");
+  EXPECT_THAT(test::run_fibermold("status design.toml --build-dir build", dir_.path()).out,
+              HasSubstr("mesh  stale ([mesh].edge_length changed (5 → 4))"));
+  const auto r = make();
+  EXPECT_EQ(r.exit_code, 0);
+  EXPECT_THAT(r.out, HasSubstr("mesh: done"));
+  EXPECT_THAT(make().out, HasSubstr("0 stage(s) ran, 1 fresh"));
+}
+
+TEST_F(MeshStageE2E, EmptyFile)
+{
+  test::write_text(dir_ / "empty.stl", "");
+  design("empty.stl");
+  expect_rejected("empty.stl: surface file is empty");
+}
+
+TEST_F(MeshStageE2E, RandomBytes)
+{
+  std::mt19937 random(11);
+  std::string bytes(10000, '\0');
+  for (char& c : bytes) c = static_cast<char>(random());
+  test::write_text(dir_ / "noise.stl", bytes);
+  design("noise.stl");
+  expect_rejected("noise.stl: cannot read the surface");
+}
+
+TEST_F(MeshStageE2E, BoxWithOneFaceMissing)
+{
+  SurfaceMesh s = box_;
+  s.faces.conservativeResize(s.num_faces() - 1, 3);
+  write_stl(dir_ / "open.stl", s);
+  design("open.stl");
+  expect_rejected("surface open.stl is not closed: 3 border edges, e.g. at (");
+  EXPECT_THAT(make().err, HasSubstr("set [mesh] repair = true"));
+}
+
+TEST_F(MeshStageE2E, FlippedFaceFailsThenMeshesWithRepair)
+{
+  SurfaceMesh s = box_;
+  std::swap(s.faces(7, 1), s.faces(7, 2));
+  write_stl(dir_ / "flipped.stl", s);
+  design("flipped.stl");
+  expect_rejected("surface flipped.stl is not consistently oriented: 3 edges where neighbouring faces disagree");
+  design("flipped.stl", "edge_length = 5.0\nrepair = true");
+  const auto r = make();
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const auto report = nlohmann::json::parse(test::read_text(dir_ / "build" / "mesh" / "report.json"));
+  EXPECT_THAT(report["surface"]["repaired"].dump(), HasSubstr("flipped faces"));
+  EXPECT_NEAR(report["mesh"]["volume_mm3"].get<double>(), 16000.0, 1e-4);
+}
+
+TEST_F(MeshStageE2E, DuplicatedVerticesMeshWithRepair)
+{
+  // Each face with its own corners, 1e-5 mm apart from their twins (a few float ulps at 40 mm, below
+  // the 1e-6 × diagonal merge tolerance): welding alone cannot close it.
+  SurfaceMesh s;
+  s.vertices.resize(3 * box_.num_faces(), 3);
+  s.faces.resize(box_.num_faces(), 3);
+  for (Eigen::Index f = 0; f < box_.num_faces(); ++f)
+    for (int k = 0; k < 3; ++k) {
+      s.vertices.row(3 * f + k) = box_.vertices.row(box_.faces(f, k)).array() + 1e-8 * (k + 1);
+      s.faces(f, k) = static_cast<int>(3 * f + k);
+    }
+  test::write_obj(dir_ / "dup.obj", s);
+  design("dup.obj");
+  {
+    const auto r = make();
+    EXPECT_EQ(r.exit_code, 2);
+    EXPECT_THAT(r.err, HasSubstr("is not closed"));
+  }
+  design("dup.obj", "edge_length = 5.0\nrepair = true");
+  const auto r = make();
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const auto report = nlohmann::json::parse(test::read_text(dir_ / "build" / "mesh" / "report.json"));
+  EXPECT_THAT(report["surface"]["repaired"].dump(), HasSubstr("merged"));
+  EXPECT_NEAR(report["mesh"]["volume_mm3"].get<double>(), 16000.0, 0.01);
+}
+
+TEST_F(MeshStageE2E, NonManifoldEdge)
+{
+  write_stl(dir_ / "edge.stl", test::combine(test::box({0, 0, 0}, {0.01, 0.01, 0.01}, 1),
+                                              test::box({0.01, 0.01, 0}, {0.02, 0.02, 0.01}, 1)));
+  design("edge.stl");
+  expect_rejected("surface edge.stl is not manifold: 1 edges shared by more than two faces, e.g. at (10.0, 10.0, 5.0) mm");
+}
+
+TEST_F(MeshStageE2E, InterpenetratingBoxes)
+{
+  write_stl(dir_ / "two.stl", test::combine(box_, test::box({0.033, 0.0043, 0.0047}, {0.052, 0.0151, 0.0163}, 2)));
+  design("two.stl");
+  expect_rejected("surface two.stl intersects itself");
+}
+
+TEST_F(MeshStageE2E, NanCoordinates)
+{
+  SurfaceMesh s = box_;
+  s.vertices(2, 2) = std::nan("");
+  test::write_obj(dir_ / "nan.obj", s);
+  design("nan.obj");
+  expect_rejected("nan.obj: 1 vertices have coordinates that are not finite numbers");
+}
+
+TEST_F(MeshStageE2E, FlatMesh)
+{
+  SurfaceMesh s;
+  s.vertices.resize(3, 3);
+  s.vertices << 0, 0, 0, 0.01, 0, 0, 0, 0.01, 0;
+  s.faces.resize(2, 3);
+  s.faces << 0, 1, 2, 0, 2, 1;
+  write_stl(dir_ / "flat.stl", s);
+  design("flat.stl");
+  expect_rejected("surface flat.stl encloses no volume: it is flat");
+}
+
+TEST_F(MeshStageE2E, MissingFile)
+{
+  design("nowhere.stl");
+  expect_rejected("[design].surface: file not found");
+}
+
+TEST_F(MeshStageE2E, UnsupportedExtension)
+{
+  test::write_text(dir_ / "body.scad", "cube(10);");
+  design("body.scad");
+  expect_rejected("unsupported surface format '.scad'");
+}
+
+TEST_F(MeshStageE2E, WrongUnitsAreRefusedBeforeMeshing)
+{
+  write_stl(dir_ / "box.stl", box_);  // in mm, declared as m: a 40 m box at 5 mm edges
+  test::write_text(dir_ / "design.toml", "[design]\nsurface = \"box.stl\"\nunits = \"m\"\n[mesh]\nedge_length = 5.0\n");
+  expect_rejected("more than [mesh].max_tets = 2000000; raise edge_length, or check [design].units");
+  EXPECT_THAT(make().err, HasSubstr("is 40000 mm across: is [design].units right?"));
+}
+
+TEST_F(MeshStageE2E, CheckReportsTheSurfaceWithoutRunning)
+{
+  write_stl(dir_ / "box.stl", box_);
+  design("box.stl");
+  const auto r = test::run_fibermold("check design.toml", dir_.path());
+  EXPECT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_THAT(r.out, HasSubstr("1 component(s), 16000 mm³"));
+  EXPECT_FALSE(fs::exists(dir_ / "out"));
+}
+
+} // namespace
+} // namespace fibermold
