@@ -1,0 +1,32 @@
+#pragma once
+// Sparse Cholesky (CHOLMOD supernodal) behind one small class: the symbolic analysis is computed
+// once and reused while the sparsity pattern stays the same (after geometry-central and ceres).
+
+#include <memory>
+
+#include <Eigen/Sparse>
+
+namespace fibermold {
+
+class CholmodSolver {
+public:
+  CholmodSolver();
+  ~CholmodSolver();
+  CholmodSolver(const CholmodSolver&) = delete;
+  CholmodSolver& operator=(const CholmodSolver&) = delete;
+
+  /// Factorizes A + shift·I (A symmetric, full pattern stored; the upper triangle is read).
+  /// Analyzes the pattern on the first call and whenever A's pattern differs from the last one.
+  /// Returns false when A + shift·I is not positive definite.
+  bool factorize(const Eigen::SparseMatrix<double>& A, double shift = 0);
+  Eigen::VectorXd solve(const Eigen::VectorXd& b) const;
+
+  int analyses() const { return analyses_; }
+
+private:
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
+  int analyses_ = 0;
+};
+
+} // namespace fibermold

@@ -1,0 +1,14 @@
+#include "sim/energy.hpp"
+
+#include <Eigen/Eigenvalues>
+
+namespace fibermold {
+
+Eigen::MatrixXd project_psd(const Eigen::MatrixXd& A)
+{
+  const Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> eig(A);
+  if (eig.eigenvalues().minCoeff() >= 0) return A;
+  return eig.eigenvectors() * eig.eigenvalues().cwiseMax(0).asDiagonal() * eig.eigenvectors().transpose();
+}
+
+} // namespace fibermold

@@ -1,0 +1,33 @@
+#pragma once
+// One interface for every term of the total potential energy (after polyfem's Form): value,
+// gradient, Hessian, and a line-search hook that rejects invalid states.
+
+#include <string>
+#include <vector>
+
+#include <Eigen/Core>
+
+#include "sim/sparse_hessian.hpp"
+
+namespace fibermold {
+
+class Energy {
+public:
+  virtual ~Energy() = default;
+  virtual std::string name() const = 0;
+  /// E(x) for node positions x stacked as 3n (m).
+  virtual double value(const Eigen::VectorXd& x) const = 0;
+  /// g += ∂E/∂x
+  virtual void add_gradient(const Eigen::VectorXd& x, Eigen::VectorXd& g) const = 0;
+  /// H += ∂²E/∂x²; with `project`, each local contribution is projected to positive semi-definite.
+  virtual void add_hessian(const Eigen::VectorXd& x, SparseHessian& H, bool project) const = 0;
+  /// Node sets coupled by this energy (the Hessian's sparsity pattern).
+  virtual void stencils(std::vector<std::vector<int>>& out) const = 0;
+  /// False for a state the energy is not defined at (e.g. an inverted element).
+  virtual bool is_step_valid(const Eigen::VectorXd&) const { return true; }
+};
+
+/// Projects a symmetric matrix onto the positive semi-definite cone (negative eigenvalues → 0).
+Eigen::MatrixXd project_psd(const Eigen::MatrixXd& A);
+
+} // namespace fibermold

@@ -1,0 +1,133 @@
+#include "sim/neo_hookean.hpp"
+
+#include <cmath>
+
+#include <Eigen/LU>
+#include <tbb/enumerable_thread_specific.h>
+#include <tbb/parallel_for.h>
+#include <tbb/parallel_reduce.h>
+
+namespace fibermold {
+
+double neo_hookean_density(const Eigen::Matrix3d& F, const LameParameters& l)
+{
+  const double J = F.determinant();
+  if (!(J > 0)) return HUGE_VAL;
+  const double lnJ = std::log(J);
+  // Ψ = μ/2 (tr(FᵀF) − 3) − μ ln J + λ/2 ln² J
+  return l.mu / 2 * (F.squaredNorm() - 3) - l.mu * lnJ + l.lambda / 2 * lnJ * lnJ;
+}
+
+Eigen::Matrix3d neo_hookean_stress(const Eigen::Matrix3d& F, const LameParameters& l)
+{
+  // P = μ (F − F⁻ᵀ) + λ ln J F⁻ᵀ
+  const Eigen::Matrix3d FinvT = F.inverse().transpose();
+  return l.mu * (F - FinvT) + l.lambda * std::log(F.determinant()) * FinvT;
+}
+
+Eigen::Matrix<double, 9, 9> neo_hookean_stress_derivative(const Eigen::Matrix3d& F, const LameParameters& l)
+{
+  // ∂P_ij/∂F_kl = μ δ_ik δ_jl + λ F⁻ᵀ_ij F⁻ᵀ_kl + (μ − λ ln J) F⁻ᵀ_il F⁻ᵀ_kj
+  const Eigen::Matrix3d G = F.inverse().transpose();
+  const double c = l.mu - l.lambda * std::log(F.determinant());
+  Eigen::Matrix<double, 9, 9> D;
+  for (int i = 0; i < 3; ++i)
+    for (int j = 0; j < 3; ++j)
+      for (int k = 0; k < 3; ++k)
+        for (int m = 0; m < 3; ++m)
+          D(3 * i + j, 3 * k + m) = (i == k && j == m ? l.mu : 0) + l.lambda * G(i, j) * G(k, m) + c * G(i, m) * G(k, j);
+  return D;
+}
+
+NeoHookean::NeoHookean(const QuadraturePoints& qp, Eigen::Index num_nodes, LameParameters lame)
+    : qp_(qp), incidence_(node_incidence(qp, num_nodes)), lame_(lame)
+{
+}
+
+Eigen::Matrix3d NeoHookean::deformation_gradient(const Eigen::VectorXd& x, Eigen::Index q) const
+{
+  Eigen::Matrix3d F = Eigen::Matrix3d::Zero();
+  for (int k = qp_.offset[q]; k < qp_.offset[q + 1]; ++k) F += x.segment<3>(3 * qp_.node[k]) * qp_.dN[k].transpose();
+  return F;
+}
+
+double NeoHookean::value(const Eigen::VectorXd& x) const
+{
+  return tbb::parallel_reduce(
+      tbb::blocked_range<Eigen::Index>(0, qp_.size()), 0.0,
+      [&](const tbb::blocked_range<Eigen::Index>& range, double sum) {
+        for (Eigen::Index q = range.begin(); q < range.end(); ++q)
+          sum += qp_.volume[q] * neo_hookean_density(deformation_gradient(x, q), lame_);
+        return sum;
+      },
+      std::plus<>());
+}
+
+bool NeoHookean::is_step_valid(const Eigen::VectorXd& x) const
+{
+  return tbb::parallel_reduce(
+      tbb::blocked_range<Eigen::Index>(0, qp_.size()), true,
+      [&](const tbb::blocked_range<Eigen::Index>& range, bool ok) {
+        for (Eigen::Index q = range.begin(); ok && q < range.end(); ++q) ok = deformation_gradient(x, q).determinant() > 0;
+        return ok;
+      },
+      std::logical_and<>());
+}
+
+void NeoHookean::add_gradient(const Eigen::VectorXd& x, Eigen::VectorXd& g) const
+{
+  // Per point, V_q P_q; then per node i, ∂E/∂x_i = Σ_q V_q P_q ∇N_i(X_q), gathered without races.
+  std::vector<Eigen::Matrix3d> VP(static_cast<std::size_t>(qp_.size()));
+  tbb::parallel_for(Eigen::Index{0}, qp_.size(), [&](Eigen::Index q) {
+    VP[q] = qp_.volume[q] * neo_hookean_stress(deformation_gradient(x, q), lame_);
+  });
+  const auto n = static_cast<Eigen::Index>(incidence_.offset.size()) - 1;
+  tbb::parallel_for(Eigen::Index{0}, n, [&](Eigen::Index i) {
+    Eigen::Vector3d f = Eigen::Vector3d::Zero();
+    for (int e = incidence_.offset[i]; e < incidence_.offset[i + 1]; ++e) {
+      const auto [q, k] = incidence_.entry[e];
+      f += VP[q] * qp_.dN[k];
+    }
+    g.segment<3>(3 * i) += f;
+  });
+}
+
+void NeoHookean::add_hessian(const Eigen::VectorXd& x, SparseHessian& H, bool project) const
+{
+  std::vector<Eigen::Matrix<double, 9, 9>> VC(static_cast<std::size_t>(qp_.size()));
+  tbb::parallel_for(Eigen::Index{0}, qp_.size(), [&](Eigen::Index q) {
+    Eigen::Matrix<double, 9, 9> C = neo_hookean_stress_derivative(deformation_gradient(x, q), lame_);
+    if (project) C = project_psd(C);
+    VC[q] = qp_.volume[q] * C;
+  });
+  // Column j of the Hessian: for each point q touching j and each node i of q,
+  //   H_ij[a][b] += Σ_{c,d} V C[3a+c][3b+d] ∇N_i,c ∇N_j,d.
+  tbb::enumerable_thread_specific<std::vector<int>> positions(std::vector<int>(static_cast<std::size_t>(H.num_nodes()), -1));
+  const auto n = static_cast<Eigen::Index>(incidence_.offset.size()) - 1;
+  tbb::parallel_for(Eigen::Index{0}, n, [&](Eigen::Index j) {
+    std::vector<int>& pos = positions.local();
+    const auto& nb = H.neighbours(j);
+    for (std::size_t k = 0; k < nb.size(); ++k) pos[nb[k]] = static_cast<int>(k);
+    for (int e = incidence_.offset[j]; e < incidence_.offset[j + 1]; ++e) {
+      const auto [q, kj] = incidence_.entry[e];
+      const Eigen::Vector3d& gj = qp_.dN[kj];
+      // T[(a,c)][b] = Σ_d C[3a+c][3b+d] g_j,d
+      Eigen::Matrix<double, 9, 3> T;
+      for (int b = 0; b < 3; ++b) T.col(b) = VC[q].middleCols<3>(3 * b) * gj;
+      for (int ki = qp_.offset[q]; ki < qp_.offset[q + 1]; ++ki) {
+        const Eigen::Vector3d& gi = qp_.dN[ki];
+        Eigen::Matrix3d block;
+        for (int a = 0; a < 3; ++a) block.row(a) = gi.transpose() * T.middleRows<3>(3 * a);
+        H.add_block_at(pos[qp_.node[ki]], static_cast<int>(j), block);
+      }
+    }
+    for (int i : nb) pos[i] = -1;
+  });
+}
+
+void NeoHookean::stencils(std::vector<std::vector<int>>& out) const
+{
+  for (Eigen::Index q = 0; q < qp_.size(); ++q) out.emplace_back(qp_.node.begin() + qp_.offset[q], qp_.node.begin() + qp_.offset[q + 1]);
+}
+
+} // namespace fibermold

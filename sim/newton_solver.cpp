@@ -1,0 +1,141 @@
+#include "sim/newton_solver.hpp"
+
+#include <chrono>
+#include <cmath>
+
+#include <fmt/format.h>
+
+namespace fibermold {
+
+namespace {
+using Clock = std::chrono::steady_clock;
+double since(Clock::time_point t) { return std::chrono::duration<double>(Clock::now() - t).count(); }
+
+SparseHessian make_pattern(const std::vector<const Energy*>& energies, Eigen::Index n)
+{
+  std::vector<std::vector<int>> stencils;
+  for (const Energy* e : energies) e->stencils(stencils);
+  return SparseHessian(n, stencils);
+}
+} // namespace
+
+std::string NewtonSummary::brief() const
+{
+  return fmt::format("{} after {} iterations: |∇E| = {:.3e} N (from {:.3e}), {:.3f} s", converged ? "converged" : "NOT converged",
+                     iterations, residual, initial_residual, seconds_total);
+}
+
+NewtonSolver::NewtonSolver(std::vector<const Energy*> energies, Eigen::Index num_nodes)
+    : energies_(std::move(energies)), hessian_(make_pattern(energies_, num_nodes))
+{
+}
+
+double NewtonSolver::energy(const Eigen::VectorXd& x) const
+{
+  double e = 0;
+  for (const Energy* term : energies_) e += term->value(x);
+  return e;
+}
+
+Eigen::VectorXd NewtonSolver::gradient(const Eigen::VectorXd& x) const
+{
+  Eigen::VectorXd g = Eigen::VectorXd::Zero(x.size());
+  for (const Energy* term : energies_) term->add_gradient(x, g);
+  return g;
+}
+
+const SparseHessian& NewtonSolver::hessian(const Eigen::VectorXd& x, bool project)
+{
+  hessian_.set_zero();
+  for (const Energy* term : energies_) term->add_hessian(x, hessian_, project);
+  return hessian_;
+}
+
+bool NewtonSolver::is_valid(const Eigen::VectorXd& x) const
+{
+  for (const Energy* term : energies_)
+    if (!term->is_step_valid(x)) return false;
+  return true;
+}
+
+NewtonSummary NewtonSolver::solve(Eigen::VectorXd& x, const NewtonOptions& options, Progress& progress)
+{
+  const auto start = Clock::now();
+  NewtonSummary s;
+  if (!is_valid(x)) {
+    s.message = "the starting state is invalid (an inverted element)";
+    return s;
+  }
+  double E = energy(x);
+  Eigen::VectorXd g = gradient(x);
+  s.initial_residual = g.norm();
+  const double goal = options.tolerance * options.force_scale;
+  for (;;) {
+    s.residual = g.norm();
+    s.energy = E;
+    if (!std::isfinite(s.residual)) {
+      s.message = "the gradient is not finite";
+      break;
+    }
+    if (s.residual <= goal) {
+      s.converged = true;
+      s.message = "gradient below tolerance";
+      break;
+    }
+    if (s.iterations == options.max_iterations) {
+      s.message = fmt::format("no convergence in {} iterations", options.max_iterations);
+      break;
+    }
+    progress.checkpoint(-1, fmt::format("Newton iteration {}: |∇E| = {:.3e} N", s.iterations, s.residual));
+
+    auto t = Clock::now();
+    hessian(x, true);
+    s.seconds_assembly += since(t);
+    ++s.assemblies;
+    t = Clock::now();
+    // A PSD-projected Hessian can be singular (e.g. at rest with no load); shift until it factorizes.
+    double shift = 0;
+    const double diagonal = hessian_.matrix().diagonal().cwiseAbs().maxCoeff();
+    while (!cholmod_.factorize(hessian_.matrix(), shift)) {
+      ++s.factorizations;
+      shift = shift == 0 ? 1e-10 * diagonal : shift * 10;
+      if (shift > diagonal) break;
+    }
+    ++s.factorizations;
+    s.seconds_factorization += since(t);
+    if (shift > diagonal) {
+      s.message = "the Hessian is singular: is the body held (a [[fixed]] region)?";
+      break;
+    }
+    t = Clock::now();
+    const Eigen::VectorXd dx = -cholmod_.solve(g);
+    s.seconds_solve += since(t);
+
+    // Backtracking (Armijo) that rejects any invalid state.
+    const double slope = g.dot(dx);
+    double alpha = 1;
+    Eigen::VectorXd trial;
+    double trial_E = HUGE_VAL;
+    int halvings = 0;
+    for (; halvings <= options.max_halvings; ++halvings, alpha /= 2) {
+      trial = x + alpha * dx;
+      if (!is_valid(trial)) continue;
+      trial_E = energy(trial);
+      if (trial_E <= E + 1e-4 * alpha * slope) break;
+      // Near the minimum the energy difference drowns in round-off: accept a step that lowers |∇E|.
+      if (std::abs(trial_E - E) <= 1e-12 * std::abs(E) && gradient(trial).norm() < s.residual) break;
+    }
+    if (halvings > options.max_halvings) {
+      s.message = "the line search found no decrease";
+      break;
+    }
+    x = trial;
+    E = trial_E;
+    g = gradient(x);
+    ++s.iterations;
+  }
+  s.seconds_total = since(start);
+  return s;
+}
+
+} // namespace fibermold

@@ -1,0 +1,59 @@
+#pragma once
+// Equilibrium (paper eq. 3) by Newton's method: PSD-projected Hessian, CHOLMOD with the symbolic
+// analysis reused, a backtracking line search that never accepts an invalid (inverted) state, and
+// convergence on the gradient norm relative to the force scale. Warm-starts from the given x.
+
+#include <string>
+#include <vector>
+
+#include "core/progress.hpp"
+#include "sim/cholmod_solver.hpp"
+#include "sim/energy.hpp"
+
+namespace fibermold {
+
+struct NewtonOptions {
+  int max_iterations = 100;
+  double tolerance = 1e-8;   ///< converged when |∇E| ≤ tolerance × force_scale
+  double force_scale = 1.0;  ///< N
+  int max_halvings = 40;
+};
+
+/// What a solve did. Non-convergence is a status with the residual, never a result to use.
+struct NewtonSummary {
+  bool converged = false;
+  int iterations = 0;
+  double residual = 0;         ///< |∇E| at the end, N
+  double initial_residual = 0;
+  double energy = 0;           ///< J
+  double seconds_assembly = 0, seconds_factorization = 0, seconds_solve = 0, seconds_total = 0;
+  int assemblies = 0, factorizations = 0;
+  std::string message;         ///< why it stopped
+
+  std::string brief() const;
+};
+
+class NewtonSolver {
+public:
+  /// The energies must outlive the solver. Builds the Hessian pattern from their stencils.
+  NewtonSolver(std::vector<const Energy*> energies, Eigen::Index num_nodes);
+
+  double energy(const Eigen::VectorXd& x) const;
+  Eigen::VectorXd gradient(const Eigen::VectorXd& x) const;
+  /// Assembles the (projected) Hessian at x.
+  const SparseHessian& hessian(const Eigen::VectorXd& x, bool project = true);
+  bool is_valid(const Eigen::VectorXd& x) const;
+
+  /// Minimizes from x (updated in place).
+  NewtonSummary solve(Eigen::VectorXd& x, const NewtonOptions& options, Progress& progress);
+
+  /// The factorization of the last converged Hessian (for adjoint solves).
+  const CholmodSolver& factorization() const { return cholmod_; }
+
+private:
+  std::vector<const Energy*> energies_;
+  SparseHessian hessian_;
+  CholmodSolver cholmod_;
+};
+
+} // namespace fibermold

@@ -1,0 +1,104 @@
+#include "sim/simulation.hpp"
+
+#include <stdexcept>
+
+#include <fmt/format.h>
+#include <tbb/parallel_for.h>
+
+#include "mesh/mesh_quality.hpp"
+#include "sim/external_forces.hpp"
+#include "sim/fem_basis.hpp"
+#include "sim/mls_basis.hpp"
+#include "sim/neo_hookean.hpp"
+#include "sim/soft_dirichlet.hpp"
+
+namespace fibermold {
+
+namespace {
+std::unique_ptr<Basis> make_basis(const TetMesh& mesh, const SimulationOptions& o, double mean_edge)
+{
+  if (o.basis == "fem-p1" || o.basis == "fem-p2") {
+    if ((o.basis == "fem-p2") != (mesh.nodes_per_tet() == 10))
+      throw std::invalid_argument(fmt::format("basis {} needs {}-node tets, the mesh has {}", o.basis,
+                                              o.basis == "fem-p2" ? 10 : 4, mesh.nodes_per_tet()));
+    return std::make_unique<FemBasis>(mesh);
+  }
+  if (o.basis != "mls-linear" && o.basis != "mls-quadratic") throw std::invalid_argument("unknown basis " + o.basis);
+  MlsOptions mls;
+  mls.quadratic = o.basis == "mls-quadratic";
+  mls.radius = o.mls_radius * mean_edge;
+  return std::make_unique<MlsBasis>(mesh.nodes, mls);
+}
+} // namespace
+
+Simulation::Simulation(const TetMesh& mesh, SimulationOptions options)
+    : mesh_(mesh), options_(std::move(options)), mean_edge_(mesh_quality(mesh).mean_edge_length)
+{
+  basis_ = make_basis(mesh_, options_, mean_edge_);
+  qp_ = build_quadrature_points(mesh_, *basis_, options_.quadrature_points);
+  masses_ = nodal_masses(qp_, mesh_.nodes.rows(), options_.density);
+
+  const Eigen::Index n = mesh_.nodes.rows();
+  at_nodes_.resize(static_cast<std::size_t>(n));
+  tbb::parallel_for(Eigen::Index{0}, n, [&](Eigen::Index i) { at_nodes_[i] = basis_->at(mesh_.nodes.row(i).transpose(), 0); });
+
+  energies_.push_back(std::make_unique<NeoHookean>(qp_, n, LameParameters::from_young_poisson(options_.youngs_modulus, options_.poisson_ratio)));
+  if (options_.gravity.norm() > 0 && options_.density > 0)
+    energies_.push_back(std::make_unique<ExternalForces>(gravity_forces(masses_, options_.gravity)));
+
+  std::vector<ShapeEval> held;
+  std::vector<Eigen::Vector3d> targets;
+  for (std::size_t r = 0; r < options_.fixed_nodes.size(); ++r) {
+    if (options_.fixed_nodes[r].empty()) throw std::invalid_argument(fmt::format("fixed region {} holds no node", r + 1));
+    for (int i : options_.fixed_nodes[r]) {
+      held.push_back(at_nodes_[i]);
+      targets.push_back(mesh_.nodes.row(i).transpose());
+    }
+  }
+  if (held.empty()) throw std::invalid_argument("the body is held nowhere: give at least one [[fixed]] region");
+  const double k = options_.dirichlet_penalty * options_.youngs_modulus * mean_edge_;
+  energies_.push_back(std::make_unique<SoftDirichlet>(std::move(held), std::move(targets), k));
+}
+
+Simulation::~Simulation() = default;
+
+Eigen::VectorXd Simulation::rest() const
+{
+  Eigen::VectorXd x(3 * mesh_.nodes.rows());
+  for (Eigen::Index i = 0; i < mesh_.nodes.rows(); ++i) x.segment<3>(3 * i) = mesh_.nodes.row(i).transpose();
+  return x;
+}
+
+void Simulation::add_energy(std::unique_ptr<Energy> energy)
+{
+  if (solver_) throw std::logic_error("Simulation::add_energy after the first solve");
+  energies_.push_back(std::move(energy));
+}
+
+NewtonSolver& Simulation::solver()
+{
+  if (!solver_) {
+    std::vector<const Energy*> terms;
+    for (const auto& e : energies_) terms.push_back(e.get());
+    solver_ = std::make_unique<NewtonSolver>(std::move(terms), mesh_.nodes.rows());
+  }
+  return *solver_;
+}
+
+NewtonSummary Simulation::solve(Eigen::VectorXd& x, Progress& progress)
+{
+  NewtonOptions o = options_.newton;
+  // Force scale: the net force on the body at rest (loads, gravity, muscles), floored by the
+  // elastic force of a unit strain over one element face, E h².
+  o.force_scale = solver().gradient(rest()).norm() + options_.youngs_modulus * mean_edge_ * mean_edge_;
+  return solver().solve(x, o, progress);
+}
+
+Eigen::MatrixX3d Simulation::deformed_nodes(const Eigen::VectorXd& x) const
+{
+  Eigen::MatrixX3d p(mesh_.nodes.rows(), 3);
+  for (Eigen::Index i = 0; i < p.rows(); ++i) p.row(i) = at_nodes_[i].position(x).transpose();
+  return p;
+}
+
+} // namespace fibermold

@@ -1,0 +1,64 @@
+#pragma once
+// A body ready to simulate: its basis, quadrature points, and total potential energy
+// E = E_elast + E_gravity + E_dirichlet (+ loads and muscles added by the caller), minimized by Newton.
+
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "mesh/tet_mesh.hpp"
+#include "sim/newton_solver.hpp"
+#include "sim/quadrature_points.hpp"
+#include "sim/shape_functions.hpp"
+
+namespace fibermold {
+
+struct SimulationOptions {
+  std::string basis = "mls-linear";    ///< mls-linear | mls-quadratic | fem-p1 | fem-p2
+  double mls_radius = 1.7;             ///< × mean edge length
+  int quadrature_points = 8;
+  double youngs_modulus = 86.4e3;      ///< Pa
+  double poisson_ratio = 0.47;
+  double density = 1070;               ///< kg/m³
+  Eigen::Vector3d gravity{0, 0, -9.81};
+  double dirichlet_penalty = 1e4;      ///< k = penalty × E × mean edge length
+  std::vector<std::vector<int>> fixed_nodes;  ///< held nodes, one list per region
+  NewtonOptions newton;
+};
+
+class Simulation {
+public:
+  /// Throws std::invalid_argument for a fixed region that holds no node or a body held nowhere.
+  Simulation(const TetMesh& mesh, SimulationOptions options);
+  ~Simulation();
+
+  const TetMesh& mesh() const { return mesh_; }
+  const Basis& basis() const { return *basis_; }
+  const QuadraturePoints& quadrature_points() const { return qp_; }
+  const Eigen::VectorXd& masses() const { return masses_; }
+  double mean_edge_length() const { return mean_edge_; }
+  Eigen::VectorXd rest() const;
+
+  /// Adds a term (a load, a muscle) to the total energy; call before the first solve.
+  void add_energy(std::unique_ptr<Energy> energy);
+
+  /// Equilibrium from x (warm start), in place.
+  NewtonSummary solve(Eigen::VectorXd& x, Progress& progress);
+  NewtonSolver& solver();
+
+  /// Deformed position of each node's rest position: x(X_i) = Σ_j N_j(X_i) x_j (MLS approximates).
+  Eigen::MatrixX3d deformed_nodes(const Eigen::VectorXd& x) const;
+
+private:
+  const TetMesh& mesh_;
+  SimulationOptions options_;
+  double mean_edge_ = 0;
+  std::unique_ptr<Basis> basis_;
+  QuadraturePoints qp_;
+  Eigen::VectorXd masses_;
+  std::vector<std::unique_ptr<Energy>> energies_;
+  std::unique_ptr<NewtonSolver> solver_;
+  std::vector<ShapeEval> at_nodes_;
+};
+
+} // namespace fibermold

@@ -1,0 +1,65 @@
+#include "sim/sparse_hessian.hpp"
+
+#include <algorithm>
+#include <stdexcept>
+
+namespace fibermold {
+
+SparseHessian::SparseHessian(Eigen::Index num_nodes, const std::vector<std::vector<int>>& stencils)
+    : neighbours_(static_cast<std::size_t>(num_nodes))
+{
+  for (Eigen::Index j = 0; j < num_nodes; ++j) neighbours_[j].push_back(static_cast<int>(j));
+  for (const auto& s : stencils)
+    for (int j : s) neighbours_[j].insert(neighbours_[j].end(), s.begin(), s.end());
+  block_start_.assign(static_cast<std::size_t>(num_nodes) + 1, 0);
+  for (Eigen::Index j = 0; j < num_nodes; ++j) {
+    auto& nb = neighbours_[j];
+    std::sort(nb.begin(), nb.end());
+    nb.erase(std::unique(nb.begin(), nb.end()), nb.end());
+    nb.shrink_to_fit();
+    block_start_[j + 1] = block_start_[j] + static_cast<Eigen::Index>(nb.size());
+  }
+  // Column 3j + b holds rows 3i + a for i in neighbours(j), a = 0..2.
+  const Eigen::Index n = 3 * num_nodes;
+  matrix_.resize(n, n);
+  matrix_.resizeNonZeros(9 * block_start_.back());
+  int* outer = matrix_.outerIndexPtr();
+  int* inner = matrix_.innerIndexPtr();
+  for (Eigen::Index j = 0; j < num_nodes; ++j) {
+    const auto L = static_cast<Eigen::Index>(neighbours_[j].size());
+    for (int b = 0; b < 3; ++b) {
+      const Eigen::Index start = 9 * block_start_[j] + 3 * L * b;
+      outer[3 * j + b] = static_cast<int>(start);
+      for (Eigen::Index k = 0; k < L; ++k)
+        for (int a = 0; a < 3; ++a) inner[start + 3 * k + a] = 3 * neighbours_[j][k] + a;
+    }
+  }
+  outer[n] = static_cast<int>(9 * block_start_.back());
+  matrix_.coeffs().setZero();
+}
+
+int SparseHessian::position(int i, int j) const
+{
+  const auto& nb = neighbours_[j];
+  const auto it = std::lower_bound(nb.begin(), nb.end(), i);
+  return it != nb.end() && *it == i ? static_cast<int>(it - nb.begin()) : -1;
+}
+
+void SparseHessian::add_block_at(int k, int j, const Eigen::Matrix3d& block)
+{
+  const Eigen::Index L = static_cast<Eigen::Index>(neighbours_[j].size());
+  double* values = matrix_.valuePtr();
+  for (int b = 0; b < 3; ++b) {
+    double* column = values + 9 * block_start_[j] + 3 * L * b + 3 * k;
+    for (int a = 0; a < 3; ++a) column[a] += block(a, b);
+  }
+}
+
+void SparseHessian::add_block(int i, int j, const Eigen::Matrix3d& block)
+{
+  const int k = position(i, j);
+  if (k < 0) throw std::logic_error("SparseHessian: block outside the pattern");
+  add_block_at(k, j, block);
+}
+
+} // namespace fibermold

@@ -1,0 +1,142 @@
+// One generic finite-difference test over every energy (after polyfem's test_form_derivatives):
+// value → gradient and gradient → Hessian, at random states near rest, relative error ≤ 1e-6.
+#include <functional>
+#include <random>
+
+#include <Eigen/Geometry>
+#include <gtest/gtest.h>
+
+#include "mesh/mesh_quality.hpp"
+#include "sim/external_forces.hpp"
+#include "sim/mls_basis.hpp"
+#include "sim/neo_hookean.hpp"
+#include "sim/soft_dirichlet.hpp"
+#include "sim_fixtures.hpp"
+
+namespace fibermold {
+namespace {
+
+struct Body {
+  TetMesh mesh = test::box_mesh({0, 0, 0}, {0.02, 0.01, 0.01}, 0.005);
+  MlsBasis basis{mesh.nodes, {false, 1.7 * mesh_quality(mesh).mean_edge_length}};
+  QuadraturePoints qp = build_quadrature_points(mesh, basis, 8);
+  Eigen::Index n = mesh.nodes.rows();
+
+  Eigen::VectorXd random_state(unsigned seed, double amplitude) const
+  {
+    std::mt19937 random(seed);
+    std::normal_distribution<double> noise(0, amplitude);
+    Eigen::VectorXd x(3 * n);
+    for (Eigen::Index i = 0; i < n; ++i) {
+      const Eigen::Vector3d X = mesh.nodes.row(i).transpose();
+      x.segment<3>(3 * i) = Eigen::Vector3d(X.x() + 0.1 * X.y(), X.y() - 0.05 * X.z(), X.z() * 1.1) +
+                            Eigen::Vector3d(noise(random), noise(random), noise(random));
+    }
+    return x;
+  }
+};
+
+using Factory = std::function<std::unique_ptr<Energy>(const Body&)>;
+
+struct Named {
+  std::string name;
+  Factory make;
+};
+
+std::vector<Named> energies()
+{
+  return {
+      {"neo_hookean", [](const Body& b) { return std::make_unique<NeoHookean>(b.qp, b.n, LameParameters::from_young_poisson(86.4e3, 0.47)); }},
+      {"soft_dirichlet",
+       [](const Body& b) {
+         std::vector<ShapeEval> at;
+         std::vector<Eigen::Vector3d> targets;
+         for (int i : nodes_in_box(b.mesh.nodes, {-1, -1, -1}, {0.0001, 1, 1})) {
+           at.push_back(b.basis.at(b.mesh.nodes.row(i).transpose(), 0));
+           targets.push_back(b.mesh.nodes.row(i).transpose());
+         }
+         return std::make_unique<SoftDirichlet>(std::move(at), std::move(targets), 1e4 * 86.4e3 * 0.005);
+       }},
+      {"gravity", [](const Body& b) { return std::make_unique<ExternalForces>(gravity_forces(nodal_masses(b.qp, b.n, 1070), {0, 0, -9.81})); }},
+  };
+}
+
+class EnergyDerivatives : public ::testing::TestWithParam<int> {};
+
+TEST_P(EnergyDerivatives, GradientAndHessianMatchFiniteDifferences)
+{
+  const Body body;
+  const std::vector<Named> all = energies();
+  const Named& named = all[GetParam()];
+  SCOPED_TRACE(named.name);
+  const auto energy = named.make(body);
+  std::vector<std::vector<int>> stencils;
+  energy->stencils(stencils);
+  SparseHessian H(body.n, stencils);
+  for (unsigned seed : {1u, 2u}) {
+    const Eigen::VectorXd x = body.random_state(seed, 2e-4);
+    ASSERT_TRUE(energy->is_step_valid(x));
+    Eigen::VectorXd g = Eigen::VectorXd::Zero(x.size());
+    energy->add_gradient(x, g);
+    ASSERT_GT(g.norm(), 0) << "nothing to check";
+    H.set_zero();
+    energy->add_hessian(x, H, false);
+    const Eigen::MatrixXd Hd = Eigen::MatrixXd(H.matrix());
+
+    // Central differences along random directions and along coordinates.
+    std::mt19937 random(seed);
+    std::normal_distribution<double> normal;
+    const double h = 1e-7;
+    for (int trial = 0; trial < 6; ++trial) {
+      Eigen::VectorXd d(x.size());
+      for (Eigen::Index k = 0; k < d.size(); ++k) d[k] = normal(random);
+      d.normalize();
+      const double fd = (energy->value(x + h * d) - energy->value(x - h * d)) / (2 * h);
+      EXPECT_NEAR(fd, g.dot(d), 1e-6 * g.norm() + 1e-12);
+      Eigen::VectorXd gp = Eigen::VectorXd::Zero(x.size()), gm = Eigen::VectorXd::Zero(x.size());
+      energy->add_gradient(x + h * d, gp);
+      energy->add_gradient(x - h * d, gm);
+      const Eigen::VectorXd fd_h = (gp - gm) / (2 * h);
+      const Eigen::VectorXd an = Hd * d;
+      EXPECT_LE((fd_h - an).norm(), 1e-6 * std::max(an.norm(), 1e-9 * Hd.norm()) + 1e-12) << "trial " << trial;
+    }
+    EXPECT_LE((Hd - Hd.transpose()).norm(), 1e-12 * std::max(1.0, Hd.norm()));
+  }
+}
+
+INSTANTIATE_TEST_SUITE_P(Energies, EnergyDerivatives, ::testing::Range(0, 3));
+
+TEST(NeoHookean, StressIsTheDerivativeOfTheDensity)
+{
+  const LameParameters l = LameParameters::from_young_poisson(86.4e3, 0.47);
+  const Eigen::Matrix3d F = (Eigen::Matrix3d() << 1.1, 0.2, 0.0, -0.1, 0.95, 0.15, 0.05, 0.0, 1.2).finished();
+  const Eigen::Matrix3d P = neo_hookean_stress(F, l);
+  const Eigen::Matrix<double, 9, 9> D = neo_hookean_stress_derivative(F, l);
+  const double h = 1e-7;
+  for (int i = 0; i < 3; ++i)
+    for (int j = 0; j < 3; ++j) {
+      Eigen::Matrix3d dF = Eigen::Matrix3d::Zero();
+      dF(i, j) = h;
+      EXPECT_NEAR((neo_hookean_density(F + dF, l) - neo_hookean_density(F - dF, l)) / (2 * h), P(i, j), 1e-6 * P.norm());
+      const Eigen::Matrix3d dP = (neo_hookean_stress(F + dF, l) - neo_hookean_stress(F - dF, l)) / (2 * h);
+      for (int a = 0; a < 3; ++a)
+        for (int b = 0; b < 3; ++b) EXPECT_NEAR(dP(a, b), D(3 * a + b, 3 * i + j), 1e-6 * D.norm());
+    }
+  EXPECT_EQ(neo_hookean_density(-Eigen::Matrix3d::Identity(), l), HUGE_VAL);  // inverted: no energy defined
+}
+
+TEST(NeoHookean, RigidMotionHasZeroEnergyAndForce)
+{
+  const Body body;
+  const NeoHookean e(body.qp, body.n, LameParameters::from_young_poisson(86.4e3, 0.47));
+  const Eigen::Matrix3d R = Eigen::AngleAxisd(0.7, Eigen::Vector3d(1, 2, 3).normalized()).toRotationMatrix();
+  Eigen::VectorXd x(3 * body.n);
+  for (Eigen::Index i = 0; i < body.n; ++i) x.segment<3>(3 * i) = R * body.mesh.nodes.row(i).transpose() + Eigen::Vector3d(0.1, -0.2, 0.3);
+  EXPECT_NEAR(e.value(x), 0, 1e-15);
+  Eigen::VectorXd g = Eigen::VectorXd::Zero(x.size());
+  e.add_gradient(x, g);
+  EXPECT_LT(g.norm(), 1e-12);
+}
+
+} // namespace
+} // namespace fibermold

@@ -1,0 +1,146 @@
+// MLS and FEM shape functions: reproduction (patch) properties and exact derivatives.
+#include <random>
+
+#include <gtest/gtest.h>
+
+#include "mesh/mesh_quality.hpp"
+#include "sim/fem_basis.hpp"
+#include "sim/mls_basis.hpp"
+#include "sim_fixtures.hpp"
+
+namespace fibermold {
+namespace {
+
+struct BasisSetup {
+  TetMesh mesh;
+  std::unique_ptr<Basis> basis;
+  int degree;  ///< polynomial degree reproduced exactly
+};
+
+BasisSetup make(const std::string& kind)
+{
+  BasisSetup s;
+  s.mesh = test::box_mesh({0, 0, 0}, {0.03, 0.02, 0.02}, 0.005, kind == "fem-p2");
+  const double h = mesh_quality(s.mesh).mean_edge_length;
+  if (kind == "fem-p1" || kind == "fem-p2") {
+    s.basis = std::make_unique<FemBasis>(s.mesh);
+    s.degree = kind == "fem-p2" ? 2 : 1;
+  } else {
+    MlsOptions o;
+    o.quadratic = kind == "mls-quadratic";
+    o.radius = (o.quadratic ? 2.5 : 1.7) * h;
+    s.basis = std::make_unique<MlsBasis>(s.mesh.nodes, o);
+    s.degree = o.quadratic ? 2 : 1;
+  }
+  return s;
+}
+
+std::vector<Eigen::Vector3d> random_points(int count, unsigned seed)
+{
+  std::mt19937 random(seed);
+  std::uniform_real_distribution<double> u(0.002, 0.018);
+  std::vector<Eigen::Vector3d> points;
+  for (int i = 0; i < count; ++i) points.emplace_back(0.03 / 0.02 * u(random), u(random), u(random));
+  return points;
+}
+
+class ShapeFunctions : public ::testing::TestWithParam<std::string> {};
+
+TEST_P(ShapeFunctions, ReproducePolynomialsOfTheirDegreeExactly)
+{
+  const BasisSetup s = make(GetParam());
+  const Eigen::Matrix3d A = (Eigen::Matrix3d() << 1.1, 0.2, -0.1, 0.05, 0.9, 0.3, -0.2, 0.1, 1.2).finished();
+  const Eigen::Vector3d b(0.01, -0.02, 0.005);
+  // q(X) = A X + b + degree-2 term c (X·e)²
+  const Eigen::Vector3d c = s.degree == 2 ? Eigen::Vector3d(3, -2, 1) : Eigen::Vector3d::Zero();
+  const Eigen::Vector3d e(0.3, 0.5, -0.8);
+  const auto field = [&](const Eigen::Vector3d& X) -> Eigen::Vector3d { return A * X + b + c * std::pow(X.dot(e), 2); };
+  Eigen::VectorXd x(3 * s.mesh.nodes.rows());
+  for (Eigen::Index i = 0; i < s.mesh.nodes.rows(); ++i) x.segment<3>(3 * i) = field(s.mesh.nodes.row(i).transpose());
+  for (const Eigen::Vector3d& X : random_points(50, 3)) {
+    const ShapeEval f = s.basis->at(X, 2);
+    EXPECT_NEAR(f.N.sum(), 1.0, 1e-12);
+    EXPECT_LT((f.position(x) - field(X)).norm(), 1e-10 * 0.03);
+    const Eigen::Matrix3d F = A + 2 * c * X.dot(e) * e.transpose();
+    EXPECT_LT((f.deformation_gradient(x) - F).norm(), 1e-9);
+    Eigen::Matrix3d second_sum = Eigen::Matrix3d::Zero();  // Σ_i x_i,0 ∇∇N_i = ∇∇q_0
+    for (Eigen::Index k = 0; k < f.size(); ++k) second_sum += x[3 * f.nodes[k]] * f.ddN[k];
+    EXPECT_LT((second_sum - 2 * c[0] * e * e.transpose()).norm(), 1e-6);
+  }
+}
+
+TEST_P(ShapeFunctions, DerivativesMatchFiniteDifferences)
+{
+  const BasisSetup s = make(GetParam());
+  const double h = 1e-7;
+  for (const Eigen::Vector3d& X : random_points(20, 5)) {
+    const ShapeEval f = s.basis->at(X, 2);
+    const Eigen::Index tet = GetParam().starts_with("fem") ? dynamic_cast<const FemBasis&>(*s.basis).locate(X) : -1;
+    double scale_d = 0, scale_dd = 0, error_d = 0, error_dd = 0;
+    for (int k = 0; k < 3; ++k) {
+      Eigen::Vector3d dX = Eigen::Vector3d::Zero();
+      dX[k] = h;
+      const ShapeEval plus = s.basis->at(X + dX, 1, tet), minus = s.basis->at(X - dX, 1, tet);
+      ASSERT_EQ(plus.nodes, f.nodes) << "support changed within the step";
+      for (Eigen::Index i = 0; i < f.size(); ++i) {
+        const double fd = (plus.N[i] - minus.N[i]) / (2 * h);
+        error_d = std::max(error_d, std::abs(fd - f.dN(i, k)));
+        scale_d = std::max(scale_d, std::abs(f.dN(i, k)));
+        const Eigen::Vector3d fdd = (plus.dN.row(i) - minus.dN.row(i)).transpose() / (2 * h);
+        error_dd = std::max(error_dd, (fdd - f.ddN[i].col(k)).cwiseAbs().maxCoeff());
+        scale_dd = std::max(scale_dd, f.ddN[i].col(k).cwiseAbs().maxCoeff());
+      }
+    }
+    ASSERT_GT(scale_d, 0);
+    EXPECT_LE(error_d, 1e-6 * scale_d);
+    if (s.degree == 2 || GetParam().starts_with("mls")) {
+      ASSERT_GT(scale_dd, 0);
+      EXPECT_LE(error_dd, 1e-6 * scale_dd);
+    }
+  }
+}
+
+INSTANTIATE_TEST_SUITE_P(Bases, ShapeFunctions, ::testing::Values("mls-linear", "mls-quadratic", "fem-p1", "fem-p2"));
+
+TEST(MlsBasis, SmoothAcrossTheSupportBoundary)
+{
+  // Walk a node out of the support: its N, ∇N and ∇∇N go to zero continuously (C³ weight).
+  const BasisSetup s = make("mls-linear");
+  const auto& mls = dynamic_cast<const MlsBasis&>(*s.basis);
+  const Eigen::Vector3d node = s.mesh.nodes.row(s.mesh.nodes.rows() / 2).transpose();
+  const Eigen::Vector3d direction = Eigen::Vector3d(1, 0.3, -0.2).normalized();
+  const double r = mls.radius();
+  // Just inside: N ~ (1 − s)⁴, ∇N ~ (1 − s)³/r, ∇∇N ~ (1 − s)²/r² with 1 − s ≈ 1e-5.
+  const ShapeEval inside = mls.at(node + (r - 1e-7) * direction, 2);
+  int found = 0;
+  for (Eigen::Index k = 0; k < inside.size(); ++k)
+    if (inside.nodes[k] == s.mesh.nodes.rows() / 2) {
+      ++found;
+      EXPECT_LT(std::abs(inside.N[k]), 1e-15);
+      EXPECT_LT(inside.dN.row(k).norm(), 1e-8);
+      EXPECT_LT(inside.ddN[k].norm(), 1e-2);
+    }
+  EXPECT_EQ(found, 1);
+  const ShapeEval outside = mls.at(node + (r + 1e-7) * direction, 2);
+  for (int n : outside.nodes) EXPECT_NE(n, s.mesh.nodes.rows() / 2);
+}
+
+TEST(MlsBasis, TooFewNodesWidenTheRadiusAndNeverReturnNaN)
+{
+  const BasisSetup s = make("mls-quadratic");
+  MlsOptions o;
+  o.quadratic = true;
+  o.radius = 0.4 * mesh_quality(s.mesh).mean_edge_length;  // far too small for 10 monomials
+  const MlsBasis tight(s.mesh.nodes, o);
+  const ShapeEval f = tight.at(Eigen::Vector3d(0.011, 0.009, 0.012), 2);
+  EXPECT_TRUE(f.N.allFinite());
+  EXPECT_TRUE(f.dN.allFinite());
+  EXPECT_NEAR(f.N.sum(), 1.0, 1e-10);
+  EXPECT_GE(tight.conditioning().widened, 1u);
+  o.max_widenings = 0;
+  const MlsBasis refusing(s.mesh.nodes, o);
+  EXPECT_THROW(refusing.at(Eigen::Vector3d(0.011, 0.009, 0.012), 1), std::runtime_error);
+}
+
+} // namespace
+} // namespace fibermold
