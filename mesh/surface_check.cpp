@@ -5,6 +5,7 @@
 #include <numeric>
 
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
+#include <CGAL/Polygon_mesh_processing/orientation.h>
 #include <CGAL/Polygon_mesh_processing/self_intersections.h>
 #include <CGAL/Surface_mesh.h>
 #include <fmt/format.h>
@@ -131,18 +132,42 @@ int count_components(const SurfaceMesh& s, Tally& unused)
   return components;
 }
 
-/// Pairs of faces that intersect other than at shared edges or vertices (CGAL, box intersection).
-Tally self_intersections(const SurfaceMesh& s)
+/// The surface as a CGAL mesh; face f of the surface is face f of the mesh. The surface must be a
+/// closed, consistently oriented 2-manifold.
+Mesh to_cgal(const SurfaceMesh& s)
 {
   Mesh mesh;
   std::vector<Mesh::Vertex_index> vs;
   for (Eigen::Index v = 0; v < s.num_vertices(); ++v) vs.push_back(mesh.add_vertex(point(s, static_cast<int>(v))));
   for (Eigen::Index f = 0; f < s.num_faces(); ++f) mesh.add_face(vs[s.faces(f, 0)], vs[s.faces(f, 1)], vs[s.faces(f, 2)]);
+  return mesh;
+}
+
+/// Pairs of faces that intersect other than at shared edges or vertices (CGAL, box intersection).
+Tally self_intersections(const SurfaceMesh& s, const Mesh& mesh)
+{
   Tally t;
   if (!PMP::does_self_intersect<CGAL::Parallel_if_available_tag>(mesh)) return t;
   std::vector<std::pair<Mesh::Face_index, Mesh::Face_index>> pairs;
   PMP::self_intersections<CGAL::Parallel_if_available_tag>(mesh, std::back_inserter(pairs));
   for (const auto& pair : pairs) t.add(face_centre(s, static_cast<Eigen::Index>(pair.first.idx())));
+  return t;
+}
+
+/// Faces of shells that point the wrong way: every shell must point away from the material (outer
+/// shells outward, the shells of cavities inward), as CGAL's orient_to_bound_a_volume decides.
+Tally misoriented_shells(const SurfaceMesh& s, Mesh mesh)
+{
+  PMP::orient_to_bound_a_volume(mesh);
+  Tally t;
+  for (Eigen::Index f = 0; f < s.num_faces(); ++f) {
+    const Mesh::Halfedge_index h = mesh.halfedge(Mesh::Face_index(static_cast<Mesh::size_type>(f)));
+    const int a = static_cast<int>(mesh.source(h).idx()), b = static_cast<int>(mesh.target(h).idx());
+    // Same orientation when a → b is one of the face's own directed edges.
+    bool same = false;
+    for (int k = 0; k < 3; ++k) same = same || (s.faces(f, k) == a && s.faces(f, (k + 1) % 3) == b);
+    if (!same) t.add(face_centre(s, f));
+  }
   return t;
 }
 
@@ -177,9 +202,19 @@ SurfaceCheck check_surface(const SurfaceMesh& s)
 
   const bool solid = check.problems.empty();
   if (solid) {
-    const Tally crossing = self_intersections(s);
+    const Mesh mesh = to_cgal(s);
+    const Tally crossing = self_intersections(s, mesh);
     add(check, crossing, fmt::format("intersects itself: {} pairs of faces cross", crossing.count), false);
     check.volume = signed_volume(s);
+    if (crossing.count == 0 && check.components > 1) {
+      const Tally wrong = misoriented_shells(s, mesh);
+      add(check, wrong,
+          fmt::format("has shells that point the wrong way: {} faces (outer shells must point outward, the shells "
+                      "of cavities inward)",
+                      wrong.count),
+          true);
+      if (wrong.count > 0) return check;
+    }
     const double size = (check.max - check.min).norm();
     const Eigen::Vector3d centre = (check.min + check.max) / 2;
     if (std::abs(check.volume) <= 1e-9 * size * size * size) {

@@ -66,8 +66,9 @@ SurfaceMesh import_surface(const fs::path& file, double metres_per_unit)
   // Keep only positions: normals and texture coordinates would stop identical positions from welding.
   importer.SetPropertyInteger(AI_CONFIG_PP_RVC_FLAGS, aiComponent_NORMALS | aiComponent_TEXCOORDS |
                                                           aiComponent_COLORS | aiComponent_TANGENTS_AND_BITANGENTS);
-  const unsigned flags = aiProcess_Triangulate | aiProcess_JoinIdenticalVertices | aiProcess_DropNormals |
-                         aiProcess_RemoveComponent | aiProcess_PreTransformVertices;
+  // ValidateDataStructure runs first and rejects out-of-range indices before anything uses them.
+  const unsigned flags = aiProcess_ValidateDataStructure | aiProcess_Triangulate | aiProcess_JoinIdenticalVertices |
+                         aiProcess_DropNormals | aiProcess_RemoveComponent | aiProcess_PreTransformVertices;
   const aiScene* scene = importer.ReadFile(file.string(), flags);
   if (!scene) fail(file, fmt::format("cannot read the surface: {}", importer.GetErrorString()));
 
@@ -98,6 +99,9 @@ SurfaceMesh import_surface(const fs::path& file, double metres_per_unit)
         ++non_triangles;
         continue;
       }
+      for (unsigned k = 0; k < 3; ++k)
+        if (face.mIndices[k] >= mesh->mNumVertices)
+          fail(file, fmt::format("face {} refers to vertex {}, but there are {} vertices", f, face.mIndices[k], mesh->mNumVertices));
       faces.emplace_back(local[face.mIndices[0]], local[face.mIndices[1]], local[face.mIndices[2]]);
     }
   }

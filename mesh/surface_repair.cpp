@@ -8,6 +8,7 @@
 #include <CGAL/Polygon_mesh_processing/orientation.h>
 #include <CGAL/Polygon_mesh_processing/polygon_soup_to_polygon_mesh.h>
 #include <CGAL/Polygon_mesh_processing/remesh.h>
+#include <CGAL/Polygon_mesh_processing/self_intersections.h>
 #include <CGAL/Polygon_mesh_processing/repair_polygon_soup.h>
 #include <CGAL/Polygon_mesh_processing/stitch_borders.h>
 #include <CGAL/Surface_mesh.h>
@@ -58,7 +59,7 @@ std::vector<std::string> RepairReport::changes() const
   if (removed_vertices) lines.push_back(fmt::format("removed {} vertices that no face used", removed_vertices));
   if (reoriented) lines.push_back("flipped faces to agree with their neighbours");
   if (stitched_edges) lines.push_back(fmt::format("stitched {} pairs of border edges", stitched_edges));
-  if (turned_outward) lines.push_back("turned the surface outward (it was inside out)");
+  if (turned_outward) lines.push_back("turned shells to point away from the material (outer outward, cavities inward)");
   if (remeshed) lines.push_back(fmt::format("remeshed isotropically: {} → {} faces", faces_before, faces_after));
   return lines;
 }
@@ -92,11 +93,22 @@ SurfaceMesh repair_surface(const SurfaceMesh& surface, const RepairOptions& opti
   Mesh mesh;
   PMP::polygon_soup_to_polygon_mesh(points, polygons, mesh);
   report.stitched_edges = PMP::stitch_borders(mesh);
-  if (CGAL::is_closed(mesh)) {
-    const bool outward = PMP::is_outward_oriented(mesh);
-    if (!outward) {
-      PMP::reverse_face_orientations(mesh);
-      report.turned_outward = true;
+  if (CGAL::is_closed(mesh) && !PMP::does_self_intersect(mesh)) {
+    // Every shell pointing away from the material: outer shells outward, cavities inward.
+    std::vector<Mesh::Vertex_index> first_before;
+    for (Mesh::Face_index f : mesh.faces()) first_before.push_back(mesh.source(mesh.halfedge(f)));
+    std::vector<Mesh::Vertex_index> second_before;
+    for (Mesh::Face_index f : mesh.faces()) second_before.push_back(mesh.target(mesh.halfedge(f)));
+    PMP::orient_to_bound_a_volume(mesh);
+    std::size_t k = 0;
+    for (Mesh::Face_index f : mesh.faces()) {
+      const Mesh::Halfedge_index h = mesh.halfedge(f);
+      // Flipped when the old edge first → second now runs the other way round the face.
+      bool kept = false;
+      for (Mesh::Halfedge_index e : CGAL::halfedges_around_face(h, mesh))
+        kept = kept || (mesh.source(e) == first_before[k] && mesh.target(e) == second_before[k]);
+      report.turned_outward = report.turned_outward || !kept;
+      ++k;
     }
   }
   if (options.remesh_edge_length && CGAL::is_closed(mesh)) {

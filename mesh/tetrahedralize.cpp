@@ -3,11 +3,14 @@
 #include <array>
 #include <cmath>
 #include <map>
+#include <numeric>
 #include <stdexcept>
 #include <string>
 
 #include <fmt/format.h>
 #include <tetgen.h>
+
+#include <Eigen/Geometry>
 
 #include "core/units.hpp"
 
@@ -77,6 +80,40 @@ Eigen::MatrixX3i boundary_faces(const TetMesh& mesh)
   return out;
 }
 
+/// One point inside each cavity: a shell that encloses a negative volume points into its cavity,
+/// so a point just off its largest face along the normal lies in the cavity.
+std::vector<Eigen::Vector3d> cavity_points(const SurfaceMesh& s)
+{
+  std::vector<int> parent(static_cast<std::size_t>(s.num_vertices()));
+  std::iota(parent.begin(), parent.end(), 0);
+  const auto find = [&](int i) {
+    while (parent[i] != i) i = parent[i] = parent[parent[i]];
+    return i;
+  };
+  for (Eigen::Index f = 0; f < s.num_faces(); ++f)
+    for (int k = 1; k < 3; ++k) parent[find(s.faces(f, k))] = find(s.faces(f, 0));
+  struct Shell {
+    double six_volume = 0, largest_area = 0;
+    Eigen::Vector3d point = Eigen::Vector3d::Zero();
+  };
+  std::map<int, Shell> shells;
+  for (Eigen::Index f = 0; f < s.num_faces(); ++f) {
+    const Eigen::Vector3d a = s.vertices.row(s.faces(f, 0)), b = s.vertices.row(s.faces(f, 1)), c = s.vertices.row(s.faces(f, 2));
+    Shell& shell = shells[find(s.faces(f, 0))];
+    shell.six_volume += a.dot(b.cross(c));
+    const Eigen::Vector3d n = (b - a).cross(c - a);
+    const double area = n.norm() / 2;
+    if (area > shell.largest_area) {
+      shell.largest_area = area;
+      shell.point = (a + b + c) / 3 + 0.01 * std::sqrt(area) * n.normalized();
+    }
+  }
+  std::vector<Eigen::Vector3d> points;
+  for (const auto& [root, shell] : shells)
+    if (shell.six_volume < 0) points.push_back(shell.point);
+  return points;
+}
+
 } // namespace
 
 double regular_tet_volume(double a) { return a * a * a / (6.0 * std::sqrt(2.0)); }
@@ -85,13 +122,18 @@ TetMesh tetrahedralize(const SurfaceMesh& surface, const TetOptions& options, Pr
 {
   if (!(options.edge_length > 0)) throw std::invalid_argument("tetrahedralize: edge_length must be > 0");
   if (progress.interrupted()) throw Interrupted();
-  // TetGen works in millimetres: its switches take plain decimals.
+  // TetGen works in coordinates scaled so that the body is 100 units across: its tolerances are
+  // relative, but its volume bound must not underflow.
+  const Eigen::RowVector3d origin = surface.vertices.colwise().minCoeff();
+  const double diagonal = (surface.vertices.colwise().maxCoeff() - origin).norm();
+  if (!(diagonal > 0)) throw std::invalid_argument("tetrahedralize: the surface has no extent");
+  const double scale = 100.0 / diagonal;  // TetGen units per metre
   tetgenio in, out;
   in.firstnumber = 0;
   in.numberofpoints = static_cast<int>(surface.num_vertices());
   in.pointlist = new REAL[3 * in.numberofpoints];
   for (Eigen::Index v = 0; v < surface.num_vertices(); ++v)
-    for (int k = 0; k < 3; ++k) in.pointlist[3 * v + k] = surface.vertices(v, k) / units::mm;
+    for (int k = 0; k < 3; ++k) in.pointlist[3 * v + k] = (surface.vertices(v, k) - origin[k]) * scale;
   in.numberoffacets = static_cast<int>(surface.num_faces());
   in.facetlist = new tetgenio::facet[in.numberoffacets];
   for (Eigen::Index f = 0; f < surface.num_faces(); ++f) {
@@ -104,19 +146,30 @@ TetMesh tetrahedralize(const SurfaceMesh& surface, const TetOptions& options, Pr
     facet.polygonlist[0].vertexlist = new int[3]{surface.faces(f, 0), surface.faces(f, 1), surface.faces(f, 2)};
   }
 
-  const double max_volume_mm3 = regular_tet_volume(options.edge_length / units::mm);
-  std::string switches = fmt::format("pYQq{:.6f}/{:.6f}a{:.9f}{}", options.radius_edge_ratio,
-                                     options.min_dihedral_deg, max_volume_mm3, options.quadratic ? "o2" : "");
+  const std::vector<Eigen::Vector3d> holes = cavity_points(surface);
+  in.numberofholes = static_cast<int>(holes.size());
+  in.holelist = holes.empty() ? nullptr : new REAL[3 * holes.size()];
+  for (std::size_t h = 0; h < holes.size(); ++h)
+    for (int k = 0; k < 3; ++k) in.holelist[3 * h + k] = (holes[h][k] - origin[k]) * scale;
+
+  const double max_volume = regular_tet_volume(options.edge_length * scale);
+  if (!(max_volume > 0)) throw std::invalid_argument("tetrahedralize: the volume bound must be > 0");
+  std::string switches = fmt::format("pYQq{:.6f}/{:.6f}{}", options.radius_edge_ratio, options.min_dihedral_deg,
+                                     options.quadratic ? "o2" : "");
+  tetgenbehavior behaviour;
+  if (!behaviour.parse_commandline(switches.data())) throw std::logic_error("TetGen rejected -" + switches);
+  behaviour.fixedvolume = 1;  // -a with the bound set directly, not printed into the switches
+  behaviour.maxvolume = max_volume;
   try {
-    ::tetrahedralize(switches.data(), &in, &out);
+    ::tetrahedralize(&behaviour, &in, &out);
   } catch (int code) {
-    throw std::runtime_error(fmt::format("TetGen failed: {} (switches -{})", tetgen_error(code), switches));
+    throw std::runtime_error(fmt::format("TetGen failed: {} (switches -{}a{:g})", tetgen_error(code), switches, max_volume));
   }
 
   TetMesh mesh;
   mesh.nodes.resize(out.numberofpoints, 3);
   for (int v = 0; v < out.numberofpoints; ++v)
-    for (int k = 0; k < 3; ++k) mesh.nodes(v, k) = out.pointlist[3 * v + k] * units::mm;
+    for (int k = 0; k < 3; ++k) mesh.nodes(v, k) = out.pointlist[3 * v + k] / scale + origin[k];
   const int corners = out.numberofcorners;
   mesh.tets.resize(out.numberoftetrahedra, corners);
   for (int t = 0; t < out.numberoftetrahedra; ++t)
@@ -127,7 +180,7 @@ TetMesh tetrahedralize(const SurfaceMesh& surface, const TetOptions& options, Pr
   // With -Y the input points come first, in order; check rather than trust.
   mesh.surface_to_node.resize(surface.num_vertices());
   for (Eigen::Index v = 0; v < surface.num_vertices(); ++v) {
-    if (v >= mesh.nodes.rows() || (mesh.nodes.row(v) - surface.vertices.row(v)).norm() > 1e-9 * units::mm)
+    if (v >= mesh.nodes.rows() || (mesh.nodes.row(v) - surface.vertices.row(v)).norm() > 1e-12 * diagonal)
       throw std::runtime_error(fmt::format("TetGen moved or dropped surface vertex {}", v));
     mesh.nodes.row(v) = surface.vertices.row(v);  // bit-identical, not round-tripped through mm
     mesh.surface_to_node(v) = static_cast<int>(v);

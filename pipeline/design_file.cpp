@@ -1,6 +1,7 @@
 #include "pipeline/design_file.hpp"
 
 #include <algorithm>
+#include <cctype>
 #include <cmath>
 #include <set>
 
@@ -70,6 +71,13 @@ struct Context {
   fs::path folder;
   std::vector<Diagnostic> problems;
   std::map<std::string, std::string> values;
+  std::map<std::string, toml::source_region> sources;  ///< where each key given was written (the last of equal names)
+
+  toml::source_region source_of(const std::string& key) const
+  {
+    auto it = sources.find(key);
+    return it == sources.end() ? toml::source_region{} : it->second;
+  }
 
   void error(const toml::source_region& where, std::string key, std::string message)
   {
@@ -95,7 +103,9 @@ public:
   const toml::node* node(std::string_view key)
   {
     known_.emplace_back(key);
-    return table_ ? table_->get(key) : nullptr;
+    const toml::node* n = table_ ? table_->get(key) : nullptr;
+    if (n) ctx_.sources[key_name(key)] = n->source();
+    return n;
   }
 
   toml::source_region where_of(const toml::node* n) const { return n ? n->source() : where_; }
@@ -250,8 +260,9 @@ public:
           v = *read;
       }
     }
+    if (unit_length && v.norm() > 0) v.normalize();
     record(key, format_vec3(v));
-    if (unit_length && v.norm() > 0) return v.normalized();
+    if (unit_length) return v;
     return v * unit.to_si;
   }
 
@@ -302,9 +313,9 @@ public:
     }
     auto name = read_string(n, key);
     if (!name) return {};
-    record(key, fmt::format("\"{}\"", *name));
     fs::path path = fs::path(*name).is_absolute() ? fs::path(*name) : ctx_.folder / *name;
     path = path.lexically_normal();
+    record(key, fmt::format("\"{}\"", path.lexically_proximate(ctx_.folder).string()));
     std::error_code ec;
     if (!fs::exists(path, ec)) {
       error(n, key, fmt::format("file not found: {}", path.string()));
@@ -376,10 +387,23 @@ std::string default_design_name(const fs::path& file)
   return stem;
 }
 
+/// Names become folder and file names (out/<design>/, targets/<name>.vtu): letters, digits, '-', '_'
+/// and '.', not starting with '.'.
+void check_name(Section& s, const std::string& name)
+{
+  const bool ok = !name.empty() && name[0] != '.' && std::all_of(name.begin(), name.end(), [](unsigned char c) {
+    return std::isalnum(c) || c == '-' || c == '_' || c == '.';
+  });
+  if (!ok && !name.empty())
+    s.error(s.node("name"), "name", fmt::format("\"{}\" cannot name a file: use letters, digits, '-', '_' and '.', not "
+                                                "starting with '.'", name));
+}
+
 DesignOptions read_design(Section s, const fs::path& file)
 {
   DesignOptions o;
   o.name = s.string("name", default_design_name(file));
+  check_name(s, o.name);
   o.surface = s.file("surface", true, "the body's closed surface mesh, e.g. surface = \"body.stl\"");
   o.units = s.choice("units", "mm", {"mm", "cm", "m", "in"});
   o.surface_scale = o.units == "mm" ? 1e-3 : o.units == "cm" ? 1e-2 : o.units == "m" ? 1.0 : 0.0254;
@@ -448,7 +472,7 @@ Region read_region(Section& s, bool allow_point)
     ++given;
     const toml::array* a = n->as_array();
     if (!a || a->empty() || !std::all_of(a->begin(), a->end(), [](const toml::node& e) {
-          return e.is_integer() && *e.value<std::int64_t>() >= 0;
+          return e.is_integer() && *e.value<std::int64_t>() >= 0 && *e.value<std::int64_t>() < (1ll << 31);
         })) {
       s.error(n, "vertices", "expected a non-empty list of surface vertex indices (integers ≥ 0)");
     } else {
@@ -494,8 +518,9 @@ void for_each_entry(Context& ctx, const toml::table& root, const std::string& na
 std::string entry_name(Section& s, std::string_view kind, std::size_t index, bool required)
 {
   const std::string fallback = fmt::format("{}{}", kind, index);
-  if (required) return s.string("name", std::nullopt, "a unique name");
-  return s.string("name", fallback);
+  std::string name = required ? s.string("name", std::nullopt, "a unique name") : s.string("name", fallback);
+  check_name(s, name);
+  return name;
 }
 
 MuscleOptions read_muscle(Section s)
@@ -764,7 +789,8 @@ void check_unique_names(Context& ctx, const std::vector<T>& items, std::string_v
   for (const T& item : items) {
     if (item.name.empty()) continue;
     if (!seen.insert(item.name).second)
-      ctx.error({}, fmt::format("[{}.{}]", section, item.name), fmt::format("the name \"{}\" is used twice", item.name));
+      ctx.error(ctx.source_of(fmt::format("[{}.{}].name", section, item.name)), fmt::format("[{}.{}]", section, item.name),
+                fmt::format("the name \"{}\" is used twice", item.name));
   }
 }
 
@@ -776,7 +802,7 @@ void check_design(Context& ctx, const Design& d)
   check_unique_names(ctx, d.tracking_curves, "tracking_curve");
   check_unique_names(ctx, d.fixed, "fixed");
   if (d.mold.wall < d.export_.min_wall)
-    ctx.error({}, "[mold].wall",
+    ctx.error(ctx.source_of("[mold].wall"), "[mold].wall",
               fmt::format("{} mm is below the printer's minimum wall [export].min_wall = {} mm",
                           d.mold.wall / units::mm, d.export_.min_wall / units::mm));
 }
@@ -841,7 +867,7 @@ Design read_root(Context& ctx, const toml::table& root, const fs::path& file)
 Design parse(std::string_view text, const fs::path& path)
 {
   const fs::path file = fs::absolute(path).lexically_normal();
-  Context ctx{file, file.parent_path(), {}, {}};
+  Context ctx{file, file.parent_path(), {}, {}, {}};
   toml::table root;
   try {
     root = toml::parse(text, file.string());

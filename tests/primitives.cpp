@@ -45,24 +45,27 @@ void write_with(const std::filesystem::path& path, const std::function<void(std:
 
 } // namespace
 
-SurfaceMesh box(const Eigen::Vector3d& lo, const Eigen::Vector3d& hi, int n)
+SurfaceMesh box(const Eigen::Vector3d& lo, const Eigen::Vector3d& hi, int n) { return box(lo, hi, Eigen::Vector3i(n, n, n)); }
+
+SurfaceMesh box(const Eigen::Vector3d& lo, const Eigen::Vector3d& hi, const Eigen::Vector3i& cells)
 {
   // Grid points on the surface, shared between faces through a map from integer coordinates.
   Builder b;
-  std::vector<int> id((n + 1) * (n + 1) * (n + 1), -1);
+  const Eigen::Vector3i c = cells;
+  std::vector<int> id((c.x() + 1) * (c.y() + 1) * (c.z() + 1), -1);
   const auto at = [&](int i, int j, int k) {
-    int& slot = id[(i * (n + 1) + j) * (n + 1) + k];
+    int& slot = id[(i * (c.y() + 1) + j) * (c.z() + 1) + k];
     if (slot < 0) {
-      const Eigen::Vector3d t(double(i) / n, double(j) / n, double(k) / n);
+      const Eigen::Vector3d t(double(i) / c.x(), double(j) / c.y(), double(k) / c.z());
       slot = b.add(lo + (hi - lo).cwiseProduct(t));
     }
     return slot;
   };
   for (int axis = 0; axis < 3; ++axis) {
     const int u = (axis + 1) % 3, w = (axis + 2) % 3;
-    for (int side = 0; side <= n; side += n)
-      for (int i = 0; i < n; ++i)
-        for (int j = 0; j < n; ++j) {
+    for (int side = 0; side <= c[axis]; side += c[axis])
+      for (int i = 0; i < c[u]; ++i)
+        for (int j = 0; j < c[w]; ++j) {
           const auto p = [&](int di, int dj) {
             int c[3];
             c[axis] = side;
@@ -71,7 +74,7 @@ SurfaceMesh box(const Eigen::Vector3d& lo, const Eigen::Vector3d& hi, int n)
             return at(c[0], c[1], c[2]);
           };
           // (u, w, axis) is right-handed: p00 → p10 → p11 turns about +axis.
-          if (side == n) b.quad(p(0, 0), p(1, 0), p(1, 1), p(0, 1));
+          if (side == c[axis]) b.quad(p(0, 0), p(1, 0), p(1, 1), p(0, 1));
           else b.quad(p(0, 0), p(0, 1), p(1, 1), p(1, 0));
         }
   }

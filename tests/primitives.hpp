@@ -10,6 +10,8 @@ namespace fibermold::test {
 
 /// Box [lo, hi] with each face a grid of `n` × `n` cells (cells along each edge).
 SurfaceMesh box(const Eigen::Vector3d& lo, const Eigen::Vector3d& hi, int n = 2);
+/// Box [lo, hi] with `cells[k]` grid cells along axis k.
+SurfaceMesh box(const Eigen::Vector3d& lo, const Eigen::Vector3d& hi, const Eigen::Vector3i& cells);
 /// Cylinder along z from 0 to `height`, `segments` around, `rings` along, fan-triangulated caps.
 SurfaceMesh cylinder(double radius, double height, int segments = 24, int rings = 6);
 /// UV sphere centred at the origin.

@@ -120,6 +120,28 @@ TEST(SurfaceCheck, DegenerateFacesAndUnusedVertices)
   EXPECT_EQ(c.problems.front().message, "has 1 degenerate (zero-area) faces");
 }
 
+SurfaceMesh hollow_sphere(bool inner_inward)
+{
+  SurfaceMesh inner = test::sphere(0.01);
+  if (inner_inward) inner.faces.col(1).swap(inner.faces.col(2));
+  return test::combine(test::sphere(0.02), inner);
+}
+
+TEST(SurfaceCheck, HollowBodyWithInwardCavityIsValid)
+{
+  const SurfaceCheck c = check_surface(hollow_sphere(true));
+  EXPECT_TRUE(c.ok()) << c.problems.front().message;
+  EXPECT_NEAR(c.volume, signed_volume(test::sphere(0.02)) - signed_volume(test::sphere(0.01)), 1e-15);
+}
+
+TEST(SurfaceCheck, CavityShellPointingOutwardIsRepairable)
+{
+  const SurfaceMesh s = hollow_sphere(false);
+  const SurfaceProblem p = only_problem(s);
+  EXPECT_THAT(p.message, HasSubstr("has shells that point the wrong way"));
+  EXPECT_TRUE(p.repairable);
+}
+
 TEST(SurfaceCheck, SizeSuggestingWrongUnitsIsAWarning)
 {
   EXPECT_THAT(check_surface(test::box({0, 0, 0}, {5e-4, 5e-4, 5e-4})).warnings.front(), HasSubstr("0.5 mm across"));

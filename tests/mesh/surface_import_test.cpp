@@ -87,6 +87,14 @@ TEST_F(SurfaceImport, UnsupportedExtension)
   EXPECT_THAT(import_error(dir_ / "body.scad"), HasSubstr("unsupported surface format '.scad'"));
 }
 
+TEST_F(SurfaceImport, FaceIndexOutOfRange)
+{
+  test::write_text(dir_ / "oob.ply", "ply\nformat ascii 1.0\nelement vertex 4\nproperty float x\nproperty float y\n"
+                                     "property float z\nelement face 4\nproperty list uchar int vertex_indices\nend_header\n"
+                                     "0 0 0\n1 0 0\n0 1 0\n0 0 1\n3 0 2 1\n3 0 1 3\n3 0 3 2\n3 1 2 99999\n");
+  EXPECT_THAT(import_error(dir_ / "oob.ply"), HasSubstr("oob.ply: "));
+}
+
 TEST_F(SurfaceImport, NanCoordinates)
 {
   SurfaceMesh s = test::box({0, 0, 0}, {0.01, 0.01, 0.01}, 1);

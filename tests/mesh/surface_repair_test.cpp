@@ -58,6 +58,16 @@ TEST(SurfaceRepair, InsideOutIsTurnedOutward)
   EXPECT_TRUE(report.turned_outward);
 }
 
+TEST(SurfaceRepair, CavityShellIsTurnedInward)
+{
+  const SurfaceMesh s = test::combine(test::sphere(0.02), test::sphere(0.01));  // both outward: wrong
+  RepairReport report;
+  const SurfaceCheck c = check_surface(repair_surface(s, {}, report));
+  EXPECT_TRUE(c.ok());
+  EXPECT_TRUE(report.turned_outward);
+  EXPECT_NEAR(c.volume, signed_volume(test::sphere(0.02)) - signed_volume(test::sphere(0.01)), 1e-15);
+}
+
 TEST(SurfaceRepair, ValidSurfaceIsLeftAsIs)
 {
   const SurfaceMesh s = test::torus(0.03, 0.01);

@@ -71,6 +71,29 @@ TEST_P(Tetrahedralize, KeepsVolumeOrientationAndTheSurfaceExactly)
 
 INSTANTIATE_TEST_SUITE_P(Primitives, Tetrahedralize, ::testing::Range(0, 4));
 
+TEST(Tetrahedralize, CavitiesStayEmpty)
+{
+  SurfaceMesh inner = test::sphere(0.008);
+  inner.faces.col(1).swap(inner.faces.col(2));
+  const SurfaceMesh hollow = test::combine(test::sphere(0.02), inner);
+  NullProgress progress;
+  const TetMesh mesh = tetrahedralize(hollow, {0.004, 1.5, 10, false}, progress);
+  EXPECT_NEAR(mesh.volume(), signed_volume(hollow), 1e-9 * signed_volume(hollow));
+  EXPECT_EQ(oriented_faces(mesh.boundary_faces, {}), oriented_faces(hollow.faces, mesh.surface_to_node));
+}
+
+TEST(Tetrahedralize, WorksAtAnyScale)
+{
+  // A 20 µm sphere and a 20 m one: the volume bound must neither underflow nor overflow.
+  NullProgress progress;
+  for (double radius : {1e-5, 10.0}) {
+    const SurfaceMesh s = test::sphere(radius, 16, 8);
+    const TetMesh mesh = tetrahedralize(s, {radius / 3, 1.5, 10, false}, progress);
+    EXPECT_NEAR(mesh.volume(), signed_volume(s), 1e-9 * signed_volume(s)) << radius;
+    EXPECT_LT(mesh.num_tets(), 5000) << radius;
+  }
+}
+
 TEST(TetrahedralizeQuadratic, TenNodeTetsHaveEdgeMidpointsInVtkOrder)
 {
   NullProgress progress;

@@ -173,10 +173,25 @@ TEST_F(DesignFileTest, TargetsAreCheckedByKind)
               HasSubstr("give exactly one of box"));
 }
 
+TEST_F(DesignFileTest, NamesMustBeSafeFileNames)
+{
+  EXPECT_THAT(problem("[design]\nsurface = \"body.stl\"\nname = \"..\"\n"), HasSubstr(":3:8: [design].name: \"..\" cannot name a file"));
+  EXPECT_THAT(problem("[design]\nsurface = \"body.stl\"\nname = \"/tmp/x\"\n"), HasSubstr("cannot name a file"));
+  EXPECT_THAT(problem(std::string(kMinimal) + "[[target]]\nname = \"a/b\"\nkind = \"forces\"\nload = [{ point = [0,0,0], force = [1,0,0] }]\n"),
+              HasSubstr("[target.a/b].name: \"a/b\" cannot name a file"));
+}
+
+TEST_F(DesignFileTest, EffectiveValuesAreRecordedNormalised)
+{
+  const Design a = parse(std::string(kMinimal) + "[mold]\npull = [0, 0, 2]\n");
+  const Design b = parse_design("[design]\nsurface = \"./body.stl\"\n[mold]\npull = [0, 0, 1]\n", dir_ / "design.toml");
+  EXPECT_EQ(a.values, b.values);
+}
+
 TEST_F(DesignFileTest, NamesMustBeUnique)
 {
   const std::string fiber = "[[fiber]]\nname = \"m1\"\npoints = [[0,0,0],[10,0,0]]\n";
-  EXPECT_THAT(problem(std::string(kMinimal) + fiber + fiber), HasSubstr("the name \"m1\" is used twice"));
+  EXPECT_THAT(problem(std::string(kMinimal) + fiber + fiber), HasSubstr(":8:8: [fiber.m1]: the name \"m1\" is used twice"));
 }
 
 TEST_F(DesignFileTest, MoldWallBelowPrinterMinimumIsRejected)

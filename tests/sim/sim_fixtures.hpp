@@ -10,8 +10,8 @@ namespace fibermold::test {
 inline TetMesh box_mesh(const Eigen::Vector3d& lo, const Eigen::Vector3d& hi, double edge, bool quadratic = false)
 {
   const Eigen::Vector3d size = hi - lo;
-  const int n = std::max(1, static_cast<int>(std::round(size.maxCoeff() / edge)));
-  SurfaceMesh surface = box(lo, hi, n);
+  const Eigen::Vector3i cells = (size / edge).array().round().cast<int>().max(1);
+  SurfaceMesh surface = box(lo, hi, cells);
   NullProgress progress;
   return tetrahedralize(surface, {edge, 1.5, 10, quadratic}, progress);
 }
