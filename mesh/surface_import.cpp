@@ -10,7 +10,9 @@
 #include <assimp/scene.h>
 #include <fmt/format.h>
 #include <fmt/ranges.h>
+#include <nlohmann/json.hpp>
 
+#include "core/atomic_file.hpp"
 #include "core/input_error.hpp"
 
 namespace fibermold {
@@ -31,6 +33,27 @@ std::string lower(std::string s)
 }
 
 } // namespace
+
+std::vector<fs::path> surface_files(const fs::path& file)
+{
+  std::vector<fs::path> files{file};
+  if (lower(file.extension().string()) != ".gltf") return files;
+  try {
+    const nlohmann::json gltf = nlohmann::json::parse(read_file(file));
+    for (const char* section : {"buffers", "images"})
+      if (gltf.contains(section))
+        for (const auto& item : gltf[section])
+          if (item.contains("uri") && item["uri"].is_string()) {
+            const std::string uri = item["uri"];
+            if (!uri.starts_with("data:")) files.push_back((file.parent_path() / uri).lexically_normal());
+          }
+  } catch (const std::exception&) {
+    // Unreadable JSON: the import itself reports it.
+  }
+  std::error_code ec;
+  std::erase_if(files, [&](const fs::path& p) { return p != file && !fs::is_regular_file(p, ec); });
+  return files;
+}
 
 std::vector<std::string> supported_surface_extensions()
 {

@@ -15,6 +15,10 @@ namespace fibermold {
 /// empty, unreadable or unsupported file, one without triangles, or non-finite coordinates.
 SurfaceMesh import_surface(const std::filesystem::path& file, double metres_per_unit);
 
+/// The files a surface is read from: the file itself and, for glTF, its external buffers, so that
+/// a change to any of them is noticed.
+std::vector<std::filesystem::path> surface_files(const std::filesystem::path& file);
+
 /// File extensions assimp reads here, lower case with the dot (".stl").
 std::vector<std::string> supported_surface_extensions();
 

@@ -48,12 +48,13 @@ struct DesignAndStages {
   std::vector<std::string> stages;
 };
 
-DesignAndStages split_arguments(const std::vector<std::string>& words, const fs::path& default_design)
+/// The first word is the design unless it names a stage; `check` and `simulate` take only a design.
+DesignAndStages split_arguments(const std::vector<std::string>& words, const fs::path& default_design,
+                                const std::vector<std::string>& stage_names)
 {
   DesignAndStages result{default_design, {}};
   std::size_t first = 0;
-  std::error_code ec;
-  if (!words.empty() && (words[0].ends_with(".toml") || fs::is_regular_file(words[0], ec))) {
+  if (!words.empty() && std::find(stage_names.begin(), stage_names.end(), words[0]) == stage_names.end()) {
     result.design = words[0];
     first = 1;
   }
@@ -120,7 +121,7 @@ int fibermold_main(int argc, char** argv)
   bool force = false;
 
   CLI::App* make = app.add_subcommand("make", "Run what is stale, up to STAGE (default: every stage)");
-  make->add_option("DESIGN_AND_STAGES", words, "[DESIGN] [STAGE...]");
+  make->add_option("DESIGN_AND_STAGES", words, "[DESIGN] [STAGE...]: the first word is the design unless it is a stage");
   make->add_flag("--force", force, "Rerun the selected stages even when fresh");
   make->add_option("--build-dir", build_dir_option, "Build folder (default: out/<design name>)");
 
@@ -150,24 +151,26 @@ int fibermold_main(int argc, char** argv)
   }
 
   install_signal_handlers();
-  const DesignAndStages args = split_arguments(words, FIBERMOLD_DEFAULT_DESIGN);
   try {
+    const Runner runner(shipped_stages());
+    const DesignAndStages args =
+        split_arguments(words, FIBERMOLD_DEFAULT_DESIGN,
+                        check->parsed() || simulate->parsed() ? std::vector<std::string>{} : runner.stage_names());
     if (simulate->parsed()) {
       fmt::print(stderr, "fibermold simulate: the simulator (sim/) is not part of this build yet\n");
       return 1;
     }
     const Design design = load_design(args.design);
     if (check->parsed()) {
-      print_design_summary(design);
       std::vector<std::string> repairs;
       const SurfaceCheck surface = check_design_surface(design, repairs);
+      print_design_summary(design);
       fmt::print("  surface: closed, manifold, outward, no self-intersections; {} component(s), {:.6g} mm³\n",
                  surface.components, surface.volume / 1e-9);
       for (const std::string& w : surface.warnings) fmt::print("  warning: {}\n", w);
       for (const std::string& r : repairs) fmt::print("  repair would: {}\n", r);
       return 0;
     }
-    const Runner runner(shipped_stages());
     const fs::path build_dir = build_dir_for(design, build_dir_option);
     if (status->parsed()) {
       if (runner.stage_names().empty()) fmt::print("this build of fibermold has no stages yet\n");

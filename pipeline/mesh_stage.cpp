@@ -23,6 +23,18 @@ namespace {
 using Clock = std::chrono::steady_clock;
 double since(Clock::time_point t) { return std::chrono::duration<double>(Clock::now() - t).count(); }
 
+/// Refuses an edge length that would make more than [mesh] max_tets tets (wrong units, typically),
+/// before any remeshing or TetGen run can take all memory.
+void require_mesh_size(const Design& d, double volume, double edge)
+{
+  const double expected_tets = 1.2 * volume / regular_tet_volume(edge);
+  if (expected_tets > d.mesh.max_tets)
+    throw InputError(Diagnostic{d.file, 0, 0, "[mesh].edge_length",
+                                fmt::format("{:.4g} mm for a body of {:.4g} mm³ would make about {:.3g} tets, more than "
+                                            "[mesh].max_tets = {}; raise edge_length, or check [design].units",
+                                            edge / units::mm, volume / 1e-9, expected_tets, d.mesh.max_tets)});
+}
+
 /// Import, check, and repair when asked; throws InputError when the result cannot be meshed.
 SurfaceMesh prepared_surface(const Design& d, SurfaceCheck& check, RepairReport& repair, nlohmann::json& seconds)
 {
@@ -34,10 +46,19 @@ SurfaceMesh prepared_surface(const Design& d, SurfaceCheck& check, RepairReport&
   seconds["check"] = since(t);
   if (d.mesh.repair) {
     t = Clock::now();
-    RepairOptions options;
-    if (d.mesh.remesh) options.remesh_edge_length = target_edge_length(d, std::abs(signed_volume(surface)));
-    surface = repair_surface(surface, options, repair);
+    surface = repair_surface(surface, {}, repair);
     check = check_surface(surface);
+    if (d.mesh.remesh && check.ok()) {
+      const double edge = target_edge_length(d, check.volume);
+      require_mesh_size(d, check.volume, edge);
+      RepairOptions options;
+      options.remesh_edge_length = edge;
+      RepairReport remeshing;
+      surface = repair_surface(surface, options, remeshing);
+      repair.remeshed = remeshing.remeshed;
+      repair.faces_after = remeshing.faces_after;
+      check = check_surface(surface);
+    }
     seconds["repair"] = since(t);
   }
   require_valid_surface(check, surface, d.mesh.repair);
@@ -50,6 +71,8 @@ nlohmann::json point_mm(const Eigen::Vector3d& p)
 }
 
 } // namespace
+
+std::vector<std::filesystem::path> MeshStage::input_files(const Design& d) const { return surface_files(d.design.surface); }
 
 double target_edge_length(const Design& design, double body_volume)
 {
@@ -82,12 +105,7 @@ void MeshStage::run(StageContext& ctx) const
   for (const std::string& change : repair.changes()) ctx.log.info("repair: {}", change);
 
   const double edge = target_edge_length(d, check.volume);
-  const double expected_tets = 1.2 * check.volume / regular_tet_volume(edge);
-  if (expected_tets > d.mesh.max_tets)
-    throw InputError(Diagnostic{d.file, 0, 0, "[mesh].edge_length",
-                                fmt::format("{:.4g} mm for a body of {:.4g} mm³ would make about {:.3g} tets, more than "
-                                            "[mesh].max_tets = {}; raise edge_length, or check [design].units",
-                                            edge / units::mm, check.volume / 1e-9, expected_tets, d.mesh.max_tets)});
+  require_mesh_size(d, check.volume, edge);
   ctx.log.info("surface: {} vertices, {} faces, volume {:.6g} mm³; target edge {:.4g} mm", surface.num_vertices(),
                surface.num_faces(), check.volume / 1e-9, edge / units::mm);
   auto t = Clock::now();
@@ -139,7 +157,9 @@ void MeshStage::run(StageContext& ctx) const
                     {"radius_edge_ratio", {{"mean", q.mean_radius_edge_ratio}, {"max", q.max_radius_edge_ratio},
                                            {"bound", d.mesh.radius_edge_ratio}}},
                     {"min_dihedral_bound_deg", d.mesh.min_dihedral_deg}};
-  report["seconds"] = seconds;
+  // Timings go to the log, not the report: an output that changes on every run would make every
+  // downstream stage rerun after a rerun of this one.
+  ctx.log.info("seconds: {}", seconds.dump());
   write_file_atomic(ctx.output_dir / "report.json", report.dump(2) + "\n");
   ctx.log.info("mesh: {} nodes, {} tets, volume {:.6g} mL, dihedral angles {:.1f}°–{:.1f}°, in {:.2f} s",
                mesh.nodes.rows(), mesh.num_tets(), q.volume / 1e-6, q.min_dihedral_deg, q.max_dihedral_deg,

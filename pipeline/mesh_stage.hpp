@@ -17,7 +17,7 @@ public:
   {
     return {"design.surface", "design.units", "mesh", "sim.basis"};
   }
-  std::vector<std::filesystem::path> input_files(const Design& d) const override { return {d.design.surface}; }
+  std::vector<std::filesystem::path> input_files(const Design& d) const override;
   void run(StageContext& ctx) const override;
 };
 

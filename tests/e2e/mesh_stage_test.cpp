@@ -1,5 +1,8 @@
 // The mesh stage as a user runs it: `fibermold make DESIGN mesh` on good and bad surfaces.
+#include <cstdint>
 #include <random>
+
+#include <fmt/format.h>
 
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
@@ -197,6 +200,57 @@ TEST_F(MeshStageE2E, WrongUnitsAreRefusedBeforeMeshing)
   test::write_text(dir_ / "design.toml", "[design]\nsurface = \"box.stl\"\nunits = \"m\"\n[mesh]\nedge_length = 5.0\n");
   expect_rejected("more than [mesh].max_tets = 2000000; raise edge_length, or check [design].units");
   EXPECT_THAT(make().err, HasSubstr("is 40000 mm across: is [design].units right?"));
+}
+
+/// A glTF tetrahedron of edge `a` mm with its geometry in the external buffer tet.bin.
+void write_gltf_tetrahedron(const fs::path& dir, float a)
+{
+  const float p[12] = {0, 0, 0, a, 0, 0, 0, a, 0, 0, 0, a};
+  const std::uint16_t idx[12] = {0, 2, 1, 0, 1, 3, 0, 3, 2, 1, 2, 3};
+  std::string bin(reinterpret_cast<const char*>(p), sizeof p);
+  bin.append(reinterpret_cast<const char*>(idx), sizeof idx);
+  test::write_text(dir / "tet.bin", bin);
+  test::write_text(dir / "tet.gltf", fmt::format(R"({{"asset": {{"version": "2.0"}}, "scene": 0, "scenes": [{{"nodes": [0]}}],
+ "nodes": [{{"mesh": 0}}], "meshes": [{{"primitives": [{{"attributes": {{"POSITION": 0}}, "indices": 1}}]}}],
+ "buffers": [{{"uri": "tet.bin", "byteLength": 72}}],
+ "bufferViews": [{{"buffer": 0, "byteOffset": 0, "byteLength": 48}}, {{"buffer": 0, "byteOffset": 48, "byteLength": 24}}],
+ "accessors": [{{"bufferView": 0, "componentType": 5126, "count": 4, "type": "VEC3", "min": [0, 0, 0], "max": [{0}, {0}, {0}]}},
+               {{"bufferView": 1, "componentType": 5123, "count": 12, "type": "SCALAR"}}]}})", a));
+}
+
+TEST_F(MeshStageE2E, GltfExternalBufferIsAnInput)
+{
+  write_gltf_tetrahedron(dir_.path(), 30);
+  design("tet.gltf");
+  ASSERT_EQ(make().exit_code, 0) << make().err;
+  const auto volume = [&] {
+    return nlohmann::json::parse(test::read_text(dir_ / "build" / "mesh" / "report.json"))["mesh"]["volume_mm3"].get<double>();
+  };
+  EXPECT_NEAR(volume(), 30.0 * 30 * 30 / 6, 1e-6);
+  write_gltf_tetrahedron(dir_.path(), 40);  // only the .bin's content changes
+  EXPECT_THAT(test::run_fibermold("status design.toml --build-dir build", dir_.path()).out,
+              HasSubstr("mesh  stale (file tet.bin changed"));
+  ASSERT_EQ(make().exit_code, 0);
+  EXPECT_NEAR(volume(), 40.0 * 40 * 40 / 6, 1e-6);
+}
+
+TEST_F(MeshStageE2E, RemeshingIsRefusedBeforeItCouldExhaustMemory)
+{
+  write_stl(dir_ / "box.stl", box_);
+  design("box.stl", "edge_length = 0.01\nrepair = true\nremesh = true");
+  expect_rejected("more than [mesh].max_tets");
+}
+
+TEST_F(MeshStageE2E, RerunWithSameInputsWritesIdenticalOutputs)
+{
+  write_stl(dir_ / "box.stl", box_);
+  design("box.stl");
+  ASSERT_EQ(make().exit_code, 0);
+  const std::string report = test::read_text(dir_ / "build" / "mesh" / "report.json");
+  const std::string vtu = test::read_text(dir_ / "build" / "mesh" / "body.vtu");
+  ASSERT_EQ(test::run_fibermold("make design.toml mesh --build-dir build --force", dir_.path()).exit_code, 0);
+  EXPECT_EQ(test::read_text(dir_ / "build" / "mesh" / "report.json"), report);
+  EXPECT_EQ(test::read_text(dir_ / "build" / "mesh" / "body.vtu"), vtu);
 }
 
 TEST_F(MeshStageE2E, CheckReportsTheSurfaceWithoutRunning)

@@ -50,6 +50,17 @@ TEST(Cli, MissingDesignFileExits2)
   EXPECT_THAT(r.err, HasSubstr("nope.toml: design file not found"));
 }
 
+TEST(Cli, AWordThatIsNoStageIsTheDesign)
+{
+  test::TempDir dir;
+  auto r = test::run_fibermold("check typo_design", dir.path());
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_THAT(r.err, HasSubstr("typo_design: design file not found"));
+  r = test::run_fibermold("make st/nonexistent mesh", dir.path());
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_THAT(r.err, HasSubstr("st/nonexistent: design file not found"));
+}
+
 TEST(Cli, SimulateSaysItIsNotBuiltYet)
 {
   const auto r = test::run_fibermold("simulate");
