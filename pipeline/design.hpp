@@ -11,6 +11,8 @@
 
 #include <Eigen/Core>
 
+#include "sim/muscle_model.hpp"
+
 namespace fibermold {
 
 using Vec3 = Eigen::Vector3d;
@@ -57,20 +59,10 @@ struct FixedRegion {
   Region region;
 };
 
-/// Coefficients of the two-piece line a·p + b (p in Pa), smoothed with the log-cosh formula (appendix).
-struct TwoPieceLine {
-  double slope_low, intercept_low, slope_high, intercept_high;
-};
-
 struct MuscleOptions {
-  double diameter = 3e-3;             ///< m
+  MuscleParameters model;             ///< diameter and the fitted coefficients (defaults: the paper's)
   double max_pressure = 425e3;        ///< Pa
   double segments_per_length = 500;   ///< segments per m (0.5 per mm)
-  TwoPieceLine stiffness{-549.92, 73.068e6, 26.36, 4.40e6};       ///< E(p), Pa
-  TwoPieceLine taut{-23.91e3, 4067.66e6, -986.60, 833.51e6};      ///< A(p), Pa
-  double rest_strain_slope = -0.512e-6;  ///< ε_L(p) = slope·p + intercept, 1/Pa
-  double rest_strain_intercept = 0;
-  double smoothing = 10e3;            ///< ρ of the log-cosh smoothing, Pa
 };
 
 struct Fiber {

@@ -526,7 +526,7 @@ std::string entry_name(Section& s, std::string_view kind, std::size_t index, boo
 MuscleOptions read_muscle(Section s)
 {
   MuscleOptions o;
-  o.diameter = s.number("diameter", o.diameter / units::mm, positive(), kMm);
+  o.model.diameter = s.number("diameter", o.model.diameter / units::mm, positive(), kMm);
   o.max_pressure = s.number("max_pressure", o.max_pressure / units::kPa, positive(), kKPa);
   o.segments_per_length = s.number("segments_per_mm", o.segments_per_length * units::mm, positive()) / units::mm;
   auto line = [&](std::string_view key, TwoPieceLine fallback) {
@@ -549,11 +549,11 @@ MuscleOptions read_muscle(Section s)
     s.record(key, fmt::format("[[{}, {}], [{}, {}]]", c[0], c[1], c[2], c[3]));
     return TwoPieceLine{c[0], c[1], c[2], c[3]};
   };
-  o.stiffness = line("stiffness", o.stiffness);
-  o.taut = line("taut", o.taut);
-  o.rest_strain_slope = s.number("rest_strain_slope", o.rest_strain_slope, any(), {1.0, " 1/Pa"});
-  o.rest_strain_intercept = s.number("rest_strain_intercept", o.rest_strain_intercept, closed(-0.9, 0.9));
-  o.smoothing = s.number("smoothing", o.smoothing / units::kPa, positive(), kKPa);
+  o.model.stiffness = line("stiffness", o.model.stiffness);
+  o.model.taut = line("taut", o.model.taut);
+  o.model.rest_strain_slope = s.number("rest_strain_slope", o.model.rest_strain_slope, any(), {1.0, " 1/Pa"});
+  o.model.rest_strain_intercept = s.number("rest_strain_intercept", o.model.rest_strain_intercept, closed(-0.9, 0.9));
+  o.model.smoothing = s.number("smoothing", o.model.smoothing / units::kPa, positive(), kKPa);
   s.finish();
   return o;
 }

@@ -54,7 +54,7 @@ TEST_F(DesignFileTest, DemoParsesIntoSIUnits)
   EXPECT_DOUBLE_EQ(d.design.surface_scale, 1e-3);
   EXPECT_DOUBLE_EQ(d.material.youngs_modulus, 86.4e3);
   EXPECT_DOUBLE_EQ(*d.mesh.edge_length, 6.0e-3);
-  EXPECT_DOUBLE_EQ(d.muscle.diameter, 3.0e-3);
+  EXPECT_DOUBLE_EQ(d.muscle.model.diameter, 3.0e-3);
   EXPECT_DOUBLE_EQ(d.muscle.max_pressure, 425e3);
   ASSERT_EQ(d.fibers.size(), 1u);
   ASSERT_EQ(d.fibers[0].points.size(), 4u);
@@ -79,7 +79,7 @@ TEST_F(DesignFileTest, DefaultsFillEverySectionAndAreRecorded)
   EXPECT_DOUBLE_EQ(d.material.gravity.z(), -9.81);
   EXPECT_DOUBLE_EQ(d.collide.clearance, 1e-3);
   EXPECT_DOUBLE_EQ(d.muscle.segments_per_length, 500.0);
-  EXPECT_DOUBLE_EQ(d.muscle.stiffness.slope_low, -549.92);
+  EXPECT_DOUBLE_EQ(d.muscle.model.stiffness.slope_low, -549.92);
   EXPECT_FALSE(d.mold.parting.has_value());
   // The runner hashes effective values, so a default written out explicitly changes nothing.
   EXPECT_EQ(d.values.at("[mold].wall"), "4");

@@ -9,6 +9,7 @@
 #include "mesh/mesh_quality.hpp"
 #include "sim/external_forces.hpp"
 #include "sim/mls_basis.hpp"
+#include "sim/muscle_energy.hpp"
 #include "sim/neo_hookean.hpp"
 #include "sim/soft_dirichlet.hpp"
 #include "sim_fixtures.hpp"
@@ -57,6 +58,12 @@ std::vector<Named> energies()
          }
          return std::make_unique<SoftDirichlet>(std::move(at), std::move(targets), 1e4 * 86.4e3 * 0.005);
        }},
+      {"muscle",
+       [](const Body& b) {
+         static const MuscleModel model;
+         const HermiteSpline fiber({{0.001, 0.003, 0.004}, {0.01, 0.006, 0.005}, {0.019, 0.004, 0.007}});
+         return std::make_unique<MuscleEnergy>(b.basis, model, split_into_segments(fiber, 12), 300e3);
+       }},
       {"gravity", [](const Body& b) { return std::make_unique<ExternalForces>(gravity_forces(nodal_masses(b.qp, b.n, 1070), {0, 0, -9.81})); }},
   };
 }
@@ -104,7 +111,7 @@ TEST_P(EnergyDerivatives, GradientAndHessianMatchFiniteDifferences)
   }
 }
 
-INSTANTIATE_TEST_SUITE_P(Energies, EnergyDerivatives, ::testing::Range(0, 3));
+INSTANTIATE_TEST_SUITE_P(Energies, EnergyDerivatives, ::testing::Range(0, 4));
 
 TEST(NeoHookean, StressIsTheDerivativeOfTheDensity)
 {

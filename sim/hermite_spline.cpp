@@ -1,0 +1,103 @@
+#include "sim/hermite_spline.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <stdexcept>
+
+namespace fibermold {
+
+HermiteSpline::HermiteSpline(std::vector<Eigen::Vector3d> points, std::vector<Eigen::Vector3d> tangents)
+    : points_(std::move(points)), tangents_(std::move(tangents))
+{
+  const std::size_t n = points_.size();
+  if (n < 2) throw std::invalid_argument("a spline needs at least 2 points");
+  if (tangents_.empty()) {
+    // Catmull–Rom: T_k = (P_{k+1} − P_{k−1}) / 2, one-sided at the ends.
+    tangents_.resize(n);
+    for (std::size_t k = 0; k < n; ++k) {
+      const Eigen::Vector3d& prev = points_[k == 0 ? 0 : k - 1];
+      const Eigen::Vector3d& next = points_[k + 1 == n ? n - 1 : k + 1];
+      tangents_[k] = (next - prev) / ((k == 0 || k + 1 == n) ? 1.0 : 2.0);
+    }
+  }
+  if (tangents_.size() != n) throw std::invalid_argument("a spline needs one tangent per point");
+}
+
+void HermiteSpline::weights(double t, int& span, double w[4]) const
+{
+  span = std::clamp(static_cast<int>(std::floor(t)), 0, spans() - 1);
+  const double u = t - span, u2 = u * u, u3 = u2 * u;
+  w[0] = 2 * u3 - 3 * u2 + 1;  // h00
+  w[1] = u3 - 2 * u2 + u;      // h10
+  w[2] = -2 * u3 + 3 * u2;     // h01
+  w[3] = u3 - u2;              // h11
+}
+
+Eigen::Vector3d HermiteSpline::position(double t) const
+{
+  int k;
+  double w[4];
+  weights(t, k, w);
+  return w[0] * points_[k] + w[1] * tangents_[k] + w[2] * points_[k + 1] + w[3] * tangents_[k + 1];
+}
+
+double HermiteSpline::span_length(int k) const
+{
+  // |p'(u)| integrated with 5-point Gauss–Legendre on [0, 1].
+  static const double x[5] = {0.0469100770306680, 0.2307653449471585, 0.5, 0.7692346550528415, 0.9530899229693320};
+  static const double w[5] = {0.1184634425280945, 0.2393143352496832, 0.2844444444444444, 0.2393143352496832, 0.1184634425280945};
+  double length = 0;
+  for (int i = 0; i < 5; ++i) {
+    const double u = x[i], u2 = u * u;
+    const Eigen::Vector3d d = (6 * u2 - 6 * u) * points_[k] + (3 * u2 - 4 * u + 1) * tangents_[k] +
+                              (-6 * u2 + 6 * u) * points_[k + 1] + (3 * u2 - 2 * u) * tangents_[k + 1];
+    length += w[i] * d.norm();
+  }
+  return length;
+}
+
+double HermiteSpline::length() const
+{
+  double length = 0;
+  for (int k = 0; k < spans(); ++k) length += span_length(k);
+  return length;
+}
+
+FiberSegments split_into_segments(const HermiteSpline& spline, int count)
+{
+  const int spans = spline.spans();
+  count = std::max(count, spans);
+  std::vector<double> lengths(spans);
+  double total = 0;
+  for (int k = 0; k < spans; ++k) total += lengths[k] = spline.span_length(k);
+  // Segments per span ∝ span length, at least one each, summing to count (largest remainders).
+  std::vector<int> per(spans, 1);
+  std::vector<std::pair<double, int>> share;
+  for (int k = 0; k < spans; ++k) {
+    const double exact = count * (total > 0 ? lengths[k] / total : 1.0 / spans);
+    per[k] = std::max(1, static_cast<int>(std::floor(exact)));
+    share.emplace_back(exact - std::floor(exact), k);
+  }
+  int assigned = 0;
+  for (int k = 0; k < spans; ++k) assigned += per[k];
+  std::sort(share.rbegin(), share.rend());
+  for (int i = 0; assigned < count; ++i, ++assigned) ++per[share[i % spans].second];
+  for (int k = 0; assigned > count; k = (k + 1) % spans)  // the minimum of one per span overshot
+    if (per[k] > 1) {
+      --per[k];
+      --assigned;
+    }
+
+  FiberSegments s;
+  for (int k = 0; k < spans; ++k)
+    for (int j = 0; j < per[k]; ++j) s.t.push_back(k + static_cast<double>(j) / per[k]);
+  s.t.push_back(spans);
+  for (std::size_t j = 0; j + 1 < s.t.size(); ++j) {
+    const Eigen::Vector3d a = spline.position(s.t[j]), b = spline.position(s.t[j + 1]);
+    s.centres.push_back((a + b) / 2);
+    s.vectors.push_back(b - a);
+  }
+  return s;
+}
+
+} // namespace fibermold
