@@ -15,6 +15,7 @@
 #include "pipeline/design_file.hpp"
 #include "pipeline/mesh_stage.hpp"
 #include "pipeline/runner.hpp"
+#include "pipeline/simulate_command.hpp"
 #include "pipeline/stages.hpp"
 #include "pipeline/terminal_progress.hpp"
 
@@ -142,6 +143,7 @@ int fibermold_main(int argc, char** argv)
   simulate->add_option("DESIGN", words, "DESIGN")->expected(0, 1);
   simulate->add_option("--target", target, "Simulate this target's loads");
   simulate->add_option("--pressure", pressures, "FIBER=kPa, repeatable");
+  simulate->add_option("--build-dir", build_dir_option, "Build folder (default: out/<design name>)");
 
   try {
     app.parse(argc, argv);
@@ -156,11 +158,16 @@ int fibermold_main(int argc, char** argv)
     const DesignAndStages args =
         split_arguments(words, FIBERMOLD_DEFAULT_DESIGN,
                         check->parsed() || simulate->parsed() ? std::vector<std::string>{} : runner.stage_names());
-    if (simulate->parsed()) {
-      fmt::print(stderr, "fibermold simulate: the simulator (sim/) is not part of this build yet\n");
-      return 1;
-    }
     const Design design = load_design(args.design);
+    if (simulate->parsed()) {
+      const SimulateResult r = fibermold::simulate(design, runner, build_dir_for(design, build_dir_option), {target, pressures},
+                                        terminal_progress());
+      fmt::print("simulate {}: max displacement {:.3f} mm; Newton {} iterations, |∇E| {:.2e} N, {:.2f} s "
+                 "(assembly {:.2f} s, factorization {:.2f} s, solve {:.2f} s)\n  {}\n",
+                 r.name, r.max_displacement / 1e-3, r.summary.iterations, r.summary.residual, r.summary.seconds_total,
+                 r.summary.seconds_assembly, r.summary.seconds_factorization, r.summary.seconds_solve, r.vtu.string());
+      return 0;
+    }
     if (check->parsed()) {
       std::vector<std::string> repairs;
       const SurfaceCheck surface = check_design_surface(design, repairs);

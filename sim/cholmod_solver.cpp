@@ -9,7 +9,10 @@ struct CholmodSolver::Impl {
   std::vector<int> outer, inner;  ///< the pattern last analyzed
 };
 
-CholmodSolver::CholmodSolver() : impl_(std::make_unique<Impl>()) {}
+CholmodSolver::CholmodSolver() : impl_(std::make_unique<Impl>())
+{
+  impl_->llt.cholmod().print = 0;  // "not positive definite" is an answer here, not an error to print
+}
 CholmodSolver::~CholmodSolver() = default;
 
 bool CholmodSolver::factorize(const Eigen::SparseMatrix<double>& A, double shift)

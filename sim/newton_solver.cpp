@@ -70,6 +70,7 @@ NewtonSummary NewtonSolver::solve(Eigen::VectorXd& x, const NewtonOptions& optio
   Eigen::VectorXd g = gradient(x);
   s.initial_residual = g.norm();
   const double goal = options.tolerance * options.force_scale;
+  double last_alpha = 0, last_shift = 0;
   for (;;) {
     s.residual = g.norm();
     s.energy = E;
@@ -86,22 +87,35 @@ NewtonSummary NewtonSolver::solve(Eigen::VectorXd& x, const NewtonOptions& optio
       s.message = fmt::format("no convergence in {} iterations", options.max_iterations);
       break;
     }
-    progress.checkpoint(-1, fmt::format("Newton iteration {}: |∇E| = {:.3e} N", s.iterations, s.residual));
+    progress.checkpoint(-1, fmt::format("Newton iteration {}: |∇E| = {:.3e} N, last step {:.3g}, shift {:.3g}",
+                                        s.iterations, s.residual, last_alpha, last_shift));
 
+    // The exact Hessian where it is positive definite (quadratic convergence near a stable
+    // equilibrium); the per-point PSD projection where it is not.
     auto t = Clock::now();
-    hessian(x, true);
+    hessian(x, false);
     s.seconds_assembly += since(t);
     ++s.assemblies;
+    t = Clock::now();
+    bool factorized = cholmod_.factorize(hessian_.matrix(), 0);
+    ++s.factorizations;
+    s.seconds_factorization += since(t);
+    if (!factorized) {
+      t = Clock::now();
+      hessian(x, true);
+      s.seconds_assembly += since(t);
+      ++s.assemblies;
+    }
     t = Clock::now();
     // A PSD-projected Hessian can be singular (e.g. at rest with no load); shift until it factorizes.
     double shift = 0;
     const double diagonal = hessian_.matrix().diagonal().cwiseAbs().maxCoeff();
-    while (!cholmod_.factorize(hessian_.matrix(), shift)) {
+    while (!factorized && !cholmod_.factorize(hessian_.matrix(), shift)) {
       ++s.factorizations;
       shift = shift == 0 ? 1e-10 * diagonal : shift * 10;
       if (shift > diagonal) break;
     }
-    ++s.factorizations;
+    if (!factorized) ++s.factorizations;
     s.seconds_factorization += since(t);
     if (shift > diagonal) {
       s.message = "the Hessian is singular: is the body held (a [[fixed]] region)?";
@@ -131,6 +145,8 @@ NewtonSummary NewtonSolver::solve(Eigen::VectorXd& x, const NewtonOptions& optio
     }
     x = trial;
     E = trial_E;
+    last_alpha = alpha;
+    last_shift = shift;
     g = gradient(x);
     ++s.iterations;
   }

@@ -61,12 +61,5 @@ TEST(Cli, AWordThatIsNoStageIsTheDesign)
   EXPECT_THAT(r.err, HasSubstr("st/nonexistent: design file not found"));
 }
 
-TEST(Cli, SimulateSaysItIsNotBuiltYet)
-{
-  const auto r = test::run_fibermold("simulate");
-  EXPECT_EQ(r.exit_code, 1);
-  EXPECT_THAT(r.err, HasSubstr("not part of this build"));
-}
-
 } // namespace
 } // namespace fibermold

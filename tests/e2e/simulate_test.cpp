@@ -1,0 +1,98 @@
+// `fibermold simulate` as a user runs it: a small bar with one muscle.
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+
+#include "export/stl_writer.hpp"
+#include "primitives.hpp"
+#include "test_support.hpp"
+
+namespace fibermold {
+namespace {
+
+using ::testing::HasSubstr;
+namespace fs = std::filesystem;
+
+class SimulateE2E : public ::testing::Test {
+protected:
+  void SetUp() override
+  {
+    write_stl(dir_ / "bar.stl", test::box({0, -0.008, -0.008}, {0.06, 0.008, 0.008}, Eigen::Vector3i(10, 3, 3)));
+  }
+  /// A design with `fixed` as its [[fixed]] table(s) and `fiber` as the fiber's points.
+  void design(const std::string& fixed = "[[fixed]]\nbox = { min = [-1, -9, -9], max = [0.5, 9, 9] }\n",
+              const std::string& fiber = "[[0, 0, 0], [30, 2, 0], [60, 0, 0]]")
+  {
+    test::write_text(dir_ / "design.toml", "[design]\nname = \"bar\"\nsurface = \"bar.stl\"\n[mesh]\nedge_length = 6\n"
+                                           "[material]\ngravity = [0, 0, 0]\n" +
+                                               fixed + "[[fiber]]\nname = \"m1\"\npoints = " + fiber +
+                                               "\n[[target]]\nname = \"pull\"\nkind = \"forces\"\n"
+                                               "load = [{ box = { min = [59, -9, -9], max = [61, 9, 9] }, force = [0, 0, -0.05] }]\n");
+  }
+  test::CommandResult simulate(const std::string& args)
+  {
+    return test::run_fibermold("simulate design.toml --build-dir build " + args, dir_.path());
+  }
+
+  test::TempDir dir_;
+};
+
+TEST_F(SimulateE2E, PressurizedMuscleDeformsTheBarAndWritesTheVtu)
+{
+  design();
+  const auto r = simulate("--pressure m1=300");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_THAT(r.out, HasSubstr("simulate pressures: max displacement"));
+  EXPECT_THAT(r.out, HasSubstr("Newton"));
+  const std::string vtu = test::read_text(dir_ / "build" / "simulate" / "deformed-pressures.vtu");
+  EXPECT_THAT(vtu, HasSubstr("Name=\"displacement_mm\""));
+  EXPECT_THAT(vtu, HasSubstr("Name=\"von_mises_kPa\""));
+  const double max_mm = std::stod(r.out.substr(r.out.find("max displacement") + 17));
+  EXPECT_GT(max_mm, 0.5);  // a 300 kPa muscle in a 60 mm EcoFlex bar moves it by millimetres
+  EXPECT_LT(max_mm, 30);
+}
+
+TEST_F(SimulateE2E, TargetLoads)
+{
+  design();
+  const auto r = simulate("--target pull");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_THAT(r.out, HasSubstr("simulate pull: max displacement"));
+  EXPECT_TRUE(fs::exists(dir_ / "build" / "simulate" / "deformed-pull.vtu"));
+}
+
+TEST_F(SimulateE2E, PressureOutOfRange)
+{
+  design();
+  const auto r = simulate("--pressure m1=500");
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_THAT(r.err, HasSubstr("500 kPa for m1 is outside [0, 425] kPa"));
+  EXPECT_EQ(simulate("--pressure m9=100").exit_code, 2);
+  EXPECT_EQ(simulate("--pressure m1").exit_code, 2);
+}
+
+TEST_F(SimulateE2E, FiberOutsideTheBody)
+{
+  design("[[fixed]]\nbox = { min = [-1, -9, -9], max = [0.5, 9, 9] }\n", "[[0, 0, 0], [30, 20, 0], [60, 0, 0]]");
+  const auto r = simulate("--pressure m1=100");
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_THAT(r.err, HasSubstr("[fiber.m1]: the fiber leaves the body at ("));
+}
+
+TEST_F(SimulateE2E, FixedRegionThatCatchesNoNode)
+{
+  design("[[fixed]]\nname = \"clamp\"\nbox = { min = [100, -9, -9], max = [110, 9, 9] }\n");
+  const auto r = simulate("--pressure m1=100");
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_THAT(r.err, HasSubstr("[fixed.clamp]: holds no node of the mesh"));
+}
+
+TEST_F(SimulateE2E, FreeBodyIsRefused)
+{
+  design("");
+  const auto r = simulate("--target pull");
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_THAT(r.err, HasSubstr("the body is held nowhere"));
+}
+
+} // namespace
+} // namespace fibermold
