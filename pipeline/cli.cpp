@@ -166,6 +166,7 @@ int fibermold_main(int argc, char** argv)
                  "(assembly {:.2f} s, factorization {:.2f} s, solve {:.2f} s)\n  {}\n",
                  r.name, r.max_displacement / 1e-3, r.summary.iterations, r.summary.residual, r.summary.seconds_total,
                  r.summary.seconds_assembly, r.summary.seconds_factorization, r.summary.seconds_solve, r.vtu.string());
+      if (!r.conditioning.empty()) fmt::print("  warning: {}\n", r.conditioning);
       return 0;
     }
     if (check->parsed()) {

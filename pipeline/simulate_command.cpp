@@ -11,6 +11,7 @@
 #include "mesh/tet_mesh.hpp"
 #include "sim/external_forces.hpp"
 #include "sim/fem_basis.hpp"
+#include "sim/mls_basis.hpp"
 #include "sim/muscle_energy.hpp"
 #include "sim/neo_hookean.hpp"
 #include "sim/simulation.hpp"
@@ -231,6 +232,12 @@ SimulateResult simulate(const Design& d, const Runner& runner, const fs::path& b
     throw std::runtime_error(fmt::format("the simulation did not reach equilibrium: {} ({})", result.summary.brief(),
                                          result.summary.message));
   result.max_displacement = (sim.deformed_nodes(x) - mesh.nodes).rowwise().norm().maxCoeff();
+  if (const auto* mls = dynamic_cast<const MlsBasis*>(&sim.basis()); mls && mls->conditioning().widened > 0) {
+    const MlsConditioning c = mls->conditioning();
+    result.conditioning = fmt::format("MLS radius widened at {} points (too few or co-planar nodes), e.g. at {}, up to "
+                                      "{:.3g} mm; consider a finer mesh there or a larger [sim] mls_radius",
+                                      c.widened, mm(c.example), c.largest_radius / units::mm);
+  }
   result.vtu = build_dir / "simulate" / fmt::format("deformed-{}.vtu", result.name);
   write_deformed(result.vtu, sim, x, muscles, splines,
                  LameParameters::from_young_poisson(d.material.youngs_modulus, d.material.poisson_ratio));

@@ -22,6 +22,7 @@ struct SimulateResult {
   std::filesystem::path vtu;
   double max_displacement = 0;         ///< m
   NewtonSummary summary;
+  std::string conditioning;            ///< where the MLS radius had to be widened; empty when nowhere
 };
 
 /// Throws InputError for a bad request or design (exit 2), std::runtime_error when the solve fails.

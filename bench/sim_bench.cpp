@@ -1,0 +1,94 @@
+// Forward simulation speed: the twisting bar (paper Table II: 63 s on a 4-core i7) and the
+// cantilever at three mesh sizes. Prints a Markdown table.   build/bench/sim_bench
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <string>
+
+#include "mesh/surface_import.hpp"
+#include "mesh/tetrahedralize.hpp"
+#include "primitives.hpp"
+#include "sim/external_forces.hpp"
+#include "sim/muscle_energy.hpp"
+#include "sim/simulation.hpp"
+
+using namespace fibermold;
+
+namespace {
+
+struct Row {
+  std::string name;
+  Eigen::Index tets, nodes;
+  NewtonSummary s;
+  double setup;
+};
+
+void print(const Row& r, double paper_seconds)
+{
+  const double per_assembly = r.s.seconds_assembly / std::max(1, r.s.assemblies);
+  const double per_factor = r.s.seconds_factorization / std::max(1, r.s.factorizations);
+  std::printf("| %s | %ld | %ld | %d | %.3f | %.3f | %.4f | %.3f | %.3f | %s |\n", r.name.c_str(), static_cast<long>(r.tets),
+              static_cast<long>(3 * r.nodes), r.s.iterations, per_assembly, per_factor,
+              r.s.seconds_solve / std::max(1, r.s.iterations), r.setup, r.s.seconds_total,
+              paper_seconds > 0 ? (std::to_string(static_cast<int>(paper_seconds / r.s.seconds_total)) + "×").c_str() : "");
+}
+
+double since(std::chrono::steady_clock::time_point t)
+{
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - t).count();
+}
+
+Row twisting_bar()
+{
+  NullProgress progress;
+  const SurfaceMesh surface = import_surface(FIBERMOLD_SOURCE_DIR "/examples/twisting-bar/bar.stl", 1e-3);
+  const TetMesh mesh = tetrahedralize(surface, {0.006, 1.5, 10, false}, progress);
+  const auto start = std::chrono::steady_clock::now();
+  SimulationOptions o;
+  o.gravity = {9.81, 0, 0};
+  o.fixed_nodes = {nodes_in_box(mesh.nodes, {-1, -1, -1}, {1e-9, 1, 1})};
+  Simulation sim(mesh, o);
+  std::vector<Eigen::Vector3d> points{{0, 0, 0}};
+  for (int k = 1; k <= 12; ++k) {
+    const double a = 3 * M_PI * k / 13;
+    points.emplace_back(0.129 * k / 13, 0.005 * std::cos(a), 0.005 * std::sin(a));
+  }
+  points.emplace_back(0.129, 0, 0);
+  static const MuscleModel model;
+  const HermiteSpline helix(points);
+  sim.add_energy(std::make_unique<MuscleEnergy>(sim.basis(), model,
+                                                split_into_segments(helix, static_cast<int>(std::ceil(helix.length() * 500))), 300e3));
+  Eigen::VectorXd x = sim.rest();
+  const double setup = since(start);
+  return {"twisting bar, MLS-linear, helix at 300 kPa", mesh.num_tets(), mesh.nodes.rows(), sim.solve(x, progress), setup};
+}
+
+Row cantilever(const std::string& basis, double edge)
+{
+  NullProgress progress;
+  const Eigen::Vector3d size(0.1, 0.015, 0.015);
+  const SurfaceMesh surface = test::box({0, -0.0075, -0.0075}, {0.1, 0.0075, 0.0075}, (size / edge).array().round().cast<int>().max(1).matrix());
+  const TetMesh mesh = tetrahedralize(surface, {edge, 1.5, 10, basis == "fem-p2"}, progress);
+  const auto start = std::chrono::steady_clock::now();
+  SimulationOptions o;
+  o.basis = basis;
+  o.fixed_nodes = {nodes_in_box(mesh.nodes, {-1, -1, -1}, {1e-9, 1, 1})};
+  Simulation sim(mesh, o);
+  Eigen::VectorXd x = sim.rest();
+  const double setup = since(start);
+  char name[96];
+  std::snprintf(name, sizeof name, "cantilever, %s, %.0f mm edges, gravity", basis.c_str(), edge * 1e3);
+  return {name, mesh.num_tets(), mesh.nodes.rows(), sim.solve(x, progress), setup};
+}
+
+} // namespace
+
+int main()
+{
+  std::printf("| case | tets | DoFs | Newton it. | s/assembly | s/factorization | s/solve | setup s | total s | vs paper |\n");
+  std::printf("|---|---|---|---|---|---|---|---|---|---|\n");
+  print(twisting_bar(), 63.0);
+  for (double edge : {0.006, 0.004, 0.003}) print(cantilever("mls-linear", edge), 0);
+  print(cantilever("fem-p2", 0.004), 0);
+  return 0;
+}
