@@ -56,8 +56,8 @@ Row twisting_bar()
   points.emplace_back(0.129, 0, 0);
   static const MuscleModel model;
   const HermiteSpline helix(points);
-  sim.add_energy(std::make_unique<MuscleEnergy>(sim.basis(), model,
-                                                split_into_segments(helix, static_cast<int>(std::ceil(helix.length() * 500))), 300e3));
+  sim.add_energy(std::make_unique<MuscleEnergy>(sim.basis(), model, helix,
+                                                segment_parameters(helix, static_cast<int>(std::ceil(helix.length() * 500))), 300e3));
   Eigen::VectorXd x = sim.rest();
   const double setup = since(start);
   return {"twisting bar, MLS-linear, helix at 300 kPa", mesh.num_tets(), mesh.nodes.rows(), sim.solve(x, progress), setup};

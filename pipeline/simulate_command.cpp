@@ -215,9 +215,9 @@ SimulateResult simulate(const Design& d, const Runner& runner, const fs::path& b
   for (const Actuation& a : actuations) {
     splines.emplace_back(a.points, a.tangents);
     const int count = std::max(1, static_cast<int>(std::ceil(splines.back().length() * d.muscle.segments_per_length)));
-    FiberSegments segments = split_into_segments(splines.back(), count);
-    require_inside(d, a.fiber, locator, splines.back(), segments);
-    auto muscle = std::make_unique<MuscleEnergy>(sim.basis(), model, std::move(segments), a.pressure);
+    std::vector<double> t = segment_parameters(splines.back(), count);
+    require_inside(d, a.fiber, locator, splines.back(), segments_at(splines.back(), t));
+    auto muscle = std::make_unique<MuscleEnergy>(sim.basis(), model, splines.back(), std::move(t), a.pressure);
     muscles.push_back(muscle.get());
     sim.add_energy(std::move(muscle));
   }

@@ -65,6 +65,23 @@ double HermiteSpline::length() const
 
 FiberSegments split_into_segments(const HermiteSpline& spline, int count)
 {
+  return segments_at(spline, segment_parameters(spline, count));
+}
+
+FiberSegments segments_at(const HermiteSpline& spline, std::vector<double> t)
+{
+  FiberSegments s;
+  s.t = std::move(t);
+  for (std::size_t j = 0; j + 1 < s.t.size(); ++j) {
+    const Eigen::Vector3d a = spline.position(s.t[j]), b = spline.position(s.t[j + 1]);
+    s.centres.push_back((a + b) / 2);
+    s.vectors.push_back(b - a);
+  }
+  return s;
+}
+
+std::vector<double> segment_parameters(const HermiteSpline& spline, int count)
+{
   const int spans = spline.spans();
   count = std::max(count, spans);
   std::vector<double> lengths(spans);
@@ -88,16 +105,11 @@ FiberSegments split_into_segments(const HermiteSpline& spline, int count)
       --assigned;
     }
 
-  FiberSegments s;
+  std::vector<double> t;
   for (int k = 0; k < spans; ++k)
-    for (int j = 0; j < per[k]; ++j) s.t.push_back(k + static_cast<double>(j) / per[k]);
-  s.t.push_back(spans);
-  for (std::size_t j = 0; j + 1 < s.t.size(); ++j) {
-    const Eigen::Vector3d a = spline.position(s.t[j]), b = spline.position(s.t[j + 1]);
-    s.centres.push_back((a + b) / 2);
-    s.vectors.push_back(b - a);
-  }
-  return s;
+    for (int j = 0; j < per[k]; ++j) t.push_back(k + static_cast<double>(j) / per[k]);
+  t.push_back(spans);
+  return t;
 }
 
 } // namespace fibermold

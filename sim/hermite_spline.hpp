@@ -37,5 +37,10 @@ struct FiberSegments {
   std::vector<Eigen::Vector3d> centres, vectors;
 };
 FiberSegments split_into_segments(const HermiteSpline& spline, int count);
+/// The endpoint parameters split_into_segments uses; held fixed while the spline's points move, so
+/// that segments move smoothly with them.
+std::vector<double> segment_parameters(const HermiteSpline& spline, int count);
+/// Segments between consecutive parameters t.
+FiberSegments segments_at(const HermiteSpline& spline, std::vector<double> t);
 
 } // namespace fibermold

@@ -62,7 +62,7 @@ std::vector<Named> energies()
        [](const Body& b) {
          static const MuscleModel model;
          const HermiteSpline fiber({{0.001, 0.003, 0.004}, {0.01, 0.006, 0.005}, {0.019, 0.004, 0.007}});
-         return std::make_unique<MuscleEnergy>(b.basis, model, split_into_segments(fiber, 12), 300e3);
+         return std::make_unique<MuscleEnergy>(b.basis, model, fiber, segment_parameters(fiber, 12), 300e3);
        }},
       {"gravity", [](const Body& b) { return std::make_unique<ExternalForces>(gravity_forces(nodal_masses(b.qp, b.n, 1070), {0, 0, -9.81})); }},
   };

@@ -34,7 +34,7 @@ Actuated actuate(const std::string& basis, double youngs_modulus, double p, cons
   o.fixed_nodes = {nodes_in_box(r.mesh.nodes, {-1, -1, -1}, {1e-9, 1, 1})};  // one end face held
   r.sim = std::make_unique<Simulation>(r.mesh, o);
   const HermiteSpline fiber({{0, 0, 0}, {kL, 0, 0}});
-  auto muscle = std::make_unique<MuscleEnergy>(r.sim->basis(), model, split_into_segments(fiber, 30), p);
+  auto muscle = std::make_unique<MuscleEnergy>(r.sim->basis(), model, fiber, segment_parameters(fiber, 30), p);
   r.muscle = muscle.get();
   r.sim->add_energy(std::move(muscle));
   r.x = r.sim->rest();
@@ -76,7 +76,7 @@ TEST(MuscleActuation, BlockedFiberPullsWithSigmaTimesArea)
     o.fixed_nodes = {nodes_in_box(mesh.nodes, {-1, -1, -1}, {1, 1, 1})};
     Simulation sim(mesh, o);
     const HermiteSpline fiber({{0, 0, 0}, {kL, 0, 0}});
-    auto muscle = std::make_unique<MuscleEnergy>(sim.basis(), model, split_into_segments(fiber, 30), p);
+    auto muscle = std::make_unique<MuscleEnergy>(sim.basis(), model, fiber, segment_parameters(fiber, 30), p);
     const MuscleEnergy& m = *muscle;
     sim.add_energy(std::move(muscle));
     Eigen::VectorXd x = sim.rest();

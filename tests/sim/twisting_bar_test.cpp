@@ -45,7 +45,7 @@ double twist_with_helix(const TetMesh& mesh, double handedness, double pressure)
   points.emplace_back(kL, 0, 0);
   static const MuscleModel model;
   const HermiteSpline helix(points);
-  sim.add_energy(std::make_unique<MuscleEnergy>(sim.basis(), model, split_into_segments(helix, 150), pressure));
+  sim.add_energy(std::make_unique<MuscleEnergy>(sim.basis(), model, helix, segment_parameters(helix, 150), pressure));
   Eigen::VectorXd x = sim.rest();
   NullProgress progress;
   const NewtonSummary s = sim.solve(x, progress);

@@ -1,0 +1,104 @@
+// Derivatives of the muscle energy in the fiber's parameters (spline points, tangents) and the
+// pressure, and of λ·∂E/∂x (the adjoint's mixed term, eq. 9), against central finite differences.
+#include <functional>
+#include <random>
+
+#include <gtest/gtest.h>
+
+#include "mesh/mesh_quality.hpp"
+#include "sim/mls_basis.hpp"
+#include "sim/muscle_energy.hpp"
+#include "sim_fixtures.hpp"
+
+namespace fibermold {
+namespace {
+
+struct Fixture {
+  TetMesh mesh = test::box_mesh({0, 0, 0}, {0.03, 0.012, 0.012}, 0.004);
+  MlsBasis basis{mesh.nodes, {false, 1.7 * mesh_quality(mesh).mean_edge_length}};
+  MuscleModel model;
+  std::vector<Eigen::Vector3d> points{{0.002, 0.006, 0.006}, {0.012, 0.004, 0.007}, {0.021, 0.007, 0.005}, {0.028, 0.006, 0.006}};
+  std::vector<Eigen::Vector3d> tangents = HermiteSpline(points).tangents();
+  std::vector<double> t = segment_parameters(HermiteSpline(points), 16);
+  Eigen::VectorXd x, lambda;
+
+  Fixture()
+  {
+    std::mt19937 random(4);
+    std::normal_distribution<double> noise(0, 3e-4);
+    x.resize(3 * mesh.nodes.rows());
+    lambda.resize(x.size());
+    for (Eigen::Index i = 0; i < mesh.nodes.rows(); ++i) {
+      const Eigen::Vector3d X = mesh.nodes.row(i).transpose();
+      x.segment<3>(3 * i) = Eigen::Vector3d(0.95 * X.x(), X.y() + 0.1 * X.x(), X.z()) + Eigen::Vector3d(noise(random), noise(random), noise(random));
+      lambda.segment<3>(3 * i) = 1e3 * Eigen::Vector3d(noise(random), noise(random), noise(random));
+    }
+  }
+  MuscleEnergy energy(const std::vector<Eigen::Vector3d>& p, const std::vector<Eigen::Vector3d>& tg, double pressure) const
+  {
+    return MuscleEnergy(basis, model, HermiteSpline(p, tg), t, pressure);
+  }
+  double phi(const MuscleEnergy& e) const
+  {
+    Eigen::VectorXd g = Eigen::VectorXd::Zero(x.size());
+    e.add_gradient(x, g);
+    return lambda.dot(g);
+  }
+};
+
+/// Compares an analytic parameter gradient with central differences of `f` over every coordinate.
+void check(const Fixture& fx, const FiberParameterGradient& analytic, double pressure,
+           const std::function<double(const MuscleEnergy&)>& f)
+{
+  const double h = 1e-7;
+  double worst = 0, scale = 0;
+  for (int which = 0; which < 2; ++which)
+    for (std::size_t k = 0; k < fx.points.size(); ++k)
+      for (int c = 0; c < 3; ++c) {
+        auto p = fx.points, tg = fx.tangents;
+        auto& target = which == 0 ? p : tg;
+        target[k][c] += h;
+        const double plus = f(fx.energy(p, tg, pressure));
+        target[k][c] -= 2 * h;
+        const double minus = f(fx.energy(p, tg, pressure));
+        const double fd = (plus - minus) / (2 * h);
+        const double an = (which == 0 ? analytic.points : analytic.tangents)[k][c];
+        worst = std::max(worst, std::abs(fd - an));
+        scale = std::max(scale, std::abs(an));
+      }
+  ASSERT_GT(scale, 0) << "nothing to check";
+  EXPECT_LE(worst, 1e-6 * scale);
+  const double hp = 1.0;
+  const double fd_p = (f(fx.energy(fx.points, fx.tangents, pressure + hp)) - f(fx.energy(fx.points, fx.tangents, pressure - hp))) / (2 * hp);
+  EXPECT_NEAR(fd_p, analytic.pressure, 1e-6 * std::abs(analytic.pressure) + 1e-15);
+  EXPECT_NE(analytic.pressure, 0);
+}
+
+TEST(MuscleParameters, EnergyGradientInPointsTangentsAndPressure)
+{
+  const Fixture fx;
+  for (double p : {50e3, 300e3}) {
+    const MuscleEnergy e = fx.energy(fx.points, fx.tangents, p);
+    check(fx, e.parameter_gradient(fx.x), p, [&](const MuscleEnergy& m) { return m.value(fx.x); });
+  }
+}
+
+TEST(MuscleParameters, MixedDerivativeAtRest)
+{
+  Fixture fx;
+  for (Eigen::Index i = 0; i < fx.mesh.nodes.rows(); ++i) fx.x.segment<3>(3 * i) = fx.mesh.nodes.row(i).transpose();
+  const MuscleEnergy e = fx.energy(fx.points, fx.tangents, 300e3);
+  check(fx, e.mixed_derivative(fx.x, fx.lambda), 300e3, [&](const MuscleEnergy& m) { return fx.phi(m); });
+}
+
+TEST(MuscleParameters, MixedDerivativeOfTheForceForTheAdjoint)
+{
+  const Fixture fx;
+  for (double p : {50e3, 300e3}) {
+    const MuscleEnergy e = fx.energy(fx.points, fx.tangents, p);
+    check(fx, e.mixed_derivative(fx.x, fx.lambda), p, [&](const MuscleEnergy& m) { return fx.phi(m); });
+  }
+}
+
+} // namespace
+} // namespace fibermold
