@@ -55,6 +55,10 @@ Simulation::Simulation(const TetMesh& mesh, SimulationOptions options)
       targets.push_back(mesh_.nodes.row(i).transpose());
     }
   }
+  for (const auto& [i, position] : options_.moved_nodes) {
+    held.push_back(at_nodes_[i]);
+    targets.push_back(position);
+  }
   if (held.empty()) throw std::invalid_argument("the body is held nowhere: give at least one [[fixed]] region");
   const double k = options_.dirichlet_penalty * options_.youngs_modulus * mean_edge_;
   energies_.push_back(std::make_unique<SoftDirichlet>(std::move(held), std::move(targets), k));

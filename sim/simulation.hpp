@@ -23,6 +23,7 @@ struct SimulationOptions {
   Eigen::Vector3d gravity{0, 0, -9.81};
   double dirichlet_penalty = 1e4;      ///< k = penalty × E × mean edge length
   std::vector<std::vector<int>> fixed_nodes;  ///< held nodes, one list per region
+  std::vector<std::pair<int, Eigen::Vector3d>> moved_nodes;  ///< nodes held at a given position (m)
   NewtonOptions newton;
 };
 

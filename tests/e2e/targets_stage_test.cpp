@@ -1,0 +1,135 @@
+// The targets stage as a user runs it: forces, fibers and surface targets on a small bar.
+#include <cmath>
+
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
+
+#include "core/array_file.hpp"
+#include "export/stl_writer.hpp"
+#include "mesh/mesh_quality.hpp"
+#include "mesh/surface_import.hpp"
+#include "sim/mls_basis.hpp"
+#include "mesh/tet_mesh.hpp"
+#include "primitives.hpp"
+#include "test_support.hpp"
+
+namespace fibermold {
+namespace {
+
+using ::testing::HasSubstr;
+namespace fs = std::filesystem;
+
+const char* kDesign = R"([design]
+name = "bar"
+surface = "bar.stl"
+[mesh]
+edge_length = 6
+[material]
+gravity = [0, 0, 0]
+[[fixed]]
+box = { min = [-1, -9, -9], max = [0.5, 9, 9] }
+[[fiber]]
+name = "m1"
+points = [[0, 0, 0], [30, 3, 0], [60, 0, 0]]
+[mold]
+wall = 4.0
+)";
+
+class TargetsE2E : public ::testing::Test {
+protected:
+  void SetUp() override { write_stl(dir_ / "bar.stl", bar_); }
+  void design(const std::string& targets) { test::write_text(dir_ / "design.toml", std::string(kDesign) + targets); }
+  test::CommandResult make() { return test::run_fibermold("make design.toml targets --build-dir build", dir_.path()); }
+  nlohmann::json report() { return nlohmann::json::parse(test::read_text(dir_ / "build" / "targets" / "report.json")); }
+
+  test::TempDir dir_;
+  const SurfaceMesh bar_ = test::box({0, -0.008, -0.008}, {0.06, 0.008, 0.008}, Eigen::Vector3i(10, 3, 3));
+};
+
+TEST_F(TargetsE2E, ForcesAndFibersTargets)
+{
+  design(R"([[target]]
+name = "droop"
+kind = "forces"
+load = [{ box = { min = [59, -9, -9], max = [61, 9, 9] }, force = [0, 0, -0.05] }]
+[[target]]
+name = "curl"
+kind = "fibers"
+fibers = [{ name = "m1", pressure = 300 }]
+)");
+  const auto r = make();
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const auto rep = report();
+  EXPECT_EQ(rep["droop"]["kind"], "forces");
+  EXPECT_GT(rep["droop"]["max_displacement_mm"].get<double>(), 1.0);
+  EXPECT_GT(rep["curl"]["max_displacement_mm"].get<double>(), 0.5);
+  const TetMesh mesh = load_tet_mesh(dir_ / "build" / "mesh" / "body.tetmesh");
+  const Eigen::VectorXd x = load_array(dir_ / "build" / "targets" / "droop.positions", "positions");
+  EXPECT_EQ(x.size(), 3 * mesh.nodes.rows());
+  EXPECT_TRUE(fs::exists(dir_ / "build" / "targets" / "curl.vtu"));
+}
+
+TEST_F(TargetsE2E, SurfaceTargetIsFilledInAndFollowed)
+{
+  // The bar bent upward: z += 0.05 x² / 60 mm (3 mm at the free end).
+  const auto bend = [](const Eigen::Vector3d& X) -> Eigen::Vector3d { return X + Eigen::Vector3d(0, 0, 0.05 * X.x() * X.x() / 0.06); };
+  SurfaceMesh bent = bar_;
+  for (Eigen::Index v = 0; v < bent.num_vertices(); ++v) bent.vertices.row(v) = bend(bar_.vertices.row(v).transpose()).transpose();
+  write_stl(dir_ / "bent.stl", bent);
+  design("[[target]]\nname = \"bend\"\nkind = \"surface\"\nsurface = \"bent.stl\"\n");
+  const auto r = make();
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_NEAR(report()["bend"]["max_displacement_mm"].get<double>(), 3.0, 0.05);
+
+  // The filled-in field follows the prescribed surface, and inside it bends by the same law.
+  const TetMesh mesh = load_tet_mesh(dir_ / "build" / "mesh" / "body.tetmesh");
+  const Eigen::VectorXd x = load_array(dir_ / "build" / "targets" / "bend.positions", "positions");
+  const MlsBasis basis(mesh.nodes, {false, 1.7 * mesh_quality(mesh).mean_edge_length});
+  double surface_error = 0;
+  for (Eigen::Index v = 0; v < mesh.surface_to_node.size(); ++v) {
+    const Eigen::Vector3d X = mesh.nodes.row(mesh.surface_to_node(v)).transpose();
+    surface_error = std::max(surface_error, (basis.at(X, 0).position(x) - bend(X)).norm());
+  }
+  const Eigen::Vector3d inside(0.045, 0.002, -0.001);
+  const double inside_error = (basis.at(inside, 0).position(x) - bend(inside)).norm();
+  std::printf("surface target: surface error %.4f mm, centre error %.4f mm\n", surface_error * 1e3, inside_error * 1e3);
+  EXPECT_LT(surface_error, 0.05e-3);
+  EXPECT_LT(inside_error, 0.2e-3);
+}
+
+TEST_F(TargetsE2E, SurfaceWithOtherVerticesIsRefused)
+{
+  write_stl(dir_ / "other.stl", test::box({0, -0.008, -0.008}, {0.06, 0.008, 0.008}, 2));
+  design("[[target]]\nname = \"bend\"\nkind = \"surface\"\nsurface = \"other.stl\"\n");
+  auto r = make();
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_THAT(r.err, HasSubstr("[target.bend].surface: other.stl has 26 vertices, the body's surface"));
+
+  SurfaceMesh shuffled = bar_;  // same vertices, faces in another order: the import order differs
+  shuffled.faces = bar_.faces.colwise().reverse();
+  write_stl(dir_ / "shuffled.stl", shuffled);
+  design("[[target]]\nname = \"bend\"\nkind = \"surface\"\nsurface = \"shuffled.stl\"\n");
+  r = make();
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_THAT(r.err, HasSubstr("connects its vertices differently"));
+}
+
+TEST_F(TargetsE2E, EditsRerunExactlyTheStagesThatReadThem)
+{
+  const std::string target = "[[target]]\nname = \"droop\"\nkind = \"forces\"\n"
+                             "load = [{ box = { min = [59, -9, -9], max = [61, 9, 9] }, force = [0, 0, -0.05] }]\n";
+  design(target);
+  ASSERT_EQ(make().exit_code, 0);
+  const auto status = [&] { return test::run_fibermold("status design.toml --build-dir build", dir_.path()).out; };
+  test::write_text(dir_ / "design.toml", std::string(kDesign).replace(std::string(kDesign).find("wall = 4.0"), 10, "wall = 5.0") + target);
+  EXPECT_THAT(status(), HasSubstr("mesh     fresh\ntargets  fresh"));
+  design(std::string(target).replace(target.find("-0.05"), 5, "-0.08"));
+  EXPECT_THAT(status(), HasSubstr("mesh     fresh\ntargets  stale ([target.droop].load"));
+  const auto r = make();
+  EXPECT_THAT(r.out, HasSubstr("targets: done"));
+  EXPECT_THAT(r.out, HasSubstr("1 stage(s) ran, 1 fresh"));
+}
+
+} // namespace
+} // namespace fibermold
