@@ -41,18 +41,21 @@ Eigen::Vector3d HermiteSpline::position(double t) const
   return w[0] * points_[k] + w[1] * tangents_[k] + w[2] * points_[k + 1] + w[3] * tangents_[k + 1];
 }
 
+Eigen::Vector3d HermiteSpline::derivative(double t) const
+{
+  const int k = std::clamp(static_cast<int>(std::floor(t)), 0, spans() - 1);
+  const double u = t - k, u2 = u * u;
+  return (6 * u2 - 6 * u) * points_[k] + (3 * u2 - 4 * u + 1) * tangents_[k] + (-6 * u2 + 6 * u) * points_[k + 1] +
+         (3 * u2 - 2 * u) * tangents_[k + 1];
+}
+
 double HermiteSpline::span_length(int k) const
 {
   // |p'(u)| integrated with 5-point Gauss–Legendre on [0, 1].
   static const double x[5] = {0.0469100770306680, 0.2307653449471585, 0.5, 0.7692346550528415, 0.9530899229693320};
   static const double w[5] = {0.1184634425280945, 0.2393143352496832, 0.2844444444444444, 0.2393143352496832, 0.1184634425280945};
   double length = 0;
-  for (int i = 0; i < 5; ++i) {
-    const double u = x[i], u2 = u * u;
-    const Eigen::Vector3d d = (6 * u2 - 6 * u) * points_[k] + (3 * u2 - 4 * u + 1) * tangents_[k] +
-                              (-6 * u2 + 6 * u) * points_[k + 1] + (3 * u2 - 2 * u) * tangents_[k + 1];
-    length += w[i] * d.norm();
-  }
+  for (int i = 0; i < 5; ++i) length += w[i] * derivative(k + x[i]).norm();
   return length;
 }
 

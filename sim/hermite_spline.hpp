@@ -20,6 +20,8 @@ public:
 
   /// Position at t ∈ [0, spans()]: span k = ⌊t⌋ with the Hermite basis h00, h10, h01, h11.
   Eigen::Vector3d position(double t) const;
+  /// dp/dt at t.
+  Eigen::Vector3d derivative(double t) const;
   /// The Hermite weights of P_k, T_k, P_{k+1}, T_{k+1} at t, and k: position is linear in them.
   void weights(double t, int& span, double w[4]) const;
   /// Arc length, by Gauss–Legendre quadrature on each span.

@@ -58,6 +58,14 @@ bool NewtonSolver::is_valid(const Eigen::VectorXd& x) const
   return true;
 }
 
+bool NewtonSolver::solve_with_hessian(const Eigen::VectorXd& x, const Eigen::VectorXd& b, Eigen::VectorXd& lambda)
+{
+  hessian(x, false);
+  if (!cholmod_.factorize(hessian_.matrix(), 0)) return false;
+  lambda = cholmod_.solve(b);
+  return lambda.allFinite();
+}
+
 NewtonSummary NewtonSolver::solve(Eigen::VectorXd& x, const NewtonOptions& options, Progress& progress)
 {
   const auto start = Clock::now();

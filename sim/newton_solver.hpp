@@ -47,8 +47,9 @@ public:
   /// Minimizes from x (updated in place).
   NewtonSummary solve(Eigen::VectorXd& x, const NewtonOptions& options, Progress& progress);
 
-  /// The factorization of the last converged Hessian (for adjoint solves).
-  const CholmodSolver& factorization() const { return cholmod_; }
+  /// Solves H(x) λ = b with the exact Hessian at x (an equilibrium, where it is positive definite):
+  /// the adjoint solve of eq. 9. Returns false when H(x) is not positive definite.
+  bool solve_with_hessian(const Eigen::VectorXd& x, const Eigen::VectorXd& b, Eigen::VectorXd& lambda);
 
 private:
   std::vector<const Energy*> energies_;

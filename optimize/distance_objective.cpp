@@ -1,0 +1,53 @@
+#include "optimize/distance_objective.hpp"
+
+#include <cmath>
+
+namespace fibermold {
+
+DistanceObjective::DistanceObjective(const Basis& basis, std::vector<TrackingSamples> curves, const Eigen::VectorXd& target)
+{
+  for (const TrackingSamples& c : curves)
+    for (const Eigen::Vector3d& q : c.points) {
+      Sample s{basis.at(q, 1), {}, {}, c.weight_position, c.weight_orientation};
+      s.target_position = s.at.position(target);
+      s.target_gradient = s.at.deformation_gradient(target);
+      samples_.push_back(std::move(s));
+    }
+}
+
+double DistanceObjective::value(const Eigen::VectorXd& x) const
+{
+  double f = 0;
+  for (const Sample& s : samples_)
+    f += s.w_pos / 2 * (s.at.position(x) - s.target_position).squaredNorm() +
+         s.w_ori / 2 * (s.at.deformation_gradient(x) - s.target_gradient).squaredNorm();
+  return f;
+}
+
+Eigen::VectorXd DistanceObjective::gradient(const Eigen::VectorXd& x) const
+{
+  Eigen::VectorXd g = Eigen::VectorXd::Zero(x.size());
+  for (const Sample& s : samples_) {
+    const Eigen::Vector3d dp = s.w_pos * (s.at.position(x) - s.target_position);
+    const Eigen::Matrix3d dF = s.w_ori * (s.at.deformation_gradient(x) - s.target_gradient);
+    for (Eigen::Index k = 0; k < s.at.size(); ++k)
+      g.segment<3>(3 * s.at.nodes[k]) += s.at.N[k] * dp + dF * s.at.dN.row(k).transpose();
+  }
+  return g;
+}
+
+double DistanceObjective::rmse(const Eigen::VectorXd& x) const
+{
+  double sum = 0;
+  for (const Sample& s : samples_) sum += (s.at.position(x) - s.target_position).squaredNorm();
+  return samples_.empty() ? 0 : std::sqrt(sum / static_cast<double>(samples_.size()));
+}
+
+double DistanceObjective::max_error(const Eigen::VectorXd& x) const
+{
+  double worst = 0;
+  for (const Sample& s : samples_) worst = std::max(worst, (s.at.position(x) - s.target_position).norm());
+  return worst;
+}
+
+} // namespace fibermold

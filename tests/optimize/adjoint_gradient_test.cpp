@@ -1,0 +1,119 @@
+// The gradient of the distance to a target through equilibrium (adjoint, eq. 9) against central
+// finite differences that re-solve the equilibrium: relative error ≤ 1e-5 for control points,
+// tangents and pressure.
+#include <cmath>
+
+#include <Eigen/LU>
+#include <gtest/gtest.h>
+
+#include "optimize/adjoint_gradient.hpp"
+#include "optimize/distance_objective.hpp"
+#include "sim/external_forces.hpp"
+#include "../sim/sim_fixtures.hpp"
+
+namespace fibermold {
+namespace {
+
+constexpr double kL = 0.04, kA = 0.012;
+
+struct Problem {
+  TetMesh mesh = test::box_mesh({0, -kA / 2, -kA / 2}, {kL, kA / 2, kA / 2}, 0.004);
+  MuscleModel model;
+  std::vector<TrackingSamples> curves{sample_tracking_curve({{0, 0, 0}, {kL, 0, 0}}, 12, 1.0, 0.1)};
+  Eigen::VectorXd target;
+  Eigen::VectorXd warm;
+
+  SimulationOptions options() const
+  {
+    SimulationOptions o;
+    o.gravity = {0, 0, -9.81};
+    o.fixed_nodes = {nodes_in_box(mesh.nodes, {-1, -1, -1}, {1e-9, 1, 1})};
+    o.newton.tolerance = 1e-11;
+    return o;
+  }
+
+  /// Equilibrium with one fiber; returns f_dist and, when asked, its adjoint gradient.
+  double evaluate(const std::vector<Eigen::Vector3d>& points, const std::vector<Eigen::Vector3d>& tangents, double p,
+                  FiberParameterGradient* gradient = nullptr)
+  {
+    Simulation sim(mesh, options());
+    const HermiteSpline spline(points, tangents);
+    auto muscle = std::make_unique<MuscleEnergy>(sim.basis(), model, spline, segment_parameters(HermiteSpline(points), 24), p);
+    const MuscleEnergy* m = muscle.get();
+    sim.add_energy(std::move(muscle));
+    Eigen::VectorXd x = warm.size() ? warm : sim.rest();
+    NullProgress progress;
+    const NewtonSummary s = sim.solve(x, progress);
+    EXPECT_TRUE(s.converged) << s.brief();
+    const DistanceObjective f(sim.basis(), curves, target);
+    if (gradient) *gradient = adjoint_gradient(sim, x, f.gradient(x), {m}).front();
+    if (warm.size() == 0) warm = x;
+    return f.value(x);
+  }
+};
+
+TEST(AdjointGradient, MatchesFiniteDifferencesThroughEquilibrium)
+{
+  Problem pr;
+  const std::vector<Eigen::Vector3d> points{{0, 0.001, 0}, {0.014, 0.003, 0.001}, {0.027, -0.002, 0.002}, {kL, 0.001, 0}};
+  const std::vector<Eigen::Vector3d> tangents = HermiteSpline(points).tangents();
+  // The target: the same body bent by a differently routed fiber.
+  {
+    Simulation sim(pr.mesh, pr.options());
+    const HermiteSpline other({{0, 0.003, 0}, {0.02, 0.004, -0.003}, {kL, 0.003, 0}});
+    sim.add_energy(std::make_unique<MuscleEnergy>(sim.basis(), pr.model, other, segment_parameters(other, 24), 250e3));
+    pr.target = sim.rest();
+    NullProgress progress;
+    ASSERT_TRUE(sim.solve(pr.target, progress).converged);
+  }
+  const double p = 180e3;
+  FiberParameterGradient analytic;
+  const double f0 = pr.evaluate(points, tangents, p, &analytic);
+  ASSERT_GT(f0, 0);
+
+  // Central differences: interior points, all tangents, the pressure.
+  std::vector<double> fd, an;
+  const double h = 1e-6;
+  for (int which = 0; which < 2; ++which)
+    for (std::size_t k = 0; k < points.size(); ++k) {
+      if (which == 0 && (k == 0 || k + 1 == points.size())) continue;  // end points stay fixed
+      for (int c = 0; c < 3; ++c) {
+        auto P = points, T = tangents;
+        (which == 0 ? P : T)[k][c] += h;
+        const double plus = pr.evaluate(P, T, p);
+        (which == 0 ? P : T)[k][c] -= 2 * h;
+        const double minus = pr.evaluate(P, T, p);
+        fd.push_back((plus - minus) / (2 * h));
+        an.push_back((which == 0 ? analytic.points : analytic.tangents)[k][c]);
+      }
+    }
+  const double hp = 10.0;
+  fd.push_back((pr.evaluate(points, tangents, p + hp) - pr.evaluate(points, tangents, p - hp)) / (2 * hp));
+  an.push_back(analytic.pressure);
+
+  const Eigen::Map<Eigen::VectorXd> FD(fd.data(), static_cast<Eigen::Index>(fd.size())), AN(an.data(), static_cast<Eigen::Index>(an.size()));
+  ASSERT_GT(AN.norm(), 0);
+  const double routing_error = (FD.head(FD.size() - 1) - AN.head(AN.size() - 1)).norm() / AN.head(AN.size() - 1).norm();
+  const double pressure_error = std::abs(FD[FD.size() - 1] - AN[AN.size() - 1]) / std::abs(AN[AN.size() - 1]);
+  std::printf("adjoint gradient: relative error %.2e (routing, %ld values), %.2e (pressure)\n", routing_error,
+              static_cast<long>(AN.size() - 1), pressure_error);
+  EXPECT_LE(routing_error, 1e-5);
+  EXPECT_LE(pressure_error, 1e-5);
+}
+
+TEST(TrackingCurve, SamplesEquallySpacedWithOrthonormalFrames)
+{
+  const TrackingSamples s = sample_tracking_curve({{0, 0, 0}, {0.05, 0.01, 0}, {0.1, 0, 0.01}}, 21, 1, 0.1);
+  ASSERT_EQ(s.points.size(), 21u);
+  EXPECT_LT((s.points.front() - Eigen::Vector3d(0, 0, 0)).norm(), 1e-15);
+  EXPECT_LT((s.points.back() - Eigen::Vector3d(0.1, 0, 0.01)).norm(), 1e-12);
+  const double step = (s.points[1] - s.points[0]).norm();
+  for (std::size_t j = 1; j < s.points.size(); ++j) EXPECT_NEAR((s.points[j] - s.points[j - 1]).norm(), step, 0.02 * step);
+  for (const Eigen::Matrix3d& A : s.frames) {
+    EXPECT_LT((A.transpose() * A - Eigen::Matrix3d::Identity()).norm(), 1e-12);
+    EXPECT_NEAR(A.determinant(), 1.0, 1e-12);
+  }
+}
+
+} // namespace
+} // namespace fibermold
