@@ -8,6 +8,7 @@
 #include "mesh/surface_import.hpp"
 #include "mesh/tetrahedralize.hpp"
 #include "primitives.hpp"
+#include "sim/sim_fixtures.hpp"
 #include "sim/external_forces.hpp"
 #include "sim/muscle_energy.hpp"
 #include "sim/simulation.hpp"
@@ -48,12 +49,7 @@ Row twisting_bar()
   o.gravity = {9.81, 0, 0};
   o.fixed_nodes = {nodes_in_box(mesh.nodes, {-1, -1, -1}, {1e-9, 1, 1})};
   Simulation sim(mesh, o);
-  std::vector<Eigen::Vector3d> points{{0, 0, 0}};
-  for (int k = 1; k <= 12; ++k) {
-    const double a = 3 * M_PI * k / 13;
-    points.emplace_back(0.129 * k / 13, 0.005 * std::cos(a), 0.005 * std::sin(a));
-  }
-  points.emplace_back(0.129, 0, 0);
+  const std::vector<Eigen::Vector3d> points = test::helix_points(0.129, 0.005, 1.5, +1);
   static const MuscleModel model;
   const HermiteSpline helix(points);
   sim.add_energy(std::make_unique<MuscleEnergy>(sim.basis(), model, helix,

@@ -105,6 +105,15 @@ void MuscleEnergy::chain_to_parameters(std::size_t j, const Eigen::Vector3d& by_
   }
 }
 
+Eigen::Matrix3d MuscleEnergy::centre_derivative(const Eigen::VectorXd& v, std::size_t j) const
+{
+  // ∂/∂c of (Σ_i v_i ∇N_i(c)ᵀ) d_j = Σ_i v_i (∇∇N_i d_j)ᵀ
+  Eigen::Matrix3d D = Eigen::Matrix3d::Zero();
+  for (Eigen::Index i = 0; i < at_[j].size(); ++i)
+    D += v.segment<3>(3 * at_[j].nodes[i]) * (at_[j].ddN[i] * segments_.vectors[j]).transpose();
+  return D;
+}
+
 FiberParameterGradient MuscleEnergy::parameter_gradient(const Eigen::VectorXd& x) const
 {
   // E_j = A Ψ(p, ε) L with ε = l/L − 1:  ∂E_j/∂l = A Ψ_ε,  ∂E_j/∂L = A (Ψ − Ψ_ε (1 + ε)).
@@ -118,8 +127,7 @@ FiberParameterGradient MuscleEnergy::parameter_gradient(const Eigen::VectorXd& x
     const ShapeEval& e = at_[j];
     const Eigen::Vector3d& d = segments_.vectors[j];
     const Eigen::Matrix3d F = e.deformation_gradient(x);
-    Eigen::Vector3d dl_dc = Eigen::Vector3d::Zero();
-    for (Eigen::Index i = 0; i < e.size(); ++i) dl_dc += s.direction.dot(x.segment<3>(3 * e.nodes[i])) * (e.ddN[i] * d);
+    const Eigen::Vector3d dl_dc = centre_derivative(x, j).transpose() * s.direction;
     const double by_l = area * m.d_eps, by_L = area * (m.psi - m.d_eps * (1 + s.strain));
     chain_to_parameters(j, by_l * F.transpose() * s.direction + by_L * rest * d.normalized(), by_l * dl_dc, g);
     // ∂E_j/∂p = A L Ψ_p + ∂E_j/∂L ε_L' |d|
@@ -143,12 +151,7 @@ FiberParameterGradient MuscleEnergy::mixed_derivative(const Eigen::VectorXd& x, 
     const ShapeEval& e = at_[j];
     const Eigen::Vector3d& d = segments_.vectors[j];
     const Eigen::Matrix3d F = e.deformation_gradient(x), G = e.deformation_gradient(lambda);
-    Eigen::Matrix3d Du = Eigen::Matrix3d::Zero(), Dw = Eigen::Matrix3d::Zero();
-    for (Eigen::Index i = 0; i < e.size(); ++i) {
-      const Eigen::Vector3d hd = e.ddN[i] * d;
-      Du += x.segment<3>(3 * e.nodes[i]) * hd.transpose();
-      Dw += lambda.segment<3>(3 * e.nodes[i]) * hd.transpose();
-    }
+    const Eigen::Matrix3d Du = centre_derivative(x, j), Dw = centre_derivative(lambda, j);
     const Eigen::Vector3d& n = s.direction;
     const Eigen::Vector3d w = G * d;
     const double q = n.dot(w), l = s.length, L = s.rest_length;

@@ -55,6 +55,7 @@ private:
   void chain_to_parameters(std::size_t j, const Eigen::Vector3d& by_d, const Eigen::Vector3d& by_c,
                            FiberParameterGradient& out) const;
   FiberParameterGradient zero_gradient() const;
+  Eigen::Matrix3d centre_derivative(const Eigen::VectorXd& v, std::size_t j) const;
 
   const MuscleModel& model_;
   HermiteSpline spline_;

@@ -1,6 +1,9 @@
 #pragma once
 // Small meshes for the sim tests.
 
+#include <cmath>
+#include <vector>
+
 #include "mesh/tetrahedralize.hpp"
 #include "primitives.hpp"
 
@@ -14,6 +17,19 @@ inline TetMesh box_mesh(const Eigen::Vector3d& lo, const Eigen::Vector3d& hi, do
   SurfaceMesh surface = box(lo, hi, cells);
   NullProgress progress;
   return tetrahedralize(surface, {edge, 1.5, 10, quadratic}, progress);
+}
+
+/// Control points of a helical fiber along +x from the origin to (length, 0, 0): `turns` turns of
+/// `radius` (right-handed for handedness +1), 12 points in between.
+inline std::vector<Eigen::Vector3d> helix_points(double length, double radius, double turns, double handedness)
+{
+  std::vector<Eigen::Vector3d> points{{0, 0, 0}};
+  for (int k = 1; k <= 12; ++k) {
+    const double a = handedness * 2 * M_PI * turns * k / 13;
+    points.emplace_back(length * k / 13, radius * std::cos(a), radius * std::sin(a));
+  }
+  points.emplace_back(length, 0, 0);
+  return points;
 }
 
 } // namespace fibermold::test

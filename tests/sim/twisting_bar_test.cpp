@@ -37,12 +37,7 @@ double twist_with_helix(const TetMesh& mesh, double handedness, double pressure)
   o.fixed_nodes = {nodes_in_box(mesh.nodes, {-1, -1, -1}, {1e-9, 1, 1})};
   Simulation sim(mesh, o);
   // One and a half turns of radius 5 mm, from the centre of the clamped face to the centre of the free one.
-  std::vector<Eigen::Vector3d> points{{0, 0, 0}};
-  for (int k = 1; k <= 12; ++k) {
-    const double a = handedness * 3 * M_PI * k / 13;
-    points.emplace_back(kL * k / 13, 0.005 * std::cos(a), 0.005 * std::sin(a));
-  }
-  points.emplace_back(kL, 0, 0);
+  const std::vector<Eigen::Vector3d> points = test::helix_points(kL, 0.005, 1.5, handedness);
   static const MuscleModel model;
   const HermiteSpline helix(points);
   sim.add_energy(std::make_unique<MuscleEnergy>(sim.basis(), model, helix, segment_parameters(helix, 150), pressure));
