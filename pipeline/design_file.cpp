@@ -554,6 +554,15 @@ MuscleOptions read_muscle(Section s)
   o.model.rest_strain_slope = s.number("rest_strain_slope", o.model.rest_strain_slope, any(), {1.0, " 1/Pa"});
   o.model.rest_strain_intercept = s.number("rest_strain_intercept", o.model.rest_strain_intercept, closed(-0.9, 0.9));
   o.model.smoothing = s.number("smoothing", o.model.smoothing / units::kPa, positive(), kKPa);
+  for (const auto& [key, line] : {std::pair{"stiffness", o.model.stiffness}, std::pair{"taut", o.model.taut}})
+    if (line.slope_low == line.slope_high && line.intercept_low != line.intercept_high)
+      s.error(s.node(key), key, "the two lines are parallel and distinct: they never meet");
+  // The muscle must keep a positive length up to the highest pressure: 1 + ε_L(p) > 0.05.
+  for (const double p : {0.0, o.max_pressure})
+    if (!(1 + o.model.rest_strain_slope * p + o.model.rest_strain_intercept > 0.05))
+      s.error(s.node(p == 0 ? "rest_strain_intercept" : "max_pressure"), p == 0 ? "rest_strain_intercept" : "max_pressure",
+              fmt::format("at {} kPa the muscle would contract by more than 95 % (ε_L = {:.3g}): outside any model",
+                          p / units::kPa, o.model.rest_strain_slope * p + o.model.rest_strain_intercept));
   s.finish();
   return o;
 }

@@ -1,5 +1,6 @@
 #include "pipeline/design_simulation.hpp"
 
+#include <algorithm>
 #include <cmath>
 
 #include <Eigen/LU>
@@ -40,11 +41,13 @@ std::vector<int> region_nodes(const Region& r, const TetMesh& mesh, const Design
       bad(d, key, fmt::format("vertex {} does not exist: the surface has {} vertices", v, mesh.surface_to_node.size()));
     nodes.push_back(mesh.surface_to_node(v));
   }
+  std::sort(nodes.begin(), nodes.end());
+  nodes.erase(std::unique(nodes.begin(), nodes.end()), nodes.end());
   return nodes;
 }
 
 
-SimulationOptions simulation_options(const Design& d, const TetMesh& mesh)
+SimulationOptions simulation_options(const Design& d, const TetMesh& mesh, bool held)
 {
   SimulationOptions o;
   o.basis = d.sim.basis;
@@ -54,6 +57,7 @@ SimulationOptions simulation_options(const Design& d, const TetMesh& mesh)
   o.poisson_ratio = d.material.poisson_ratio;
   o.density = d.material.density;
   o.gravity = d.material.gravity;
+  if (!held) return o;
   if (d.fixed.empty())
     bad(d, "[[fixed]]", "the body is held nowhere: add a [[fixed]] region (a free body under load has no equilibrium)");
   for (const FixedRegion& f : d.fixed) {
@@ -78,13 +82,22 @@ Eigen::VectorXd target_forces(const Design& d, const Target& t, const Simulation
     const Load& load = t.loads[i];
     const std::string key = fmt::format("[target.{}].load[{}]", t.name, i + 1);
     if (load.region.point) {
-      f += point_force(sim.basis().at(*load.region.point, 0), mesh.nodes.rows(), *load.force);
+      const FemBasis locator(mesh);
+      const Eigen::Vector3d& P = *load.region.point;
+      if (locator.barycentric(locator.locate(P), P).minCoeff() < -1e-6)
+        bad(d, key, fmt::format("the point {} lies outside the body", format_mm(P)));
+      f += point_force(sim.basis().at(P, 0), mesh.nodes.rows(), *load.force);
       continue;
     }
     const std::vector<int> nodes = region_nodes(load.region, mesh, d, key);
     if (nodes.empty()) bad(d, key, "the load's region holds no node of the mesh");
-    if (load.force) f += region_force(nodes, sim.masses(), mesh.nodes, *load.force);
-    if (load.torque) f += region_torque(nodes, sim.masses(), mesh.nodes, *load.torque);
+    const Eigen::VectorXd weights = sim.load_weights();
+    if (load.force) f += region_force(nodes, weights, mesh.nodes, *load.force);
+    try {
+      if (load.torque) f += region_torque(nodes, weights, mesh.nodes, *load.torque);
+    } catch (const std::invalid_argument& e) {
+      bad(d, key, fmt::format("{}; the region holds {} node(s)", e.what(), nodes.size()));
+    }
   }
   return f;
 }
@@ -127,7 +140,12 @@ std::vector<const MuscleEnergy*> add_muscles(Simulation& sim, const Design& d, c
     HermiteSpline spline(a.points, a.tangents);
     const int count = std::max(1, static_cast<int>(std::ceil(spline.length() * d.muscle.segments_per_length)));
     std::vector<double> t = segment_parameters(spline, count);
-    require_inside(d, a.fiber, locator, spline, segments_at(spline, t));
+    const FiberSegments segments = segments_at(spline, t);
+    for (std::size_t j = 0; j < segments.vectors.size(); ++j)
+      if (!(segments.vectors[j].norm() > 1e-9))
+        bad(d, fmt::format("[fiber.{}]", a.fiber),
+            fmt::format("the fiber has no length near {} (repeated points?)", format_mm(segments.centres[j])));
+    require_inside(d, a.fiber, locator, spline, segments);
     auto muscle = std::make_unique<MuscleEnergy>(sim.basis(), model, std::move(spline), std::move(t), a.pressure);
     muscles.push_back(muscle.get());
     sim.add_energy(std::move(muscle));

@@ -21,9 +21,9 @@ struct Actuation {
   double pressure;
 };
 
-/// Basis, material, gravity and the [[fixed]] regions as node lists. Throws InputError for a body
-/// held nowhere or a region that holds no node.
-SimulationOptions simulation_options(const Design& d, const TetMesh& mesh);
+/// Basis, material, gravity and (when `held`) the [[fixed]] regions as node lists. Throws
+/// InputError for a body held nowhere or a region that holds no node.
+SimulationOptions simulation_options(const Design& d, const TetMesh& mesh, bool held = true);
 
 /// The mesh nodes a region (box or surface vertices) selects; InputError for a vertex that does not exist.
 std::vector<int> region_nodes(const Region& r, const TetMesh& mesh, const Design& d, const std::string& key);

@@ -2,6 +2,7 @@
 
 #include "pipeline/design_simulation.hpp"
 
+#include <algorithm>
 #include <cmath>
 
 #include <fmt/format.h>
@@ -48,6 +49,8 @@ std::vector<Actuation> requested_actuations(const Design& d, const SimulateReque
     if (kpa < 0 || kpa * units::kPa > d.muscle.max_pressure)
       bad(d, "--pressure", fmt::format("{} kPa for {} is outside [0, {}] kPa ([muscle].max_pressure)", kpa, name,
                                        d.muscle.max_pressure / units::kPa));
+    if (std::any_of(out.begin(), out.end(), [&](const Actuation& a) { return a.fiber == name; }))
+      bad(d, "--pressure", fmt::format("{} is given twice", name));
     out.push_back({name, f->points, f->tangents, kpa * units::kPa});
   }
   return out;

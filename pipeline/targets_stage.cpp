@@ -73,8 +73,7 @@ Solved solve_target(const Design& d, const Target& t, const TetMesh& mesh, const
   Solved out;
   if (t.kind == "surface") {
     const auto moved = target_surface(d, t, mesh);
-    SimulationOptions o = simulation_options(d, mesh);
-    o.fixed_nodes.clear();  // the whole surface is prescribed
+    SimulationOptions o = simulation_options(d, mesh, false);  // the whole surface is prescribed
     o.gravity = Eigen::Vector3d::Zero();
     constexpr int kSteps = 4;
     Eigen::VectorXd x;

@@ -1,7 +1,9 @@
 #include "sim/external_forces.hpp"
 
 #include <Eigen/Geometry>
+#include <Eigen/Eigenvalues>
 #include <Eigen/LU>
+#include <stdexcept>
 
 namespace fibermold {
 
@@ -11,6 +13,14 @@ Eigen::VectorXd nodal_masses(const QuadraturePoints& qp, Eigen::Index num_nodes,
   for (Eigen::Index q = 0; q < qp.size(); ++q)
     for (int k = qp.offset[q]; k < qp.offset[q + 1]; ++k) m[qp.node[k]] += qp.volume[q] * density * qp.N[k];
   return m;
+}
+
+Eigen::VectorXd nodal_volumes(const QuadraturePoints& qp, Eigen::Index num_nodes)
+{
+  Eigen::VectorXd w = Eigen::VectorXd::Zero(num_nodes);
+  for (Eigen::Index q = 0; q < qp.size(); ++q)
+    for (int k = qp.offset[q]; k < qp.offset[q + 1]; ++k) w[qp.node[k]] += qp.volume[q] * std::abs(qp.N[k]);
+  return w;
 }
 
 Eigen::VectorXd gravity_forces(const Eigen::VectorXd& masses, const Eigen::Vector3d& g)
@@ -45,6 +55,9 @@ Eigen::VectorXd region_torque(const std::vector<int>& nodes, const Eigen::Vector
     const Eigen::Vector3d r = X.row(i).transpose() - c;
     J += masses[i] * (r.squaredNorm() * Eigen::Matrix3d::Identity() - r * r.transpose());
   }
+  const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eig(J);
+  if (nodes.size() < 3 || !(eig.eigenvalues().minCoeff() > 1e-9 * eig.eigenvalues().maxCoeff()))
+    throw std::invalid_argument("a torque needs at least 3 nodes that are not on one line");
   const Eigen::Vector3d omega = J.inverse() * torque;
   Eigen::VectorXd f = Eigen::VectorXd::Zero(3 * X.rows());
   for (int i : nodes) f.segment<3>(3 * i) = masses[i] * omega.cross(X.row(i).transpose() - c);

@@ -29,16 +29,22 @@ private:
 /// m_i = Σ_q V_q ρ N_i(X_q): the consistent nodal masses.
 Eigen::VectorXd nodal_masses(const QuadraturePoints& qp, Eigen::Index num_nodes, double density);
 
+/// Positive nodal volumes w_i = Σ_q V_q |N_i(X_q)| (lumped): the weights that spread a load over a
+/// region, whatever the density, and never in the wrong direction (consistent masses of quadratic
+/// bases are negative at some nodes).
+Eigen::VectorXd nodal_volumes(const QuadraturePoints& qp, Eigen::Index num_nodes);
+
 /// Gravity: f_i = m_i g.
 Eigen::VectorXd gravity_forces(const Eigen::VectorXd& masses, const Eigen::Vector3d& g);
 
-/// A total force spread over `nodes` in proportion to their masses.
-Eigen::VectorXd region_force(const std::vector<int>& nodes, const Eigen::VectorXd& masses, const Eigen::MatrixX3d& X,
+/// A total force spread over `nodes` (distinct) in proportion to their weights.
+Eigen::VectorXd region_force(const std::vector<int>& nodes, const Eigen::VectorXd& weights, const Eigen::MatrixX3d& X,
                              const Eigen::Vector3d& force);
 
-/// A torque about the mass centre c of `nodes`: f_i = m_i (J⁻¹ T) × r_i with r_i = X_i − c and
-/// J = Σ m_i (|r_i|² I − r_i r_iᵀ), so that Σ r_i × f_i = T and Σ f_i = 0.
-Eigen::VectorXd region_torque(const std::vector<int>& nodes, const Eigen::VectorXd& masses, const Eigen::MatrixX3d& X,
+/// A torque about the weighted centre c of `nodes` (distinct): f_i = w_i (J⁻¹ T) × r_i with
+/// r_i = X_i − c and J = Σ w_i (|r_i|² I − r_i r_iᵀ), so that Σ r_i × f_i = T and Σ f_i = 0.
+/// Throws std::invalid_argument when the nodes are collinear (J singular: no torque can be applied).
+Eigen::VectorXd region_torque(const std::vector<int>& nodes, const Eigen::VectorXd& weights, const Eigen::MatrixX3d& X,
                               const Eigen::Vector3d& torque);
 
 /// A force at point P: f_i = N_i(P) F.

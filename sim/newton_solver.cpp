@@ -118,10 +118,14 @@ NewtonSummary NewtonSolver::solve(Eigen::VectorXd& x, const NewtonOptions& optio
     // A PSD-projected Hessian can be singular (e.g. at rest with no load); shift until it factorizes.
     double shift = 0;
     const double diagonal = hessian_.matrix().diagonal().cwiseAbs().maxCoeff();
+    if (!(diagonal > 0 && std::isfinite(diagonal))) {
+      s.message = "the Hessian is zero or not finite";
+      break;
+    }
     while (!factorized && !cholmod_.factorize(hessian_.matrix(), shift)) {
       ++s.factorizations;
       shift = shift == 0 ? 1e-10 * diagonal : shift * 10;
-      if (shift > diagonal) break;
+      if (shift > diagonal) break;  // at most 11 attempts
     }
     if (!factorized) ++s.factorizations;
     s.seconds_factorization += since(t);

@@ -73,6 +73,8 @@ Eigen::VectorXd Simulation::rest() const
   return x;
 }
 
+Eigen::VectorXd Simulation::load_weights() const { return nodal_volumes(qp_, mesh_.nodes.rows()); }
+
 void Simulation::add_energy(std::unique_ptr<Energy> energy)
 {
   if (solver_) throw std::logic_error("Simulation::add_energy after the first solve");

@@ -37,6 +37,8 @@ public:
   const Basis& basis() const { return *basis_; }
   const QuadraturePoints& quadrature_points() const { return qp_; }
   const Eigen::VectorXd& masses() const { return masses_; }
+  /// Positive nodal volumes, for spreading loads (external_forces.hpp).
+  Eigen::VectorXd load_weights() const;
   double mean_edge_length() const { return mean_edge_; }
   Eigen::VectorXd rest() const;
 

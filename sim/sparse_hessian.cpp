@@ -8,15 +8,29 @@ namespace fibermold {
 SparseHessian::SparseHessian(Eigen::Index num_nodes, const std::vector<std::vector<int>>& stencils)
     : neighbours_(static_cast<std::size_t>(num_nodes))
 {
-  for (Eigen::Index j = 0; j < num_nodes; ++j) neighbours_[j].push_back(static_cast<int>(j));
+  // Node → stencils incidence (CSR), then each node's neighbours by marking: memory O(nnz), not
+  // O(Σ |stencil|²) as appending every stencil to every node's list would take.
+  std::vector<int> offset(static_cast<std::size_t>(num_nodes) + 1, 0);
   for (const auto& s : stencils)
-    for (int j : s) neighbours_[j].insert(neighbours_[j].end(), s.begin(), s.end());
+    for (int j : s) ++offset[j + 1];
+  for (std::size_t j = 1; j < offset.size(); ++j) offset[j] += offset[j - 1];
+  std::vector<int> containing(static_cast<std::size_t>(offset.back()));
+  std::vector<int> fill(offset.begin(), offset.end() - 1);
+  for (std::size_t s = 0; s < stencils.size(); ++s)
+    for (int j : stencils[s]) containing[fill[j]++] = static_cast<int>(s);
+  std::vector<int> mark(static_cast<std::size_t>(num_nodes), -1);
   block_start_.assign(static_cast<std::size_t>(num_nodes) + 1, 0);
   for (Eigen::Index j = 0; j < num_nodes; ++j) {
     auto& nb = neighbours_[j];
+    nb.push_back(static_cast<int>(j));
+    mark[j] = static_cast<int>(j);
+    for (int k = offset[j]; k < offset[j + 1]; ++k)
+      for (int i : stencils[containing[k]])
+        if (mark[i] != j) {
+          mark[i] = static_cast<int>(j);
+          nb.push_back(i);
+        }
     std::sort(nb.begin(), nb.end());
-    nb.erase(std::unique(nb.begin(), nb.end()), nb.end());
-    nb.shrink_to_fit();
     block_start_[j + 1] = block_start_[j] + static_cast<Eigen::Index>(nb.size());
   }
   // Column 3j + b holds rows 3i + a for i in neighbours(j), a = 0..2.

@@ -86,6 +86,44 @@ TEST_F(SimulateE2E, FixedRegionThatCatchesNoNode)
   EXPECT_THAT(r.err, HasSubstr("[fixed.clamp]: holds no node of the mesh"));
 }
 
+TEST_F(SimulateE2E, BadLoadsAndFibersAreRefused)
+{
+  const std::string fixed = "[[fixed]]\nbox = { min = [-1, -9, -9], max = [0.5, 9, 9] }\n";
+  design(fixed, "[[30, 0, 0], [30, 0, 0]]");
+  auto r = simulate("--pressure m1=100");
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_THAT(r.err, HasSubstr("[fiber.m1]: the fiber has no length"));
+
+  design();
+  r = simulate("--pressure m1=100 --pressure m1=200");
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_THAT(r.err, HasSubstr("m1 is given twice"));
+
+  std::string text = test::read_text(dir_ / "design.toml");
+  const std::string load = "load = [{ box = { min = [59, -9, -9], max = [61, 9, 9] }, force = [0, 0, -0.05] }]";
+  test::write_text(dir_ / "design.toml", std::string(text).replace(text.find(load), load.size(),
+                                                                    "load = [{ vertices = [5], torque = [0.001, 0, 0] }]"));
+  r = simulate("--target pull");
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_THAT(r.err, HasSubstr("a torque needs at least 3 nodes that are not on one line; the region holds 1 node(s)"));
+
+  test::write_text(dir_ / "design.toml", std::string(text).replace(text.find(load), load.size(),
+                                                                    "load = [{ point = [60, 0, 40], force = [0, 0, -0.01] }]"));
+  r = simulate("--target pull");
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_THAT(r.err, HasSubstr("the point (60.0, 0.0, 40.0) mm lies outside the body"));
+}
+
+TEST_F(SimulateE2E, LoadsDoNotDependOnDensity)
+{
+  design();
+  std::string text = test::read_text(dir_ / "design.toml");
+  test::write_text(dir_ / "design.toml", text.replace(text.find("gravity = [0, 0, 0]"), 19, "gravity = [0, 0, 0]\ndensity = 0"));
+  const auto r = simulate("--target pull");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_THAT(r.out, HasSubstr("simulate pull: max displacement"));
+}
+
 TEST_F(SimulateE2E, FreeBodyIsRefused)
 {
   design("");

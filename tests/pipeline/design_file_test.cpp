@@ -188,6 +188,14 @@ TEST_F(DesignFileTest, EffectiveValuesAreRecordedNormalised)
   EXPECT_EQ(a.values, b.values);
 }
 
+TEST_F(DesignFileTest, MuscleModelMustStayMeaningful)
+{
+  EXPECT_THAT(problem(std::string(kMinimal) + "[muscle]\nstiffness = [[1, 2], [1, 3]]\n"),
+              HasSubstr("[muscle].stiffness: the two lines are parallel and distinct"));
+  EXPECT_THAT(problem(std::string(kMinimal) + "[muscle]\nmax_pressure = 2500\n"),
+              HasSubstr("[muscle].max_pressure: at 2500 kPa the muscle would contract by more than 95 %"));
+}
+
 TEST_F(DesignFileTest, NamesMustBeUnique)
 {
   const std::string fiber = "[[fiber]]\nname = \"m1\"\npoints = [[0,0,0],[10,0,0]]\n";
