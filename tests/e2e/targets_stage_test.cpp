@@ -81,6 +81,7 @@ TEST_F(TargetsE2E, SurfaceTargetIsFilledInAndFollowed)
   const auto r = make();
   ASSERT_EQ(r.exit_code, 0) << r.err;
   EXPECT_NEAR(report()["bend"]["max_displacement_mm"].get<double>(), 3.0, 0.05);
+  EXPECT_LT(report()["bend"]["max_surface_error_mm"].get<double>(), 0.05);
 
   // The filled-in field follows the prescribed surface, and inside it bends by the same law.
   const TetMesh mesh = load_tet_mesh(dir_ / "build" / "mesh" / "body.tetmesh");
