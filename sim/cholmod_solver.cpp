@@ -5,7 +5,7 @@
 namespace fibermold {
 
 struct CholmodSolver::Impl {
-  Eigen::CholmodSupernodalLLT<Eigen::SparseMatrix<double>, Eigen::Upper> llt;
+  Eigen::CholmodSupernodalLLT<Eigen::SparseMatrix<double>, Eigen::Lower> llt;
   std::vector<int> outer, inner;  ///< the pattern last analyzed
 };
 

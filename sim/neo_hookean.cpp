@@ -115,6 +115,7 @@ void NeoHookean::add_hessian(const Eigen::VectorXd& x, SparseHessian& H, bool pr
       Eigen::Matrix<double, 9, 3> T;
       for (int b = 0; b < 3; ++b) T.col(b) = VC[q].middleCols<3>(3 * b) * gj;
       for (int ki = qp_.offset[q]; ki < qp_.offset[q + 1]; ++ki) {
+        if (qp_.node[ki] < j) continue;  // upper block triangle: not stored
         const Eigen::Vector3d& gi = qp_.dN[ki];
         Eigen::Matrix3d block;
         for (int a = 0; a < 3; ++a) block.row(a) = gi.transpose() * T.middleRows<3>(3 * a);

@@ -26,7 +26,7 @@ SparseHessian::SparseHessian(Eigen::Index num_nodes, const std::vector<std::vect
     mark[j] = static_cast<int>(j);
     for (int k = offset[j]; k < offset[j + 1]; ++k)
       for (int i : stencils[containing[k]])
-        if (mark[i] != j) {
+        if (i > j && mark[i] != j) {
           mark[i] = static_cast<int>(j);
           nb.push_back(i);
         }
@@ -69,8 +69,15 @@ void SparseHessian::add_block_at(int k, int j, const Eigen::Matrix3d& block)
   }
 }
 
+Eigen::SparseMatrix<double> SparseHessian::full() const
+{
+  Eigen::SparseMatrix<double> lower = matrix_.triangularView<Eigen::Lower>();
+  return lower.selfadjointView<Eigen::Lower>();
+}
+
 void SparseHessian::add_block(int i, int j, const Eigen::Matrix3d& block)
 {
+  if (i < j) return;  // the upper block triangle is not stored
   const int k = position(i, j);
   if (k < 0) throw std::logic_error("SparseHessian: block outside the pattern");
   add_block_at(k, j, block);

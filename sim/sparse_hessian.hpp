@@ -1,6 +1,8 @@
 #pragma once
 // The simulation Hessian: a symmetric matrix of 3×3 node blocks whose sparsity pattern is
 // computed once (from every energy's stencils) and whose values are refilled each Newton step.
+// Only the blocks (i, j) with i ≥ j are stored (the lower block triangle, diagonal blocks whole):
+// half the assembly work and memory; CHOLMOD reads the lower triangle.
 
 #include <vector>
 
@@ -17,15 +19,18 @@ public:
   const std::vector<int>& neighbours(Eigen::Index j) const { return neighbours_[j]; }
 
   void set_zero() { matrix_.coeffs().setZero(); }
-  /// Adds `block` at node block (i, j). Not thread-safe across the same column j.
+  /// Adds `block` at node block (i, j) when i ≥ j; the caller adds (j, i) too, which is dropped.
+  /// Not thread-safe across the same column j.
   void add_block(int i, int j, const Eigen::Matrix3d& block);
-  /// Adds `block` at the k-th neighbour of column j (fast path for parallel assembly per column).
+  /// Adds `block` at the k-th stored neighbour (i ≥ j) of column j (fast path for parallel assembly).
   void add_block_at(int k, int j, const Eigen::Matrix3d& block);
-  /// Index of node i among j's neighbours, or -1.
+  /// Index of node i among j's stored neighbours (i ≥ j), or -1.
   int position(int i, int j) const;
 
-  /// Full symmetric matrix, column-major, 3n × 3n.
+  /// The lower triangle (whole diagonal blocks), column-major, 3n × 3n.
   const Eigen::SparseMatrix<double>& matrix() const { return matrix_; }
+  /// The whole symmetric matrix (for tests and diagnostics).
+  Eigen::SparseMatrix<double> full() const;
 
 private:
   std::vector<std::vector<int>> neighbours_;  ///< sorted, per node column

@@ -88,7 +88,7 @@ TEST_P(EnergyDerivatives, GradientAndHessianMatchFiniteDifferences)
     ASSERT_GT(g.norm(), 0) << "nothing to check";
     H.set_zero();
     energy->add_hessian(x, H, false);
-    const Eigen::MatrixXd Hd = Eigen::MatrixXd(H.matrix());
+    const Eigen::MatrixXd Hd = Eigen::MatrixXd(H.full());
 
     // Central differences along random directions and along coordinates.
     std::mt19937 random(seed);
