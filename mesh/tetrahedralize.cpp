@@ -12,7 +12,6 @@
 
 #include <Eigen/Geometry>
 
-#include "core/units.hpp"
 
 namespace fibermold {
 

@@ -24,6 +24,12 @@ namespace {
 }
 
 
+/// True when P lies in a tet of the mesh (within 1e-6 in barycentric coordinates).
+bool inside_body(const FemBasis& locator, const Eigen::Vector3d& P)
+{
+  return locator.barycentric(locator.locate(P), P).minCoeff() >= -1e-6;
+}
+
 } // namespace
 
 std::string format_mm(const Eigen::Vector3d& p)
@@ -78,20 +84,20 @@ Eigen::VectorXd target_forces(const Design& d, const Target& t, const Simulation
 {
   const TetMesh& mesh = sim.mesh();
   Eigen::VectorXd f = Eigen::VectorXd::Zero(3 * mesh.nodes.rows());
+  const Eigen::VectorXd weights = sim.load_weights();
+  const FemBasis locator(mesh);
   for (std::size_t i = 0; i < t.loads.size(); ++i) {
     const Load& load = t.loads[i];
     const std::string key = fmt::format("[target.{}].load[{}]", t.name, i + 1);
     if (load.region.point) {
-      const FemBasis locator(mesh);
       const Eigen::Vector3d& P = *load.region.point;
-      if (locator.barycentric(locator.locate(P), P).minCoeff() < -1e-6)
+      if (!inside_body(locator, P))
         bad(d, key, fmt::format("the point {} lies outside the body", format_mm(P)));
       f += point_force(sim.basis().at(P, 0), mesh.nodes.rows(), *load.force);
       continue;
     }
     const std::vector<int> nodes = region_nodes(load.region, mesh, d, key);
     if (nodes.empty()) bad(d, key, "the load's region holds no node of the mesh");
-    const Eigen::VectorXd weights = sim.load_weights();
     if (load.force) f += region_force(nodes, weights, mesh.nodes, *load.force);
     try {
       if (load.torque) f += region_torque(nodes, weights, mesh.nodes, *load.torque);
@@ -111,7 +117,7 @@ void require_inside(const Design& d, const std::string& fiber, const FemBasis& l
 {
   for (double t : segments.t) {
     const Eigen::Vector3d p = spline.position(t);
-    if (locator.barycentric(locator.locate(p), p).minCoeff() < -1e-6)
+    if (!inside_body(locator, p))
       bad(d, fmt::format("[fiber.{}]", fiber), fmt::format("the fiber leaves the body at {}", format_mm(p)));
   }
 }
