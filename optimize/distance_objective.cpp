@@ -2,6 +2,8 @@
 
 #include <cmath>
 
+#include "core/units.hpp"
+
 namespace fibermold {
 
 DistanceObjective::DistanceObjective(const Basis& basis, std::vector<TrackingSamples> curves, const Eigen::VectorXd& target)
@@ -13,6 +15,12 @@ DistanceObjective::DistanceObjective(const Basis& basis, std::vector<TrackingSam
       s.target_gradient = s.at.deformation_gradient(target);
       samples_.push_back(std::move(s));
     }
+  // Per-sample weights carry the normalisation of the header's formula.
+  const double per_sample = samples_.empty() ? 0 : 1.0 / static_cast<double>(samples_.size());
+  for (Sample& s : samples_) {
+    s.w_pos *= per_sample / (units::mm * units::mm);
+    s.w_ori *= per_sample;
+  }
 }
 
 double DistanceObjective::value(const Eigen::VectorXd& x) const

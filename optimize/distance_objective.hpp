@@ -1,7 +1,10 @@
 #pragma once
 // The distance to a target along the tracking curves (paper section V-A):
-//   f_dist = w_pos Σ_j ½ |x(q_j) − x̂(q_j)|² + w_ori Σ_j ½ ‖F(q_j) − F̂(q_j)‖²_F
+//   f_dist = (1/J) Σ_j [ w_pos ½ |x(q_j) − x̂(q_j)|² / ℓ² + w_ori ½ ‖F(q_j) − F̂(q_j)‖²_F ]
 // (the frames A_j drop out of the second term: ‖D A_j‖_F = ‖D‖_F for orthonormal A_j).
+// Unlike the paper's sum, positions are measured in ℓ = 1 mm and the sum is averaged over the J
+// samples, so that the weights mean the same whatever the body's size and the sample count:
+// f_dist = ½ RMSE² in mm² when only positions are tracked.
 
 #include <vector>
 

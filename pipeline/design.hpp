@@ -105,8 +105,8 @@ struct OptimizeOptions {
   std::string strategy = "simultaneous";   ///< simultaneous | sequential
   int max_iterations = 400;
   double gradient_tolerance = 1e-6;
-  double relative_tolerance = 1e-9;
-  double weight_curvature = 1e-3;
+  double relative_tolerance = 1e-3;   ///< over the last 10 iterations
+  double weight_curvature = 1e-4;
   double weight_skin_barrier = 1.0;
   double weight_pressure_barrier = 1.0;
 };

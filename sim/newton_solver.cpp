@@ -26,8 +26,17 @@ std::string NewtonSummary::brief() const
 }
 
 NewtonSolver::NewtonSolver(std::vector<const Energy*> energies, Eigen::Index num_nodes)
-    : energies_(std::move(energies)), hessian_(make_pattern(energies_, num_nodes))
+    : energies_(std::move(energies)), fixed_energies_(energies_.size()), hessian_(make_pattern(energies_, num_nodes))
 {
+}
+
+void NewtonSolver::set_variable_energies(const std::vector<const Energy*>& energies)
+{
+  energies_.resize(fixed_energies_);
+  energies_.insert(energies_.end(), energies.begin(), energies.end());
+  std::vector<std::vector<int>> stencils;
+  for (const Energy* e : energies) e->stencils(stencils);
+  if (!hessian_.contains(stencils)) hessian_ = SparseHessian(hessian_, stencils);
 }
 
 double NewtonSolver::energy(const Eigen::VectorXd& x) const

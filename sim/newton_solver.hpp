@@ -38,6 +38,13 @@ public:
   /// The energies must outlive the solver. Builds the Hessian pattern from their stencils.
   NewtonSolver(std::vector<const Energy*> energies, Eigen::Index num_nodes);
 
+  /// Replaces the energies given by the last call (none at first) and keeps the others: the
+  /// muscles, whose stencils move with their routes during optimization. The Hessian pattern grows
+  /// to fit them; while it already does, CHOLMOD's symbolic analysis is kept.
+  void set_variable_energies(const std::vector<const Energy*>& energies);
+  /// Symbolic analyses so far (one per pattern).
+  int analyses() const { return cholmod_.analyses(); }
+
   double energy(const Eigen::VectorXd& x) const;
   Eigen::VectorXd gradient(const Eigen::VectorXd& x) const;
   /// Assembles the (projected) Hessian at x.
@@ -53,6 +60,7 @@ public:
 
 private:
   std::vector<const Energy*> energies_;
+  std::size_t fixed_energies_;
   SparseHessian hessian_;
   CholmodSolver cholmod_;
 };

@@ -81,6 +81,14 @@ void Simulation::add_energy(std::unique_ptr<Energy> energy)
   energies_.push_back(std::move(energy));
 }
 
+void Simulation::set_variable_energies(std::vector<std::unique_ptr<Energy>> energies)
+{
+  std::vector<const Energy*> terms;
+  for (const auto& e : energies) terms.push_back(e.get());
+  solver().set_variable_energies(terms);  // before the old terms it points to are freed
+  variable_energies_ = std::move(energies);
+}
+
 NewtonSolver& Simulation::solver()
 {
   if (!solver_) {

@@ -44,6 +44,9 @@ public:
 
   /// Adds a term (a load, a muscle) to the total energy; call before the first solve.
   void add_energy(std::unique_ptr<Energy> energy);
+  /// Replaces the terms set by the last call (none at first), at any time: muscles whose routes
+  /// or pressures change between solves, as in optimization.
+  void set_variable_energies(std::vector<std::unique_ptr<Energy>> energies);
 
   /// Equilibrium from x (warm start), in place.
   NewtonSummary solve(Eigen::VectorXd& x, Progress& progress);
@@ -59,7 +62,7 @@ private:
   std::unique_ptr<Basis> basis_;
   QuadraturePoints qp_;
   Eigen::VectorXd masses_;
-  std::vector<std::unique_ptr<Energy>> energies_;
+  std::vector<std::unique_ptr<Energy>> energies_, variable_energies_;
   std::unique_ptr<NewtonSolver> solver_;
   std::vector<ShapeEval> at_nodes_;
 };

@@ -19,7 +19,6 @@ SparseHessian::SparseHessian(Eigen::Index num_nodes, const std::vector<std::vect
   for (std::size_t s = 0; s < stencils.size(); ++s)
     for (int j : stencils[s]) containing[fill[j]++] = static_cast<int>(s);
   std::vector<int> mark(static_cast<std::size_t>(num_nodes), -1);
-  block_start_.assign(static_cast<std::size_t>(num_nodes) + 1, 0);
   for (Eigen::Index j = 0; j < num_nodes; ++j) {
     auto& nb = neighbours_[j];
     nb.push_back(static_cast<int>(j));
@@ -31,8 +30,39 @@ SparseHessian::SparseHessian(Eigen::Index num_nodes, const std::vector<std::vect
           nb.push_back(i);
         }
     std::sort(nb.begin(), nb.end());
-    block_start_[j + 1] = block_start_[j] + static_cast<Eigen::Index>(nb.size());
   }
+  build_matrix();
+}
+
+SparseHessian::SparseHessian(const SparseHessian& base, const std::vector<std::vector<int>>& stencils)
+    : neighbours_(base.neighbours_)
+{
+  for (const auto& s : stencils)
+    for (int a : s)
+      for (int b : s)
+        if (a > b) neighbours_[b].push_back(a);
+  for (auto& nb : neighbours_) {
+    std::sort(nb.begin(), nb.end());
+    nb.erase(std::unique(nb.begin(), nb.end()), nb.end());
+  }
+  build_matrix();
+}
+
+bool SparseHessian::contains(const std::vector<std::vector<int>>& stencils) const
+{
+  for (const auto& s : stencils)
+    for (int a : s)
+      for (int b : s)
+        if (a >= b && position(a, b) < 0) return false;
+  return true;
+}
+
+void SparseHessian::build_matrix()
+{
+  const auto num_nodes = static_cast<Eigen::Index>(neighbours_.size());
+  block_start_.assign(static_cast<std::size_t>(num_nodes) + 1, 0);
+  for (Eigen::Index j = 0; j < num_nodes; ++j)
+    block_start_[j + 1] = block_start_[j] + static_cast<Eigen::Index>(neighbours_[j].size());
   // Column 3j + b holds rows 3i + a for i in neighbours(j), a = 0..2.
   const Eigen::Index n = 3 * num_nodes;
   matrix_.resize(n, n);

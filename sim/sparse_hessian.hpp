@@ -14,6 +14,11 @@ class SparseHessian {
 public:
   /// `stencils`: node sets whose nodes are coupled (every pair gets a block).
   SparseHessian(Eigen::Index num_nodes, const std::vector<std::vector<int>>& stencils);
+  /// `base`'s pattern grown by the pairs of `stencils` (values zero).
+  SparseHessian(const SparseHessian& base, const std::vector<std::vector<int>>& stencils);
+
+  /// Whether every pair of every stencil has a block.
+  bool contains(const std::vector<std::vector<int>>& stencils) const;
 
   Eigen::Index num_nodes() const { return static_cast<Eigen::Index>(neighbours_.size()); }
   const std::vector<int>& neighbours(Eigen::Index j) const { return neighbours_[j]; }
@@ -33,6 +38,8 @@ public:
   Eigen::SparseMatrix<double> full() const;
 
 private:
+  void build_matrix();
+
   std::vector<std::vector<int>> neighbours_;  ///< sorted, per node column
   std::vector<Eigen::Index> block_start_;
   Eigen::SparseMatrix<double> matrix_;

@@ -1,0 +1,58 @@
+#include "mesh/surface_distance.hpp"
+
+#include <vector>
+
+#include <CGAL/AABB_face_graph_triangle_primitive.h>
+#include <CGAL/AABB_traits.h>
+#include <CGAL/AABB_tree.h>
+#include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
+#include <CGAL/Side_of_triangle_mesh.h>
+#include <CGAL/Surface_mesh.h>
+
+namespace fibermold {
+
+namespace {
+using Kernel = CGAL::Exact_predicates_inexact_constructions_kernel;
+using Point = Kernel::Point_3;
+using Mesh = CGAL::Surface_mesh<Point>;
+using Primitive = CGAL::AABB_face_graph_triangle_primitive<Mesh>;
+using Tree = CGAL::AABB_tree<CGAL::AABB_traits<Kernel, Primitive>>;
+using Side = CGAL::Side_of_triangle_mesh<Mesh, Kernel>;
+} // namespace
+
+struct SurfaceDistance::Impl {
+  Mesh mesh;
+  Tree tree;
+  std::unique_ptr<Side> side;
+};
+
+SurfaceDistance::SurfaceDistance(const Eigen::MatrixX3d& vertices, const Eigen::MatrixX3i& faces)
+    : impl_(std::make_unique<Impl>())
+{
+  std::vector<Mesh::Vertex_index> index(static_cast<std::size_t>(vertices.rows()));
+  std::vector<bool> used(index.size(), false);
+  for (Eigen::Index f = 0; f < faces.rows(); ++f)
+    for (int c = 0; c < 3; ++c) used[faces(f, c)] = true;
+  for (std::size_t v = 0; v < index.size(); ++v)
+    if (used[v]) index[v] = impl_->mesh.add_vertex(Point(vertices(v, 0), vertices(v, 1), vertices(v, 2)));
+  for (Eigen::Index f = 0; f < faces.rows(); ++f)
+    impl_->mesh.add_face(index[faces(f, 0)], index[faces(f, 1)], index[faces(f, 2)]);
+  impl_->tree.insert(CGAL::faces(impl_->mesh).first, CGAL::faces(impl_->mesh).second, impl_->mesh);
+  impl_->tree.accelerate_distance_queries();
+  impl_->side = std::make_unique<Side>(impl_->tree);
+}
+
+SurfaceDistance::~SurfaceDistance() = default;
+
+SurfaceDistance::Closest SurfaceDistance::closest(const Eigen::Vector3d& p) const
+{
+  const Point q(p.x(), p.y(), p.z());
+  const Point c = impl_->tree.closest_point(q);
+  Closest out;
+  out.point = {c.x(), c.y(), c.z()};
+  out.distance = (out.point - p).norm();
+  out.inside = (*impl_->side)(q) == CGAL::ON_BOUNDED_SIDE;
+  return out;
+}
+
+} // namespace fibermold

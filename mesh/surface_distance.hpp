@@ -1,0 +1,32 @@
+#pragma once
+// Distance from points to a closed surface, and which side they are on: an AABB tree over its
+// triangles (CGAL), built once. Used by the skin barrier of the optimizer (section V-B) and the
+// clearance checks of collide.
+
+#include <memory>
+
+#include <Eigen/Core>
+
+namespace fibermold {
+
+class SurfaceDistance {
+public:
+  /// A closed, outward-oriented triangle surface; vertices not used by any face are ignored.
+  SurfaceDistance(const Eigen::MatrixX3d& vertices, const Eigen::MatrixX3i& faces);
+  ~SurfaceDistance();
+  SurfaceDistance(const SurfaceDistance&) = delete;
+  SurfaceDistance& operator=(const SurfaceDistance&) = delete;
+
+  struct Closest {
+    double distance;        ///< unsigned, to the nearest surface point
+    Eigen::Vector3d point;  ///< the nearest surface point
+    bool inside;            ///< strictly inside the enclosed volume
+  };
+  Closest closest(const Eigen::Vector3d& p) const;
+
+private:
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
+};
+
+} // namespace fibermold

@@ -1,0 +1,135 @@
+#include "optimize/bfgs.hpp"
+
+#include <cmath>
+#include <vector>
+#include <stdexcept>
+
+#include <LBFGSpp/Param.h>  // before the line search, which uses it
+#include <LBFGSpp/LineSearchBacktracking.h>
+#include <fmt/format.h>
+
+namespace fibermold {
+
+namespace {
+
+/// The objective as the line search calls it, remembering the best point it saw.
+struct Tracked {
+  explicit Tracked(const Objective& objective) : f(objective) {}
+  const Objective& f;
+  int evaluations = 0;
+  double best = HUGE_VAL;
+  Eigen::VectorXd best_x, best_g;
+
+  double operator()(const Eigen::VectorXd& x, Eigen::VectorXd& g)
+  {
+    ++evaluations;
+    const double v = f(x, g);
+    if (v < best) {
+      best = v;
+      best_x = x;
+      best_g = g;
+    }
+    return std::isfinite(v) ? v : HUGE_VAL;
+  }
+};
+
+/// eq. 6.17: H ← (I − ρ s yᵀ) H (I − ρ y sᵀ) + ρ s sᵀ,  ρ = 1 / yᵀs.
+void bfgs_update(Eigen::MatrixXd& H, const Eigen::VectorXd& s, const Eigen::VectorXd& y)
+{
+  const double rho = 1 / y.dot(s);
+  const Eigen::VectorXd Hy = H * y;
+  H += rho * rho * (y.dot(Hy) + 1 / rho) * s * s.transpose() - rho * (Hy * s.transpose() + s * Hy.transpose());
+}
+
+} // namespace
+
+BfgsResult minimize_bfgs(const Objective& f, Eigen::VectorXd x, const BfgsOptions& options,
+                         const IterationCallback& on_iteration, Progress& progress)
+{
+  const Eigen::Index n = x.size();
+  Tracked tracked(f);
+  BfgsResult result;
+  Eigen::VectorXd g(n);
+  double fx = tracked(x, g);
+  if (!std::isfinite(fx)) throw std::invalid_argument("the objective is not finite at the starting point");
+
+  LBFGSpp::LBFGSParam<double> param;
+  param.linesearch = LBFGSpp::LBFGS_LINESEARCH_BACKTRACKING_WOLFE;
+  param.max_linesearch = options.max_line_search;
+  param.min_step = 1e-14;
+
+  std::vector<double> values{fx};  // f after each iteration
+  Eigen::MatrixXd H = Eigen::MatrixXd::Identity(n, n);
+  bool scaled = false;  // H is the identity, not yet scaled by eq. 6.20
+  auto finish = [&](bool converged, std::string message) {
+    result.x = tracked.best_x;
+    result.value = tracked.best;
+    result.gradient_norm = tracked.best_g.norm();
+    result.evaluations = tracked.evaluations;
+    result.converged = converged;
+    result.message = std::move(message);
+    return result;
+  };
+  try {
+    for (;;) {
+      const double gnorm = g.norm();
+      if (gnorm <= options.gradient_tolerance) return finish(true, fmt::format("|∇f| = {:.3g} below tolerance", gnorm));
+      if (result.iterations == options.max_iterations)
+        return finish(false, fmt::format("{} iterations, the limit", options.max_iterations));
+      if (progress.interrupted()) throw Interrupted();
+
+      Eigen::VectorXd d = -H * g;
+      if (!(g.dot(d) < 0)) {  // lost positive definiteness to round-off: restart from steepest descent
+        H.setIdentity();
+        scaled = false;
+        d = -g;
+      }
+      const double largest = d.cwiseAbs().maxCoeff();
+      param.max_step = options.max_step / largest;
+      double step = scaled ? std::min(1.0, param.max_step) : std::min(1.0, 1.0 / largest);
+      const Eigen::VectorXd xp = x, gp = g;
+      const double fp = fx;
+      try {
+        LBFGSpp::LineSearchBacktracking<double>::LineSearch(tracked, fx, x, g, step, d, xp, param);
+      } catch (const Interrupted&) {
+        throw;
+      } catch (const std::exception& e) {
+        // No Wolfe step (e.g. against a region where f is +∞); a sufficient decrease still counts.
+        const bool decreased = tracked.best < fp;
+        if (!decreased && !scaled) return finish(false, fmt::format("the line search found no decrease ({})", e.what()));
+        x = tracked.best_x;
+        g = tracked.best_g;
+        fx = tracked.best;
+        if (!decreased) {  // retry along steepest descent
+          H.setIdentity();
+          scaled = false;
+          continue;
+        }
+        step = (x - xp).norm() / d.norm();
+      }
+      ++result.iterations;
+      const Eigen::VectorXd s = x - xp, y = g - gp;
+      if (y.dot(s) > 1e-12 * s.norm() * y.norm()) {
+        if (!scaled) {
+          H *= y.dot(s) / y.dot(y);  // eq. 6.20
+          scaled = true;
+        }
+        bfgs_update(H, s, y);
+      }
+      if (on_iteration) on_iteration({result.iterations, fx, g.norm(), step * d.norm(), tracked.evaluations}, x);
+      values.push_back(fx);
+      if (static_cast<int>(values.size()) > options.window) {
+        const double before = values[values.size() - 1 - options.window];
+        if (before - fx <= options.relative_tolerance * std::abs(fx))
+          return finish(true, fmt::format("f fell by {:.3g} of its value over the last {} iterations", (before - fx) / std::abs(fx),
+                                          options.window));
+      }
+    }
+  } catch (const Interrupted&) {
+    finish(false, "interrupted");
+    result.interrupted = true;
+    return result;
+  }
+}
+
+} // namespace fibermold

@@ -1,0 +1,64 @@
+#include "optimize/routing_optimizer.hpp"
+
+#include <stdexcept>
+
+#include <fmt/format.h>
+
+namespace fibermold {
+
+namespace {
+
+using Mask = Eigen::Matrix<bool, Eigen::Dynamic, Eigen::Dynamic>;
+
+/// One BFGS run over the problem's current free variables, starting from its base.
+BfgsResult run(RoutingProblem& problem, int stage, const BfgsOptions& options, const RoutingCallback& on_iteration,
+               Progress& progress)
+{
+  const Objective f = [&](const Eigen::VectorXd& z, Eigen::VectorXd& g) { return problem.evaluate(z, &g); };
+  const IterationCallback cb = [&](const BfgsIteration& it, const Eigen::VectorXd&) {
+    if (on_iteration) on_iteration(stage, it, problem.last_terms());
+  };
+  return minimize_bfgs(f, problem.variables(problem.base()), options, cb, progress);
+}
+
+void absorb(RoutingResult& out, RoutingProblem& problem, const BfgsResult& r)
+{
+  out.routing = problem.routing(r.x);
+  out.value = r.value;
+  out.iterations += r.iterations;
+  out.evaluations += r.evaluations;
+  out.converged = out.converged && r.converged;
+  out.interrupted = r.interrupted;
+  out.message = r.message;
+}
+
+} // namespace
+
+RoutingResult optimize_routing(RoutingProblem& problem, const std::string& strategy, const BfgsOptions& options,
+                               const RoutingCallback& on_iteration, Progress& progress)
+{
+  const int T = problem.num_targets(), F = problem.num_fibers();
+  RoutingResult out;
+  out.routing = problem.base();
+  if (strategy == "simultaneous") {
+    problem.set_free(std::vector<bool>(F, true), Mask::Constant(T, F, true), std::vector<bool>(T, true));
+    absorb(out, problem, run(problem, 0, options, on_iteration, progress));
+    return out;
+  }
+  if (strategy != "sequential") throw std::invalid_argument("unknown strategy " + strategy);
+  if (F != T)
+    throw std::invalid_argument(fmt::format("the sequential strategy drives one fiber per target: {} fiber(s), {} target(s)", F, T));
+  for (int k = 0; k < F && !out.interrupted; ++k) {
+    std::vector<bool> route(F, false), target(T, false);
+    Mask pressure = Mask::Constant(T, F, false);
+    for (int j = 0; j <= k; ++j) route[j] = target[j] = pressure(j, j) = true;
+    problem.set_base(out.routing);
+    problem.set_free(route, pressure, target);
+    absorb(out, problem, run(problem, k, options, on_iteration, progress));
+    if (!out.interrupted) out.message = fmt::format("fiber {}: {}", k + 1, out.message);
+  }
+  problem.set_base(out.routing);
+  return out;
+}
+
+} // namespace fibermold

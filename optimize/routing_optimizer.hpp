@@ -1,0 +1,34 @@
+#pragma once
+// The two strategies of section V-B for several fibers:
+//  - simultaneous: every route and every (target, fiber) pressure at once, all targets;
+//  - sequential: one fiber per target, only fiber k pressurized in target k (orthogonal
+//    actuators). Fibers are added one at a time: stage k moves the routes of fibers 1..k and counts
+//    targets 1..k, each with its own fiber's pressure, so that a later fiber (stiff even when
+//    unpressurized) cannot spoil an earlier target. Each stage starts where the last one ended.
+
+#include <functional>
+#include <string>
+
+#include "optimize/bfgs.hpp"
+#include "optimize/routing_problem.hpp"
+
+namespace fibermold {
+
+struct RoutingResult {
+  Routing routing;
+  double value = 0;  ///< objective at the end (of the last stage for sequential)
+  int iterations = 0, evaluations = 0;
+  bool converged = true, interrupted = false;
+  std::string message;
+};
+
+/// Called after each accepted step: the stage (0 for simultaneous, fiber k for sequential), the
+/// step, and the terms at the new point.
+using RoutingCallback = std::function<void(int stage, const BfgsIteration&, const RoutingTerms&)>;
+
+/// Throws std::invalid_argument for "sequential" with a number of fibers different from the
+/// number of targets, or an unknown strategy.
+RoutingResult optimize_routing(RoutingProblem& problem, const std::string& strategy, const BfgsOptions& options,
+                               const RoutingCallback& on_iteration, Progress& progress);
+
+} // namespace fibermold

@@ -1,0 +1,239 @@
+#include "optimize/routing_problem.hpp"
+
+#include <chrono>
+#include <cmath>
+#include <stdexcept>
+
+#include <fmt/format.h>
+
+#include "core/units.hpp"
+#include "optimize/adjoint_gradient.hpp"
+#include "optimize/barrier.hpp"
+#include "optimize/fiber_curvature.hpp"
+
+namespace fibermold {
+
+namespace {
+using Clock = std::chrono::steady_clock;
+double since(Clock::time_point t) { return std::chrono::duration<double>(Clock::now() - t).count(); }
+
+constexpr double kPressureUnit = 10e3;  // Pa per optimizer unit
+constexpr int kSkinSamplesPerSegment = 1;
+
+int segment_count(const HermiteSpline& s, double per_length)
+{
+  return std::max(1, static_cast<int>(std::ceil(s.length() * per_length)));
+}
+} // namespace
+
+RoutingProblem::RoutingProblem(Simulation& sim, const MuscleModel& model, const SurfaceDistance& skin,
+                               std::vector<Eigen::VectorXd> targets, const std::vector<TrackingSamples>& curves,
+                               Routing start, RoutingSettings settings)
+    : sim_(sim), model_(model), skin_(skin), targets_(std::move(targets)), base_(std::move(start)), settings_(settings)
+{
+  const int T = num_targets(), F = num_fibers();
+  if (base_.pressures.rows() != T || base_.pressures.cols() != F)
+    throw std::invalid_argument(fmt::format("the pressures are {}×{}, expected targets × fibers = {}×{}",
+                                            base_.pressures.rows(), base_.pressures.cols(), T, F));
+  for (const Eigen::VectorXd& x : targets_) distances_.emplace_back(sim_.basis(), curves, x);
+  warm_.assign(targets_.size(), sim_.rest());
+  for (const Route& r : base_.routes) {
+    const HermiteSpline s(r.points, r.tangents);
+    const int count = segment_count(s, settings_.segments_per_length);
+    segment_t_.push_back(segment_parameters(s, count));
+    skin_barriers_.emplace_back(skin_, settings_.skin_distance, s, kSkinSamplesPerSegment * count);
+    start_length_.push_back(s.length());
+  }
+  if (!fibers_inside(base_))
+    throw std::invalid_argument("a fiber of the starting routing leaves the body");
+  set_free(std::vector<bool>(F, true), Eigen::Matrix<bool, Eigen::Dynamic, Eigen::Dynamic>::Constant(T, F, true),
+           std::vector<bool>(T, true));
+}
+
+void RoutingProblem::set_free(std::vector<bool> routes, Eigen::Matrix<bool, Eigen::Dynamic, Eigen::Dynamic> pressures,
+                              std::vector<bool> targets)
+{
+  target_active_ = std::move(targets);
+  entries_.clear();
+  entry_of_.assign(base_.routes.size(), {});
+  pressure_entry_ = Eigen::MatrixXi::Constant(num_targets(), num_fibers(), -1);
+  for (int f = 0; f < num_fibers(); ++f) {
+    const int n = static_cast<int>(base_.routes[f].points.size());
+    entry_of_[f].assign(6 * n, -1);
+    if (!routes[f]) continue;
+    for (int k = 0; k < n; ++k)
+      for (int kind = 0; kind < 2; ++kind) {
+        if (kind == 0 && (k == 0 || k == n - 1)) continue;  // end points stay fixed
+        for (int c = 0; c < 3; ++c) {
+          entry_of_[f][6 * k + 3 * kind + c] = static_cast<int>(entries_.size());
+          entries_.push_back({kind == 0 ? Entry::Point : Entry::Tangent, f, k, c});
+        }
+      }
+  }
+  for (int t = 0; t < num_targets(); ++t)
+    for (int f = 0; f < num_fibers(); ++f)
+      if (pressures(t, f) && target_active_[t]) {
+        pressure_entry_(t, f) = static_cast<int>(entries_.size());
+        entries_.push_back({Entry::Pressure, f, t, 0});
+      }
+}
+
+double RoutingProblem::scale(const Entry& e) const { return e.kind == Entry::Pressure ? kPressureUnit : units::mm; }
+
+Eigen::VectorXd RoutingProblem::variables(const Routing& r) const
+{
+  Eigen::VectorXd z(size());
+  for (Eigen::Index i = 0; i < size(); ++i) {
+    const Entry& e = entries_[i];
+    const Route& route = r.routes[e.fiber];
+    const double v = e.kind == Entry::Point     ? route.points[e.index][e.component]
+                     : e.kind == Entry::Tangent ? route.tangents[e.index][e.component]
+                                                : r.pressures(e.index, e.fiber);
+    z[i] = v / scale(e);
+  }
+  return z;
+}
+
+Routing RoutingProblem::routing(const Eigen::VectorXd& z) const
+{
+  Routing r = base_;
+  for (Eigen::Index i = 0; i < size(); ++i) {
+    const Entry& e = entries_[i];
+    Route& route = r.routes[e.fiber];
+    const double v = z[i] * scale(e);
+    if (e.kind == Entry::Point) route.points[e.index][e.component] = v;
+    else if (e.kind == Entry::Tangent) route.tangents[e.index][e.component] = v;
+    else r.pressures(e.index, e.fiber) = v;
+  }
+  return r;
+}
+
+void RoutingProblem::add_fiber_gradient(int f, const FiberParameterGradient& g, double weight, int target,
+                                        Eigen::VectorXd& out) const
+{
+  const auto& of = entry_of_[f];
+  for (std::size_t k = 0; k < g.points.size(); ++k)
+    for (int c = 0; c < 3; ++c) {
+      if (const int i = of[6 * k + c]; i >= 0) out[i] += weight * g.points[k][c] * units::mm;
+      if (const int i = of[6 * k + 3 + c]; i >= 0) out[i] += weight * g.tangents[k][c] * units::mm;
+    }
+  if (target >= 0)
+    if (const int i = pressure_entry_(target, f); i >= 0) out[i] += weight * g.pressure * kPressureUnit;
+}
+
+bool RoutingProblem::fibers_inside(const Routing& r) const
+{
+  for (int f = 0; f < num_fibers(); ++f) {
+    const HermiteSpline s(r.routes[f].points, r.routes[f].tangents);
+    for (const Eigen::Vector3d& c : segments_at(s, segment_t_[f]).centres)
+      if (!skin_.closest(c).inside) return false;
+  }
+  return true;
+}
+
+std::vector<std::unique_ptr<MuscleEnergy>> RoutingProblem::muscles(const Routing& r, int t) const
+{
+  std::vector<std::unique_ptr<MuscleEnergy>> out;
+  for (int f = 0; f < num_fibers(); ++f)
+    out.push_back(std::make_unique<MuscleEnergy>(sim_.basis(), model_, HermiteSpline(r.routes[f].points, r.routes[f].tangents),
+                                                 segment_t_[f], r.pressures(t, f)));
+  return out;
+}
+
+bool RoutingProblem::solve(int t, Eigen::VectorXd& x)
+{
+  NullProgress progress;  // still honours Ctrl-C
+  const auto start = Clock::now();
+  x = warm_[t];
+  NewtonSummary s = sim_.solve(x, progress);
+  newton_iterations_ += s.iterations;
+  if (!s.converged) {  // a warm start far from the answer can fail where the rest state does not
+    x = sim_.rest();
+    s = sim_.solve(x, progress);
+    newton_iterations_ += s.iterations;
+  }
+  seconds_simulation_ += since(start);
+  if (s.converged) warm_[t] = x;
+  return s.converged;
+}
+
+Eigen::VectorXd RoutingProblem::equilibrium(const Routing& r, int t)
+{
+  std::vector<std::unique_ptr<Energy>> energies;
+  for (auto& m : muscles(r, t)) energies.push_back(std::move(m));
+  sim_.set_variable_energies(std::move(energies));
+  Eigen::VectorXd x;
+  if (!solve(t, x)) throw std::runtime_error(fmt::format("no equilibrium for target {}", t + 1));
+  return x;
+}
+
+double RoutingProblem::regularizers(const Routing& r, Eigen::VectorXd* gradient, RoutingTerms& terms) const
+{
+  for (int f = 0; f < num_fibers(); ++f) {
+    if (entry_of_[f].empty() || std::all_of(entry_of_[f].begin(), entry_of_[f].end(), [](int i) { return i < 0; }))
+      continue;  // a fixed route adds a constant
+    const HermiteSpline s(r.routes[f].points, r.routes[f].tangents);
+    const double wc = settings_.weight_curvature * start_length_[f];
+    terms.curvature += wc * fiber_curvature(s);
+    terms.skin += settings_.weight_skin * skin_barriers_[f].value(s);
+    if (!std::isfinite(terms.skin)) return HUGE_VAL;
+    if (gradient) {
+      add_fiber_gradient(f, fiber_curvature_gradient(s), wc, -1, *gradient);
+      add_fiber_gradient(f, skin_barriers_[f].gradient(s), settings_.weight_skin, -1, *gradient);
+    }
+  }
+  const double pmax = settings_.max_pressure, margin = settings_.pressure_margin;
+  for (int t = 0; t < num_targets(); ++t)
+    for (int f = 0; f < num_fibers(); ++f) {
+      const int i = pressure_entry_(t, f);
+      if (i < 0) continue;
+      const double u = r.pressures(t, f) / pmax;
+      terms.pressure += settings_.weight_pressure * (barrier(u, margin) + barrier(1 - u, margin));
+      if (!std::isfinite(terms.pressure)) return HUGE_VAL;
+      if (gradient)
+        (*gradient)[i] += settings_.weight_pressure * (barrier_gradient(u, margin) - barrier_gradient(1 - u, margin)) /
+                          pmax * kPressureUnit;
+    }
+  return terms.curvature + terms.skin + terms.pressure;
+}
+
+double RoutingProblem::evaluate(const Eigen::VectorXd& z, Eigen::VectorXd* gradient, RoutingTerms* terms_out)
+{
+  const Routing r = routing(z);
+  RoutingTerms terms;
+  terms.per_target.assign(targets_.size(), 0);
+  Eigen::VectorXd g = Eigen::VectorXd::Zero(size());
+  if (!std::isfinite(regularizers(r, gradient ? &g : nullptr, terms)) || !fibers_inside(r)) return HUGE_VAL;
+  for (int t = 0; t < num_targets(); ++t) {
+    if (!target_active_[t]) continue;
+    auto owned = muscles(r, t);
+    std::vector<const MuscleEnergy*> m;
+    std::vector<std::unique_ptr<Energy>> energies;
+    for (auto& e : owned) {
+      m.push_back(e.get());
+      energies.push_back(std::move(e));
+    }
+    sim_.set_variable_energies(std::move(energies));
+    Eigen::VectorXd x;
+    if (!solve(t, x)) return HUGE_VAL;
+    terms.per_target[t] = distances_[t].value(x);
+    terms.distance += terms.per_target[t];
+    if (!gradient) continue;
+    const auto start = Clock::now();
+    std::vector<FiberParameterGradient> by_fiber;
+    try {
+      by_fiber = adjoint_gradient(sim_, x, distances_[t].gradient(x), m);
+    } catch (const std::runtime_error&) {
+      return HUGE_VAL;  // an unstable equilibrium: no gradient to follow
+    }
+    seconds_adjoint_ += since(start);
+    for (int f = 0; f < num_fibers(); ++f) add_fiber_gradient(f, by_fiber[f], 1.0, t, g);
+  }
+  terms.total = terms.distance + terms.curvature + terms.skin + terms.pressure;
+  if (gradient) *gradient = g;
+  if (terms_out) *terms_out = terms;
+  last_terms_ = terms;
+  return terms.total;
+}
+
+} // namespace fibermold

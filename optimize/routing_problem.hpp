@@ -1,0 +1,124 @@
+#pragma once
+// The routing problem of eq. 4: find the fibers' routes s (shared by all targets) and pressures
+// p^t (per target) that bring the body's equilibria x^t(s, p^t) to the targets x̂^t:
+//   min  Σ_t f_dist(x^t, x̂^t) + w_curv Σ_f L_f ∫ κ_f² ds + w_skin Σ_f B_skin(f)
+//        + w_p Σ_{t,f} [b(p/p_max) + b(1 − p/p_max)],
+// with f_dist as in distance_objective.hpp, L_f the fiber's starting length (which makes the
+// curvature term dimensionless), B_skin as in skin_barrier.hpp and b the log barrier acting within
+// `pressure_margin` of either pressure bound. The end points of each route stay fixed.
+//
+// The optimizer sees a flat vector z of the free variables, in mm (points, tangents) and 10 kPa
+// (pressures), so that one unit is a comparable change of the design.
+
+#include <string>
+#include <vector>
+
+#include <Eigen/Core>
+
+#include "mesh/surface_distance.hpp"
+#include "optimize/distance_objective.hpp"
+#include "optimize/skin_barrier.hpp"
+#include "sim/simulation.hpp"
+
+namespace fibermold {
+
+struct Route {
+  std::string name;
+  std::vector<Eigen::Vector3d> points, tangents;  ///< m
+};
+
+/// Routes shared by all targets, and each target's pressures.
+struct Routing {
+  std::vector<Route> routes;
+  Eigen::MatrixXd pressures;  ///< targets × fibers, Pa
+};
+
+struct RoutingSettings {
+  double max_pressure = 425e3;        ///< Pa
+  double segments_per_length = 500;   ///< muscle segments per m
+  double skin_distance = 2.5e-3;      ///< d̂ of the skin barrier, m
+  double weight_curvature = 1e-4;
+  double weight_skin = 1;
+  double weight_pressure = 1;
+  double pressure_margin = 0.02;      ///< of max_pressure
+};
+
+/// The value of each term at a routing.
+struct RoutingTerms {
+  double total = 0, distance = 0, curvature = 0, skin = 0, pressure = 0;
+  std::vector<double> per_target;  ///< f_dist per target (0 for inactive ones)
+};
+
+class RoutingProblem {
+public:
+  /// `sim`: the body, held and under gravity, without muscles; `targets[t]`: x̂^t.
+  /// Throws std::invalid_argument when the starting routing is unusable (a fiber leaving the body,
+  /// a pressure outside (0, max_pressure)).
+  RoutingProblem(Simulation& sim, const MuscleModel& model, const SurfaceDistance& skin,
+                 std::vector<Eigen::VectorXd> targets, const std::vector<TrackingSamples>& curves, Routing start,
+                 RoutingSettings settings);
+
+  /// What the optimizer may change: routes (interior points, all tangents), pressures per
+  /// (target, fiber); and which targets count. Default: everything.
+  void set_free(std::vector<bool> routes, Eigen::Matrix<bool, Eigen::Dynamic, Eigen::Dynamic> pressures,
+                std::vector<bool> targets);
+  /// The routing that unfree variables take their values from.
+  void set_base(const Routing& routing) { base_ = routing; }
+  const Routing& base() const { return base_; }
+
+  Eigen::Index size() const { return static_cast<Eigen::Index>(entries_.size()); }
+  Eigen::VectorXd variables(const Routing& r) const;
+  Routing routing(const Eigen::VectorXd& z) const;
+
+  /// The objective at z, and its gradient (adjoint, eq. 9) when asked. +∞ when a fiber leaves the
+  /// body, a pressure its bounds, or an equilibrium cannot be found; `gradient` is then untouched.
+  double evaluate(const Eigen::VectorXd& z, Eigen::VectorXd* gradient = nullptr, RoutingTerms* terms = nullptr);
+
+  /// The terms of the last finite evaluation (the point a line search accepted).
+  const RoutingTerms& last_terms() const { return last_terms_; }
+
+  /// Equilibrium of target t under routing r (warm-started); throws std::runtime_error when Newton fails.
+  Eigen::VectorXd equilibrium(const Routing& r, int t);
+  const DistanceObjective& distance(int t) const { return distances_[t]; }
+  const Eigen::VectorXd& target(int t) const { return targets_[t]; }
+  int num_targets() const { return static_cast<int>(targets_.size()); }
+  int num_fibers() const { return static_cast<int>(base_.routes.size()); }
+  Simulation& simulation() { return sim_; }
+  /// The muscles of target t under routing r, as the simulation used them.
+  std::vector<std::unique_ptr<MuscleEnergy>> muscles(const Routing& r, int t) const;
+  /// Newton iterations and seconds spent in simulation and in adjoint solves so far.
+  int newton_iterations() const { return newton_iterations_; }
+  double seconds_simulation() const { return seconds_simulation_; }
+  double seconds_adjoint() const { return seconds_adjoint_; }
+
+private:
+  struct Entry {
+    enum Kind { Point, Tangent, Pressure } kind;
+    int fiber, index, component;  ///< index: the point, or the target for a pressure
+  };
+  double scale(const Entry& e) const;
+  bool solve(int t, Eigen::VectorXd& x);
+  double regularizers(const Routing& r, Eigen::VectorXd* gradient, RoutingTerms& terms) const;
+  void add_fiber_gradient(int f, const FiberParameterGradient& g, double weight, int target, Eigen::VectorXd& out) const;
+  bool fibers_inside(const Routing& r) const;
+
+  Simulation& sim_;
+  const MuscleModel& model_;
+  const SurfaceDistance& skin_;
+  std::vector<Eigen::VectorXd> targets_, warm_;
+  std::vector<DistanceObjective> distances_;
+  Routing base_;
+  RoutingSettings settings_;
+  std::vector<std::vector<double>> segment_t_;  ///< per fiber, fixed at the start
+  std::vector<SkinBarrier> skin_barriers_;
+  std::vector<double> start_length_;
+  std::vector<bool> target_active_;
+  std::vector<Entry> entries_;
+  std::vector<std::vector<int>> entry_of_;  ///< [fiber][6·point + 3·is_tangent + component] → entry or −1
+  Eigen::MatrixXi pressure_entry_;          ///< targets × fibers → entry or −1
+  RoutingTerms last_terms_;
+  int newton_iterations_ = 0;
+  double seconds_simulation_ = 0, seconds_adjoint_ = 0;
+};
+
+} // namespace fibermold

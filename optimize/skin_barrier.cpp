@@ -1,0 +1,69 @@
+#include "optimize/skin_barrier.hpp"
+
+#include <cmath>
+
+#include "optimize/barrier.hpp"
+
+namespace fibermold {
+
+SkinBarrier::SkinBarrier(const SurfaceDistance& skin, double dhat, const HermiteSpline& initial, int samples)
+    : skin_(skin), dhat_(dhat)
+{
+  const std::vector<double> t = segment_parameters(initial, samples);
+  const double length = initial.length();
+  const bool first_on_skin = skin.closest(initial.points().front()).distance < dhat;
+  const bool last_on_skin = skin.closest(initial.points().back()).distance < dhat;
+  // Arc length at each parameter, from the segment chords (fine enough to place the cut-off).
+  double s = 0;
+  for (std::size_t k = 0; k < t.size(); ++k) {
+    if (k > 0) s += (initial.position(t[k]) - initial.position(t[k - 1])).norm();
+    if (first_on_skin && s < 2 * dhat) continue;
+    if (last_on_skin && length - s < 2 * dhat) continue;
+    t_.push_back(t[k]);
+  }
+}
+
+double SkinBarrier::value(const HermiteSpline& spline) const
+{
+  double B = 0;
+  for (double t : t_) {
+    const auto c = skin_.closest(spline.position(t));
+    if (!c.inside) return HUGE_VAL;
+    B += barrier(c.distance / dhat_, 1.0);
+  }
+  return B;
+}
+
+FiberParameterGradient SkinBarrier::gradient(const HermiteSpline& spline) const
+{
+  FiberParameterGradient g;
+  g.points.assign(spline.points().size(), Eigen::Vector3d::Zero());
+  g.tangents.assign(spline.points().size(), Eigen::Vector3d::Zero());
+  for (double t : t_) {
+    const Eigen::Vector3d p = spline.position(t);
+    const auto c = skin_.closest(p);
+    if (!c.inside || c.distance >= dhat_) continue;
+    // ∂b/∂p = b'(d/d̂)/d̂ ∇d,  ∇d = (p − c)/|p − c| inside the body
+    const Eigen::Vector3d by_p = barrier_gradient(c.distance / dhat_, 1.0) / dhat_ * (p - c.point) / c.distance;
+    int k;
+    double w[4];
+    spline.weights(t, k, w);
+    g.points[k] += w[0] * by_p;
+    g.tangents[k] += w[1] * by_p;
+    g.points[k + 1] += w[2] * by_p;
+    g.tangents[k + 1] += w[3] * by_p;
+  }
+  return g;
+}
+
+double SkinBarrier::min_distance(const HermiteSpline& spline) const
+{
+  double d = HUGE_VAL;
+  for (double t : t_) {
+    const auto c = skin_.closest(spline.position(t));
+    d = std::min(d, c.inside ? c.distance : -c.distance);
+  }
+  return d;
+}
+
+} // namespace fibermold

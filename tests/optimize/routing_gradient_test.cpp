@@ -1,0 +1,68 @@
+// The gradient of the whole objective of eq. 4 (distance through equilibrium for two targets,
+// curvature, skin barrier, pressure barrier) against central finite differences of the objective
+// itself: relative error ≤ 1e-5 for control points, tangents and pressures.
+#include <cmath>
+#include <random>
+
+#include <gtest/gtest.h>
+
+#include "routing_fixture.hpp"
+
+namespace fibermold {
+namespace {
+
+constexpr double kL = 0.04, kA = 0.012;
+
+TEST(RoutingProblem, GradientMatchesFiniteDifferencesAtRandomDesigns)
+{
+  test::RoutingFixture fx(kL, kA, 0.004, 12, 0.1, 1e-11);
+  std::vector<Eigen::VectorXd> targets{
+      fx.actuated({{{0, 0.003, 0}, {0.02, 0.004, -0.003}, {kL, 0.003, 0}}}, {250e3}),
+      fx.actuated({{{0, 0, -0.003}, {0.013, 0.003, 0}, {0.026, 0, 0.003}, {kL, -0.003, 0}}}, {300e3})};
+  std::mt19937 rng(7);
+  std::uniform_real_distribution<double> jitter(-0.001, 0.001);
+  const auto wiggle = [&](Eigen::Vector3d p) { return Eigen::Vector3d(p.x(), p.y() + jitter(rng), p.z() + jitter(rng)); };
+  Routing start;
+  // Fiber a passes 2 mm from the skin (y = 4 mm of 6): the skin barrier (d̂ = 2.5 mm) is active.
+  start.routes = {test::RoutingFixture::route("a", {{0, 0.001, 0}, wiggle({0.014, 0.004, 0.001}), wiggle({0.027, -0.002, 0.002}), {kL, 0.001, 0}}),
+                  test::RoutingFixture::route("b", {{0, -0.002, -0.001}, wiggle({0.02, -0.001, 0.002}), {kL, -0.002, 0.001}})};
+  for (Route& r : start.routes)
+    for (Eigen::Vector3d& t : r.tangents) t += Eigen::Vector3d(0, jitter(rng), jitter(rng));
+  start.pressures.resize(2, 2);
+  start.pressures << 180e3, 418e3,  // 418 kPa: within 2 % of the 425 kPa bound, the barrier acts
+      90e3, 240e3;
+  RoutingSettings settings;
+  settings.weight_curvature = 1e-3;
+  RoutingProblem problem(*fx.sim, fx.model, *fx.skin, targets, fx.curves, start, settings);
+
+  const Eigen::VectorXd z = problem.variables(start);
+  Eigen::VectorXd analytic;
+  RoutingTerms terms;
+  const double f0 = problem.evaluate(z, &analytic, &terms);
+  ASSERT_TRUE(std::isfinite(f0));
+  EXPECT_GT(terms.per_target[0], 0);
+  EXPECT_GT(terms.per_target[1], 0);
+  EXPECT_GT(terms.curvature, 0);
+  EXPECT_GT(terms.skin, 0) << "the skin barrier should be active";
+  EXPECT_GT(terms.pressure, 0) << "the pressure barrier should be active";
+
+  const double h = 1e-3;  // 1 µm, 10 Pa
+  Eigen::VectorXd fd(z.size());
+  for (Eigen::Index i = 0; i < z.size(); ++i) {
+    Eigen::VectorXd zp = z, zm = z;
+    zp[i] += h;
+    zm[i] -= h;
+    fd[i] = (problem.evaluate(zp) - problem.evaluate(zm)) / (2 * h);
+  }
+  const Eigen::Index np = 4;  // the last four variables are the pressures
+  const Eigen::Index nr = z.size() - np;
+  const double routing_error = (fd.head(nr) - analytic.head(nr)).norm() / analytic.head(nr).norm();
+  const double pressure_error = (fd.tail(np) - analytic.tail(np)).norm() / analytic.tail(np).norm();
+  std::printf("routing problem gradient: relative error %.2e (routing, %ld values), %.2e (pressures)\n", routing_error,
+              static_cast<long>(nr), pressure_error);
+  EXPECT_LE(routing_error, 1e-5);
+  EXPECT_LE(pressure_error, 1e-5);
+}
+
+} // namespace
+} // namespace fibermold
