@@ -1,6 +1,7 @@
 #include "pipeline/stages.hpp"
 
 #include "pipeline/mesh_stage.hpp"
+#include "pipeline/optimize_stage.hpp"
 #include "pipeline/targets_stage.hpp"
 
 namespace fibermold {
@@ -12,6 +13,7 @@ std::vector<std::unique_ptr<Stage>> shipped_stages()
   std::vector<std::unique_ptr<Stage>> stages;
   stages.push_back(std::make_unique<MeshStage>());
   stages.push_back(std::make_unique<TargetsStage>());
+  stages.push_back(std::make_unique<OptimizeStage>());
   return stages;
 }
 

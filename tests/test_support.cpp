@@ -43,13 +43,13 @@ std::string read_text(const fs::path& path)
   return s.str();
 }
 
-CommandResult run_fibermold(const std::string& arguments, const fs::path& cwd)
+CommandResult run_fibermold(const std::string& arguments, const fs::path& cwd, const std::string& launcher)
 {
   TempDir capture;
   const fs::path out = capture / "stdout", err = capture / "stderr";
   std::string command;
   if (!cwd.empty()) command += "cd '" + cwd.string() + "' && ";
-  command += "'" FIBERMOLD_BINARY "' " + arguments + " </dev/null >'" + out.string() + "' 2>'" + err.string() + "'";
+  command += launcher + " '" FIBERMOLD_BINARY "' " + arguments + " </dev/null >'" + out.string() + "' 2>'" + err.string() + "'";
   const int status = std::system(command.c_str());
   CommandResult result;
   result.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);

@@ -30,7 +30,9 @@ struct CommandResult {
   std::string err;  ///< stderr
 };
 
-/// Runs the fibermold binary under test with `arguments` (a shell-quoted string), in `cwd`.
-CommandResult run_fibermold(const std::string& arguments, const std::filesystem::path& cwd = {});
+/// Runs the fibermold binary under test with `arguments` (a shell-quoted string), in `cwd`, under
+/// `launcher` when given (e.g. "timeout -s INT 5").
+CommandResult run_fibermold(const std::string& arguments, const std::filesystem::path& cwd = {},
+                            const std::string& launcher = {});
 
 } // namespace fibermold::test

@@ -1,0 +1,237 @@
+#include "pipeline/optimize_stage.hpp"
+
+#include <chrono>
+#include <cmath>
+
+#include <fmt/format.h>
+#include <nlohmann/json.hpp>
+#include <spdlog/spdlog.h>
+
+#include "core/array_file.hpp"
+#include "core/atomic_file.hpp"
+#include "core/input_error.hpp"
+#include "core/units.hpp"
+#include "optimize/routing_optimizer.hpp"
+#include "pipeline/design_simulation.hpp"
+#include "pipeline/fibers_file.hpp"
+
+namespace fibermold {
+
+namespace fs = std::filesystem;
+
+namespace {
+
+using Clock = std::chrono::steady_clock;
+double since(Clock::time_point t) { return std::chrono::duration<double>(Clock::now() - t).count(); }
+
+[[noreturn]] void bad(const Design& d, const std::string& key, const std::string& message)
+{
+  throw InputError(Diagnostic{d.file, 0, 0, key, message});
+}
+
+std::vector<std::string> target_names(const Design& d)
+{
+  std::vector<std::string> names;
+  for (const Target& t : d.targets) names.push_back(t.name);
+  return names;
+}
+
+/// The [[fiber]] routes; pressures half the maximum (only target k's own fiber k for sequential).
+Routing starting_routing(const Design& d)
+{
+  Routing r;
+  for (const Fiber& f : d.fibers) {
+    const HermiteSpline s(f.points, f.tangents);
+    r.routes.push_back({f.name, s.points(), s.tangents()});
+  }
+  const auto T = static_cast<Eigen::Index>(d.targets.size()), F = static_cast<Eigen::Index>(d.fibers.size());
+  r.pressures = Eigen::MatrixXd::Constant(T, F, d.muscle.max_pressure / 2);
+  if (d.optimize.strategy == "sequential")
+    for (Eigen::Index t = 0; t < T; ++t)
+      for (Eigen::Index f = 0; f < F; ++f)
+        if (t != f) r.pressures(t, f) = 0;
+  return r;
+}
+
+void check_inputs(const Design& d, const SurfaceDistance& skin, const std::vector<TrackingSamples>& curves)
+{
+  if (d.fibers.empty()) bad(d, "[[fiber]]", "nothing to optimize: give at least one fiber");
+  if (d.targets.empty()) bad(d, "[[target]]", "nothing to optimize for: give at least one target");
+  if (d.tracking_curves.empty())
+    bad(d, "[[tracking_curve]]", "the optimizer compares deformations along tracking curves: give at least one");
+  if (d.optimize.strategy == "sequential" && d.fibers.size() != d.targets.size())
+    bad(d, "[optimize].strategy",
+        fmt::format("sequential drives one fiber per target, in order: {} fiber(s) for {} target(s)", d.fibers.size(),
+                    d.targets.size()));
+  for (std::size_t c = 0; c < curves.size(); ++c)
+    for (const Eigen::Vector3d& q : curves[c].points)
+      if (const auto at = skin.closest(q); !at.inside && at.distance > 1e-6)
+        bad(d, fmt::format("[tracking_curve.{}]", d.tracking_curves[c].name),
+            fmt::format("the curve leaves the body at {}", format_mm(q)));
+  for (const Fiber& f : d.fibers) {
+    const HermiteSpline s(f.points, f.tangents);
+    const int count = std::max(1, static_cast<int>(std::ceil(s.length() * d.muscle.segments_per_length)));
+    for (const Eigen::Vector3d& c : split_into_segments(s, count).centres)
+      if (!skin.closest(c).inside) bad(d, fmt::format("[fiber.{}]", f.name), fmt::format("the fiber leaves the body at {}", format_mm(c)));
+  }
+}
+
+struct TargetErrors {
+  double rmse = 0, max = 0, surface_rmse = 0, surface_max = 0;  ///< m
+};
+
+TargetErrors target_errors(RoutingProblem& problem, const TetMesh& mesh, int t, const Eigen::VectorXd& x)
+{
+  TargetErrors e;
+  e.rmse = problem.distance(t).rmse(x);
+  e.max = problem.distance(t).max_error(x);
+  const Eigen::MatrixX3d reached = problem.simulation().deformed_nodes(x);
+  const Eigen::MatrixX3d wanted = problem.simulation().deformed_nodes(problem.target(t));
+  double sum = 0;
+  for (Eigen::Index v = 0; v < mesh.surface_to_node.size(); ++v) {
+    const double d = (reached.row(mesh.surface_to_node(v)) - wanted.row(mesh.surface_to_node(v))).norm();
+    sum += d * d;
+    e.surface_max = std::max(e.surface_max, d);
+  }
+  e.surface_rmse = std::sqrt(sum / static_cast<double>(std::max<Eigen::Index>(1, mesh.surface_to_node.size())));
+  return e;
+}
+
+nlohmann::ordered_json errors_json(const TargetErrors& e)
+{
+  return {{"rmse_mm", e.rmse / units::mm},
+          {"max_error_mm", e.max / units::mm},
+          {"surface_rmse_mm", e.surface_rmse / units::mm},
+          {"surface_max_error_mm", e.surface_max / units::mm}};
+}
+
+/// history.csv: one row per accepted BFGS step.
+class History {
+public:
+  explicit History(const std::vector<std::string>& targets)
+  {
+    text_ = "iteration,stage,objective,distance,curvature,skin_barrier,pressure_barrier";
+    for (const std::string& t : targets) text_ += ",distance_" + t;
+    text_ += ",gradient_norm,step,evaluations,seconds\n";
+  }
+  void add(int iteration, int stage, const BfgsIteration& it, const RoutingTerms& terms, double seconds)
+  {
+    text_ += fmt::format("{},{},{:.9g},{:.9g},{:.9g},{:.9g},{:.9g}", iteration, stage + 1, terms.total, terms.distance,
+                         terms.curvature, terms.skin, terms.pressure);
+    for (double v : terms.per_target) text_ += fmt::format(",{:.9g}", v);
+    text_ += fmt::format(",{:.6g},{:.6g},{},{:.3f}\n", it.gradient_norm, it.step, it.evaluations, seconds);
+  }
+  const std::string& text() const { return text_; }
+
+private:
+  std::string text_;
+};
+
+} // namespace
+
+void OptimizeStage::run(StageContext& ctx) const
+{
+  const Design& d = ctx.design;
+  const auto started = Clock::now();
+  const std::vector<std::string> names = target_names(d);
+  if (!d.optimize.enabled) {
+    write_file_atomic(ctx.output_dir / "fibers.json", fibers_json({starting_routing(d), names, false}));
+    write_file_atomic(ctx.output_dir / "report.json", nlohmann::ordered_json{{"optimized", false}}.dump(2) + "\n");
+    ctx.log.info("[optimize] enabled = false: the [[fiber]] routes pass through unchanged");
+    return;
+  }
+  const TetMesh mesh = load_tet_mesh(ctx.upstream("mesh", "body.tetmesh"));
+  const SurfaceDistance skin(mesh.nodes, mesh.boundary_faces);
+  std::vector<TrackingSamples> curves;
+  for (const TrackingCurve& c : d.tracking_curves)
+    curves.push_back(sample_tracking_curve(c.points, c.samples, c.weight_position, c.weight_orientation));
+  check_inputs(d, skin, curves);
+
+  Simulation sim(mesh, simulation_options(d, mesh));
+  std::vector<Eigen::VectorXd> targets;
+  for (const std::string& t : names) targets.push_back(load_array(ctx.upstream("targets", t + ".positions"), "positions"));
+  const MuscleModel model(d.muscle.model);
+  RoutingSettings settings;
+  settings.max_pressure = d.muscle.max_pressure;
+  settings.segments_per_length = d.muscle.segments_per_length;
+  settings.skin_distance = d.muscle.model.diameter / 2 + d.collide.clearance;
+  settings.weight_curvature = d.optimize.weight_curvature;
+  settings.weight_skin = d.optimize.weight_skin_barrier;
+  settings.weight_pressure = d.optimize.weight_pressure_barrier;
+  const Routing start = starting_routing(d);
+  RoutingProblem problem(sim, model, skin, targets, curves, start, settings);
+
+  std::vector<TargetErrors> before;
+  for (int t = 0; t < problem.num_targets(); ++t) before.push_back(target_errors(problem, mesh, t, problem.equilibrium(start, t)));
+  for (int t = 0; t < problem.num_targets(); ++t)
+    ctx.log.info("target {}: at the start, RMSE {:.3f} mm, max {:.3f} mm on the tracking curves", names[t],
+                 before[t].rmse / units::mm, before[t].max / units::mm);
+
+  BfgsOptions o;
+  o.max_iterations = d.optimize.max_iterations;
+  o.gradient_tolerance = d.optimize.gradient_tolerance;
+  o.relative_tolerance = d.optimize.relative_tolerance;
+  History history(names);
+  int iterations = 0;
+  const int stages = d.optimize.strategy == "sequential" ? static_cast<int>(d.fibers.size()) : 1;
+  const RoutingCallback on_iteration = [&](int stage, const BfgsIteration& it, const RoutingTerms& terms) {
+    ++iterations;
+    history.add(iterations, stage, it, terms, since(started));
+    const double rmse = std::sqrt(2 * terms.distance / std::max(1, problem.num_targets()));
+    const std::string what = fmt::format("{}iteration {}: objective {:.4g}, ≈ {:.3f} mm RMS, |∇| {:.2g}",
+                                         stages > 1 ? fmt::format("fiber {}/{}, ", stage + 1, stages) : "", it.iteration,
+                                         terms.total, rmse, it.gradient_norm);
+    ctx.progress.update((stage + static_cast<double>(it.iteration) / std::max(1, o.max_iterations)) / stages, what);
+    ctx.log.info("{}", what);
+  };
+  const RoutingResult result = optimize_routing(problem, d.optimize.strategy, o, on_iteration, ctx.progress);
+  const FibersFile fibers{result.routing, names, true};
+
+  if (result.interrupted) {
+    const fs::path kept = ctx.build_dir / "optimize.interrupted";
+    fs::create_directories(kept);
+    write_file_atomic(kept / "fibers.json", fibers_json(fibers));
+    write_file_atomic(kept / "history.csv", history.text());
+    ctx.log.warn("interrupted after {} iterations; the best design so far (objective {:.4g}) is in {}", iterations,
+                 result.value, kept.string());
+    throw Interrupted();
+  }
+  ctx.log.info("{} after {} iterations, {} evaluations", result.message, result.iterations, result.evaluations);
+
+  nlohmann::ordered_json per_target = nlohmann::ordered_json::object();
+  const LameParameters lame = LameParameters::from_young_poisson(d.material.youngs_modulus, d.material.poisson_ratio);
+  for (int t = 0; t < problem.num_targets(); ++t) {
+    ctx.progress.checkpoint(1, "writing target " + names[t]);
+    const Eigen::VectorXd x = problem.equilibrium(result.routing, t);
+    const TargetErrors after = target_errors(problem, mesh, t, x);
+    std::vector<const MuscleEnergy*> muscles;
+    const auto owned = problem.muscles(result.routing, t);
+    for (const auto& m : owned) muscles.push_back(m.get());
+    write_deformed(ctx.output_dir / fmt::format("deformed-{}.vtu", names[t]), sim, x, muscles, lame);
+    nlohmann::ordered_json pressures = nlohmann::ordered_json::object();
+    for (int f = 0; f < problem.num_fibers(); ++f) pressures[d.fibers[f].name] = result.routing.pressures(t, f) / units::kPa;
+    nlohmann::ordered_json entry = errors_json(after);
+    entry["pressure_kPa"] = pressures;
+    entry["start"] = errors_json(before[t]);
+    per_target[names[t]] = entry;
+    ctx.log.info("target {}: RMSE {:.3f} mm (from {:.3f}), max {:.3f} mm (from {:.3f}) on the tracking curves; surface RMSE {:.3f} mm, max {:.3f} mm",
+                 names[t], after.rmse / units::mm, before[t].rmse / units::mm, after.max / units::mm,
+                 before[t].max / units::mm, after.surface_rmse / units::mm, after.surface_max / units::mm);
+  }
+  const nlohmann::ordered_json report{
+      {"optimized", true},
+      {"strategy", d.optimize.strategy},
+      {"converged", result.converged},
+      {"message", result.message},
+      {"iterations", result.iterations},
+      {"evaluations", result.evaluations},
+      {"objective", result.value},
+      {"newton_iterations", problem.newton_iterations()},
+      {"seconds", {{"total", since(started)}, {"simulation", problem.seconds_simulation()}, {"adjoint", problem.seconds_adjoint()}}},
+      {"targets", per_target}};
+  write_file_atomic(ctx.output_dir / "fibers.json", fibers_json(fibers));
+  write_file_atomic(ctx.output_dir / "history.csv", history.text());
+  write_file_atomic(ctx.output_dir / "report.json", report.dump(2) + "\n");
+}
+
+} // namespace fibermold

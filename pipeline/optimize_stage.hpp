@@ -1,0 +1,25 @@
+#pragma once
+// The optimize stage (paper sections IV-C and V): co-optimizes the fibers' routes and each
+// target's pressures so that the actuated body matches every target along the tracking curves.
+// Outputs: optimize/fibers.json, history.csv (one row per BFGS iteration), deformed-<target>.vtu,
+// report.json (per target RMSE and max error on the tracking curves and the surface, pressures,
+// timings). With [optimize] enabled = false it passes the [[fiber]] routes through unchanged.
+// Ctrl-C stops it and keeps the best design so far in <build>/optimize.interrupted/.
+
+#include "pipeline/stage.hpp"
+
+namespace fibermold {
+
+class OptimizeStage final : public Stage {
+public:
+  std::string name() const override { return "optimize"; }
+  std::vector<std::string> upstream() const override { return {"mesh", "targets"}; }
+  std::vector<std::string> design_keys() const override
+  {
+    return {"design.units", "material", "sim", "fixed", "muscle", "fiber", "tracking_curve", "target", "optimize",
+            "collide.clearance"};
+  }
+  void run(StageContext& ctx) const override;
+};
+
+} // namespace fibermold

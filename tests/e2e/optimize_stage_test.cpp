@@ -1,0 +1,134 @@
+// The optimize stage as a user runs it: a bar whose target is made by an S-shaped fiber, optimized
+// from a perturbed start; its outputs, its errors, Ctrl-C, and which edits rerun it.
+#include <cmath>
+
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
+
+#include "export/stl_writer.hpp"
+#include "primitives.hpp"
+#include "test_support.hpp"
+
+namespace fibermold {
+namespace {
+
+using ::testing::HasSubstr;
+namespace fs = std::filesystem;
+
+const char* kDesign = R"([design]
+name = "bar"
+surface = "bar.stl"
+[mesh]
+edge_length = 8
+[[fixed]]
+box = { min = [-1, -9, -9], max = [0.5, 9, 9] }
+[[fiber]]
+name = "m1"
+points = [[0, 0, 0], [20, 3, -3], [40, -3, 2], [60, 0, 0]]
+[[tracking_curve]]
+name = "centre"
+points = [[0, 0, 0], [60, 0, 0]]
+samples = 20
+[[target]]
+name = "s"
+kind = "fibers"
+fibers = [{ name = "m1", pressure = 300, points = [[0, 0, 0], [20, 0, 3], [40, 0, -3], [60, 0, 0]] }]
+[mold]
+wall = 4.0
+)";
+
+class OptimizeE2E : public ::testing::Test {
+protected:
+  void SetUp() override { write_stl(dir_ / "bar.stl", test::box({0, -0.008, -0.008}, {0.06, 0.008, 0.008}, Eigen::Vector3i(10, 3, 3))); }
+  void design(const std::string& extra) { test::write_text(dir_ / "design.toml", std::string(kDesign) + extra); }
+  test::CommandResult make(const std::string& launcher = {})
+  {
+    return test::run_fibermold("make design.toml optimize --build-dir build", dir_.path(), launcher);
+  }
+  nlohmann::json json(const std::string& file) { return nlohmann::json::parse(test::read_text(dir_ / "build" / "optimize" / file)); }
+  std::string status() { return test::run_fibermold("status design.toml --build-dir build", dir_.path()).out; }
+
+  test::TempDir dir_;
+};
+
+TEST_F(OptimizeE2E, RecoversTheTargetAndWritesItsOutputs)
+{
+  design("[optimize]\nmax_iterations = 60\n");
+  const auto r = make();
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const auto report = json("report.json");
+  const auto& s = report["targets"]["s"];
+  std::printf("optimize stage: RMSE %.3f → %.3f mm, max %.3f → %.3f mm, surface RMSE %.3f mm, %d iterations, %.1f s\n",
+              s["start"]["rmse_mm"].get<double>(), s["rmse_mm"].get<double>(), s["start"]["max_error_mm"].get<double>(),
+              s["max_error_mm"].get<double>(), s["surface_rmse_mm"].get<double>(), report["iterations"].get<int>(),
+              report["seconds"]["total"].get<double>());
+  EXPECT_GT(s["start"]["rmse_mm"].get<double>(), 1.0);
+  EXPECT_LT(s["rmse_mm"].get<double>(), s["start"]["rmse_mm"].get<double>() / 10);
+  EXPECT_LT(s["surface_rmse_mm"].get<double>(), 1.0);
+  const double p = s["pressure_kPa"]["m1"].get<double>();
+  EXPECT_GT(p, 0);
+  EXPECT_LT(p, 425);
+
+  const auto fibers = json("fibers.json");
+  ASSERT_EQ(fibers["fibers"].size(), 1u);
+  const auto& m1 = fibers["fibers"][0];
+  EXPECT_EQ(m1["name"], "m1");
+  EXPECT_EQ(m1["points_mm"][0], nlohmann::json({0.0, 0.0, 0.0}));  // end points stay fixed
+  EXPECT_EQ(m1["points_mm"][3], nlohmann::json({60.0, 0.0, 0.0}));
+  EXPECT_NEAR(m1["pressure_kPa"]["s"].get<double>(), p, 1e-9);
+  EXPECT_GT(m1["length_mm"].get<double>(), 60);
+
+  const std::string history = test::read_text(dir_ / "build" / "optimize" / "history.csv");
+  EXPECT_THAT(history, HasSubstr("iteration,stage,objective,distance,curvature,skin_barrier,pressure_barrier,distance_s,"));
+  EXPECT_EQ(std::count(history.begin(), history.end(), '\n'), report["iterations"].get<int>() + 1);
+  EXPECT_TRUE(fs::exists(dir_ / "build" / "optimize" / "deformed-s.vtu"));
+
+  // Edits: [mold] leaves optimize fresh; [optimize] reruns it alone; the fiber's start reruns it.
+  test::write_text(dir_ / "design.toml", std::string(kDesign).replace(std::string(kDesign).find("wall = 4.0"), 10, "wall = 5.0") +
+                                             "[optimize]\nmax_iterations = 60\n");
+  EXPECT_THAT(status(), HasSubstr("targets   fresh\noptimize  fresh"));
+  design("[optimize]\nmax_iterations = 61\n");
+  EXPECT_THAT(status(), HasSubstr("targets   fresh\noptimize  stale ([optimize].max_iterations changed (60 → 61))"));
+  test::write_text(dir_ / "design.toml", std::string(kDesign).replace(std::string(kDesign).find("[20, 3, -3]"), 11, "[20, 2, -3]") +
+                                             "[optimize]\nmax_iterations = 61\n");
+  EXPECT_THAT(status(), HasSubstr("optimize  stale"));
+}
+
+TEST_F(OptimizeE2E, DisabledPassesTheFibersThrough)
+{
+  design("[optimize]\nenabled = false\n");
+  ASSERT_EQ(make().exit_code, 0);
+  const auto fibers = json("fibers.json");
+  EXPECT_EQ(fibers["optimized"], false);
+  EXPECT_EQ(fibers["fibers"][0]["points_mm"][1], nlohmann::json({20.0, 3.0, -3.0}));
+}
+
+TEST_F(OptimizeE2E, BadInputsAreNamed)
+{
+  design("[optimize]\nstrategy = \"sequential\"\n[[fiber]]\nname = \"m2\"\npoints = [[0, 2, 2], [60, 2, 2]]\n");
+  auto r = make();
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_THAT(r.err, HasSubstr("[optimize].strategy: sequential drives one fiber per target, in order: 2 fiber(s) for 1 target(s)"));
+
+  design("[[tracking_curve]]\nname = \"out\"\npoints = [[0, 0, 0], [60, 0, 12]]\n");
+  r = make();
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_THAT(r.err, HasSubstr("[tracking_curve.out]: the curve leaves the body at"));
+}
+
+TEST_F(OptimizeE2E, InterruptKeepsTheBestDesignSoFar)
+{
+  design("[optimize]\nmax_iterations = 100000\nrelative_tolerance = 1e-15\ngradient_tolerance = 1e-15\n");
+  ASSERT_EQ(test::run_fibermold("make design.toml targets --build-dir build", dir_.path()).exit_code, 0);
+  const auto r = make("timeout --preserve-status -s INT 6");
+  EXPECT_EQ(r.exit_code, 130) << r.err;
+  EXPECT_THAT(r.err, HasSubstr("the best design so far"));
+  const auto kept = nlohmann::json::parse(test::read_text(dir_ / "build" / "optimize.interrupted" / "fibers.json"));
+  EXPECT_EQ(kept["fibers"][0]["name"], "m1");
+  EXPECT_FALSE(fs::exists(dir_ / "build" / "optimize" / "fibers.json")) << "no output that looks complete";
+  EXPECT_THAT(status(), HasSubstr("optimize  stale"));
+}
+
+} // namespace
+} // namespace fibermold
