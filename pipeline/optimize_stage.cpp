@@ -177,10 +177,9 @@ void OptimizeStage::run(StageContext& ctx) const
   const RoutingCallback on_iteration = [&](int stage, const BfgsIteration& it, const RoutingTerms& terms) {
     ++iterations;
     history.add(iterations, stage, it, terms, since(started));
-    const double rmse = std::sqrt(2 * terms.distance / std::max(1, problem.num_targets()));
-    const std::string what = fmt::format("{}iteration {}: objective {:.4g}, ≈ {:.3f} mm RMS, |∇| {:.2g}",
+    const std::string what = fmt::format("{}iteration {}: objective {:.4g} (distance {:.4g}), |∇| {:.2g}",
                                          stages > 1 ? fmt::format("fiber {}/{}, ", stage + 1, stages) : "", it.iteration,
-                                         terms.total, rmse, it.gradient_norm);
+                                         terms.total, terms.distance, it.gradient_norm);
     ctx.progress.update((stage + static_cast<double>(it.iteration) / std::max(1, o.max_iterations)) / stages, what);
     ctx.log.info("{}", what);
   };
