@@ -1,0 +1,27 @@
+#pragma once
+// Exact booleans and plane cuts of closed triangle meshes (CGAL corefinement, Polygon Mesh
+// Processing clip). Inputs must be closed, outward-oriented and free of self-intersections; every
+// function throws std::runtime_error naming the operation when CGAL cannot produce a valid solid.
+
+#include <string>
+#include <utility>
+
+#include <Eigen/Core>
+
+#include "mesh/surface_mesh.hpp"
+
+namespace fibermold {
+
+SurfaceMesh mesh_difference(const SurfaceMesh& a, const SurfaceMesh& b);
+SurfaceMesh mesh_union(const SurfaceMesh& a, const SurfaceMesh& b);
+SurfaceMesh mesh_intersection(const SurfaceMesh& a, const SurfaceMesh& b);
+
+/// The parts of a closed mesh below and above the plane through `point` with `normal` (below: on the
+/// side −normal), each closed by the cut.
+std::pair<SurfaceMesh, SurfaceMesh> split_by_plane(const SurfaceMesh& m, const Eigen::Vector3d& point,
+                                                   const Eigen::Vector3d& normal);
+
+/// Connected surface components: a solid with an internal void has two.
+int count_shells(const SurfaceMesh& m);
+
+} // namespace fibermold

@@ -1,0 +1,82 @@
+// The geometry engine on known shapes: primitive solids, exact booleans and cuts (CGAL), level-set
+// grooves (OpenVDB) against their analytic volumes.
+#include <chrono>
+#include <cmath>
+
+#include <gtest/gtest.h>
+
+#include "mesh/surface_check.hpp"
+#include "molds/level_set.hpp"
+#include "molds/mesh_boolean.hpp"
+#include "molds/solids.hpp"
+
+namespace fibermold {
+namespace {
+
+constexpr double mm = 1e-3;
+
+void expect_valid_solid(const SurfaceMesh& m, const char* what)
+{
+  const SurfaceCheck c = check_surface(m);
+  for (const auto& p : c.problems) ADD_FAILURE() << what << ": " << p.message;
+  EXPECT_GT(signed_volume(m), 0) << what;
+}
+
+TEST(Solids, VolumesOfPrimitives)
+{
+  const SurfaceMesh box = box_solid({0, 0, 0}, {0.1, 0.02, 0.03});
+  expect_valid_solid(box, "box");
+  EXPECT_NEAR(signed_volume(box), 0.1 * 0.02 * 0.03, 1e-15);
+  const int n = 64;
+  const double polygon = 0.5 * n * std::sin(2 * M_PI / n);  // area of the inscribed n-gon / r²
+  const SurfaceMesh cyl = cylinder_solid({0, 0, 0}, {0, 0, 0.01}, 0.002, n);
+  expect_valid_solid(cyl, "cylinder");
+  EXPECT_NEAR(signed_volume(cyl), polygon * 4e-6 * 0.01, 1e-15);
+  const SurfaceMesh cone = cone_solid({0, 0, 0}, {0.01, 0, 0}, 0.003, 0.001, n);
+  expect_valid_solid(cone, "cone");
+  EXPECT_NEAR(signed_volume(cone), polygon * 0.01 / 3 * (9e-6 + 3e-6 + 1e-6), 1e-15);
+  const SurfaceMesh half = hemisphere_solid({0, 0, 0}, {0, 1, 0}, 0.003, n);
+  expect_valid_solid(half, "hemisphere");
+  EXPECT_NEAR(signed_volume(half), 2.0 / 3 * M_PI * 27e-9, 0.01 * 2.0 / 3 * M_PI * 27e-9);
+}
+
+TEST(MeshBoolean, DifferenceAndSplitConserveVolume)
+{
+  const SurfaceMesh block = box_solid({-0.02, -0.02, -0.02}, {0.02, 0.02, 0.02});
+  const SurfaceMesh hole = cylinder_solid({0, 0, -0.01}, {0, 0, 0.01}, 0.005, 48);
+  const SurfaceMesh carved = mesh_difference(block, hole);
+  expect_valid_solid(carved, "carved");
+  EXPECT_NEAR(signed_volume(carved), signed_volume(block) - signed_volume(hole), 1e-12);
+  const auto [below, above] = split_by_plane(carved, {0, 0, 0.003}, {0, 0, 1});
+  expect_valid_solid(below, "below");
+  expect_valid_solid(above, "above");
+  EXPECT_NEAR(signed_volume(below) + signed_volume(above), signed_volume(carved), 1e-12);
+  EXPECT_LT(below.vertices.col(2).maxCoeff(), 0.003 + 1e-12);
+  EXPECT_GT(above.vertices.col(2).minCoeff(), 0.003 - 1e-12);
+  EXPECT_EQ(count_shells(carved), 2);  // the box and the closed hole inside it
+  EXPECT_EQ(count_shells(below), 1);
+  EXPECT_EQ(count_shells(mesh_union(box_solid({0, 0, 0}, {1, 1, 1}), box_solid({2, 0, 0}, {3, 1, 1}))), 2);
+}
+
+TEST(LevelSet, GrooveVolumeMatchesTheAnalyticValue)
+{
+  // A 100 × 20 × 20 mm box, a straight fiber along its axis, a groove of radius 1.8 mm swept to +z:
+  // inside the box, cross-section 2 r h + π r²/2 with h = 10 mm.
+  const double r = 1.8 * mm, h = 10 * mm, L = 100 * mm, voxel = 0.2 * mm;
+  LevelSet body = LevelSet::from_mesh(box_solid({0, -10 * mm, -10 * mm}, {L, 10 * mm, 10 * mm}), voxel);
+  EXPECT_NEAR(body.volume(), L * 400e-6, 0.002 * L * 400e-6);
+  LevelSet groove(voxel);
+  groove.add_swept_tube({{0, 0, 0}, {L / 2, 0, 0}, {L, 0, 0}}, r, {0, 0, h + 2 * r});
+  body.subtract(groove);
+  const double expected = L * 400e-6 - L * (2 * r * h + M_PI * r * r / 2);
+  std::printf("groove body: %.1f mm³ (analytic %.1f)\n", body.volume() / 1e-9, expected / 1e-9);
+  EXPECT_NEAR(body.volume(), expected, 0.01 * expected);
+  auto t0 = std::chrono::steady_clock::now();
+  const SurfaceMesh m = body.mesh(0.0);
+  std::printf("mesh %.2f s, %ld faces\n", std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count(), (long)m.num_faces());
+  expect_valid_solid(m, "groove body mesh");
+  EXPECT_NEAR(signed_volume(m), expected, 0.01 * expected);
+}
+
+} // namespace
+} // namespace fibermold
