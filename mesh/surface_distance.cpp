@@ -1,5 +1,7 @@
 #include "mesh/surface_distance.hpp"
 
+#include <cmath>
+#include <iterator>
 #include <vector>
 
 #include <CGAL/AABB_face_graph_triangle_primitive.h>
@@ -53,6 +55,18 @@ SurfaceDistance::Closest SurfaceDistance::closest(const Eigen::Vector3d& p) cons
   out.distance = (out.point - p).norm();
   out.inside = (*impl_->side)(q) == CGAL::ON_BOUNDED_SIDE;
   return out;
+}
+
+double SurfaceDistance::ray_distance(const Eigen::Vector3d& origin, const Eigen::Vector3d& direction, double skip) const
+{
+  const Eigen::Vector3d start = origin + skip * direction;
+  const Kernel::Ray_3 ray(Point(start.x(), start.y(), start.z()), Kernel::Vector_3(direction.x(), direction.y(), direction.z()));
+  std::vector<Tree::Intersection_and_primitive_id<Kernel::Ray_3>::Type> hits;
+  impl_->tree.all_intersections(ray, std::back_inserter(hits));
+  double best = HUGE_VAL;
+  for (const auto& h : hits)
+    if (const Point* p = boost::get<Point>(&h.first)) best = std::min(best, std::sqrt(CGAL::squared_distance(*p, ray.source())));
+  return best + skip;
 }
 
 } // namespace fibermold

@@ -1,7 +1,7 @@
 #pragma once
 // Distance from points to a closed surface, and which side they are on: an AABB tree over its
 // triangles (CGAL), built once. Used by the skin barrier of the optimizer (section V-B) and the
-// clearance checks of collide.
+// clearance checks of collide, and ray casts for the wall thickness of mold parts.
 
 #include <memory>
 
@@ -23,6 +23,9 @@ public:
     bool inside;            ///< strictly inside the enclosed volume
   };
   Closest closest(const Eigen::Vector3d& p) const;
+  /// Distance along the ray from `origin` in unit `direction` to the first surface point farther
+  /// than `skip`; +∞ when it hits nothing.
+  double ray_distance(const Eigen::Vector3d& origin, const Eigen::Vector3d& direction, double skip = 0) const;
 
 private:
   struct Impl;

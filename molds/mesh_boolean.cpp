@@ -7,6 +7,7 @@
 #include <CGAL/Polygon_mesh_processing/clip.h>
 #include <CGAL/Polygon_mesh_processing/connected_components.h>
 #include <CGAL/Polygon_mesh_processing/corefinement.h>
+#include <CGAL/Polygon_mesh_processing/repair.h>
 #include <CGAL/Polygon_mesh_processing/triangulate_faces.h>
 #include <CGAL/Surface_mesh.h>
 
@@ -33,6 +34,9 @@ Mesh to_cgal(const SurfaceMesh& s)
 SurfaceMesh from_cgal(Mesh m)
 {
   PMP::triangulate_faces(m);
+  // Cuts through existing vertices and edges (a channel's axis on the parting plane) leave
+  // zero-area slivers: collapse them.
+  PMP::remove_degenerate_faces(m);
   m.collect_garbage();
   SurfaceMesh s;
   s.vertices.resize(static_cast<Eigen::Index>(m.number_of_vertices()), 3);

@@ -1,0 +1,24 @@
+#pragma once
+// Shot 1 of the two-shot casting (paper section VII, Fig. 7): the body with an open groove for each
+// muscle, so that the muscle can be laid in from outside before the overmold (shot 2) closes it.
+// A groove is the muscle's tube (radius = muscle radius + clearance) swept from the fiber out
+// through the skin along the pull direction; it is carved from the body's level set.
+
+#include <vector>
+
+#include <Eigen/Core>
+
+#include "mesh/surface_mesh.hpp"
+
+namespace fibermold {
+
+struct GrooveBody {
+  SurfaceMesh mesh;    ///< closed, outward oriented
+  double volume = 0;   ///< m³, of the level set
+};
+
+/// `fibers`: each fiber's centre line as a dense polyline (m).
+GrooveBody groove_body(const SurfaceMesh& body, const std::vector<std::vector<Eigen::Vector3d>>& fibers, double radius,
+                       const Eigen::Vector3d& pull, double voxel, double adaptivity = 0);
+
+} // namespace fibermold

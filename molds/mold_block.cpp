@@ -1,0 +1,158 @@
+#include "molds/mold_block.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+#include <Eigen/Eigenvalues>
+#include <Eigen/Geometry>
+
+#include "mesh/surface_distance.hpp"
+
+#include "molds/mesh_boolean.hpp"
+#include "molds/solids.hpp"
+
+namespace fibermold {
+
+namespace {
+
+/// Rotation taking `pull` to +z.
+Eigen::Matrix3d to_local(const Eigen::Vector3d& pull)
+{
+  return Eigen::Quaterniond::FromTwoVectors(pull.normalized(), Eigen::Vector3d::UnitZ()).toRotationMatrix();
+}
+
+SurfaceMesh transformed(SurfaceMesh m, const Eigen::Matrix3d& R)
+{
+  m.vertices = (m.vertices * R.transpose()).eval();
+  return m;
+}
+
+/// Up to `count` points of the cavity's top (within `band` of its highest point) where a hole of
+/// `radius` lands wholly on the top: every point of a circle of radius + `margin` around it sees the
+/// top straight below. Wanted positions spread along the top region's longest horizontal
+/// direction; each takes the nearest supported point of a grid over the region.
+std::vector<Eigen::Vector3d> top_points(const SurfaceMesh& m, int count, double band, double radius, double margin)
+{
+  const double top = m.vertices.col(2).maxCoeff();
+  std::vector<Eigen::Vector2d> region;
+  for (Eigen::Index i = 0; i < m.num_vertices(); ++i)
+    if (m.vertices(i, 2) >= top - band) region.push_back(m.vertices.row(i).head<2>().transpose());
+  Eigen::Vector2d centre = Eigen::Vector2d::Zero();
+  for (const auto& p : region) centre += p / static_cast<double>(region.size());
+  Eigen::Matrix2d cov = Eigen::Matrix2d::Zero();
+  for (const auto& p : region) cov += (p - centre) * (p - centre).transpose();
+  const Eigen::SelfAdjointEigenSolver<Eigen::Matrix2d> eig(cov);
+  const Eigen::Vector2d axis = eig.eigenvectors().col(1), across = eig.eigenvectors().col(0);
+  double reach = 0, width = 0;
+  for (const auto& p : region) {
+    reach = std::max(reach, std::abs((p - centre).dot(axis)));
+    width = std::max(width, std::abs((p - centre).dot(across)));
+  }
+  const SurfaceDistance surface(m.vertices, m.faces);
+  const auto on_top = [&](const Eigen::Vector2d& xy) {
+    const double d = surface.ray_distance({xy.x(), xy.y(), top + 1e-3}, -Eigen::Vector3d::UnitZ());
+    return d <= 1e-3 + band;
+  };
+  const auto supported = [&](const Eigen::Vector2d& xy) {
+    if (!on_top(xy)) return false;
+    for (int k = 0; k < 12; ++k) {
+      const double a = 2 * M_PI * k / 12;
+      if (!on_top(xy + (radius + margin) * Eigen::Vector2d(std::cos(a), std::sin(a)))) return false;
+    }
+    return true;
+  };
+  const double step = std::max(radius, 0.25e-3);
+  std::vector<Eigen::Vector2d> grid;
+  for (double s = -reach; s <= reach; s += step)
+    for (double t = -width; t <= width; t += step) grid.push_back(centre + s * axis + t * across);
+  std::vector<Eigen::Vector3d> out;
+  for (int k = 0; k < count; ++k) {
+    const double t = count == 1 ? 0 : -0.5 + static_cast<double>(k) / (count - 1);  // over the middle half
+    const Eigen::Vector2d wanted = centre + t * reach * axis;
+    std::sort(grid.begin(), grid.end(), [&](const auto& a, const auto& b) { return (a - wanted).norm() < (b - wanted).norm(); });
+    for (const Eigen::Vector2d& xy : grid) {
+      const bool apart = std::all_of(out.begin(), out.end(), [&](const Eigen::Vector3d& q) { return (q.head<2>() - xy).norm() >= 2 * (radius + margin); });
+      if (apart && supported(xy)) {
+        out.emplace_back(xy.x(), xy.y(), top - surface.ray_distance({xy.x(), xy.y(), top + 1e-3}, -Eigen::Vector3d::UnitZ()) + 1e-3);
+        break;
+      }
+    }
+  }
+  return out;
+}
+
+SurfaceMesh flipped_z(SurfaceMesh m)
+{
+  m.vertices.col(2) *= -1;
+  m.faces.col(1).swap(m.faces.col(2));
+  return m;
+}
+
+/// Key centres in the parting plane: the block's corners, then its edge midpoints, inset by `inset`.
+std::vector<Eigen::Vector2d> key_sites(const Eigen::Vector3d& lo, const Eigen::Vector3d& hi, double inset, int count)
+{
+  const double x0 = lo.x() + inset, x1 = hi.x() - inset, y0 = lo.y() + inset, y1 = hi.y() - inset;
+  const double xm = (x0 + x1) / 2, ym = (y0 + y1) / 2;
+  const std::vector<Eigen::Vector2d> all{{x0, y0}, {x1, y1}, {x1, y0}, {x0, y1}, {xm, y0}, {xm, y1}, {x0, ym}, {x1, ym}};
+  return {all.begin(), all.begin() + std::clamp(count, 0, 8)};
+}
+
+SurfaceMesh key_solid(const Eigen::Vector3d& base, double radius, const std::string& shape, double sink)
+{
+  if (shape == "hemisphere") return hemisphere_solid(base - Eigen::Vector3d(0, 0, sink), Eigen::Vector3d::UnitZ(), radius + sink, 32);
+  return cone_solid(base - Eigen::Vector3d(0, 0, sink), base + Eigen::Vector3d(0, 0, radius), radius, radius / 2, 32);
+}
+
+} // namespace
+
+Mold make_mold(const SurfaceMesh& cavity_world, const Parting& parting, const std::vector<Channel>& channels,
+               const MoldBlockOptions& o, const std::string& shot)
+{
+  const Eigen::Matrix3d R = to_local(parting.normal);
+  const SurfaceMesh cavity = transformed(cavity_world, R);
+  const double h = (R * parting.point).z();
+  const Eigen::Vector3d lo = cavity.vertices.colwise().minCoeff(), hi = cavity.vertices.colwise().maxCoeff();
+  const double key_room = o.keys > 0 ? o.key_diameter + 2 * o.key_clearance + 2 * o.min_wall : 0;
+  const double side = std::max(o.wall, key_room);
+  const Eigen::Vector3d grow(side, side, o.wall);
+  const Eigen::Vector3d box_lo = lo - grow, box_hi = hi + grow;
+  SurfaceMesh block = mesh_difference(box_solid(box_lo, box_hi), cavity);
+
+  Mold mold;
+  // The sprue enters from below at the cavity's lowest point; vents leave at its highest ones. Each
+  // starts a little inside the cavity so that the booleans meet no tangent faces.
+  const double band = 0.5e-3;
+  const std::vector<Eigen::Vector3d> lowest = top_points(flipped_z(cavity), 1, band, o.sprue_diameter / 2, o.min_wall);
+  if (lowest.empty()) throw std::runtime_error(shot + ": no flat spot at the cavity's bottom for the sprue");
+  Eigen::Vector3d sprue = lowest.front();
+  sprue.z() *= -1;
+  const double dip = std::min(0.5e-3, o.sprue_diameter / 2);
+  block = mesh_difference(block, cylinder_solid(sprue + Eigen::Vector3d(0, 0, dip), {sprue.x(), sprue.y(), box_lo.z() - 1e-3},
+                                                o.sprue_diameter / 2, 24));
+  mold.sprue = R.transpose() * sprue;
+  if (o.vents > 0)
+    for (const Eigen::Vector3d& v : top_points(cavity, o.vents, band, o.vent_diameter / 2, o.min_wall)) {
+      block = mesh_difference(block, cylinder_solid(v - Eigen::Vector3d(0, 0, std::min(0.5e-3, o.vent_diameter / 2)),
+                                                    {v.x(), v.y(), box_hi.z() + 1e-3}, o.vent_diameter / 2, 16));
+      mold.vents.push_back(R.transpose() * v);
+    }
+  const double reach = (box_hi - box_lo).norm();
+  for (const Channel& c : channels) {
+    const Eigen::Vector3d a = R * c.start, d = (R * c.direction).normalized();
+    block = mesh_difference(block, cylinder_solid(a, a + reach * d, c.diameter / 2, 24));
+  }
+
+  auto [lower, upper] = split_by_plane(block, {0, 0, h}, Eigen::Vector3d::UnitZ());
+  const double radius = o.key_diameter / 2, sink = 0.5e-3;
+  for (const Eigen::Vector2d& s : key_sites(box_lo, box_hi, side / 2, o.keys)) {
+    const Eigen::Vector3d base(s.x(), s.y(), h);
+    lower = mesh_union(lower, key_solid(base, radius, o.key_shape, sink));
+    upper = mesh_difference(upper, key_solid(base, radius + o.key_clearance, o.key_shape, sink));  // clearance all round
+    mold.keys.push_back(R.transpose() * base);
+  }
+  mold.parts.push_back({shot + "-lower", transformed(std::move(lower), R.transpose())});
+  mold.parts.push_back({shot + "-upper", transformed(std::move(upper), R.transpose())});
+  return mold;
+}
+
+} // namespace fibermold

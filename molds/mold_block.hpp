@@ -1,0 +1,52 @@
+#pragma once
+// A two-part mold around a cavity (paper Fig. 7): the cavity's bounding box, grown by the wall
+// (and wide enough in the parting plane for the keys), minus the cavity; an injection sprue from
+// below to the cavity's lowest point, vents from its highest points up through the top, channels
+// for the fibers' ends and supply tubes, split by the parting plane into a lower and an upper part
+// with registration keys: pins on the lower part, matching sockets (grown by the fit clearance) in
+// the upper one. Built in a frame where the pull direction is +z, returned in the body's frame.
+
+#include <string>
+#include <vector>
+
+#include <Eigen/Core>
+
+#include "mesh/surface_mesh.hpp"
+#include "molds/parting.hpp"
+
+namespace fibermold {
+
+struct MoldBlockOptions {
+  double wall = 4e-3, min_wall = 1e-3;
+  int keys = 4;                       ///< 0 to 8: block corners first, then edge midpoints
+  std::string key_shape = "cone";     ///< cone | hemisphere
+  double key_diameter = 6e-3, key_clearance = 0.2e-3;
+  double sprue_diameter = 4e-3;
+  int vents = 2;
+  double vent_diameter = 1.5e-3;
+};
+
+/// A straight channel, e.g. where a fiber leaves the body: from `start` (inside the body) along
+/// `direction` out through the mold wall.
+struct Channel {
+  Eigen::Vector3d start, direction;
+  double diameter;
+};
+
+struct MoldPart {
+  std::string name;  ///< "<shot>-lower", "<shot>-upper"
+  SurfaceMesh mesh;
+};
+
+struct Mold {
+  std::vector<MoldPart> parts;
+  Eigen::Vector3d sprue;               ///< the cavity point the sprue reaches
+  std::vector<Eigen::Vector3d> vents;  ///< the cavity points the vents reach
+  std::vector<Eigen::Vector3d> keys;   ///< key centres on the parting plane
+};
+
+/// Throws std::runtime_error when a boolean fails.
+Mold make_mold(const SurfaceMesh& cavity, const Parting& parting, const std::vector<Channel>& channels,
+               const MoldBlockOptions& options, const std::string& shot);
+
+} // namespace fibermold

@@ -1,0 +1,95 @@
+#include "molds/part_checks.hpp"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+
+#include <Eigen/Geometry>
+#include <fmt/format.h>
+
+#include "mesh/surface_check.hpp"
+#include "mesh/surface_distance.hpp"
+#include "molds/mesh_boolean.hpp"
+
+namespace fibermold {
+
+namespace {
+
+std::string mm3(const Eigen::Vector3d& v)
+{
+  return fmt::format("{:.1f} × {:.1f} × {:.1f} mm", v.x() * 1e3, v.y() * 1e3, v.z() * 1e3);
+}
+
+/// Wall thickness at a face, as the shape diameter function does it: the median over a cone of
+/// rays into the material (the inward normal and 8 rays 30° off it) of the distance to the opposite
+/// surface projected on the normal. A single ray would see the facets of a voxelized surface as
+/// walls a few µm thick.
+double cone_thickness(const SurfaceDistance& surface, const Eigen::Vector3d& centre, const Eigen::Vector3d& inward)
+{
+  const Eigen::Vector3d u = inward.unitOrthogonal(), w = inward.cross(u);
+  const double tilt = M_PI / 6;
+  std::vector<double> d{surface.ray_distance(centre, inward, 1e-7)};
+  for (int k = 0; k < 8; ++k) {
+    const double a = 2 * M_PI * k / 8;
+    const Eigen::Vector3d dir = std::cos(tilt) * inward + std::sin(tilt) * (std::cos(a) * u + std::sin(a) * w);
+    d.push_back(surface.ray_distance(centre, dir, 1e-7) * std::cos(tilt));
+  }
+  std::nth_element(d.begin(), d.begin() + 4, d.end());
+  return d[4];
+}
+
+/// The thinnest wall: each face's inward ray, confirmed by the cone where it looks thin.
+double thinnest_wall(const SurfaceMesh& m, double min_wall, Eigen::Vector3d& where)
+{
+  const SurfaceDistance surface(m.vertices, m.faces);
+  double thinnest = HUGE_VAL;
+  for (Eigen::Index f = 0; f < m.num_faces(); ++f) {
+    const Eigen::Vector3d a = m.vertices.row(m.faces(f, 0)), b = m.vertices.row(m.faces(f, 1)), c = m.vertices.row(m.faces(f, 2));
+    const Eigen::Vector3d n = (b - a).cross(c - a);
+    if (!(n.norm() > 0)) continue;
+    const Eigen::Vector3d centre = (a + b + c) / 3, inward = -n.normalized();
+    double d = surface.ray_distance(centre, inward, 1e-7);
+    if (d < min_wall) d = cone_thickness(surface, centre, inward);
+    if (d < thinnest) {
+      thinnest = d;
+      where = centre;
+    }
+  }
+  return thinnest;
+}
+
+} // namespace
+
+PartCheck check_part(const SurfaceMesh& part, double min_wall, const Eigen::Vector3d& printer)
+{
+  PartCheck out;
+  const SurfaceCheck surface = check_surface(part);
+  for (const SurfaceProblem& p : surface.problems) out.problems.push_back(p.message);
+  out.volume = signed_volume(part);
+  out.size = part.vertices.colwise().maxCoeff() - part.vertices.colwise().minCoeff();
+  if (!surface.ok()) return out;  // the rest needs a valid solid
+  if (const int shells = count_shells(part); shells != 1)
+    out.problems.push_back(fmt::format("is {} separate pieces or has a closed void, not one solid", shells));
+  Eigen::Vector3d where = Eigen::Vector3d::Zero();
+  out.min_thickness = thinnest_wall(part, min_wall, where);
+  if (out.min_thickness < min_wall * (1 - 1e-6))
+    out.problems.push_back(fmt::format("has a wall of {:.2f} mm near ({:.1f}, {:.1f}, {:.1f}) mm, thinner than [export] min_wall = {:.2f} mm",
+                                       out.min_thickness * 1e3, where.x() * 1e3, where.y() * 1e3, where.z() * 1e3, min_wall * 1e3));
+  // The 6 axis-aligned orientations: which part axis goes along the printer's x, y, z; the lowest
+  // build height among those that fit.
+  std::array<int, 3> axes{0, 1, 2};
+  double best = HUGE_VAL;
+  do {
+    const Eigen::Vector3d s(out.size[axes[0]], out.size[axes[1]], out.size[axes[2]]);
+    if ((s.array() <= printer.array()).all() && s.z() < best) {
+      best = s.z();
+      out.orientation = {axes[0], axes[1], axes[2]};
+      out.fits = true;
+    }
+  } while (std::next_permutation(axes.begin(), axes.end()));
+  if (!out.fits)
+    out.problems.push_back(fmt::format("is {} and does not fit the printer's {} in any of the 6 orientations", mm3(out.size), mm3(printer)));
+  return out;
+}
+
+} // namespace fibermold

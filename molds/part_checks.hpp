@@ -1,0 +1,29 @@
+#pragma once
+// The checks every printed part must pass before it is exported: a closed, manifold, consistently
+// and outward oriented surface without self-intersections, in one piece, no wall thinner than the
+// printer's minimum (rays cast inward from each face, part_checks.cpp), and a fit in the printer's build volume
+// in one of the 6 axis-aligned orientations.
+
+#include <string>
+#include <vector>
+
+#include <Eigen/Core>
+
+#include "mesh/surface_mesh.hpp"
+
+namespace fibermold {
+
+struct PartCheck {
+  std::vector<std::string> problems;  ///< empty: the part passed
+  double volume = 0;                  ///< m³
+  Eigen::Vector3d size = Eigen::Vector3d::Zero();  ///< bounding box, m
+  double min_thickness = 0;           ///< m, the thinnest wall found (a cone median where a single ray saw < min_wall)
+  Eigen::Vector3i orientation{0, 1, 2};  ///< part axes along the printer's x, y, z that fit
+  bool fits = false;
+
+  bool ok() const { return problems.empty(); }
+};
+
+PartCheck check_part(const SurfaceMesh& part, double min_wall, const Eigen::Vector3d& printer_volume);
+
+} // namespace fibermold

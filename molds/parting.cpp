@@ -1,0 +1,80 @@
+#include "molds/parting.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <vector>
+
+#include <Eigen/Geometry>
+
+namespace fibermold {
+
+namespace {
+
+const double kFlat = std::sin(5 * M_PI / 180);  // |n·pull| below this: a wall parallel to pull
+
+struct Facing {
+  double height, area;  ///< centroid along pull; area projected on the parting plane, m²
+  bool up;              ///< n·pull > 0
+};
+
+std::vector<Facing> tilted_faces(const SurfaceMesh& m, const Eigen::Vector3d& pull)
+{
+  std::vector<Facing> out;
+  for (Eigen::Index f = 0; f < m.num_faces(); ++f) {
+    const Eigen::Vector3d a = m.vertices.row(m.faces(f, 0)), b = m.vertices.row(m.faces(f, 1)), c = m.vertices.row(m.faces(f, 2));
+    const Eigen::Vector3d n = (b - a).cross(c - a);
+    const double area = n.norm() / 2;
+    if (area <= 0) continue;
+    const double up = n.normalized().dot(pull);
+    if (std::abs(up) <= kFlat) continue;
+    out.push_back({(a + b + c).dot(pull) / 3, area * std::abs(up), up > 0});
+  }
+  return out;
+}
+
+} // namespace
+
+double undercut_area(const SurfaceMesh& cavity, const Eigen::Vector3d& point, const Eigen::Vector3d& pull_in)
+{
+  const Eigen::Vector3d pull = pull_in.normalized();
+  const double h = point.dot(pull);
+  double area = 0;
+  for (const Facing& f : tilted_faces(cavity, pull))
+    if (f.up ? f.height < h : f.height > h) area += f.area;
+  return area;
+}
+
+Parting choose_parting(const SurfaceMesh& cavity, const Eigen::Vector3d& pull_in)
+{
+  const Eigen::Vector3d pull = pull_in.normalized();
+  std::vector<Facing> faces = tilted_faces(cavity, pull);
+  std::sort(faces.begin(), faces.end(), [](const Facing& a, const Facing& b) { return a.height < b.height; });
+  // U(h) = Σ up-facing area below h + Σ down-facing area above h, piecewise constant between
+  // centroid heights; evaluate it on every interval.
+  const Eigen::VectorXd heights = cavity.vertices * pull;
+  const double lo = heights.minCoeff(), hi = heights.maxCoeff();
+  double down_above = 0;
+  for (const Facing& f : faces)
+    if (!f.up) down_above += f.area;
+  double up_below = 0, best = HUGE_VAL, best_lo = lo, best_hi = hi;
+  double start = lo;
+  for (std::size_t k = 0; k <= faces.size(); ++k) {
+    const double end = k < faces.size() ? faces[k].height : hi;
+    const double u = up_below + down_above;
+    if (end > start && u < best - 1e-18) {
+      best = u;
+      best_lo = start;
+      best_hi = end;
+    } else if (end > start && std::abs(u - best) <= 1e-18 && start <= best_hi + 1e-12) {
+      best_hi = end;  // the same optimum continues: widen the range
+    }
+    if (k == faces.size()) break;
+    (faces[k].up ? up_below : down_above) += faces[k].up ? faces[k].area : -faces[k].area;
+    start = end;
+  }
+  const double h = (std::max(best_lo, lo) + std::min(best_hi, hi)) / 2;
+  const Eigen::Vector3d centre = cavity.vertices.colwise().mean().transpose();
+  return {centre + (h - centre.dot(pull)) * pull, pull, best};
+}
+
+} // namespace fibermold

@@ -1,0 +1,93 @@
+// Molds on known geometry (issue: a 100 × 20 × 20 mm box body with one straight fiber): the groove
+// body's volume, both shots' parts, their checks, and the parts put back together.
+#include <cmath>
+
+#include <gtest/gtest.h>
+
+#include "molds/groove.hpp"
+#include "molds/mesh_boolean.hpp"
+#include "molds/mold_block.hpp"
+#include "molds/part_checks.hpp"
+#include "molds/solids.hpp"
+
+namespace fibermold {
+namespace {
+
+constexpr double mm = 1e-3;
+const Eigen::Vector3d kPrinter(0.25, 0.21, 0.21);
+
+struct BoxBody {
+  SurfaceMesh body = box_solid({0, -10 * mm, -10 * mm}, {100 * mm, 10 * mm, 10 * mm});
+  std::vector<Eigen::Vector3d> fiber{{0, 0, 0}, {50 * mm, 0, 0}, {100 * mm, 0, 0}};
+  double radius = 1.5 * mm + 0.3 * mm;  // muscle radius + groove clearance
+};
+
+void expect_parts_ok(const Mold& mold)
+{
+  for (const MoldPart& p : mold.parts) {
+    const PartCheck c = check_part(p.mesh, 1 * mm, kPrinter);
+    for (const auto& problem : c.problems) ADD_FAILURE() << p.name << " " << problem;
+    EXPECT_GE(c.min_thickness, 1 * mm) << p.name;
+    EXPECT_TRUE(c.fits) << p.name;
+  }
+}
+
+TEST(Molds, GrooveShotOfABoxWithAStraightFiber)
+{
+  const BoxBody b;
+  const GrooveBody g = groove_body(b.body, {b.fiber}, b.radius, {0, 0, 1}, 0.25 * mm);
+  const double expected = signed_volume(b.body) - 100 * mm * (2 * b.radius * 10 * mm + M_PI * b.radius * b.radius / 2);
+  std::printf("groove body %.1f mm³ (mesh %.1f), analytic %.1f; %ld faces\n", g.volume / 1e-9, signed_volume(g.mesh) / 1e-9,
+              expected / 1e-9, static_cast<long>(g.mesh.num_faces()));
+  EXPECT_NEAR(g.volume, expected, 0.01 * expected);
+  EXPECT_NEAR(signed_volume(g.mesh), expected, 0.01 * expected);
+
+  // The groove opens upward: the parting must lie below the groove's bottom (z = −1.8 mm).
+  const Parting parting = choose_parting(g.mesh, {0, 0, 1});
+  std::printf("shot 1 parting at z = %.2f mm, undercut %.3f mm²\n", parting.point.z() / mm, parting.undercut_area / 1e-6);
+  EXPECT_LT(parting.point.z(), -1.8 * mm);
+  EXPECT_LT(parting.undercut_area, 0.1e-6);  // voxel facets only
+  const Mold mold = make_mold(g.mesh, parting, {}, {}, "shot1");
+  ASSERT_EQ(mold.parts.size(), 2u);
+  expect_parts_ok(mold);
+  EXPECT_EQ(mold.keys.size(), 4u);
+  EXPECT_EQ(mold.vents.size(), 2u);
+}
+
+TEST(Molds, OvermoldShotPartsPutBackTogetherMakeTheBlockMinusTheCavity)
+{
+  const BoxBody b;
+  const Parting parting = choose_parting(b.body, {0, 0, 1});
+  EXPECT_NEAR(parting.point.z(), 0, 1e-9);  // a box: no undercut anywhere, the middle is chosen
+  MoldBlockOptions o;
+  o.keys = 0;  // pins and sockets would not cancel exactly (the fit clearance)
+  o.vents = 1;
+  const Channel end{{1 * mm, 0, 0}, {-1, 0, 0}, 4 * mm};
+  const Mold mold = make_mold(b.body, parting, {end}, o, "shot2");
+  expect_parts_ok(mold);
+  const SurfaceMesh together = mesh_union(mold.parts[0].mesh, mold.parts[1].mesh);
+  const Eigen::Vector3d lo = b.body.vertices.colwise().minCoeff(), hi = b.body.vertices.colwise().maxCoeff();
+  const Eigen::Vector3d grow(4 * mm, 4 * mm, 4 * mm);
+  const double block = (hi - lo + 2 * grow).prod();
+  const double holes = signed_volume(b.body);
+  const double together_volume = signed_volume(together);
+  std::printf("shot 2: lower %.1f + upper %.1f = %.1f mm³; block − cavity %.1f mm³ (sprue, vent and channel %.1f mm³)\n",
+              signed_volume(mold.parts[0].mesh) / 1e-9, signed_volume(mold.parts[1].mesh) / 1e-9, together_volume / 1e-9,
+              (block - holes) / 1e-9, (block - holes - together_volume) / 1e-9);
+  EXPECT_NEAR(signed_volume(mold.parts[0].mesh) + signed_volume(mold.parts[1].mesh), together_volume, 1e-12);
+  EXPECT_NEAR(together_volume, block - holes, 0.005 * (block - holes));
+}
+
+TEST(Molds, KeysFitTheirSocketsWithTheClearance)
+{
+  const BoxBody b;
+  const Parting parting = choose_parting(b.body, {0, 0, 1});
+  const Mold mold = make_mold(b.body, parting, {}, {}, "shot2");
+  expect_parts_ok(mold);
+  // Pins and sockets do not collide: the parts, closed, overlap by nothing.
+  const SurfaceMesh overlap = mesh_intersection(mold.parts[0].mesh, mold.parts[1].mesh);
+  EXPECT_LT(std::abs(signed_volume(overlap)), 1e-12);
+}
+
+} // namespace
+} // namespace fibermold
