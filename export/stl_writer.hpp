@@ -8,7 +8,8 @@
 
 namespace fibermold {
 
-/// Writes `surface` (metres) as binary STL in millimetres, atomically.
+/// Writes `surface` (metres) as binary STL in millimetres (float32), atomically. Facets whose
+/// corners coincide in float32 are left out.
 void write_stl(const std::filesystem::path& path, const SurfaceMesh& surface, const std::string& header = "fibermold");
 
 } // namespace fibermold

@@ -137,8 +137,15 @@ Mold make_mold(const SurfaceMesh& cavity_world, const Parting& parting, const st
       mold.vents.push_back(R.transpose() * v);
     }
   const double reach = (box_hi - box_lo).norm();
+  // Channels run parallel to the parting plane (one crossing it at an angle would leave a wedge of
+  // mold thinner than any wall); one that starts within its radius + min_wall of the plane is moved
+  // onto it, so that each half holds half the tube and lets go of it when pulled.
   for (const Channel& c : channels) {
-    const Eigen::Vector3d a = R * c.start, d = (R * c.direction).normalized();
+    Eigen::Vector3d a = R * c.start, d = R * c.direction;
+    d.z() = 0;
+    if (d.norm() < 1e-6) d = Eigen::Vector3d::UnitZ();  // leaving straight up: out through the top
+    d.normalize();
+    if (d.z() == 0 && std::abs(a.z() - h) < c.diameter / 2 + o.min_wall) a.z() = h;
     block = mesh_difference(block, cylinder_solid(a, a + reach * d, c.diameter / 2, 24));
   }
 

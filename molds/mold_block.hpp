@@ -27,7 +27,8 @@ struct MoldBlockOptions {
 };
 
 /// A straight channel, e.g. where a fiber leaves the body: from `start` (inside the body) along
-/// `direction` out through the mold wall.
+/// `direction` out through the mold wall; laid parallel to the parting plane, and onto it when it
+/// starts within its radius + min_wall of it.
 struct Channel {
   Eigen::Vector3d start, direction;
   double diameter;

@@ -1,6 +1,8 @@
 #include "pipeline/stages.hpp"
 
+#include "pipeline/export_stage.hpp"
 #include "pipeline/mesh_stage.hpp"
+#include "pipeline/molds_stage.hpp"
 #include "pipeline/optimize_stage.hpp"
 #include "pipeline/targets_stage.hpp"
 
@@ -14,6 +16,8 @@ std::vector<std::unique_ptr<Stage>> shipped_stages()
   stages.push_back(std::make_unique<MeshStage>());
   stages.push_back(std::make_unique<TargetsStage>());
   stages.push_back(std::make_unique<OptimizeStage>());
+  stages.push_back(std::make_unique<MoldsStage>());
+  stages.push_back(std::make_unique<ExportStage>());
   return stages;
 }
 

@@ -1,0 +1,203 @@
+#include "pipeline/molds_stage.hpp"
+
+#include <cmath>
+
+#include <fmt/format.h>
+#include <nlohmann/json.hpp>
+#include <spdlog/spdlog.h>
+
+#include "core/atomic_file.hpp"
+#include "core/input_error.hpp"
+#include "core/units.hpp"
+#include "export/stl_writer.hpp"
+#include "mesh/surface_distance.hpp"
+#include "mesh/tet_mesh.hpp"
+#include "molds/groove.hpp"
+#include "molds/mold_block.hpp"
+#include "molds/part_checks.hpp"
+#include "pipeline/design_simulation.hpp"
+#include "pipeline/fibers_file.hpp"
+
+namespace fibermold {
+
+namespace fs = std::filesystem;
+
+namespace {
+
+using Json = nlohmann::ordered_json;
+
+[[noreturn]] void bad(const Design& d, const std::string& key, const std::string& message)
+{
+  throw InputError(Diagnostic{d.file, 0, 0, key, message});
+}
+
+/// The body's skin: the tet mesh's boundary with only the vertices it uses.
+SurfaceMesh body_surface(const TetMesh& mesh)
+{
+  SurfaceMesh s;
+  Eigen::VectorXi index = Eigen::VectorXi::Constant(mesh.nodes.rows(), -1);
+  int used = 0;
+  for (Eigen::Index f = 0; f < mesh.boundary_faces.rows(); ++f)
+    for (int c = 0; c < 3; ++c)
+      if (index(mesh.boundary_faces(f, c)) < 0) index(mesh.boundary_faces(f, c)) = used++;
+  s.vertices.resize(used, 3);
+  for (Eigen::Index i = 0; i < mesh.nodes.rows(); ++i)
+    if (index(i) >= 0) s.vertices.row(index(i)) = mesh.nodes.row(i);
+  s.faces.resize(mesh.boundary_faces.rows(), 3);
+  for (Eigen::Index f = 0; f < mesh.boundary_faces.rows(); ++f)
+    for (int c = 0; c < 3; ++c) s.faces(f, c) = index(mesh.boundary_faces(f, c));
+  return s;
+}
+
+/// The spline sampled about every `step` along its length.
+std::vector<Eigen::Vector3d> polyline(const Route& r, double step)
+{
+  const HermiteSpline s(r.points, r.tangents);
+  const int n = std::max(2, static_cast<int>(std::ceil(s.length() / step)));
+  const std::vector<double> t = segment_parameters(s, n);
+  std::vector<Eigen::Vector3d> out;
+  for (double v : t) out.push_back(s.position(v));
+  return out;
+}
+
+/// A fiber must stay in the body, and away from the skin (other than above it, where its groove
+/// opens) by the groove's radius plus the printer's minimum wall: otherwise the silicone between
+/// groove and skin would be too thin to cast. The ends, where the fiber leaves the body by design,
+/// are exempt within two groove radii.
+void check_fiber(const Design& d, const Route& r, const std::vector<Eigen::Vector3d>& line, const SurfaceDistance& skin,
+                 double radius, const Eigen::Vector3d& pull)
+{
+  const std::string key = fmt::format("[fiber.{}]", r.name);
+  const double need = radius + d.export_.min_wall;
+  for (const Eigen::Vector3d& p : line) {
+    if ((p - line.front()).norm() < 2 * radius || (p - line.back()).norm() < 2 * radius) continue;
+    const auto at = skin.closest(p);
+    if (!at.inside)
+      bad(d, key, fmt::format("the fiber (as routed in fibers.json) leaves the body at {}", format_mm(p)));
+    const Eigen::Vector3d to_skin = at.point - p;
+    if (at.distance < need && to_skin.dot(pull) < 0.7 * at.distance)
+      bad(d, key, fmt::format("the fiber passes {:.2f} mm from the skin at {}: its groove (radius {:.2f} mm) needs {:.2f} mm "
+                              "to leave a [export] min_wall of silicone",
+                              at.distance / units::mm, format_mm(p), radius / units::mm, need / units::mm));
+  }
+}
+
+SurfaceMesh scaled_about_centroid(SurfaceMesh m, double factor)
+{
+  const Eigen::RowVector3d c = m.vertices.colwise().mean();
+  m.vertices = ((m.vertices.rowwise() - c) * factor).rowwise() + c;
+  return m;
+}
+
+Json vec_mm(const Eigen::Vector3d& v) { return {v.x() / units::mm, v.y() / units::mm, v.z() / units::mm}; }
+
+} // namespace
+
+void MoldsStage::run(StageContext& ctx) const
+{
+  const Design& d = ctx.design;
+  const MoldOptions& m = d.mold;
+  if (m.draft_deg > 0) bad(d, "[mold].draft_deg", "draft angles are not available yet; remove the key");
+  if (m.screw_holes > 0) bad(d, "[mold].screw_holes", "screw holes are not available yet; remove the key");
+
+  const TetMesh mesh = load_tet_mesh(ctx.upstream("mesh", "body.tetmesh"));
+  const SurfaceMesh body = body_surface(mesh);
+  const SurfaceDistance skin(body.vertices, body.faces);
+  const FibersFile fibers = read_fibers_json(ctx.upstream("optimize", "fibers.json"));
+  const double radius = d.muscle.model.diameter / 2 + m.groove_clearance;
+  const Eigen::Vector3d pull = m.pull.normalized();
+
+  std::vector<std::vector<Eigen::Vector3d>> lines;
+  std::vector<Channel> channels;
+  double muscle_volume = 0;
+  for (const Route& r : fibers.routing.routes) {
+    lines.push_back(polyline(r, std::min(0.5e-3, m.voxel * 2)));
+    check_fiber(d, r, lines.back(), skin, radius, pull);
+    muscle_volume += HermiteSpline(r.points, r.tangents).length() * M_PI * std::pow(d.muscle.model.diameter / 2, 2);
+    // An end on the skin gets a channel out through the mold along the fiber's direction there.
+    const Eigen::Vector3d out_first = -r.tangents.front().normalized(), out_last = r.tangents.back().normalized();
+    if (skin.closest(r.points.front()).distance < radius)
+      channels.push_back({r.points.front() - 1e-3 * out_first, out_first, m.end_channel_diameter});
+    if (skin.closest(r.points.back()).distance < radius)
+      channels.push_back({r.points.back() - 1e-3 * out_last, out_last, m.end_channel_diameter});
+  }
+
+  ctx.progress.checkpoint(0.1, "carving the grooves (level set)");
+  const GrooveBody groove = groove_body(body, lines, radius, pull, m.voxel);
+  const double groove_mesh_error = std::abs(signed_volume(groove.mesh) - groove.volume) / groove.volume;
+  ctx.log.info("groove body: {} triangles, {:.2f} mL (meshed {:.2f} mL), voxel {:.2f} mm", groove.mesh.num_faces(),
+               groove.volume / 1e-6, signed_volume(groove.mesh) / 1e-6, m.voxel / units::mm);
+
+  MoldBlockOptions o;
+  o.wall = m.wall;
+  o.min_wall = d.export_.min_wall;
+  o.keys = m.keys;
+  o.key_shape = m.key_shape;
+  o.key_diameter = m.key_diameter;
+  o.key_clearance = m.key_clearance;
+  o.sprue_diameter = m.sprue_diameter;
+  o.vents = m.vents;
+  o.vent_diameter = m.vent_diameter;
+  const double grow = m.shrink > 0 ? 1 / (1 - m.shrink) : 1.0;
+
+  Json shots = Json::object(), parts = Json::object();
+  std::vector<std::string> failures;
+  std::vector<MoldPart> all;
+  const struct {
+    const char* name;
+    const SurfaceMesh* cavity;
+    double silicone;
+    std::vector<Channel> channels;
+  } shot_list[] = {{"shot1", &groove.mesh, groove.volume, {}},
+                   {"shot2", &body, std::max(0.0, signed_volume(body) - groove.volume - muscle_volume), channels}};
+  for (const auto& shot : shot_list) {
+    ctx.progress.checkpoint(shot.name == std::string("shot1") ? 0.3 : 0.6, fmt::format("{}: mold block", shot.name));
+    const SurfaceMesh cavity = grow != 1 ? scaled_about_centroid(*shot.cavity, grow) : *shot.cavity;
+    Parting parting = m.parting ? Parting{m.parting->point, m.parting->normal.normalized(), 0} : choose_parting(cavity, pull);
+    if (m.parting) parting.undercut_area = undercut_area(cavity, parting.point, parting.normal);
+    if (parting.undercut_area > 0.1e-6)
+      ctx.log.warn("{}: {:.1f} mm² of the cavity is an undercut for the parting plane: demolding relies on the silicone bending",
+                   shot.name, parting.undercut_area / 1e-6);
+    const Mold mold = make_mold(cavity, parting, shot.channels, o, shot.name);
+    shots[shot.name] = {{"cavity_volume_mL", signed_volume(cavity) / 1e-6},
+                        {"silicone_volume_mL", shot.silicone * grow * grow * grow / 1e-6},
+                        {"silicone_mass_g", shot.silicone * grow * grow * grow * d.material.density * 1e3},
+                        {"parting_point_mm", vec_mm(parting.point)},
+                        {"parting_normal", {parting.normal.x(), parting.normal.y(), parting.normal.z()}},
+                        {"undercut_area_mm2", parting.undercut_area / 1e-6},
+                        {"sprue_mm", vec_mm(mold.sprue)},
+                        {"vents", mold.vents.size()},
+                        {"keys", mold.keys.size()}};
+    for (const MoldPart& p : mold.parts) {
+      ctx.progress.checkpoint(-1, "checking " + p.name);
+      const PartCheck c = check_part(p.mesh, d.export_.min_wall, d.export_.printer_volume);
+      for (const std::string& problem : c.problems) failures.push_back(fmt::format("part {} {}", p.name, problem));
+      parts[p.name] = {{"shot", shot.name},
+                       {"file", p.name + ".stl"},
+                       {"triangles", p.mesh.num_faces()},
+                       {"volume_mL", c.volume / 1e-6},
+                       {"size_mm", vec_mm(c.size)},
+                       {"min_wall_mm", c.min_thickness / units::mm},
+                       {"fits_printer", c.fits},
+                       {"print_axes", {c.orientation.x(), c.orientation.y(), c.orientation.z()}},
+                       {"checks_passed", c.ok()}};
+      all.push_back(p);
+    }
+  }
+  if (!failures.empty()) {
+    std::string list;
+    for (const auto& f : failures) list += "\n  " + f;
+    throw std::runtime_error(fmt::format("{} mold part check(s) failed; no part written:{}", failures.size(), list));
+  }
+  for (const MoldPart& p : all) write_stl(ctx.output_dir / (p.name + ".stl"), p.mesh, "fibermold " + p.name + " (mm)");
+  write_stl(ctx.output_dir / "groove-body.stl", groove.mesh, "fibermold groove body, shot 1 (mm)");
+  const Json report{{"voxel_mm", m.voxel / units::mm},
+                    {"groove_radius_mm", radius / units::mm},
+                    {"groove_mesh_volume_error", groove_mesh_error},
+                    {"shrink", m.shrink},
+                    {"shots", shots},
+                    {"parts", parts}};
+  write_file_atomic(ctx.output_dir / "report.json", report.dump(2) + "\n");
+}
+
+} // namespace fibermold

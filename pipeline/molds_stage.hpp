@@ -1,0 +1,26 @@
+#pragma once
+// The molds stage (paper section VII, Fig. 7): the two shots of the casting.
+//   shot 1: the body with an open groove per muscle (level set), in a two-part mold;
+//   shot 2: the full body, the overmold that closes the grooves over the laid-in muscles, with
+//           channels where the fibers leave the body for their ends and supply tubes.
+// Fiber routes come from optimize/fibers.json (the [[fiber]] routes when [optimize] enabled =
+// false). Every part is checked (part_checks.hpp); any failed check fails the stage and nothing is
+// written. Outputs: molds/<shot>-lower.stl, <shot>-upper.stl (mm, in the body's frame),
+// groove-body.stl, report.json.
+
+#include "pipeline/stage.hpp"
+
+namespace fibermold {
+
+class MoldsStage final : public Stage {
+public:
+  std::string name() const override { return "molds"; }
+  std::vector<std::string> upstream() const override { return {"mesh", "optimize"}; }
+  std::vector<std::string> design_keys() const override
+  {
+    return {"design.units", "material.density", "muscle.diameter", "mold", "export.min_wall", "export.printer_volume"};
+  }
+  void run(StageContext& ctx) const override;
+};
+
+} // namespace fibermold

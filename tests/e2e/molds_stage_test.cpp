@@ -1,0 +1,124 @@
+// The molds and export stages as a user runs them: a 60 × 16 × 16 mm bar with one straight hand-
+// routed fiber ([optimize] enabled = false) becomes four printable parts; admesh, an independent
+// checker, finds nothing to fix in any of them; bad inputs stop with an error and no STL.
+#include <cstdio>
+#include <regex>
+
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
+
+#include "export/stl_writer.hpp"
+#include "primitives.hpp"
+#include "test_support.hpp"
+
+namespace fibermold {
+namespace {
+
+using ::testing::HasSubstr;
+namespace fs = std::filesystem;
+
+const char* kDesign = R"([design]
+name = "bar"
+surface = "bar.stl"
+[mesh]
+edge_length = 8
+[[fixed]]
+box = { min = [-1, -9, -9], max = [0.5, 9, 9] }
+[optimize]
+enabled = false
+[mold]
+voxel = 0.3
+)";
+
+class MoldsE2E : public ::testing::Test {
+protected:
+  void SetUp() override { write_stl(dir_ / "bar.stl", test::box({0, -0.008, -0.008}, {0.06, 0.008, 0.008}, Eigen::Vector3i(10, 3, 3))); }
+  void design(const std::string& extra, const std::string& fiber = "[[fiber]]\nname = \"m1\"\npoints = [[0, 0, 0], [60, 0, 0]]\n")
+  {
+    test::write_text(dir_ / "design.toml", std::string(kDesign) + fiber + extra);
+  }
+  test::CommandResult make() { return test::run_fibermold("make design.toml --build-dir build", dir_.path()); }
+  fs::path out(const std::string& f) { return dir_ / "build" / "export" / f; }
+
+  test::TempDir dir_;
+};
+
+/// admesh's verdict on an STL: the counts it prints.
+std::map<std::string, int> admesh(const fs::path& stl)
+{
+  std::map<std::string, int> counts;
+  FILE* pipe = popen(("admesh '" + stl.string() + "' 2>&1").c_str(), "r");
+  if (!pipe) return counts;
+  char line[512];
+  const std::regex entry(R"(^\s*([A-Za-z ]+?)\s*:\s*(-?\d+)(\s|$))");  // "Number of parts : 1   Volume : ..."
+  while (fgets(line, sizeof line, pipe)) {
+    std::cmatch m;
+    if (std::regex_search(line, m, entry)) counts[m[1]] = std::stoi(m[2]);
+  }
+  pclose(pipe);
+  return counts;
+}
+
+TEST_F(MoldsE2E, HandRoutedBarBecomesFourCheckedParts)
+{
+  design("");
+  const auto r = make();
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const auto manifest = nlohmann::json::parse(test::read_text(out("manifest.json")));
+  ASSERT_EQ(manifest["parts"].size(), 4u);
+  for (const auto& p : manifest["parts"]) {
+    EXPECT_TRUE(p["checks_passed"].get<bool>()) << p["name"];
+    EXPECT_TRUE(p["fits_printer_as_placed"].get<bool>()) << p["name"];
+    EXPECT_GE(p["min_wall_mm"].get<double>(), 1.0) << p["name"];
+    ASSERT_TRUE(fs::exists(out(p["file"].get<std::string>())));
+  }
+  const double shot1 = manifest["shots"]["shot1"]["silicone_volume_mL"], shot2 = manifest["shots"]["shot2"]["silicone_volume_mL"];
+  std::printf("bar molds: shot 1 %.2f mL, shot 2 %.2f mL of silicone\n", shot1, shot2);
+  EXPECT_NEAR(shot1 + shot2, 60 * 16 * 16 * 1e-3 - 60 * M_PI * 1.5 * 1.5 * 1e-3, 0.3);  // body minus the muscle
+  EXPECT_THAT(test::read_text(out("README.txt")), HasSubstr("Shot 2, the overmold"));
+
+  if (std::system("command -v admesh >/dev/null 2>&1") != 0) GTEST_SKIP() << "admesh is not installed (scripts/setup installs it)";
+  for (const auto& p : manifest["parts"]) {
+    const auto a = admesh(out(p["file"].get<std::string>()));
+    const std::string name = p["name"];
+    EXPECT_EQ(a.at("Degenerate facets"), 0) << name;
+    EXPECT_EQ(a.at("Edges fixed"), 0) << name;
+    EXPECT_EQ(a.at("Facets removed"), 0) << name;
+    EXPECT_EQ(a.at("Backwards edges"), 0) << name;
+    EXPECT_EQ(a.at("Number of parts"), 1) << name;
+  }
+}
+
+TEST_F(MoldsE2E, MoldEditsRerunMoldsAndExportOnly)
+{
+  design("");
+  ASSERT_EQ(make().exit_code, 0);
+  test::write_text(dir_ / "design.toml", std::string(kDesign) + "wall = 5.0\n[[fiber]]\nname = \"m1\"\npoints = [[0, 0, 0], [60, 0, 0]]\n");
+  const auto status = test::run_fibermold("status design.toml --build-dir build", dir_.path()).out;
+  EXPECT_THAT(status, HasSubstr("optimize  fresh\nmolds     stale ([mold].wall changed (4 → 5))\nexport    stale"));
+}
+
+TEST_F(MoldsE2E, BadInputsStopWithoutWritingParts)
+{
+  design("[export]\nprinter_volume = [50, 50, 50]\n");
+  auto r = make();
+  EXPECT_EQ(r.exit_code, 1);
+  EXPECT_THAT(r.err, HasSubstr("does not fit the printer's 50.0 × 50.0 × 50.0 mm in any of the 6 orientations"));
+  EXPECT_FALSE(fs::exists(dir_ / "build" / "molds" / "shot1-lower.stl"));
+  EXPECT_FALSE(fs::exists(out("manifest.json")));
+
+  design("", "[[fiber]]\nname = \"m1\"\npoints = [[0, 0, 0], [30, 0, -6.5], [60, 0, 0]]\n");
+  r = make();
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_THAT(r.err, HasSubstr("[fiber.m1]: the fiber passes"));
+  EXPECT_THAT(r.err, HasSubstr("from the skin"));
+
+  design("", "[[fiber]]\nname = \"m1\"\npoints = [[0, 0, 0], [30, 0, -12], [60, 0, 0]]\n");
+  r = make();
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_THAT(r.err, HasSubstr("[fiber.m1]"));
+}
+
+} // namespace
+} // namespace fibermold
