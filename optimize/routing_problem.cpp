@@ -41,7 +41,7 @@ RoutingProblem::RoutingProblem(Simulation& sim, const MuscleModel& model, const 
     const HermiteSpline s(r.points, r.tangents);
     const int count = segment_count(s, settings_.segments_per_length);
     segment_t_.push_back(segment_parameters(s, count));
-    skin_barriers_.emplace_back(skin_, settings_.skin_distance, s, kSkinSamplesPerSegment * count);
+    skin_barriers_.emplace_back(skin_, settings_.skin_distance, settings_.skin_band, s, kSkinSamplesPerSegment * count);
     start_length_.push_back(s.length());
   }
   if (!fibers_inside(base_))
@@ -76,6 +76,15 @@ void RoutingProblem::set_free(std::vector<bool> routes, Eigen::Matrix<bool, Eige
         pressure_entry_(t, f) = static_cast<int>(entries_.size());
         entries_.push_back({Entry::Pressure, f, t, 0});
       }
+}
+
+int RoutingProblem::skin_violation(const Routing& r, double& distance, Eigen::Vector3d& where) const
+{
+  for (int f = 0; f < num_fibers(); ++f) {
+    distance = skin_barriers_[f].closest_approach(HermiteSpline(r.routes[f].points, r.routes[f].tangents), where);
+    if (distance <= settings_.skin_distance) return f;
+  }
+  return -1;
 }
 
 double RoutingProblem::scale(const Entry& e) const { return e.kind == Entry::Pressure ? kPressureUnit : units::mm; }

@@ -36,7 +36,8 @@ struct Routing {
 struct RoutingSettings {
   double max_pressure = 425e3;        ///< Pa
   double segments_per_length = 500;   ///< muscle segments per m
-  double skin_distance = 2.5e-3;      ///< d̂ of the skin barrier, m
+  double skin_distance = 2.5e-3;      ///< d_min of the skin barrier: muscle radius + clearance, m
+  double skin_band = 1.5e-3;          ///< w: the barrier acts from d_min to d_min + w, m
   double weight_curvature = 1e-4;
   double weight_skin = 1;
   double weight_pressure = 1;
@@ -53,7 +54,7 @@ class RoutingProblem {
 public:
   /// `sim`: the body, held and under gravity, without muscles; `targets[t]`: x̂^t.
   /// Throws std::invalid_argument when the starting routing is unusable (a fiber leaving the body,
-  /// a pressure outside (0, max_pressure)).
+  /// a pressure outside (0, max_pressure)); skin_violation() tells which fiber comes too close.
   RoutingProblem(Simulation& sim, const MuscleModel& model, const SurfaceDistance& skin,
                  std::vector<Eigen::VectorXd> targets, const std::vector<TrackingSamples>& curves, Routing start,
                  RoutingSettings settings);
@@ -65,6 +66,10 @@ public:
   /// The routing that unfree variables take their values from.
   void set_base(const Routing& routing) { base_ = routing; }
   const Routing& base() const { return base_; }
+
+  /// The first fiber whose samples come closer to the skin than skin_distance (−1: none), its
+  /// closest approach (m) and where.
+  int skin_violation(const Routing& r, double& distance, Eigen::Vector3d& where) const;
 
   Eigen::Index size() const { return static_cast<Eigen::Index>(entries_.size()); }
   Eigen::VectorXd variables(const Routing& r) const;

@@ -6,9 +6,11 @@
 
 namespace fibermold {
 
-SkinBarrier::SkinBarrier(const SurfaceDistance& skin, double dhat, const HermiteSpline& initial, int samples)
-    : skin_(skin), dhat_(dhat)
+SkinBarrier::SkinBarrier(const SurfaceDistance& skin, double min_distance, double band, const HermiteSpline& initial,
+                         int samples)
+    : skin_(skin), min_(min_distance), band_(band)
 {
+  const double dhat = min_ + band_;
   const std::vector<double> t = segment_parameters(initial, samples);
   const double length = initial.length();
   const bool first_on_skin = skin.closest(initial.points().front()).distance < dhat;
@@ -29,7 +31,7 @@ double SkinBarrier::value(const HermiteSpline& spline) const
   for (double t : t_) {
     const auto c = skin_.closest(spline.position(t));
     if (!c.inside) return HUGE_VAL;
-    B += barrier(c.distance / dhat_, 1.0);
+    B += barrier((c.distance - min_) / band_, 1.0);
   }
   return B;
 }
@@ -42,9 +44,9 @@ FiberParameterGradient SkinBarrier::gradient(const HermiteSpline& spline) const
   for (double t : t_) {
     const Eigen::Vector3d p = spline.position(t);
     const auto c = skin_.closest(p);
-    if (!c.inside || c.distance >= dhat_) continue;
-    // ∂b/∂p = b'(d/d̂)/d̂ ∇d,  ∇d = (p − c)/|p − c| inside the body
-    const Eigen::Vector3d by_p = barrier_gradient(c.distance / dhat_, 1.0) / dhat_ * (p - c.point) / c.distance;
+    if (!c.inside || c.distance >= min_ + band_) continue;
+    // ∂b/∂p = b'((d − d_min)/w)/w ∇d,  ∇d = (p − c)/|p − c| inside the body
+    const Eigen::Vector3d by_p = barrier_gradient((c.distance - min_) / band_, 1.0) / band_ * (p - c.point) / c.distance;
     int k;
     double w[4];
     spline.weights(t, k, w);
@@ -56,12 +58,16 @@ FiberParameterGradient SkinBarrier::gradient(const HermiteSpline& spline) const
   return g;
 }
 
-double SkinBarrier::min_distance(const HermiteSpline& spline) const
+double SkinBarrier::closest_approach(const HermiteSpline& spline, Eigen::Vector3d& where) const
 {
   double d = HUGE_VAL;
   for (double t : t_) {
-    const auto c = skin_.closest(spline.position(t));
-    d = std::min(d, c.inside ? c.distance : -c.distance);
+    const Eigen::Vector3d p = spline.position(t);
+    const auto c = skin_.closest(p);
+    if (const double signed_d = c.inside ? c.distance : -c.distance; signed_d < d) {
+      d = signed_d;
+      where = p;
+    }
   }
   return d;
 }

@@ -1,11 +1,12 @@
 #pragma once
-// The skin barrier of section V-B: keeps a fiber's samples away from the outside surface of the
-// undeformed body,
-//   B = Σ_k b(d_k / d̂, 1),   d̂ = muscle radius + clearance,
+// The skin barrier of section V-B: keeps every sample of a fiber at least d_min (the muscle radius
+// + [collide] clearance) inside the outside surface of the undeformed body,
+//   B = Σ_k b((d_k − d_min) / w, 1),
 // with b the IPC log barrier (barrier.hpp), d_k the distance of sample p_k to the skin (AABB
-// tree), +∞ once a sample leaves the body. Samples sit at fixed spline parameters, so p_k is
-// linear in the control points and tangents. Samples near an end point that lies within d̂ of
-// the skin are left out: the fiber leaves the body there by design.
+// tree), w the band over which the barrier acts; B = +∞ once a sample comes closer than d_min.
+// Samples sit at fixed spline parameters, so p_k is linear in the control points and tangents.
+// Samples near an end point that lies within d_min + w of the skin are left out: the fiber leaves
+// the body there by design.
 
 #include <vector>
 
@@ -18,17 +19,17 @@ namespace fibermold {
 class SkinBarrier {
 public:
   /// `samples` parameters spread by arc length over `initial`, which fixes the excluded ends.
-  SkinBarrier(const SurfaceDistance& skin, double dhat, const HermiteSpline& initial, int samples);
+  SkinBarrier(const SurfaceDistance& skin, double min_distance, double band, const HermiteSpline& initial, int samples);
 
   double value(const HermiteSpline& spline) const;
   /// ∂B/∂(points, tangents); the pressure entry is 0. Zero where B is +∞.
   FiberParameterGradient gradient(const HermiteSpline& spline) const;
-  /// The smallest distance of a sample to the skin (m), negative when outside.
-  double min_distance(const HermiteSpline& spline) const;
+  /// The smallest distance of a sample to the skin (m), negative when outside, and where.
+  double closest_approach(const HermiteSpline& spline, Eigen::Vector3d& where) const;
 
 private:
   const SurfaceDistance& skin_;
-  double dhat_;
+  double min_, band_;
   std::vector<double> t_;
 };
 

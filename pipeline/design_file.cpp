@@ -739,7 +739,7 @@ MoldOptions read_mold(Section s)
   } else {
     s.record("parting", "\"auto\"");
   }
-  o.keys = s.integer("keys", o.keys, 0, 16);
+  o.keys = s.integer("keys", o.keys, 0, 8);
   o.key_shape = s.choice("key_shape", o.key_shape, {"cone", "hemisphere"});
   o.key_diameter = mm("key_diameter", o.key_diameter, positive());
   o.key_clearance = mm("key_clearance", o.key_clearance, non_negative());

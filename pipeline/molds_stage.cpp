@@ -61,23 +61,24 @@ std::vector<Eigen::Vector3d> polyline(const Route& r, double step)
 }
 
 /// A fiber must stay in the body, and away from the skin (other than above it, where its groove
-/// opens) by the groove's radius plus the printer's minimum wall: otherwise the silicone between
-/// groove and skin would be too thin to cast. The ends, where the fiber leaves the body by design,
-/// are exempt within two groove radii.
+/// opens) by the muscle radius plus half the [collide] clearance (the optimizer keeps a whole
+/// clearance at its samples; half leaves room between them): otherwise the groove would break
+/// through the skin or leave a skin too thin to cast. The skin around the fiber's ends, where it leaves the
+/// body by design, is exempt within twice that distance.
 void check_fiber(const Design& d, const Route& r, const std::vector<Eigen::Vector3d>& line, const SurfaceDistance& skin,
                  double radius, const Eigen::Vector3d& pull)
 {
   const std::string key = fmt::format("[fiber.{}]", r.name);
-  const double need = radius + d.export_.min_wall;
+  const double need = d.muscle.model.diameter / 2 + d.collide.clearance / 2;
   for (const Eigen::Vector3d& p : line) {
-    if ((p - line.front()).norm() < 2 * radius || (p - line.back()).norm() < 2 * radius) continue;
     const auto at = skin.closest(p);
+    if ((at.point - line.front()).norm() < 2 * need || (at.point - line.back()).norm() < 2 * need) continue;
     if (!at.inside)
       bad(d, key, fmt::format("the fiber (as routed in fibers.json) leaves the body at {}", format_mm(p)));
     const Eigen::Vector3d to_skin = at.point - p;
     if (at.distance < need && to_skin.dot(pull) < 0.7 * at.distance)
       bad(d, key, fmt::format("the fiber passes {:.2f} mm from the skin at {}: its groove (radius {:.2f} mm) needs {:.2f} mm "
-                              "to leave a [export] min_wall of silicone",
+                              "([muscle] diameter/2 + half the [collide] clearance)",
                               at.distance / units::mm, format_mm(p), radius / units::mm, need / units::mm));
   }
 }

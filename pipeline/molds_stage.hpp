@@ -18,7 +18,8 @@ public:
   std::vector<std::string> upstream() const override { return {"mesh", "optimize"}; }
   std::vector<std::string> design_keys() const override
   {
-    return {"design.units", "material.density", "muscle.diameter", "mold", "export.min_wall", "export.printer_volume"};
+    return {"design.units", "material.density", "muscle.diameter", "collide.clearance", "mold", "export.min_wall",
+            "export.printer_volume"};
   }
   void run(StageContext& ctx) const override;
 };

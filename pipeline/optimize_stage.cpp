@@ -155,11 +155,19 @@ void OptimizeStage::run(StageContext& ctx) const
   settings.max_pressure = d.muscle.max_pressure;
   settings.segments_per_length = d.muscle.segments_per_length;
   settings.skin_distance = d.muscle.model.diameter / 2 + d.collide.clearance;
+  settings.skin_band = d.muscle.model.diameter / 2;
   settings.weight_curvature = d.optimize.weight_curvature;
   settings.weight_skin = d.optimize.weight_skin_barrier;
   settings.weight_pressure = d.optimize.weight_pressure_barrier;
   const Routing start = starting_routing(d);
   RoutingProblem problem(sim, model, skin, targets, curves, start, settings);
+  double closest = 0;
+  Eigen::Vector3d where;
+  if (const int f = problem.skin_violation(start, closest, where); f >= 0)
+    bad(d, fmt::format("[fiber.{}]", d.fibers[f].name),
+        fmt::format("the starting route passes {:.2f} mm from the skin at {}; the optimizer keeps fibers at least {:.2f} mm "
+                    "inside ([muscle] diameter/2 + [collide] clearance)",
+                    closest / units::mm, format_mm(where), settings.skin_distance / units::mm));
 
   std::vector<TargetErrors> before;
   for (int t = 0; t < problem.num_targets(); ++t) before.push_back(target_errors(problem, mesh, t, problem.equilibrium(start, t)));

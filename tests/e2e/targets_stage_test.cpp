@@ -124,9 +124,9 @@ TEST_F(TargetsE2E, EditsRerunExactlyTheStagesThatReadThem)
   ASSERT_EQ(make().exit_code, 0);
   const auto status = [&] { return test::run_fibermold("status design.toml --build-dir build", dir_.path()).out; };
   test::write_text(dir_ / "design.toml", std::string(kDesign).replace(std::string(kDesign).find("wall = 4.0"), 10, "wall = 5.0") + target);
-  EXPECT_THAT(status(), HasSubstr("mesh     fresh\ntargets  fresh"));
+  EXPECT_THAT(status(), HasSubstr("mesh      fresh\ntargets   fresh"));
   design(std::string(target).replace(target.find("-0.05"), 5, "-0.08"));
-  EXPECT_THAT(status(), HasSubstr("mesh     fresh\ntargets  stale ([target.droop].load"));
+  EXPECT_THAT(status(), HasSubstr("mesh      fresh\ntargets   stale ([target.droop].load"));
   const auto r = make();
   EXPECT_THAT(r.out, HasSubstr("targets: done"));
   EXPECT_THAT(r.out, HasSubstr("1 stage(s) ran, 1 fresh"));

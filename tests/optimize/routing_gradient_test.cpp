@@ -23,7 +23,7 @@ TEST(RoutingProblem, GradientMatchesFiniteDifferencesAtRandomDesigns)
   std::uniform_real_distribution<double> jitter(-0.001, 0.001);
   const auto wiggle = [&](Eigen::Vector3d p) { return Eigen::Vector3d(p.x(), p.y() + jitter(rng), p.z() + jitter(rng)); };
   Routing start;
-  // Fiber a passes 2 mm from the skin (y = 4 mm of 6): the skin barrier (d̂ = 2.5 mm) is active.
+  // Fiber a passes 2 mm from the skin (y = 4 mm of 6): the skin barrier (from 1 mm, over 1.5 mm) is active.
   start.routes = {test::RoutingFixture::route("a", {{0, 0.001, 0}, wiggle({0.014, 0.004, 0.001}), wiggle({0.027, -0.002, 0.002}), {kL, 0.001, 0}}),
                   test::RoutingFixture::route("b", {{0, -0.002, -0.001}, wiggle({0.02, -0.001, 0.002}), {kL, -0.002, 0.001}})};
   for (Route& r : start.routes)
@@ -33,6 +33,8 @@ TEST(RoutingProblem, GradientMatchesFiniteDifferencesAtRandomDesigns)
       90e3, 240e3;
   RoutingSettings settings;
   settings.weight_curvature = 1e-3;
+  settings.skin_distance = 1e-3;
+  settings.skin_band = 1.5e-3;
   RoutingProblem problem(*fx.sim, fx.model, *fx.skin, targets, fx.curves, start, settings);
 
   const Eigen::VectorXd z = problem.variables(start);
