@@ -64,7 +64,9 @@ PartCheck check_part(const SurfaceMesh& part, double min_wall, const Eigen::Vect
 {
   PartCheck out;
   const SurfaceCheck surface = check_surface(part);
-  for (const SurfaceProblem& p : surface.problems) out.problems.push_back(p.message);
+  for (const SurfaceProblem& p : surface.problems)
+    out.problems.push_back(fmt::format("{}, e.g. near ({:.1f}, {:.1f}, {:.1f}) mm", p.message, p.where.x() * 1e3, p.where.y() * 1e3,
+                                       p.where.z() * 1e3));
   out.volume = signed_volume(part);
   out.size = part.vertices.colwise().maxCoeff() - part.vertices.colwise().minCoeff();
   if (!surface.ok()) return out;  // the rest needs a valid solid

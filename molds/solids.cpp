@@ -48,9 +48,11 @@ SurfaceMesh cone_solid(const Eigen::Vector3d& a, const Eigen::Vector3d& b, doubl
   Eigen::Vector3d u, w;
   frame(axis, u, w);
   std::vector<Eigen::Vector3d> v{a, b};  // cap centres
+  // Corners at half steps: a plane through the axis (a parting plane through a channel) cuts the
+  // side faces, never runs along an edge.
   for (int end = 0; end < 2; ++end)
     for (int k = 0; k < segments; ++k) {
-      const double t = 2 * M_PI * k / segments;
+      const double t = 2 * M_PI * (k + 0.5) / segments;
       v.push_back((end ? b : a) + (end ? rb : ra) * (std::cos(t) * u + std::sin(t) * w));
     }
   std::vector<Eigen::Vector3i> f;

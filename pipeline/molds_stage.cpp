@@ -115,12 +115,17 @@ void MoldsStage::run(StageContext& ctx) const
     lines.push_back(polyline(r, std::min(0.5e-3, m.voxel * 2)));
     check_fiber(d, r, lines.back(), skin, radius, pull);
     muscle_volume += HermiteSpline(r.points, r.tangents).length() * M_PI * std::pow(d.muscle.model.diameter / 2, 2);
-    // An end on the skin gets a channel out through the mold along the fiber's direction there.
-    const Eigen::Vector3d out_first = -r.tangents.front().normalized(), out_last = r.tangents.back().normalized();
-    if (skin.closest(r.points.front()).distance < radius)
-      channels.push_back({r.points.front() - 1e-3 * out_first, out_first, m.end_channel_diameter});
-    if (skin.closest(r.points.back()).distance < radius)
-      channels.push_back({r.points.back() - 1e-3 * out_last, out_last, m.end_channel_diameter});
+    // An end on the skin gets a channel out through the mold, square to the skin there (a channel
+    // meeting the skin at an angle would leave a knife edge of mold).
+    const auto add_channel = [&](const Eigen::Vector3d& end, const Eigen::Vector3d& along) {
+      if (skin.closest(end).distance >= radius) return;  // the fiber ends inside the body
+      const Eigen::Vector3d inside = end - 1e-3 * along.normalized();
+      const auto at = skin.closest(inside);
+      const Eigen::Vector3d out = at.inside && at.distance > 1e-6 ? Eigen::Vector3d((at.point - inside).normalized()) : along.normalized();
+      channels.push_back({end - 1e-3 * out, out, m.end_channel_diameter});
+    };
+    add_channel(r.points.front(), -r.tangents.front());
+    add_channel(r.points.back(), r.tangents.back());
   }
 
   ctx.progress.checkpoint(0.1, "carving the grooves (level set)");
