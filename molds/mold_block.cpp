@@ -137,21 +137,35 @@ Mold make_mold(const SurfaceMesh& cavity_world, const Parting& parting, const st
       mold.vents.push_back(R.transpose() * v);
     }
   const double reach = (box_hi - box_lo).norm();
+  struct Passage {
+    Eigen::Vector2d a, b;  ///< the channel's axis seen along pull
+    double radius;
+  };
+  std::vector<Passage> passages;
   // Channels run parallel to the parting plane (one crossing it at an angle would leave a wedge of
   // mold thinner than any wall); one that starts within its radius + min_wall of the plane is moved
   // onto it, so that each half holds half the tube and lets go of it when pulled.
   for (const Channel& c : channels) {
     Eigen::Vector3d a = R * c.start, d = R * c.direction;
+    const double vertical = d.z();
     d.z() = 0;
-    if (d.norm() < 1e-6) d = Eigen::Vector3d::UnitZ();  // leaving straight up: out through the top
+    if (d.norm() < 1e-6) d = Eigen::Vector3d(0, 0, vertical < 0 ? -1 : 1);  // straight up or down: out through the top or bottom
     d.normalize();
     if (d.z() == 0 && std::abs(a.z() - h) < c.diameter / 2 + o.min_wall) a.z() = h;
     block = mesh_difference(block, cylinder_solid(a, a + reach * d, c.diameter / 2, 24));
+    passages.push_back({a.head<2>(), (a + reach * d).head<2>(), c.diameter / 2});
   }
 
   auto [lower, upper] = split_by_plane(block, {0, 0, h}, Eigen::Vector3d::UnitZ());
   const double radius = o.key_diameter / 2, sink = 0.5e-3;
   for (const Eigen::Vector2d& s : key_sites(box_lo, box_hi, side / 2, o.keys)) {
+    // A key where a channel runs would plug it (pin) or widen it (socket): leave that one out.
+    const bool blocked = std::any_of(passages.begin(), passages.end(), [&](const Passage& p) {
+      const Eigen::Vector2d ab = p.b - p.a;
+      const double t = ab.squaredNorm() > 0 ? std::clamp((s - p.a).dot(ab) / ab.squaredNorm(), 0.0, 1.0) : 0.0;
+      return (s - p.a - t * ab).norm() < radius + o.key_clearance + p.radius + o.min_wall;
+    });
+    if (blocked) continue;
     const Eigen::Vector3d base(s.x(), s.y(), h);
     lower = mesh_union(lower, key_solid(base, radius, o.key_shape, sink));
     upper = mesh_difference(upper, key_solid(base, radius + o.key_clearance, o.key_shape, sink));  // clearance all round

@@ -43,7 +43,7 @@ struct Mold {
   std::vector<MoldPart> parts;
   Eigen::Vector3d sprue;               ///< the cavity point the sprue reaches
   std::vector<Eigen::Vector3d> vents;  ///< the cavity points the vents reach
-  std::vector<Eigen::Vector3d> keys;   ///< key centres on the parting plane
+  std::vector<Eigen::Vector3d> keys;   ///< key centres on the parting plane; sites on a channel's way are left out
 };
 
 /// Throws std::runtime_error when a boolean fails.

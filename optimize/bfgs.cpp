@@ -50,7 +50,16 @@ BfgsResult minimize_bfgs(const Objective& f, Eigen::VectorXd x, const BfgsOption
   Tracked tracked(f);
   BfgsResult result;
   Eigen::VectorXd g(n);
-  double fx = tracked(x, g);
+  double fx;
+  try {
+    fx = tracked(x, g);
+  } catch (const Interrupted&) {
+    result.x = x;  // nothing better seen yet
+    result.value = HUGE_VAL;
+    result.interrupted = true;
+    result.message = "interrupted";
+    return result;
+  }
   if (!std::isfinite(fx)) throw std::invalid_argument("the objective is not finite at the starting point");
 
   LBFGSpp::LBFGSParam<double> param;

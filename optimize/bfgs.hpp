@@ -21,7 +21,8 @@ struct BfgsOptions {
   double gradient_tolerance = 1e-6;   ///< stop when |∇f| ≤ this
   double relative_tolerance = 1e-3;   ///< stop when f fell by ≤ this × |f| over the last `window` iterations
   int window = 10;
-  double max_step = 5;                ///< largest change of one variable in one line search
+  double max_step = 5;                ///< largest change of one variable in a line search's first trial; a
+                                      ///< Wolfe extension may try up to 2.1× that once
   int max_line_search = 20;           ///< evaluations per line search
 };
 

@@ -2,6 +2,7 @@
 
 #include <cmath>
 
+#include <Eigen/Geometry>
 #include <fmt/format.h>
 #include <nlohmann/json.hpp>
 #include <spdlog/spdlog.h>
@@ -60,33 +61,39 @@ std::vector<Eigen::Vector3d> polyline(const Route& r, double step)
   return out;
 }
 
-/// A fiber must stay in the body, and away from the skin (other than above it, where its groove
-/// opens) by the muscle radius plus half the [collide] clearance (the optimizer keeps a whole
-/// clearance at its samples; half leaves room between them): otherwise the groove would break
-/// through the skin or leave a skin too thin to cast. The skin around the fiber's ends, where it leaves the
-/// body by design, is exempt within twice that distance.
+/// A fiber must stay in the body, and its groove away from the skin (other than above it, where
+/// the groove opens) by half the [collide] clearance, so that the groove neither breaks through the
+/// skin nor leaves a skin too thin to cast. The optimizer keeps a whole clearance around the muscle
+/// at its samples; half of it leaves room between them. Near an end on the skin, where the fiber
+/// leaves the body by design, the same stretch as the optimizer's skin barrier is exempt.
 void check_fiber(const Design& d, const Route& r, const std::vector<Eigen::Vector3d>& line, const SurfaceDistance& skin,
                  double radius, const Eigen::Vector3d& pull)
 {
   const std::string key = fmt::format("[fiber.{}]", r.name);
-  const double need = d.muscle.model.diameter / 2 + d.collide.clearance / 2;
-  for (const Eigen::Vector3d& p : line) {
+  const double need = radius + d.collide.clearance / 2;
+  const double exempt = 2 * (d.muscle.model.diameter + d.collide.clearance);  // as skin_barrier.cpp: 2 (d_min + w)
+  const bool first_on_skin = skin.closest(line.front()).distance < exempt / 2;
+  const bool last_on_skin = skin.closest(line.back()).distance < exempt / 2;
+  std::vector<double> s(line.size(), 0);
+  for (std::size_t k = 1; k < line.size(); ++k) s[k] = s[k - 1] + (line[k] - line[k - 1]).norm();
+  for (std::size_t k = 0; k < line.size(); ++k) {
+    const Eigen::Vector3d& p = line[k];
     const auto at = skin.closest(p);
-    if ((at.point - line.front()).norm() < 2 * need || (at.point - line.back()).norm() < 2 * need) continue;
-    if (!at.inside)
+    const bool near_end = (first_on_skin && s[k] < exempt) || (last_on_skin && s.back() - s[k] < exempt);
+    if (!at.inside && !near_end)
       bad(d, key, fmt::format("the fiber (as routed in fibers.json) leaves the body at {}", format_mm(p)));
+    if (near_end) continue;
     const Eigen::Vector3d to_skin = at.point - p;
     if (at.distance < need && to_skin.dot(pull) < 0.7 * at.distance)
       bad(d, key, fmt::format("the fiber passes {:.2f} mm from the skin at {}: its groove (radius {:.2f} mm) needs {:.2f} mm "
-                              "([muscle] diameter/2 + half the [collide] clearance)",
+                              "(the groove's radius + half the [collide] clearance)",
                               at.distance / units::mm, format_mm(p), radius / units::mm, need / units::mm));
   }
 }
 
-SurfaceMesh scaled_about_centroid(SurfaceMesh m, double factor)
+SurfaceMesh scaled_about(SurfaceMesh m, const Eigen::Vector3d& centre, double factor)
 {
-  const Eigen::RowVector3d c = m.vertices.colwise().mean();
-  m.vertices = ((m.vertices.rowwise() - c) * factor).rowwise() + c;
+  m.vertices = ((m.vertices.rowwise() - centre.transpose()) * factor).rowwise() + centre.transpose();
   return m;
 }
 
@@ -107,6 +114,8 @@ void MoldsStage::run(StageContext& ctx) const
   const FibersFile fibers = read_fibers_json(ctx.upstream("optimize", "fibers.json"));
   const double radius = d.muscle.model.diameter / 2 + m.groove_clearance;
   const Eigen::Vector3d pull = m.pull.normalized();
+  if (m.parting && m.parting->normal.normalized().cross(pull).norm() > 1e-6)
+    bad(d, "[mold].parting", "the parting plane's normal must be parallel to [mold].pull: the halves come apart along pull");
 
   std::vector<std::vector<Eigen::Vector3d>> lines;
   std::vector<Channel> channels;
@@ -144,7 +153,11 @@ void MoldsStage::run(StageContext& ctx) const
   o.sprue_diameter = m.sprue_diameter;
   o.vents = m.vents;
   o.vent_diameter = m.vent_diameter;
+  // Shrink compensation: cavities (and channel starts) scaled up about the body's centre.
   const double grow = m.shrink > 0 ? 1 / (1 - m.shrink) : 1.0;
+  const Eigen::Vector3d centre = body.vertices.colwise().mean().transpose();
+  for (Channel& c : channels) c.start = centre + (c.start - centre) * grow;
+  const double body_volume = signed_volume(body), g3 = grow * grow * grow;
 
   Json shots = Json::object(), parts = Json::object();
   std::vector<std::string> failures;
@@ -154,11 +167,12 @@ void MoldsStage::run(StageContext& ctx) const
     const SurfaceMesh* cavity;
     double silicone;
     std::vector<Channel> channels;
-  } shot_list[] = {{"shot1", &groove.mesh, groove.volume, {}},
-                   {"shot2", &body, std::max(0.0, signed_volume(body) - groove.volume - muscle_volume), channels}};
+  } shot_list[] = {// shot 1 fills the scaled-up groove cavity; its cured part shrinks back to nominal size
+                   {"shot1", &groove.mesh, g3 * groove.volume, {}},
+                   {"shot2", &body, std::max(0.0, g3 * body_volume - groove.volume - muscle_volume), channels}};
   for (const auto& shot : shot_list) {
     ctx.progress.checkpoint(shot.name == std::string("shot1") ? 0.3 : 0.6, fmt::format("{}: mold block", shot.name));
-    const SurfaceMesh cavity = grow != 1 ? scaled_about_centroid(*shot.cavity, grow) : *shot.cavity;
+    const SurfaceMesh cavity = grow != 1 ? scaled_about(*shot.cavity, centre, grow) : *shot.cavity;
     Parting parting = m.parting ? Parting{m.parting->point, m.parting->normal.normalized(), 0} : choose_parting(cavity, pull);
     if (m.parting) parting.undercut_area = undercut_area(cavity, parting.point, parting.normal);
     if (parting.undercut_area > 0.1e-6)
@@ -166,8 +180,8 @@ void MoldsStage::run(StageContext& ctx) const
                    shot.name, parting.undercut_area / 1e-6);
     const Mold mold = make_mold(cavity, parting, shot.channels, o, shot.name);
     shots[shot.name] = {{"cavity_volume_mL", signed_volume(cavity) / 1e-6},
-                        {"silicone_volume_mL", shot.silicone * grow * grow * grow / 1e-6},
-                        {"silicone_mass_g", shot.silicone * grow * grow * grow * d.material.density * 1e3},
+                        {"silicone_volume_mL", shot.silicone / 1e-6},
+                        {"silicone_mass_g", shot.silicone * d.material.density * 1e3},
                         {"parting_point_mm", vec_mm(parting.point)},
                         {"parting_normal", {parting.normal.x(), parting.normal.y(), parting.normal.z()}},
                         {"undercut_area_mm2", parting.undercut_area / 1e-6},

@@ -87,6 +87,15 @@ TEST(Molds, KeysFitTheirSocketsWithTheClearance)
   // Pins and sockets do not collide: the parts, closed, overlap by nothing.
   const SurfaceMesh overlap = mesh_intersection(mold.parts[0].mesh, mold.parts[1].mesh);
   EXPECT_LT(std::abs(signed_volume(overlap)), 1e-12);
+
+  // Eight keys and a fiber-end channel out of the x = 0 face on the parting plane: the key at that
+  // face's midpoint would plug the channel and is left out.
+  MoldBlockOptions eight;
+  eight.keys = 8;
+  const Mold with_channel = make_mold(b.body, parting, {{{1 * mm, 0, 0}, {-1, 0, 0}, 4 * mm}}, eight, "shot2");
+  EXPECT_EQ(with_channel.keys.size(), 7u);
+  for (const Eigen::Vector3d& k : with_channel.keys) EXPECT_FALSE(k.x() < 0 && std::abs(k.y()) < 1e-9) << "key on the channel";
+  expect_parts_ok(with_channel);
 }
 
 } // namespace
