@@ -1,46 +1,14 @@
 #!/usr/bin/env python3
 """Writes bar.stl: the twisting bar of the paper (section VIII-C), 129 mm long, 20 mm x 20 mm,
-along +x from the origin, centred on the x axis. Each face is a regular grid of right triangles
-at about `--spacing` mm, so that the tetrahedral mesh keeps good elements at the skin.
+along +x from the origin, centred on the x axis.
 Standard library only: python3 make_bar.py [--spacing 4.3] [--out bar.stl]"""
 
 import argparse
-import struct
+import os
+import sys
 
-
-def box_triangles(lo, hi, counts):
-    """Outward-oriented triangles of the box [lo, hi] with `counts` grid cells along x, y, z."""
-    tris = []
-    for axis in range(3):
-        u, v = (axis + 1) % 3, (axis + 2) % 3
-        for side, coord in ((-1, lo[axis]), (1, hi[axis])):
-            nu, nv = counts[u], counts[v]
-            def point(i, j):
-                p = [0.0, 0.0, 0.0]
-                p[axis] = coord
-                p[u] = lo[u] + (hi[u] - lo[u]) * i / nu
-                p[v] = lo[v] + (hi[v] - lo[v]) * j / nv
-                return tuple(p)
-            for i in range(nu):
-                for j in range(nv):
-                    a, b, c, d = point(i, j), point(i + 1, j), point(i + 1, j + 1), point(i, j + 1)
-                    # (u, v, axis) is right-handed, so a→b→c turns about +axis.
-                    if side > 0:
-                        tris += [(a, b, c), (a, c, d)]
-                    else:
-                        tris += [(a, c, b), (a, d, c)]
-    return tris
-
-
-def write_binary_stl(path, tris, name):
-    with open(path, "wb") as f:
-        f.write(name.encode().ljust(80, b" ")[:80])
-        f.write(struct.pack("<I", len(tris)))
-        for t in tris:
-            f.write(struct.pack("<3f", 0.0, 0.0, 0.0))
-            for p in t:
-                f.write(struct.pack("<3f", *p))
-            f.write(b"\0\0")
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "common"))
+from box_stl import write_box  # noqa: E402
 
 
 def main():
@@ -48,11 +16,8 @@ def main():
     parser.add_argument("--spacing", type=float, default=4.3, help="target grid spacing, mm")
     parser.add_argument("--out", default="bar.stl")
     args = parser.parse_args()
-    lo, hi = (0.0, -10.0, -10.0), (129.0, 10.0, 10.0)
-    counts = [max(1, round((h - l) / args.spacing)) for l, h in zip(lo, hi)]
-    tris = box_triangles(lo, hi, counts)
-    write_binary_stl(args.out, tris, "fibermold twisting bar 129x20x20 mm")
-    print(f"{args.out}: {len(tris)} triangles, grid {counts}")
+    count, grid = write_box(args.out, (0.0, -10.0, -10.0), (129.0, 10.0, 10.0), args.spacing, "fibermold twisting bar 129x20x20 mm")
+    print(f"{args.out}: {count} triangles, grid {grid}")
 
 
 if __name__ == "__main__":
