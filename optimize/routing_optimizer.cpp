@@ -16,7 +16,7 @@ BfgsResult run(RoutingProblem& problem, int stage, const BfgsOptions& options, c
 {
   const Objective f = [&](const Eigen::VectorXd& z, Eigen::VectorXd& g) { return problem.evaluate(z, &g); };
   const IterationCallback cb = [&](const BfgsIteration& it, const Eigen::VectorXd&) {
-    if (on_iteration) on_iteration(stage, it, problem.last_terms());
+    if (on_iteration) on_iteration(stage, it, problem.terms_at(it.value));
   };
   return minimize_bfgs(f, problem.variables(problem.base()), options, cb, progress);
 }

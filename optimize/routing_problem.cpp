@@ -54,6 +54,9 @@ void RoutingProblem::set_free(std::vector<bool> routes, Eigen::Matrix<bool, Eige
                               std::vector<bool> targets)
 {
   target_active_ = std::move(targets);
+  best_terms_ = RoutingTerms{};
+  best_terms_.total = HUGE_VAL;  // the objective changed: no best yet
+  best_warm_.clear();
   entries_.clear();
   entry_of_.assign(base_.routes.size(), {});
   pressure_entry_ = Eigen::MatrixXi::Constant(num_targets(), num_fibers(), -1);
@@ -171,6 +174,7 @@ Eigen::VectorXd RoutingProblem::equilibrium(const Routing& r, int t)
   std::vector<std::unique_ptr<Energy>> energies;
   for (auto& m : muscles(r, t)) energies.push_back(std::move(m));
   sim_.set_variable_energies(std::move(energies));
+  if (!best_warm_.empty()) warm_[t] = best_warm_[t];
   Eigen::VectorXd x;
   if (!solve(t, x)) throw std::runtime_error(fmt::format("no equilibrium for target {}", t + 1));
   return x;
@@ -242,6 +246,10 @@ double RoutingProblem::evaluate(const Eigen::VectorXd& z, Eigen::VectorXd* gradi
   if (gradient) *gradient = g;
   if (terms_out) *terms_out = terms;
   last_terms_ = terms;
+  if (terms.total < best_terms_.total) {
+    best_terms_ = terms;
+    best_warm_ = warm_;
+  }
   return terms.total;
 }
 

@@ -79,10 +79,13 @@ public:
   /// body, a pressure its bounds, or an equilibrium cannot be found; `gradient` is then untouched.
   double evaluate(const Eigen::VectorXd& z, Eigen::VectorXd* gradient = nullptr, RoutingTerms* terms = nullptr);
 
-  /// The terms of the last finite evaluation (the point a line search accepted).
-  const RoutingTerms& last_terms() const { return last_terms_; }
+  /// The terms of the finite evaluation whose total is `value`: the last one, or the best one
+  /// since set_free (the two points a line search can accept).
+  const RoutingTerms& terms_at(double value) const { return value == last_terms_.total ? last_terms_ : best_terms_; }
 
-  /// Equilibrium of target t under routing r (warm-started); throws std::runtime_error when Newton fails.
+  /// Equilibrium of target t under routing r, warm-started from the equilibria of the best
+  /// evaluation so far (so that a multi-stable body shows the state the optimizer scored); throws
+  /// std::runtime_error when Newton fails.
   Eigen::VectorXd equilibrium(const Routing& r, int t);
   const DistanceObjective& distance(int t) const { return distances_[t]; }
   const Eigen::VectorXd& target(int t) const { return targets_[t]; }
@@ -121,7 +124,8 @@ private:
   std::vector<Entry> entries_;
   std::vector<std::vector<int>> entry_of_;  ///< [fiber][6·point + 3·is_tangent + component] → entry or −1
   Eigen::MatrixXi pressure_entry_;          ///< targets × fibers → entry or −1
-  RoutingTerms last_terms_;
+  RoutingTerms last_terms_, best_terms_;
+  std::vector<Eigen::VectorXd> best_warm_;  ///< equilibria at the best evaluation since set_free
   int newton_iterations_ = 0;
   double seconds_simulation_ = 0, seconds_adjoint_ = 0;
 };
