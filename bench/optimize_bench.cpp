@@ -64,11 +64,14 @@ void twist_angles(const Design& d, const fs::path& build, double& target_deg, do
     const Route& r = fibers.routing.routes[f];
     actuations.push_back({r.name, r.points, r.tangents, fibers.routing.pressures(0, static_cast<Eigen::Index>(f))});
   }
-  add_muscles(sim, d, MuscleModel(d.muscle.model), actuations);
+  const MuscleModel model(d.muscle.model);  // the muscles keep a reference to it
+  add_muscles(sim, d, model, actuations);
   Eigen::VectorXd x = sim.rest();
   NullProgress progress;
-  sim.solve(x, progress);
-  reached_deg = end_twist_deg(mesh, sim.deformed_nodes(x));
+  const NewtonSummary s = sim.solve(x, progress);
+  // From rest (the optimizer warm-starts); an unconverged state would report a meaningless angle.
+  reached_deg = s.converged ? end_twist_deg(mesh, sim.deformed_nodes(x)) : NAN;
+  if (!s.converged) std::fprintf(stderr, "re-simulating the optimized design from rest: %s (%s)\n", s.brief().c_str(), s.message.c_str());
 }
 
 void run(const std::string& example, const Paper& paper)
