@@ -35,7 +35,8 @@ Eigen::VectorXd target_forces(const Design& d, const Target& t, const Simulation
 std::vector<Actuation> target_actuations(const Design& d, const Target& t);
 
 /// Adds one muscle energy per actuation, segmented by [muscle] segments_per_mm; InputError for a
-/// fiber that leaves the body. The returned energies are owned by `sim`.
+/// fiber that leaves the body. The returned energies are owned by `sim` and keep a reference to
+/// `model`, which must outlive them.
 std::vector<const MuscleEnergy*> add_muscles(Simulation& sim, const Design& d, const MuscleModel& model,
                                              const std::vector<Actuation>& actuations);
 
