@@ -6,23 +6,28 @@
 
 namespace fibermold {
 
-SkinBarrier::SkinBarrier(const SurfaceDistance& skin, double min_distance, double band, const HermiteSpline& initial,
-                         int samples)
-    : skin_(skin), min_(min_distance), band_(band)
+std::vector<double> parameters_off_exits(const SurfaceDistance& skin, const HermiteSpline& spline,
+                                         const std::vector<double>& t, double reach)
 {
-  const double dhat = min_ + band_;
-  const std::vector<double> t = segment_parameters(initial, samples);
-  const double length = initial.length();
-  const bool first_on_skin = skin.closest(initial.points().front()).distance < dhat;
-  const bool last_on_skin = skin.closest(initial.points().back()).distance < dhat;
-  // Arc length at each parameter, from the segment chords (fine enough to place the cut-off).
+  const double length = spline.length();
+  const bool first_on_skin = skin.closest(spline.points().front()).distance < reach;
+  const bool last_on_skin = skin.closest(spline.points().back()).distance < reach;
+  std::vector<double> kept;
+  // Arc length at each parameter, from the chords (fine enough to place the cut-off).
   double s = 0;
   for (std::size_t k = 0; k < t.size(); ++k) {
-    if (k > 0) s += (initial.position(t[k]) - initial.position(t[k - 1])).norm();
-    if (first_on_skin && s < 2 * dhat) continue;
-    if (last_on_skin && length - s < 2 * dhat) continue;
-    t_.push_back(t[k]);
+    if (k > 0) s += (spline.position(t[k]) - spline.position(t[k - 1])).norm();
+    if (first_on_skin && s < 2 * reach) continue;
+    if (last_on_skin && length - s < 2 * reach) continue;
+    kept.push_back(t[k]);
   }
+  return kept;
+}
+
+SkinBarrier::SkinBarrier(const SurfaceDistance& skin, double min_distance, double band, const HermiteSpline& initial,
+                         int samples)
+    : skin_(skin), min_(min_distance), band_(band), t_(parameters_off_exits(skin, initial, segment_parameters(initial, samples), min_distance + band))
+{
 }
 
 double SkinBarrier::value(const HermiteSpline& spline) const

@@ -16,6 +16,11 @@
 
 namespace fibermold {
 
+/// The parameters among `t` that are held away from the skin: all but those within 2·reach of arc
+/// length of an end that lies within `reach` of the skin, where the fiber leaves the body by design.
+std::vector<double> parameters_off_exits(const SurfaceDistance& skin, const HermiteSpline& spline,
+                                         const std::vector<double>& t, double reach);
+
 class SkinBarrier {
 public:
   /// `samples` parameters spread by arc length over `initial`, which fixes the excluded ends.

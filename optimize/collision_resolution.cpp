@@ -1,0 +1,328 @@
+#include "optimize/collision_resolution.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <map>
+#include <set>
+#include <tuple>
+
+#include <Eigen/SparseCholesky>
+#include <fmt/format.h>
+
+#include "core/units.hpp"
+
+namespace fibermold {
+
+namespace {
+
+using SparseMatrix = Eigen::SparseMatrix<double>;
+using RowMatrix = Eigen::SparseMatrix<double, Eigen::RowMajor>;
+using Triplets = std::vector<Eigen::Triplet<double>>;
+
+std::string where_mm(const Eigen::Vector3d& p)
+{
+  return fmt::format("({:.2f}, {:.2f}, {:.2f}) mm", p.x() / units::mm, p.y() / units::mm, p.z() / units::mm);
+}
+
+/// The free parameters of the routes (interior points, all tangents; mm) and how the clearance
+/// samples move with them. A sample is linear in the spline's parameters: slot 2k holds point k,
+/// slot 2k + 1 tangent k, the same weights acting on each coordinate.
+class RouteVariables {
+public:
+  RouteVariables(const FiberClearance& measure, const std::vector<Route>& routes)
+  {
+    for (int f = 0; f < measure.num_fibers(); ++f) {
+      const Route& r = routes[f];
+      const int n = static_cast<int>(r.points.size());
+      std::vector<int> index(2 * n, -1);
+      for (int slot = 0; slot < 2 * n; ++slot) {
+        const bool end_point = slot % 2 == 0 && (slot == 0 || slot == 2 * (n - 1));
+        if (!end_point) {
+          index[slot] = size_;
+          size_ += 3;
+        }
+      }
+      slot_index_.push_back(std::move(index));
+      const HermiteSpline s(r.points, r.tangents);
+      std::vector<Eigen::VectorXd> weights;
+      for (double t : measure.parameters(f)) {
+        int span;
+        double w[4];
+        s.weights(t, span, w);
+        Eigen::VectorXd phi = Eigen::VectorXd::Zero(2 * n);
+        for (int j = 0; j < 4; ++j) phi[2 * span + j] = w[j];
+        weights.push_back(std::move(phi));
+      }
+      weights_.push_back(std::move(weights));
+    }
+  }
+
+  int size() const { return size_; }
+
+  Eigen::VectorXd values(const std::vector<Route>& routes) const
+  {
+    Eigen::VectorXd y(size_);
+    for (std::size_t f = 0; f < slot_index_.size(); ++f)
+      for (std::size_t slot = 0; slot < slot_index_[f].size(); ++slot)
+        if (const int i = slot_index_[f][slot]; i >= 0)
+          y.segment<3>(i) = parameter(routes[f], static_cast<int>(slot)) / units::mm;
+    return y;
+  }
+
+  std::vector<Route> routes(const Eigen::VectorXd& y, std::vector<Route> out) const
+  {
+    for (std::size_t f = 0; f < slot_index_.size(); ++f)
+      for (std::size_t slot = 0; slot < slot_index_[f].size(); ++slot)
+        if (const int i = slot_index_[f][slot]; i >= 0)
+          parameter(out[f], static_cast<int>(slot)) = y.segment<3>(i) * units::mm;
+    return out;
+  }
+
+  /// Adds coefficient · nᵀ (move of sample k of fiber f) to a constraint row.
+  void add_sample(int f, int k, double coefficient, const Eigen::Vector3d& n, std::map<int, double>& row) const
+  {
+    const Eigen::VectorXd& phi = weights_[f][k];
+    for (Eigen::Index slot = 0; slot < phi.size(); ++slot)
+      if (const int i = slot_index_[f][slot]; i >= 0 && phi[slot] != 0)
+        for (int c = 0; c < 3; ++c) row[i + c] += coefficient * phi[slot] * n[c];
+  }
+
+  /// W of the header: Σ_k h_k |Δp_k|² + ℓ⁴ Σ_k h_k |Δp''_k|² over the samples of each fiber, with
+  /// h_k the arc length a sample stands for and Δp'' the three-point second difference (mm).
+  SparseMatrix smoothness(const FiberClearance::Lines& lines, double length) const
+  {
+    Triplets entries;
+    const double l4 = std::pow(length / units::mm, 4);
+    for (std::size_t f = 0; f < slot_index_.size(); ++f) {
+      const auto& phi = weights_[f];
+      const std::size_t N = phi.size();
+      std::vector<double> h(N - 1);
+      for (std::size_t k = 0; k + 1 < N; ++k) h[k] = (lines[f][k + 1] - lines[f][k]).norm() / units::mm;
+      const Eigen::Index slots = phi[0].size();
+      Eigen::MatrixXd M = Eigen::MatrixXd::Zero(slots, slots);
+      for (std::size_t k = 0; k < N; ++k) {
+        const double hk = 0.5 * ((k > 0 ? h[k - 1] : 0) + (k + 1 < N ? h[k] : 0));
+        M += hk * phi[k] * phi[k].transpose();
+        if (k == 0 || k + 1 == N) continue;
+        const Eigen::VectorXd second =
+            2 * ((phi[k + 1] - phi[k]) / h[k] - (phi[k] - phi[k - 1]) / h[k - 1]) / (h[k] + h[k - 1]);
+        M += l4 * hk * second * second.transpose();
+      }
+      for (Eigen::Index p = 0; p < slots; ++p)
+        for (Eigen::Index q = 0; q < slots; ++q) {
+          const int i = slot_index_[f][p], j = slot_index_[f][q];
+          if (i < 0 || j < 0 || M(p, q) == 0) continue;
+          for (int c = 0; c < 3; ++c) entries.emplace_back(i + c, j + c, M(p, q));
+        }
+    }
+    SparseMatrix W(size_, size_);
+    W.setFromTriplets(entries.begin(), entries.end());
+    return W;
+  }
+
+private:
+  static Eigen::Vector3d& parameter(Route& r, int slot) { return slot % 2 ? r.tangents[slot / 2] : r.points[slot / 2]; }
+  static const Eigen::Vector3d& parameter(const Route& r, int slot)
+  {
+    return slot % 2 ? r.tangents[slot / 2] : r.points[slot / 2];
+  }
+
+  int size_ = 0;
+  std::vector<std::vector<int>> slot_index_;             ///< [fiber][slot] → first variable, or −1 (fixed)
+  std::vector<std::vector<Eigen::VectorXd>> weights_;    ///< [fiber][sample] → weight per slot
+};
+
+/// The linearized constraints a_iᵀ (y − z) ≥ b_i of the contacts: b_i = c_min − c_i (mm).
+void linearize(const RouteVariables& v, const std::vector<Contact>& contacts, double clearance, RowMatrix& A,
+               Eigen::VectorXd& b)
+{
+  Triplets entries;
+  b.resize(static_cast<Eigen::Index>(contacts.size()));
+  for (std::size_t i = 0; i < contacts.size(); ++i) {
+    const Contact& c = contacts[i];
+    std::map<int, double> row;
+    if (c.with_skin()) {
+      v.add_sample(c.a, c.segment_a, 1, c.normal, row);
+    } else {
+      v.add_sample(c.a, c.segment_a, 1 - c.u_a, c.normal, row);
+      v.add_sample(c.a, c.segment_a + 1, c.u_a, c.normal, row);
+      v.add_sample(c.b, c.segment_b, -(1 - c.u_b), c.normal, row);
+      v.add_sample(c.b, c.segment_b + 1, -c.u_b, c.normal, row);
+    }
+    for (const auto& [j, value] : row) entries.emplace_back(static_cast<int>(i), j, value);
+    b[static_cast<Eigen::Index>(i)] = (clearance - c.clearance) / units::mm;
+  }
+  A.resize(static_cast<Eigen::Index>(contacts.size()), v.size());
+  A.setFromTriplets(entries.begin(), entries.end());
+}
+
+/// min ½ (y − y0)ᵀ W (y − y0) s.t. A (y − z) ≥ b, by an augmented Lagrangian; each inner problem
+///   min φ(y) = ½ (y − y0)ᵀ W (y − y0) + μ/2 Σ_i max(0, λ_i/μ − r_i(y))²,  r = A (y − z) − b,
+/// convex and piecewise quadratic, by Newton on its active set with a backtracking line search
+/// (which keeps the active set from cycling). Returns the last y (the constraints may be
+/// inconsistent: the caller measures).
+class QuadraticProblem {
+public:
+  QuadraticProblem(const SparseMatrix& W, const RowMatrix& A, const Eigen::VectorXd& b, const Eigen::VectorXd& y0,
+                   const Eigen::VectorXd& z)
+      : W_(W), A_(A), y0_(y0), Az_b_(A * z + b), mu_(1e4 * std::max(1.0, W.diagonal().maxCoeff()))
+  {
+    for (Eigen::Index k = 0; k < W.outerSize(); ++k)
+      for (SparseMatrix::InnerIterator it(W, k); it; ++it) W_entries_.emplace_back(it.row(), it.col(), it.value());
+  }
+
+  Eigen::VectorXd solve(Eigen::VectorXd y)
+  {
+    lambda_ = Eigen::VectorXd::Zero(A_.rows());
+    for (int outer = 0; outer < 50; ++outer) {
+      minimize(y);
+      const Eigen::VectorXd r = A_ * y - Az_b_;
+      lambda_ = (lambda_ - mu_ * r).cwiseMax(0.0);
+      if (r.size() == 0 || r.minCoeff() > -1e-7) break;  // mm
+    }
+    return y;
+  }
+
+private:
+  /// max(0, λ_i − μ r_i): the multiplier each constraint would take at y.
+  Eigen::VectorXd pull(const Eigen::VectorXd& y) const { return (lambda_ - mu_ * (A_ * y - Az_b_)).cwiseMax(0.0); }
+
+  double phi(const Eigen::VectorXd& y) const
+  {
+    const Eigen::VectorXd d = y - y0_;
+    return 0.5 * d.dot(W_ * d) + pull(y).squaredNorm() / (2 * mu_);
+  }
+
+  void minimize(Eigen::VectorXd& y)
+  {
+    for (int iteration = 0; iteration < 100; ++iteration) {
+      const Eigen::VectorXd q = pull(y);
+      const Eigen::VectorXd g = W_ * (y - y0_) - A_.transpose() * q;
+      if (g.lpNorm<Eigen::Infinity>() < 1e-12 * (1 + q.lpNorm<Eigen::Infinity>())) return;
+      // H = W + μ Σ_{q_i > 0} a_i a_iᵀ
+      Triplets entries = W_entries_;
+      for (Eigen::Index i = 0; i < A_.rows(); ++i) {
+        if (q[i] <= 0) continue;
+        for (RowMatrix::InnerIterator p(A_, i); p; ++p)
+          for (RowMatrix::InnerIterator r(A_, i); r; ++r) entries.emplace_back(p.col(), r.col(), mu_ * p.value() * r.value());
+      }
+      SparseMatrix H(W_.rows(), W_.cols());
+      H.setFromTriplets(entries.begin(), entries.end());
+      ldlt_.compute(H);
+      if (ldlt_.info() != Eigen::Success) return;
+      const Eigen::VectorXd step = -ldlt_.solve(g);
+      const double f = phi(y), slope = g.dot(step);
+      double alpha = 1;
+      while (alpha > 1e-10 && phi(y + alpha * step) > f + 1e-4 * alpha * slope) alpha /= 2;
+      y += alpha * step;
+      if (alpha == 1 && (pull(y).array() > 0).matrix() == (q.array() > 0).matrix()) return;  // the active set held
+    }
+  }
+
+  const SparseMatrix& W_;
+  const RowMatrix& A_;
+  const Eigen::VectorXd& y0_;
+  Eigen::VectorXd Az_b_, lambda_;
+  double mu_;
+  Triplets W_entries_;
+  Eigen::SimplicialLDLT<SparseMatrix> ldlt_;
+};
+
+std::string describe(const Contact& c, const std::vector<Route>& routes)
+{
+  if (c.with_skin()) return fmt::format("fiber {} and the skin", routes[c.a].name);
+  return fmt::format("fibers {} and {}", routes[c.a].name, routes[c.b].name);
+}
+
+void check_end_points(const std::vector<Route>& routes, double radius, const ResolutionSettings& s)
+{
+  for (std::size_t a = 0; a < routes.size(); ++a)
+    for (std::size_t b = a + 1; b < routes.size(); ++b)
+      for (const Eigen::Vector3d& p : {routes[a].points.front(), routes[a].points.back()})
+        for (const Eigen::Vector3d& q : {routes[b].points.front(), routes[b].points.back()})
+          if ((p - q).norm() - 2 * radius < s.clearance - s.tolerance)
+            throw CollisionError(fmt::format(
+                "fibers {} and {} have fixed end points {:.2f} mm apart, at {} and {}: two muscles and their clearance "
+                "need {:.2f} mm; move an end point apart in the design file",
+                routes[a].name, routes[b].name, (p - q).norm() / units::mm, where_mm(p), where_mm(q),
+                (2 * radius + s.clearance) / units::mm));
+}
+
+using Key = std::tuple<int, int, int>;  // (a, segment or sample of a, b or −1)
+Key key_of(const Contact& c) { return {c.a, c.segment_a, c.b}; }
+
+} // namespace
+
+std::vector<Contact> worst_per_pair(const std::vector<Contact>& contacts)
+{
+  std::map<std::pair<int, int>, Contact> worst;
+  for (const Contact& c : contacts)
+    if (auto it = worst.find({c.a, c.b}); it == worst.end() || c.clearance < it->second.clearance) worst[{c.a, c.b}] = c;
+  std::vector<Contact> out;
+  for (const auto& [pair, c] : worst) out.push_back(c);
+  return out;
+}
+
+CollisionResolution resolve_collisions(const FiberClearance& measure, const std::vector<Route>& routes,
+                                       const ResolutionSettings& s)
+{
+  CollisionResolution result;
+  result.routes = routes;
+  const double margin = 2 * measure.radius() + s.clearance;
+  FiberClearance::Lines lines = measure.lines(routes);
+  std::vector<Contact> near = measure.contacts(lines, s.clearance + margin);
+  result.before = result.after = smallest_clearance(near);
+  std::vector<Contact> short_of;
+  for (const Contact& c : near)
+    if (c.clearance < s.clearance - s.tolerance) short_of.push_back(c);
+  result.collided = worst_per_pair(short_of);
+  if (short_of.empty()) return result;
+  check_end_points(routes, measure.radius(), s);
+
+  const RouteVariables v(measure, routes);
+  const SparseMatrix W = v.smoothness(lines, s.smoothness);
+  const Eigen::VectorXd y0 = v.values(routes);
+  Eigen::VectorXd y = y0;
+  std::set<Key> seen;
+  std::set<int> moved;
+  for (result.iterations = 1; result.iterations <= s.max_iterations; ++result.iterations) {
+    std::vector<Contact> contacts = measure.contacts(lines, s.clearance + margin);
+    std::set<Key> fresh;
+    for (const Contact& c : contacts) fresh.insert(key_of(c));
+    for (const Key& k : seen)
+      if (!fresh.count(k)) contacts.push_back(measure.remeasure(lines, std::get<0>(k), std::get<1>(k), std::get<2>(k)));
+    for (const Contact& c : contacts) {
+      seen.insert(key_of(c));
+      moved.insert(c.a);
+      if (!c.with_skin()) moved.insert(c.b);
+    }
+    RowMatrix A;
+    Eigen::VectorXd b;
+    linearize(v, contacts, s.clearance, A, b);
+    const Eigen::VectorXd next = QuadraticProblem(W, A, b, y0, y).solve(y);
+    const double step = (next - y).lpNorm<Eigen::Infinity>();
+    y = next;
+    result.routes = v.routes(y, routes);
+    lines = measure.lines(result.routes);
+    result.after = smallest_clearance(measure.contacts(lines, s.clearance + margin));
+    if (result.after >= s.clearance - s.tolerance && step < 1e-4) break;  // mm
+  }
+  for (int f = 0; f < measure.num_fibers(); ++f)
+    if (!moved.count(f)) result.routes[f] = routes[f];  // untouched, bit for bit
+  result.changed = true;
+
+  const std::vector<Contact> left = measure.contacts(measure.lines(result.routes), s.clearance - s.tolerance);
+  if (!left.empty()) {
+    const Contact& worst = *std::min_element(
+        left.begin(), left.end(), [](const Contact& x, const Contact& y) { return x.clearance < y.clearance; });
+    throw CollisionError(fmt::format(
+        "{} cannot be given {:.2f} mm of clearance near {}: the most found there is {:.2f} mm{}",
+        describe(worst, routes), s.clearance / units::mm, where_mm(worst.point_a), worst.clearance / units::mm,
+        worst.with_skin() ? "; the body is too thin there for the muscle and its clearance"
+                          : "; the passage is narrower than two muscles and their clearance, or the fibers are locked "
+                            "together by their fixed end points"));
+  }
+  return result;
+}
+
+} // namespace fibermold
