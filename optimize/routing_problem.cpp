@@ -19,11 +19,6 @@ double since(Clock::time_point t) { return std::chrono::duration<double>(Clock::
 
 constexpr double kPressureUnit = 10e3;  // Pa per optimizer unit
 constexpr int kSkinSamplesPerSegment = 1;
-
-int segment_count(const HermiteSpline& s, double per_length)
-{
-  return std::max(1, static_cast<int>(std::ceil(s.length() * per_length)));
-}
 } // namespace
 
 RoutingProblem::RoutingProblem(Simulation& sim, const MuscleModel& model, const SurfaceDistance& skin,

@@ -112,7 +112,9 @@ struct OptimizeOptions {
 };
 
 struct CollideOptions {
-  double clearance = 1e-3;   ///< m, between muscle surfaces and to the skin
+  double clearance = 1e-3;             ///< m, between muscle surfaces and to the skin
+  double smoothness = 10e-3;           ///< m, the length over which a move spreads along a fiber
+  double samples_per_length = 4000;    ///< centre-line samples per m
   bool reoptimize = false;
 };
 

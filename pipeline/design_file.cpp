@@ -709,6 +709,8 @@ CollideOptions read_collide(Section s)
 {
   CollideOptions o;
   o.clearance = s.number("clearance", o.clearance / units::mm, non_negative(), kMm);
+  o.smoothness = s.number("smoothness", o.smoothness / units::mm, positive(), kMm);
+  o.samples_per_length = s.number("samples_per_mm", o.samples_per_length * units::mm, positive()) / units::mm;
   o.reoptimize = s.boolean("reoptimize", o.reoptimize);
   s.finish();
   return o;

@@ -144,7 +144,7 @@ std::vector<const MuscleEnergy*> add_muscles(Simulation& sim, const Design& d, c
   std::vector<const MuscleEnergy*> muscles;
   for (const Actuation& a : actuations) {
     HermiteSpline spline(a.points, a.tangents);
-    const int count = std::max(1, static_cast<int>(std::ceil(spline.length() * d.muscle.segments_per_length)));
+    const int count = segment_count(spline, d.muscle.segments_per_length);
     std::vector<double> t = segment_parameters(spline, count);
     const FiberSegments segments = segments_at(spline, t);
     for (std::size_t j = 0; j < segments.vectors.size(); ++j)

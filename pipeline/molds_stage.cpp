@@ -111,7 +111,7 @@ void MoldsStage::run(StageContext& ctx) const
   const TetMesh mesh = load_tet_mesh(ctx.upstream("mesh", "body.tetmesh"));
   const SurfaceMesh body = body_surface(mesh);
   const SurfaceDistance skin(body.vertices, body.faces);
-  const FibersFile fibers = read_fibers_json(ctx.upstream("optimize", "fibers.json"));
+  const FibersFile fibers = read_fibers_json(ctx.upstream("collide", "fibers.json"));
   const double radius = d.muscle.model.diameter / 2 + m.groove_clearance;
   const Eigen::Vector3d pull = m.pull.normalized();
   if (m.parting && m.parting->normal.normalized().cross(pull).norm() > 1e-6)

@@ -3,9 +3,9 @@
 //   shot 1: the body with an open groove per muscle (level set), in a two-part mold;
 //   shot 2: the full body, the overmold that closes the grooves over the laid-in muscles, with
 //           channels where the fibers leave the body for their ends and supply tubes.
-// Fiber routes come from optimize/fibers.json (the [[fiber]] routes when [optimize] enabled =
-// false). Every part is checked (part_checks.hpp); any failed check fails the stage and nothing is
-// written. Outputs: molds/<shot>-lower.stl, <shot>-upper.stl (mm, in the body's frame),
+// Fiber routes come from collide/fibers.json (the [[fiber]] routes when [optimize] enabled =
+// false, given their clearance by collide all the same). Every part is checked (part_checks.hpp);
+// any failed check fails the stage and nothing is written. Outputs: molds/<shot>-lower.stl, <shot>-upper.stl (mm, in the body's frame),
 // groove-body.stl, report.json.
 
 #include "pipeline/stage.hpp"
@@ -15,7 +15,7 @@ namespace fibermold {
 class MoldsStage final : public Stage {
 public:
   std::string name() const override { return "molds"; }
-  std::vector<std::string> upstream() const override { return {"mesh", "optimize"}; }
+  std::vector<std::string> upstream() const override { return {"mesh", "collide"}; }
   std::vector<std::string> design_keys() const override
   {
     return {"design.units", "material.density", "muscle.diameter", "collide.clearance", "mold", "export.min_wall",

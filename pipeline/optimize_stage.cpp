@@ -14,6 +14,7 @@
 #include "optimize/routing_optimizer.hpp"
 #include "pipeline/design_simulation.hpp"
 #include "pipeline/fibers_file.hpp"
+#include "pipeline/routing_evaluation.hpp"
 
 namespace fibermold {
 
@@ -53,7 +54,7 @@ Routing starting_routing(const Design& d)
   return r;
 }
 
-void check_inputs(const Design& d, const SurfaceDistance& skin, const std::vector<TrackingSamples>& curves)
+void check_inputs(const Design& d)
 {
   if (d.fibers.empty()) bad(d, "[[fiber]]", "nothing to optimize: give at least one fiber");
   if (d.targets.empty()) bad(d, "[[target]]", "nothing to optimize for: give at least one target");
@@ -63,46 +64,15 @@ void check_inputs(const Design& d, const SurfaceDistance& skin, const std::vecto
     bad(d, "[optimize].strategy",
         fmt::format("sequential drives one fiber per target, in order: {} fiber(s) for {} target(s)", d.fibers.size(),
                     d.targets.size()));
-  for (std::size_t c = 0; c < curves.size(); ++c)
-    for (const Eigen::Vector3d& q : curves[c].points)
-      if (const auto at = skin.closest(q); !at.inside && at.distance > 1e-6)
-        bad(d, fmt::format("[tracking_curve.{}]", d.tracking_curves[c].name),
-            fmt::format("the curve leaves the body at {}", format_mm(q)));
+}
+
+void check_fibers_inside(const Design& d, const SurfaceDistance& skin)
+{
   for (const Fiber& f : d.fibers) {
     const HermiteSpline s(f.points, f.tangents);
-    const int count = std::max(1, static_cast<int>(std::ceil(s.length() * d.muscle.segments_per_length)));
-    for (const Eigen::Vector3d& c : split_into_segments(s, count).centres)
+    for (const Eigen::Vector3d& c : split_into_segments(s, segment_count(s, d.muscle.segments_per_length)).centres)
       if (!skin.closest(c).inside) bad(d, fmt::format("[fiber.{}]", f.name), fmt::format("the fiber leaves the body at {}", format_mm(c)));
   }
-}
-
-struct TargetErrors {
-  double rmse = 0, max = 0, surface_rmse = 0, surface_max = 0;  ///< m
-};
-
-TargetErrors target_errors(RoutingProblem& problem, const TetMesh& mesh, int t, const Eigen::VectorXd& x)
-{
-  TargetErrors e;
-  e.rmse = problem.distance(t).rmse(x);
-  e.max = problem.distance(t).max_error(x);
-  const Eigen::MatrixX3d reached = problem.simulation().deformed_nodes(x);
-  const Eigen::MatrixX3d wanted = problem.simulation().deformed_nodes(problem.target(t));
-  double sum = 0;
-  for (Eigen::Index v = 0; v < mesh.surface_to_node.size(); ++v) {
-    const double d = (reached.row(mesh.surface_to_node(v)) - wanted.row(mesh.surface_to_node(v))).norm();
-    sum += d * d;
-    e.surface_max = std::max(e.surface_max, d);
-  }
-  e.surface_rmse = std::sqrt(sum / static_cast<double>(std::max<Eigen::Index>(1, mesh.surface_to_node.size())));
-  return e;
-}
-
-nlohmann::ordered_json errors_json(const TargetErrors& e)
-{
-  return {{"rmse_mm", e.rmse / units::mm},
-          {"max_error_mm", e.max / units::mm},
-          {"surface_rmse_mm", e.surface_rmse / units::mm},
-          {"surface_max_error_mm", e.surface_max / units::mm}};
 }
 
 /// history.csv: one row per accepted BFGS step.
@@ -140,27 +110,12 @@ void OptimizeStage::run(StageContext& ctx) const
     ctx.log.info("[optimize] enabled = false: the [[fiber]] routes pass through unchanged");
     return;
   }
-  const TetMesh mesh = load_tet_mesh(ctx.upstream("mesh", "body.tetmesh"));
-  const SurfaceDistance skin(mesh.nodes, mesh.boundary_faces);
-  std::vector<TrackingSamples> curves;
-  for (const TrackingCurve& c : d.tracking_curves)
-    curves.push_back(sample_tracking_curve(c.points, c.samples, c.weight_position, c.weight_orientation));
-  check_inputs(d, skin, curves);
-
-  Simulation sim(mesh, simulation_options(d, mesh));
-  std::vector<Eigen::VectorXd> targets;
-  for (const std::string& t : names) targets.push_back(load_array(ctx.upstream("targets", t + ".positions"), "positions"));
-  const MuscleModel model(d.muscle.model);
-  RoutingSettings settings;
-  settings.max_pressure = d.muscle.max_pressure;
-  settings.segments_per_length = d.muscle.segments_per_length;
-  settings.skin_distance = d.muscle.model.diameter / 2 + d.collide.clearance;
-  settings.skin_band = d.muscle.model.diameter / 2;
-  settings.weight_curvature = d.optimize.weight_curvature;
-  settings.weight_skin = d.optimize.weight_skin_barrier;
-  settings.weight_pressure = d.optimize.weight_pressure_barrier;
+  check_inputs(d);
+  DesignRouting dr(ctx);
+  check_fibers_inside(d, *dr.skin);
   const Routing start = starting_routing(d);
-  RoutingProblem problem(sim, model, skin, targets, curves, start, settings);
+  RoutingProblem& problem = dr.start(start);
+  const RoutingSettings settings = routing_settings(d);
   double closest = 0;
   Eigen::Vector3d where;
   if (const int f = problem.skin_violation(start, closest, where); f >= 0)
@@ -170,7 +125,7 @@ void OptimizeStage::run(StageContext& ctx) const
                     closest / units::mm, format_mm(where), settings.skin_distance / units::mm));
 
   std::vector<TargetErrors> before;
-  for (int t = 0; t < problem.num_targets(); ++t) before.push_back(target_errors(problem, mesh, t, problem.equilibrium(start, t)));
+  for (int t = 0; t < problem.num_targets(); ++t) before.push_back(target_errors(problem, dr.mesh, t, problem.equilibrium(start, t)));
   for (int t = 0; t < problem.num_targets(); ++t)
     ctx.log.info("target {}: at the start, RMSE {:.3f} mm, max {:.3f} mm on the tracking curves", names[t],
                  before[t].rmse / units::mm, before[t].max / units::mm);
@@ -206,15 +161,11 @@ void OptimizeStage::run(StageContext& ctx) const
   ctx.log.info("{} after {} iterations, {} evaluations", result.message, result.iterations, result.evaluations);
 
   nlohmann::ordered_json per_target = nlohmann::ordered_json::object();
-  const LameParameters lame = LameParameters::from_young_poisson(d.material.youngs_modulus, d.material.poisson_ratio);
   for (int t = 0; t < problem.num_targets(); ++t) {
     ctx.progress.checkpoint(1, "writing target " + names[t]);
     const Eigen::VectorXd x = problem.equilibrium(result.routing, t);
-    const TargetErrors after = target_errors(problem, mesh, t, x);
-    std::vector<const MuscleEnergy*> muscles;
-    const auto owned = problem.muscles(result.routing, t);
-    for (const auto& m : owned) muscles.push_back(m.get());
-    write_deformed(ctx.output_dir / fmt::format("deformed-{}.vtu", names[t]), sim, x, muscles, lame);
+    const TargetErrors after = target_errors(problem, dr.mesh, t, x);
+    write_deformed_target(ctx.output_dir / fmt::format("deformed-{}.vtu", names[t]), dr, result.routing, t, x);
     nlohmann::ordered_json pressures = nlohmann::ordered_json::object();
     for (int f = 0; f < problem.num_fibers(); ++f) pressures[d.fibers[f].name] = result.routing.pressures(t, f) / units::kPa;
     nlohmann::ordered_json entry = errors_json(after);

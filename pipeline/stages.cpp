@@ -1,5 +1,6 @@
 #include "pipeline/stages.hpp"
 
+#include "pipeline/collide_stage.hpp"
 #include "pipeline/export_stage.hpp"
 #include "pipeline/mesh_stage.hpp"
 #include "pipeline/molds_stage.hpp"
@@ -16,6 +17,7 @@ std::vector<std::unique_ptr<Stage>> shipped_stages()
   stages.push_back(std::make_unique<MeshStage>());
   stages.push_back(std::make_unique<TargetsStage>());
   stages.push_back(std::make_unique<OptimizeStage>());
+  stages.push_back(std::make_unique<CollideStage>());
   stages.push_back(std::make_unique<MoldsStage>());
   stages.push_back(std::make_unique<ExportStage>());
   return stages;

@@ -66,6 +66,11 @@ double HermiteSpline::length() const
   return length;
 }
 
+int segment_count(const HermiteSpline& spline, double per_length)
+{
+  return std::max(1, static_cast<int>(std::ceil(spline.length() * per_length)));
+}
+
 FiberSegments split_into_segments(const HermiteSpline& spline, int count)
 {
   return segments_at(spline, segment_parameters(spline, count));

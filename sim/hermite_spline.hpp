@@ -39,6 +39,8 @@ struct FiberSegments {
   std::vector<Eigen::Vector3d> centres, vectors;
 };
 FiberSegments split_into_segments(const HermiteSpline& spline, int count);
+/// How many segments a spline gets at `per_length` segments per m: ⌈length · per_length⌉, at least one.
+int segment_count(const HermiteSpline& spline, double per_length);
 /// The endpoint parameters split_into_segments uses; held fixed while the spline's points move, so
 /// that segments move smoothly with them.
 std::vector<double> segment_parameters(const HermiteSpline& spline, int count);

@@ -96,7 +96,10 @@ TEST_F(MoldsE2E, MoldEditsRerunMoldsAndExportOnly)
   ASSERT_EQ(make().exit_code, 0);
   test::write_text(dir_ / "design.toml", std::string(kDesign) + "wall = 5.0\n[[fiber]]\nname = \"m1\"\npoints = [[0, 0, 0], [60, 0, 0]]\n");
   const auto status = test::run_fibermold("status design.toml --build-dir build", dir_.path()).out;
-  EXPECT_THAT(status, HasSubstr("optimize  fresh\nmolds     stale ([mold].wall changed (4 → 5))\nexport    stale"));
+  EXPECT_THAT(status, HasSubstr("optimize  fresh\ncollide   fresh\nmolds     stale ([mold].wall changed (4 → 5))\nexport    stale"));
+  test::write_text(dir_ / "design.toml", std::string(kDesign) + "[collide]\nsmoothness = 20\n[[fiber]]\nname = \"m1\"\npoints = [[0, 0, 0], [60, 0, 0]]\n");
+  EXPECT_THAT(test::run_fibermold("status design.toml --build-dir build", dir_.path()).out,
+              HasSubstr("optimize  fresh\ncollide   stale ([collide].smoothness changed (10 → 20))\nmolds     stale"));
 }
 
 TEST_F(MoldsE2E, BadInputsStopWithoutWritingParts)
@@ -108,7 +111,8 @@ TEST_F(MoldsE2E, BadInputsStopWithoutWritingParts)
   EXPECT_FALSE(fs::exists(dir_ / "build" / "molds" / "shot1-lower.stl"));
   EXPECT_FALSE(fs::exists(out("manifest.json")));
 
-  design("", "[[fiber]]\nname = \"m1\"\npoints = [[0, 0, 0], [30, 0, -6.5], [60, 0, 0]]\n");
+  // Collide would move this fiber 1 mm further in; with no clearance asked, molds catches it.
+  design("[collide]\nclearance = 0\n", "[[fiber]]\nname = \"m1\"\npoints = [[0, 0, 0], [30, 0, -6.5], [60, 0, 0]]\n");
   r = make();
   EXPECT_EQ(r.exit_code, 2);
   EXPECT_THAT(r.err, HasSubstr("[fiber.m1]: the fiber passes"));

@@ -37,7 +37,7 @@ struct RoutingFixture {
     std::vector<std::unique_ptr<Energy>> muscles;
     for (std::size_t f = 0; f < fibers.size(); ++f) {
       const HermiteSpline s(fibers[f]);
-      const int count = std::max(1, static_cast<int>(std::ceil(s.length() * segments_per_length)));
+      const int count = segment_count(s, segments_per_length);
       muscles.push_back(std::make_unique<MuscleEnergy>(sim->basis(), model, s, segment_parameters(s, count), pressures[f]));
     }
     sim->set_variable_energies(std::move(muscles));

@@ -1,0 +1,26 @@
+#pragma once
+// The collide stage, between optimize and molds: fibers that come closer to each other or to the
+// skin than [collide] clearance are moved apart by the smallest smooth change of their routes
+// (optimize/collision_resolution.hpp; the paper did this by hand, sections V-B and VIII-F), and
+// every target is simulated again with the resolved routing and its pressures, to show the robot
+// still does its job. Outputs: collide/fibers.json (optimize's schema), report.json (collisions,
+// smallest clearance before and after, how far each control point moved, per-target errors before
+// and after), deformed-<target>.vtu. A clear routing passes through bit for bit; a clearance that
+// cannot be had fails the stage, naming the fibers and the place.
+
+#include "pipeline/stage.hpp"
+
+namespace fibermold {
+
+class CollideStage final : public Stage {
+public:
+  std::string name() const override { return "collide"; }
+  std::vector<std::string> upstream() const override { return {"mesh", "targets", "optimize"}; }
+  std::vector<std::string> design_keys() const override
+  {
+    return {"design.units", "material", "sim", "fixed", "muscle", "tracking_curve", "target", "collide"};
+  }
+  void run(StageContext& ctx) const override;
+};
+
+} // namespace fibermold

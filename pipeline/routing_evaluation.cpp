@@ -1,0 +1,88 @@
+#include "pipeline/routing_evaluation.hpp"
+
+#include <cmath>
+
+#include <fmt/format.h>
+
+#include "core/array_file.hpp"
+#include "core/input_error.hpp"
+#include "core/units.hpp"
+#include "pipeline/design_simulation.hpp"
+
+namespace fibermold {
+
+DesignRouting::DesignRouting(const StageContext& ctx)
+    : design(ctx.design), mesh(load_tet_mesh(ctx.upstream("mesh", "body.tetmesh"))), model(ctx.design.muscle.model)
+{
+  const Design& d = ctx.design;
+  skin = std::make_unique<SurfaceDistance>(mesh.nodes, mesh.boundary_faces);
+  for (const TrackingCurve& c : d.tracking_curves) {
+    curves.push_back(sample_tracking_curve(c.points, c.samples, c.weight_position, c.weight_orientation));
+    for (const Eigen::Vector3d& q : curves.back().points)
+      if (const auto at = skin->closest(q); !at.inside && at.distance > 1e-6)
+        throw InputError(Diagnostic{d.file, 0, 0, fmt::format("[tracking_curve.{}]", c.name),
+                                    fmt::format("the curve leaves the body at {}", format_mm(q))});
+  }
+  sim = std::make_unique<Simulation>(mesh, simulation_options(d, mesh));
+  for (const Target& t : d.targets) {
+    target_names.push_back(t.name);
+    targets.push_back(load_array(ctx.upstream("targets", t.name + ".positions"), "positions"));
+  }
+}
+
+RoutingProblem& DesignRouting::start(const Routing& routing)
+{
+  problem = std::make_unique<RoutingProblem>(*sim, model, *skin, targets, curves, routing, routing_settings(design));
+  return *problem;
+}
+
+RoutingSettings routing_settings(const Design& d)
+{
+  RoutingSettings s;
+  s.max_pressure = d.muscle.max_pressure;
+  s.segments_per_length = d.muscle.segments_per_length;
+  s.skin_distance = d.muscle.model.diameter / 2 + d.collide.clearance;
+  s.skin_band = d.muscle.model.diameter / 2;
+  s.weight_curvature = d.optimize.weight_curvature;
+  s.weight_skin = d.optimize.weight_skin_barrier;
+  s.weight_pressure = d.optimize.weight_pressure_barrier;
+  return s;
+}
+
+TargetErrors target_errors(RoutingProblem& problem, const TetMesh& mesh, int t, const Eigen::VectorXd& x)
+{
+  TargetErrors e;
+  e.rmse = problem.distance(t).rmse(x);
+  e.max = problem.distance(t).max_error(x);
+  const Eigen::MatrixX3d reached = problem.simulation().deformed_nodes(x);
+  const Eigen::MatrixX3d wanted = problem.simulation().deformed_nodes(problem.target(t));
+  double sum = 0;
+  for (Eigen::Index v = 0; v < mesh.surface_to_node.size(); ++v) {
+    const double d = (reached.row(mesh.surface_to_node(v)) - wanted.row(mesh.surface_to_node(v))).norm();
+    sum += d * d;
+    e.surface_max = std::max(e.surface_max, d);
+  }
+  e.surface_rmse = std::sqrt(sum / static_cast<double>(std::max<Eigen::Index>(1, mesh.surface_to_node.size())));
+  return e;
+}
+
+nlohmann::ordered_json errors_json(const TargetErrors& e)
+{
+  return {{"rmse_mm", e.rmse / units::mm},
+          {"max_error_mm", e.max / units::mm},
+          {"surface_rmse_mm", e.surface_rmse / units::mm},
+          {"surface_max_error_mm", e.surface_max / units::mm}};
+}
+
+void write_deformed_target(const std::filesystem::path& path, DesignRouting& dr, const Routing& r, int t,
+                           const Eigen::VectorXd& x)
+{
+  const LameParameters lame =
+      LameParameters::from_young_poisson(dr.design.material.youngs_modulus, dr.design.material.poisson_ratio);
+  std::vector<const MuscleEnergy*> muscles;
+  const auto owned = dr.problem->muscles(r, t);
+  for (const auto& m : owned) muscles.push_back(m.get());
+  write_deformed(path, *dr.sim, x, muscles, lame);
+}
+
+} // namespace fibermold

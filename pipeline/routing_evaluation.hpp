@@ -1,0 +1,58 @@
+#pragma once
+// What the optimize and collide stages share: the design's routing problem (eq. 4), and how well a
+// routing does against each target, on the tracking curves and on the surface.
+
+#include <filesystem>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+#include "mesh/surface_distance.hpp"
+#include "mesh/tet_mesh.hpp"
+#include "optimize/routing_problem.hpp"
+#include "pipeline/design.hpp"
+#include "pipeline/stage.hpp"
+
+namespace fibermold {
+
+/// The body, its skin, the targets and the tracking curves of a design, and the routing problem
+/// over them; built from the mesh and targets stages' outputs.
+struct DesignRouting {
+  const Design& design;
+  TetMesh mesh;
+  std::unique_ptr<SurfaceDistance> skin;
+  std::unique_ptr<Simulation> sim;
+  MuscleModel model;
+  std::vector<std::string> target_names;
+  std::vector<Eigen::VectorXd> targets;
+  std::vector<TrackingSamples> curves;
+  std::unique_ptr<RoutingProblem> problem;  ///< after start()
+
+  /// Throws InputError for a tracking curve that leaves the body.
+  explicit DesignRouting(const StageContext& ctx);
+  /// The routing problem from `routing`; std::invalid_argument when it refuses it.
+  RoutingProblem& start(const Routing& routing);
+
+  DesignRouting(const DesignRouting&) = delete;  // the simulation holds the mesh
+  DesignRouting& operator=(const DesignRouting&) = delete;
+};
+
+/// The [optimize] weights, [muscle] limits and the skin distance ([muscle] diameter/2 + [collide]
+/// clearance) as the routing problem takes them.
+RoutingSettings routing_settings(const Design& d);
+
+struct TargetErrors {
+  double rmse = 0, max = 0, surface_rmse = 0, surface_max = 0;  ///< m
+};
+/// The errors of equilibrium x of target t.
+TargetErrors target_errors(RoutingProblem& problem, const TetMesh& mesh, int t, const Eigen::VectorXd& x);
+/// {rmse_mm, max_error_mm, surface_rmse_mm, surface_max_error_mm}
+nlohmann::ordered_json errors_json(const TargetErrors& e);
+
+/// deformed-<target>.vtu of equilibrium x of target t under routing r.
+void write_deformed_target(const std::filesystem::path& path, DesignRouting& dr, const Routing& r, int t,
+                           const Eigen::VectorXd& x);
+
+} // namespace fibermold

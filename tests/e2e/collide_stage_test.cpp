@@ -1,0 +1,143 @@
+// The collide stage as a user runs it: two hand-routed fibers crossing 1 mm apart in a block are
+// moved apart to the clearance; a clear routing passes through untouched; a fixed end shared by
+// two fibers stops the stage; an optimized routing is simulated again before and after; [collide]
+// edits rerun collide and what follows, not optimize.
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
+
+#include "export/stl_writer.hpp"
+#include "primitives.hpp"
+#include "test_support.hpp"
+
+namespace fibermold {
+namespace {
+
+using ::testing::HasSubstr;
+namespace fs = std::filesystem;
+
+// A 60 × 60 × 20 mm block held at x = 0; "a" runs along x, "b" across it, 1 mm above: the same
+// fiber turned by 90°, so that the least movement is half each.
+const char* kDesign = R"([design]
+name = "block"
+surface = "block.stl"
+[mesh]
+edge_length = 8
+[[fixed]]
+box = { min = [-1, -31, -11], max = [0.5, 31, 11] }
+)";
+const char* kCrossing = R"([[fiber]]
+name = "a"
+points = [[0, 0, -0.5], [30, 0, -0.5], [60, 0, -0.5]]
+[[fiber]]
+name = "b"
+points = [[30, -30, 0.5], [30, 0, 0.5], [30, 30, 0.5]]
+)";
+
+class CollideE2E : public ::testing::Test {
+protected:
+  void SetUp() override { write_stl(dir_ / "block.stl", test::box({0, -0.03, -0.01}, {0.06, 0.03, 0.01}, Eigen::Vector3i(6, 6, 2))); }
+  void design(const std::string& body) { test::write_text(dir_ / "design.toml", std::string(kDesign) + body); }
+  test::CommandResult make(const std::string& stage = "collide")
+  {
+    return test::run_fibermold("make design.toml " + stage + " --build-dir build", dir_.path());
+  }
+  nlohmann::json json(const std::string& stage, const std::string& file)
+  {
+    return nlohmann::json::parse(test::read_text(dir_ / "build" / stage / file));
+  }
+  std::string status() { return test::run_fibermold("status design.toml --build-dir build", dir_.path()).out; }
+
+  test::TempDir dir_;
+};
+
+TEST_F(CollideE2E, CrossingFibersAreMovedApartToTheClearance)
+{
+  design(std::string(kCrossing) + "[optimize]\nenabled = false\n");
+  const auto r = make();
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const auto report = json("collide", "report.json");
+  EXPECT_TRUE(report["changed"].get<bool>());
+  ASSERT_EQ(report["collisions"].size(), 1u);
+  EXPECT_EQ(report["collisions"][0]["between"], nlohmann::json({"a", "b"}));
+  EXPECT_NEAR(report["collisions"][0]["clearance_mm"].get<double>(), 1.0 - 3.0, 1e-6);
+  EXPECT_NEAR(report["smallest_clearance_mm"]["after"].get<double>(), 1.0, 0.05);
+  EXPECT_TRUE(report["targets"].is_null());  // hand-routed: nothing to simulate against
+  const auto fibers = json("collide", "fibers.json");
+  const auto& a = fibers["fibers"][0]["points_mm"];
+  const auto& b = fibers["fibers"][1]["points_mm"];
+  EXPECT_NEAR(a[1][2].get<double>(), -2.0, 0.05);  // 3 mm of movement, half each
+  EXPECT_NEAR(b[1][2].get<double>(), 2.0, 0.05);
+  EXPECT_EQ(a[0], nlohmann::json({0.0, 0.0, -0.5}));  // end points stay
+  EXPECT_EQ(b[2], nlohmann::json({30.0, 30.0, 0.5}));
+  EXPECT_NEAR(report["moves_mm"]["a"]["points"][1].get<double>(), 1.5, 0.05);
+}
+
+TEST_F(CollideE2E, ClearRoutingPassesThroughUnchanged)
+{
+  std::string routing = kCrossing;
+  routing.replace(routing.find("[30, 0, 0.5]"), 12, "[30, 0, 6.0]");
+  design(routing + "[optimize]\nenabled = false\n");
+  ASSERT_EQ(make().exit_code, 0);
+  EXPECT_FALSE(json("collide", "report.json")["changed"].get<bool>());
+  EXPECT_EQ(test::read_text(dir_ / "build" / "collide" / "fibers.json"), test::read_text(dir_ / "build" / "optimize" / "fibers.json"));
+}
+
+TEST_F(CollideE2E, ImpossibleClearanceStopsTheStage)
+{
+  std::string routing = kCrossing;
+  routing.replace(routing.find("[30, -30, 0.5]"), 14, "[0, 0, -0.5]");
+  design(routing + "[optimize]\nenabled = false\n");
+  auto r = make();
+  EXPECT_EQ(r.exit_code, 1);
+  EXPECT_THAT(r.err, HasSubstr("fibers a and b have fixed end points 0.00 mm apart, at (0.00, 0.00, -0.50) mm"));
+  EXPECT_FALSE(fs::exists(dir_ / "build" / "collide" / "fibers.json"));
+  EXPECT_THAT(status(), HasSubstr("collide   stale"));
+
+  design("[[fiber]]\nname = \"a\"\npoints = [[0, 0, 0], [30, 0, -14], [60, 0, 0]]\n[optimize]\nenabled = false\n");
+  r = make();
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_THAT(r.err, HasSubstr("[fiber.a]: the fiber (as routed in optimize/fibers.json) leaves the body at"));
+}
+
+TEST_F(CollideE2E, OptimizedRoutingIsSimulatedBeforeAndAfter)
+{
+  design(std::string(kCrossing) + R"([[tracking_curve]]
+name = "centre"
+points = [[0, 0, 0], [60, 0, 0]]
+samples = 12
+[[target]]
+name = "lift"
+kind = "fibers"
+fibers = [{ name = "a", pressure = 200, points = [[0, 0, -0.5], [30, 0, -0.5], [60, 0, -0.5]] },
+          { name = "b", pressure = 200, points = [[30, -30, 0.5], [30, 0, 0.5], [30, 30, 0.5]] }]
+[optimize]
+max_iterations = 2
+)");
+  const auto r = make();
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const auto report = json("collide", "report.json");
+  EXPECT_TRUE(report["changed"].get<bool>());
+  const auto& lift = report["targets"]["lift"];
+  const double before = lift["before"]["rmse_mm"], after = lift["after"]["rmse_mm"];
+  std::printf("collide e2e: target RMSE %.3f mm before, %.3f mm after (%+.1f %%)\n", before, after,
+              lift["rmse_change_percent"].get<double>());
+  // The target is the crossing routing itself: parting the fibers costs accuracy, and says how much.
+  EXPECT_LT(before, after);
+  EXPECT_NEAR(lift["rmse_change_percent"].get<double>(), 100 * (after - before) / before, 1e-6);
+  EXPECT_TRUE(fs::exists(dir_ / "build" / "collide" / "deformed-lift.vtu"));
+}
+
+TEST_F(CollideE2E, CollideEditsRerunCollideAndWhatFollowsNotOptimize)
+{
+  design(std::string(kCrossing) + "[optimize]\nenabled = false\n[collide]\nsmoothness = 10\n");
+  ASSERT_EQ(make().exit_code, 0);
+  design(std::string(kCrossing) + "[optimize]\nenabled = false\n[collide]\nsmoothness = 20\n");
+  EXPECT_THAT(status(), HasSubstr("optimize  fresh\ncollide   stale ([collide].smoothness changed (10 → 20))"));
+  const auto r = make();
+  EXPECT_THAT(r.out, HasSubstr("collide: done"));
+  EXPECT_THAT(r.out, HasSubstr("1 stage(s) ran"));
+}
+
+} // namespace
+} // namespace fibermold
