@@ -6,7 +6,8 @@
 #include <set>
 #include <tuple>
 
-#include <Eigen/SparseCholesky>
+#include <Eigen/Cholesky>
+#include <Eigen/SparseCore>
 #include <fmt/format.h>
 
 #include "core/units.hpp"
@@ -15,7 +16,6 @@ namespace fibermold {
 
 namespace {
 
-using SparseMatrix = Eigen::SparseMatrix<double>;
 using RowMatrix = Eigen::SparseMatrix<double, Eigen::RowMajor>;
 using Triplets = std::vector<Eigen::Triplet<double>>;
 
@@ -89,9 +89,9 @@ public:
 
   /// W of the header: Σ_k h_k |Δp_k|² + ℓ⁴ Σ_k h_k |Δp''_k|² over the samples of each fiber, with
   /// h_k the arc length a sample stands for and Δp'' the three-point second difference (mm).
-  SparseMatrix smoothness(const FiberClearance::Lines& lines, double length) const
+  Eigen::MatrixXd smoothness(const FiberClearance::Lines& lines, double length) const
   {
-    Triplets entries;
+    Eigen::MatrixXd W = Eigen::MatrixXd::Zero(size_, size_);
     const double l4 = std::pow(length / units::mm, 4);
     for (std::size_t f = 0; f < slot_index_.size(); ++f) {
       const auto& phi = weights_[f];
@@ -112,11 +112,9 @@ public:
         for (Eigen::Index q = 0; q < slots; ++q) {
           const int i = slot_index_[f][p], j = slot_index_[f][q];
           if (i < 0 || j < 0 || M(p, q) == 0) continue;
-          for (int c = 0; c < 3; ++c) entries.emplace_back(i + c, j + c, M(p, q));
+          for (int c = 0; c < 3; ++c) W(i + c, j + c) += M(p, q);
         }
     }
-    SparseMatrix W(size_, size_);
-    W.setFromTriplets(entries.begin(), entries.end());
     return W;
   }
 
@@ -163,24 +161,23 @@ void linearize(const RouteVariables& v, const std::vector<Contact>& contacts, do
 /// inconsistent: the caller measures).
 class QuadraticProblem {
 public:
-  QuadraticProblem(const SparseMatrix& W, const RowMatrix& A, const Eigen::VectorXd& b, const Eigen::VectorXd& y0,
+  QuadraticProblem(const Eigen::MatrixXd& W, const RowMatrix& A, const Eigen::VectorXd& b, const Eigen::VectorXd& y0,
                    const Eigen::VectorXd& z)
       : W_(W), A_(A), y0_(y0), Az_b_(A * z + b), mu_(1e4 * std::max(1.0, W.diagonal().maxCoeff()))
   {
-    for (Eigen::Index k = 0; k < W.outerSize(); ++k)
-      for (SparseMatrix::InnerIterator it(W, k); it; ++it) W_entries_.emplace_back(it.row(), it.col(), it.value());
   }
 
-  Eigen::VectorXd solve(Eigen::VectorXd y)
+  /// From y and multipliers λ (the last round's, for the contacts seen before); both updated.
+  void solve(Eigen::VectorXd& y, Eigen::VectorXd& lambda)
   {
-    lambda_ = Eigen::VectorXd::Zero(A_.rows());
+    lambda_ = lambda;
     for (int outer = 0; outer < 50; ++outer) {
       minimize(y);
       const Eigen::VectorXd r = A_ * y - Az_b_;
       lambda_ = (lambda_ - mu_ * r).cwiseMax(0.0);
-      if (r.size() == 0 || r.minCoeff() > -1e-7) break;  // mm
+      if (r.size() == 0 || r.minCoeff() > -1e-5) break;  // mm: 10 nm
     }
-    return y;
+    lambda = lambda_;
   }
 
 private:
@@ -199,18 +196,17 @@ private:
       const Eigen::VectorXd q = pull(y);
       const Eigen::VectorXd g = W_ * (y - y0_) - A_.transpose() * q;
       if (g.lpNorm<Eigen::Infinity>() < 1e-12 * (1 + q.lpNorm<Eigen::Infinity>())) return;
-      // H = W + μ Σ_{q_i > 0} a_i a_iᵀ
-      Triplets entries = W_entries_;
+      // H = W + μ Σ_{q_i > 0} a_i a_iᵀ: dense, since contacts couple the fibers that cross (a
+      // design has tens to hundreds of variables)
+      Eigen::MatrixXd H = W_;
       for (Eigen::Index i = 0; i < A_.rows(); ++i) {
         if (q[i] <= 0) continue;
         for (RowMatrix::InnerIterator p(A_, i); p; ++p)
-          for (RowMatrix::InnerIterator r(A_, i); r; ++r) entries.emplace_back(p.col(), r.col(), mu_ * p.value() * r.value());
+          for (RowMatrix::InnerIterator r(A_, i); r; ++r) H(p.col(), r.col()) += mu_ * p.value() * r.value();
       }
-      SparseMatrix H(W_.rows(), W_.cols());
-      H.setFromTriplets(entries.begin(), entries.end());
-      ldlt_.compute(H);
-      if (ldlt_.info() != Eigen::Success) return;
-      const Eigen::VectorXd step = -ldlt_.solve(g);
+      llt_.compute(H);
+      if (llt_.info() != Eigen::Success) return;
+      const Eigen::VectorXd step = -llt_.solve(g);
       const double f = phi(y), slope = g.dot(step);
       double alpha = 1;
       while (alpha > 1e-10 && phi(y + alpha * step) > f + 1e-4 * alpha * slope) alpha /= 2;
@@ -219,13 +215,12 @@ private:
     }
   }
 
-  const SparseMatrix& W_;
+  const Eigen::MatrixXd& W_;
   const RowMatrix& A_;
   const Eigen::VectorXd& y0_;
   Eigen::VectorXd Az_b_, lambda_;
   double mu_;
-  Triplets W_entries_;
-  Eigen::SimplicialLDLT<SparseMatrix> ldlt_;
+  Eigen::LLT<Eigen::MatrixXd> llt_;
 };
 
 std::string describe(const Contact& c, const std::vector<Route>& routes)
@@ -268,7 +263,7 @@ CollisionResolution resolve_collisions(const FiberClearance& measure, const std:
 {
   CollisionResolution result;
   result.routes = routes;
-  const double margin = 2 * measure.radius() + s.clearance;
+  const double margin = measure.radius();  // contacts this close join before they are short
   FiberClearance::Lines lines = measure.lines(routes);
   std::vector<Contact> near = measure.contacts(lines, s.clearance + margin);
   result.before = result.after = smallest_clearance(near);
@@ -280,11 +275,13 @@ CollisionResolution resolve_collisions(const FiberClearance& measure, const std:
   check_end_points(routes, measure.radius(), s);
 
   const RouteVariables v(measure, routes);
-  const SparseMatrix W = v.smoothness(lines, s.smoothness);
+  const Eigen::MatrixXd W = v.smoothness(lines, s.smoothness);
   const Eigen::VectorXd y0 = v.values(routes);
   Eigen::VectorXd y = y0;
   std::set<Key> seen;
+  std::map<Key, double> multipliers;
   std::set<int> moved;
+  double last_step = HUGE_VAL;
   for (result.iterations = 1; result.iterations <= s.max_iterations; ++result.iterations) {
     std::vector<Contact> contacts = measure.contacts(lines, s.clearance + margin);
     std::set<Key> fresh;
@@ -299,13 +296,20 @@ CollisionResolution resolve_collisions(const FiberClearance& measure, const std:
     RowMatrix A;
     Eigen::VectorXd b;
     linearize(v, contacts, s.clearance, A, b);
-    const Eigen::VectorXd next = QuadraticProblem(W, A, b, y0, y).solve(y);
+    Eigen::VectorXd lambda(A.rows()), next = y;
+    for (std::size_t i = 0; i < contacts.size(); ++i)
+      lambda[static_cast<Eigen::Index>(i)] = multipliers.count(key_of(contacts[i])) ? multipliers[key_of(contacts[i])] : 0.0;
+    QuadraticProblem(W, A, b, y0, y).solve(next, lambda);
+    for (std::size_t i = 0; i < contacts.size(); ++i) multipliers[key_of(contacts[i])] = lambda[static_cast<Eigen::Index>(i)];
     const double step = (next - y).lpNorm<Eigen::Infinity>();
     y = next;
     result.routes = v.routes(y, routes);
     lines = measure.lines(result.routes);
     result.after = smallest_clearance(measure.contacts(lines, s.clearance + margin));
-    if (result.after >= s.clearance - s.tolerance && step < 1e-4) break;  // mm
+    // Done when every clearance holds and the routes stop moving, or only flip between two
+    // linearizations (a closest point hopping between neighbouring segments: a few µm).
+    if (result.after >= s.clearance - s.tolerance && (step < 1e-4 || step > 0.9 * last_step)) break;  // mm
+    last_step = step;
   }
   for (int f = 0; f < measure.num_fibers(); ++f)
     if (!moved.count(f)) result.routes[f] = routes[f];  // untouched, bit for bit
