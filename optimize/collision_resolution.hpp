@@ -9,8 +9,8 @@
 //
 // Sequential linearization: the contacts are measured, each linearized as c_i + n_iᵀ(Δp_a − Δp_b),
 // and the quadratic problem solved exactly by an augmented Lagrangian whose inner problem is
-// minimized by Newton on its active set (dense Cholesky); then measured again, until every clearance holds
-// and the routes stop moving. A routing that is already clear is returned unchanged, bit for bit.
+// minimized by Newton on its active set (dense Cholesky); then measured again, until every
+// clearance holds and the routes stop moving. A routing that is already clear is returned unchanged, bit for bit.
 
 #include <stdexcept>
 #include <string>

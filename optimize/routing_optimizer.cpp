@@ -35,13 +35,14 @@ void absorb(RoutingResult& out, RoutingProblem& problem, const BfgsResult& r)
 } // namespace
 
 RoutingResult optimize_routing(RoutingProblem& problem, const std::string& strategy, const BfgsOptions& options,
-                               const RoutingCallback& on_iteration, Progress& progress)
+                               const RoutingCallback& on_iteration, Progress& progress, ActuatorMask actuators)
 {
   const int T = problem.num_targets(), F = problem.num_fibers();
   RoutingResult out;
   out.routing = problem.base();
   if (strategy == "simultaneous") {
-    problem.set_free(std::vector<bool>(F, true), Mask::Constant(T, F, true), std::vector<bool>(T, true));
+    if (actuators.size() == 0) actuators = Mask::Constant(T, F, true);
+    problem.set_free(std::vector<bool>(F, true), actuators, std::vector<bool>(T, true));
     absorb(out, problem, run(problem, 0, options, on_iteration, progress));
     return out;
   }

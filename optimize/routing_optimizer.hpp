@@ -1,6 +1,7 @@
 #pragma once
 // The two strategies of section V-B for several fibers:
-//  - simultaneous: every route and every (target, fiber) pressure at once, all targets;
+//  - simultaneous: every route and every (target, fiber) pressure at once, all targets (or the
+//    pressures of each target's own actuators);
 //  - sequential: one fiber per target, only fiber k pressurized in target k (orthogonal
 //    actuators). Fibers are added one at a time: stage k moves the routes of fibers 1..k and counts
 //    targets 1..k, each with its own fiber's pressure, so that a later fiber (stiff even when
@@ -26,9 +27,14 @@ struct RoutingResult {
 /// step, and the terms at the new point.
 using RoutingCallback = std::function<void(int stage, const BfgsIteration&, const RoutingTerms&)>;
 
-/// Throws std::invalid_argument for "sequential" with a number of fibers different from the
-/// number of targets, or an unknown strategy.
+/// Which fibers may be pressurized for which target (targets × fibers); the others keep the
+/// pressure they start with (0 for an unassigned fiber).
+using ActuatorMask = Eigen::Matrix<bool, Eigen::Dynamic, Eigen::Dynamic>;
+
+/// `actuators` applies to simultaneous (empty: every fiber for every target). Throws
+/// std::invalid_argument for "sequential" with a number of fibers different from the number of
+/// targets, or an unknown strategy.
 RoutingResult optimize_routing(RoutingProblem& problem, const std::string& strategy, const BfgsOptions& options,
-                               const RoutingCallback& on_iteration, Progress& progress);
+                               const RoutingCallback& on_iteration, Progress& progress, ActuatorMask actuators = {});
 
 } // namespace fibermold

@@ -98,6 +98,7 @@ struct Target {
   std::filesystem::path surface;           ///< kind = surface; absolute
   double strain_penalty = 0;               ///< kind = surface; weight of the large-strain penalty
   std::vector<FiberActuation> fibers;      ///< kind = fibers
+  std::vector<std::string> actuators;      ///< the [[fiber]]s the optimizer may pressurize for it; empty: all
 };
 
 struct OptimizeOptions {

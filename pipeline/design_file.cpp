@@ -670,6 +670,22 @@ Target read_target(Section s, std::size_t index, const MuscleOptions& muscle, co
     }
   }
 
+  if (const toml::node* n = s.node("actuators")) {
+    const toml::array* a = n->as_array();
+    if (!a || a->empty()) s.error(n, "actuators", "expected a non-empty list of [[fiber]] names, e.g. [\"m1\", \"m2\"]");
+    else
+      for (const toml::node& e : *a) {
+        const auto name = e.value<std::string>();
+        if (!name || std::none_of(fibers.begin(), fibers.end(), [&](const Fiber& f) { return f.name == *name; }))
+          s.error(&e, "actuators", "expected the name of a [[fiber]]");
+        else if (std::find(t.actuators.begin(), t.actuators.end(), *name) == t.actuators.end())
+          t.actuators.push_back(*name);
+      }
+    std::vector<std::string> quoted;
+    for (const std::string& f : t.actuators) quoted.push_back("\"" + f + "\"");
+    s.record("actuators", fmt::format("[{}]", fmt::join(quoted, ", ")));
+  }
+
   const auto forbid = [&](bool present, std::string_view key) {
     if (present) s.error(s.node(key), key, fmt::format("not used by kind = \"{}\"", t.kind));
   };
@@ -812,6 +828,12 @@ void check_design(Context& ctx, const Design& d)
   check_unique_names(ctx, d.targets, "target");
   check_unique_names(ctx, d.tracking_curves, "tracking_curve");
   check_unique_names(ctx, d.fixed, "fixed");
+  if (d.optimize.strategy == "sequential")
+    for (const Target& t : d.targets)
+      if (!t.actuators.empty()) {
+        const std::string key = fmt::format("[target.{}].actuators", t.name);
+        ctx.error(ctx.source_of(key), key, "the sequential strategy assigns fiber k to target k; remove the key or use \"simultaneous\"");
+      }
   if (d.mold.wall < d.export_.min_wall)
     ctx.error(ctx.source_of("[mold].wall"), "[mold].wall",
               fmt::format("{} mm is below the printer's minimum wall [export].min_wall = {} mm",

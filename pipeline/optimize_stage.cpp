@@ -37,7 +37,23 @@ std::vector<std::string> target_names(const Design& d)
   return names;
 }
 
-/// The [[fiber]] routes; pressures half the maximum (only target k's own fiber k for sequential).
+/// Which fibers drive which target: a target's `actuators`, all fibers when it names none, fiber k
+/// alone for target k with the sequential strategy.
+ActuatorMask actuator_mask(const Design& d)
+{
+  const auto T = static_cast<Eigen::Index>(d.targets.size()), F = static_cast<Eigen::Index>(d.fibers.size());
+  ActuatorMask m = ActuatorMask::Constant(T, F, d.optimize.strategy != "sequential");
+  for (Eigen::Index t = 0; t < T; ++t) {
+    if (d.optimize.strategy == "sequential" && t < F) m(t, t) = true;
+    const std::vector<std::string>& names = d.targets[t].actuators;
+    if (names.empty()) continue;
+    for (Eigen::Index f = 0; f < F; ++f)
+      m(t, f) = std::find(names.begin(), names.end(), d.fibers[f].name) != names.end();
+  }
+  return m;
+}
+
+/// The [[fiber]] routes; pressures half the maximum for each target's actuators, 0 for the others.
 Routing starting_routing(const Design& d)
 {
   Routing r;
@@ -45,12 +61,7 @@ Routing starting_routing(const Design& d)
     const HermiteSpline s(f.points, f.tangents);
     r.routes.push_back({f.name, s.points(), s.tangents()});
   }
-  const auto T = static_cast<Eigen::Index>(d.targets.size()), F = static_cast<Eigen::Index>(d.fibers.size());
-  r.pressures = Eigen::MatrixXd::Constant(T, F, d.muscle.max_pressure / 2);
-  if (d.optimize.strategy == "sequential")
-    for (Eigen::Index t = 0; t < T; ++t)
-      for (Eigen::Index f = 0; f < F; ++f)
-        if (t != f) r.pressures(t, f) = 0;
+  r.pressures = actuator_mask(d).cast<double>() * (d.muscle.max_pressure / 2);
   return r;
 }
 
@@ -146,7 +157,7 @@ void OptimizeStage::run(StageContext& ctx) const
     ctx.progress.update((stage + static_cast<double>(it.iteration) / std::max(1, o.max_iterations)) / stages, what);
     ctx.log.info("{}", what);
   };
-  const RoutingResult result = optimize_routing(problem, d.optimize.strategy, o, on_iteration, ctx.progress);
+  const RoutingResult result = optimize_routing(problem, d.optimize.strategy, o, on_iteration, ctx.progress, actuator_mask(d));
   const FibersFile fibers{result.routing, names, true};
 
   if (result.interrupted) {

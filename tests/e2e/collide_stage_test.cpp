@@ -111,6 +111,7 @@ name = "lift"
 kind = "fibers"
 fibers = [{ name = "a", pressure = 200, points = [[0, 0, -0.5], [30, 0, -0.5], [60, 0, -0.5]] },
           { name = "b", pressure = 200, points = [[30, -30, 0.5], [30, 0, 0.5], [30, 30, 0.5]] }]
+actuators = ["a"]
 [optimize]
 max_iterations = 2
 )");
@@ -126,6 +127,9 @@ max_iterations = 2
   EXPECT_LT(before, after);
   EXPECT_NEAR(lift["rmse_change_percent"].get<double>(), 100 * (after - before) / before, 1e-6);
   EXPECT_TRUE(fs::exists(dir_ / "build" / "collide" / "deformed-lift.vtu"));
+  const auto fibers = json("optimize", "fibers.json");  // only its actuator drives the target
+  EXPECT_GT(fibers["fibers"][0]["pressure_kPa"]["lift"].get<double>(), 0);
+  EXPECT_EQ(fibers["fibers"][1]["pressure_kPa"]["lift"].get<double>(), 0);
 }
 
 TEST_F(CollideE2E, CollideEditsRerunCollideAndWhatFollowsNotOptimize)

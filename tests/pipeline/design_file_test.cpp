@@ -173,6 +173,21 @@ TEST_F(DesignFileTest, TargetsAreCheckedByKind)
               HasSubstr("give exactly one of box"));
 }
 
+TEST_F(DesignFileTest, TargetActuatorsNameFibers)
+{
+  const std::string fibers = "[[fiber]]\nname = \"a\"\npoints = [[0,0,0],[10,0,0]]\n"
+                             "[[fiber]]\nname = \"b\"\npoints = [[0,1,0],[10,1,0]]\n";
+  const std::string target = "[[target]]\nname = \"t\"\nkind = \"forces\"\nload = [{ point = [0,0,0], force = [1,0,0] }]\n";
+  const Design d = parse(std::string(kMinimal) + fibers + target + "actuators = [\"b\"]\n");
+  EXPECT_EQ(d.targets[0].actuators, std::vector<std::string>{"b"});
+  EXPECT_EQ(d.values.at("[target.t].actuators"), "[\"b\"]");
+  EXPECT_TRUE(parse(std::string(kMinimal) + fibers + target).targets[0].actuators.empty());
+  EXPECT_THAT(problem(std::string(kMinimal) + fibers + target + "actuators = [\"c\"]\n"),
+              HasSubstr("[target.t].actuators: expected the name of a [[fiber]]"));
+  EXPECT_THAT(problem(std::string(kMinimal) + fibers + target + "actuators = [\"a\"]\n[optimize]\nstrategy = \"sequential\"\n"),
+              HasSubstr("the sequential strategy assigns fiber k to target k"));
+}
+
 TEST_F(DesignFileTest, NamesMustBeSafeFileNames)
 {
   EXPECT_THAT(problem("[design]\nsurface = \"body.stl\"\nname = \"..\"\n"), HasSubstr(":3:8: [design].name: \"..\" cannot name a file"));

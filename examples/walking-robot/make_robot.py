@@ -1,0 +1,121 @@
+#!/usr/bin/env python3
+"""Writes the walking robot of the paper (section VIII-F, Fig. 15-16) and its two target poses:
+  robot.obj  the body, 42 x 20 x 14 mm along +x from the origin (centred on the x axis), with four
+             legs 6 x 4 x 8 mm under it, as one closed surface gridded at about 4 mm;
+  bend.obj   the same surface bent about the y axis with constant curvature, the rear end (x = 0)
+             held and the front end turned 20 degrees downward: the robot steps forward;
+  twist.obj  the same surface twisted about the x axis, the front end turned 15 degrees: the robot
+             swaps which legs touch the ground.
+The targets keep every vertex and its order. The paper's mesh is not published; this one matches
+its stated body length. Standard library only: python3 make_robot.py [--bend 20] [--twist 15]"""
+
+import argparse
+import math
+
+LENGTH = 42.0
+# The body x [0, 42] y [-10, 10] z [-7, 7] mm; legs 6 x 4 x 8 mm under its corners. The surface is
+# cut on a rectilinear grid through every edge of the shape, each interval split to at most SPACING.
+BREAKS = ([0, 4, 10, 32, 38, 42], [-10, -6, 6, 10], [-15, -7, 7])
+SPACING = 4.2  # mm
+
+
+def grid_lines(breaks):
+    lines = [breaks[0]]
+    for a, b in zip(breaks, breaks[1:]):
+        n = max(1, math.ceil((b - a) / SPACING - 1e-9))
+        lines += [a + (b - a) * i / n for i in range(1, n + 1)]
+    return lines
+
+
+def is_solid(centre):
+    x, y, z = centre
+    if -7 < z < 7:
+        return True
+    leg_x = 4 < x < 10 or 32 < x < 38
+    leg_y = -10 < y < -6 or 6 < y < 10
+    return -15 < z < -7 and leg_x and leg_y
+
+
+def solid_cells(lines):
+    solid = set()
+    for i in range(len(lines[0]) - 1):
+        for j in range(len(lines[1]) - 1):
+            for k in range(len(lines[2]) - 1):
+                centre = tuple((lines[a][c] + lines[a][c + 1]) / 2 for a, c in zip(range(3), (i, j, k)))
+                if is_solid(centre):
+                    solid.add((i, j, k))
+    return solid
+
+
+def boundary(lines, solid):
+    """Outward quads between solid and empty cells, as vertex-index quadruples, and the vertices."""
+    index, vertices, quads = {}, [], []
+
+    def vertex(c):
+        if c not in index:
+            index[c] = len(vertices)
+            vertices.append(tuple(float(lines[a][c[a]]) for a in range(3)))
+        return index[c]
+
+    for v in sorted(solid):
+        for axis in range(3):
+            for side in (-1, 1):
+                n = list(v)
+                n[axis] += side
+                if tuple(n) in solid:
+                    continue
+                u, w = (axis + 1) % 3, (axis + 2) % 3
+                base = list(v)
+                base[axis] += 1 if side > 0 else 0
+                corners = []
+                for du, dw in ((0, 0), (1, 0), (1, 1), (0, 1)):
+                    c = list(base)
+                    c[u] += du
+                    c[w] += dw
+                    corners.append(vertex(tuple(c)))
+                quads.append(corners if side > 0 else corners[::-1])  # (u, w, axis) is right-handed
+    return vertices, quads
+
+
+def bend(p, degrees):
+    """Constant curvature in the x-z plane, centre of curvature below: x = 0 stays, the front dips."""
+    x, y, z = p
+    if degrees == 0:
+        return p
+    radius = LENGTH / math.radians(degrees)
+    angle = x / radius
+    return ((radius + z) * math.sin(angle), y, (radius + z) * math.cos(angle) - radius)
+
+
+def twist(p, degrees):
+    x, y, z = p
+    angle = math.radians(degrees) * x / LENGTH
+    c, s = math.cos(angle), math.sin(angle)
+    return (x, c * y - s * z, s * y + c * z)
+
+
+def write_obj(path, vertices, quads, comment):
+    with open(path, "w") as f:
+        f.write(f"# {comment}\n# units: mm\n")
+        for v in vertices:
+            f.write("v {:.6f} {:.6f} {:.6f}\n".format(*v))
+        for q in quads:
+            a, b, c, d = (i + 1 for i in q)
+            f.write(f"f {a} {b} {c}\nf {a} {c} {d}\n")
+
+
+def main():
+    parser = argparse.ArgumentParser(description=__doc__)
+    parser.add_argument("--bend", type=float, default=20.0, help="front-end bend, degrees")
+    parser.add_argument("--twist", type=float, default=15.0, help="front-end twist, degrees")
+    args = parser.parse_args()
+    lines = [grid_lines(b) for b in BREAKS]
+    vertices, quads = boundary(lines, solid_cells(lines))
+    write_obj("robot.obj", vertices, quads, "fibermold walking robot: 42 mm body with four legs")
+    write_obj("bend.obj", [bend(v, args.bend) for v in vertices], quads, f"walking robot bent {args.bend} degrees")
+    write_obj("twist.obj", [twist(v, args.twist) for v in vertices], quads, f"walking robot twisted {args.twist} degrees")
+    print(f"robot.obj, bend.obj, twist.obj: {len(vertices)} vertices, {2 * len(quads)} triangles")
+
+
+if __name__ == "__main__":
+    main()
