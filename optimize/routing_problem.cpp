@@ -9,6 +9,7 @@
 #include "core/units.hpp"
 #include "optimize/adjoint_gradient.hpp"
 #include "optimize/barrier.hpp"
+#include "optimize/clearance_barrier.hpp"
 #include "optimize/fiber_curvature.hpp"
 
 namespace fibermold {
@@ -202,7 +203,15 @@ double RoutingProblem::regularizers(const Routing& r, Eigen::VectorXd* gradient,
         (*gradient)[i] += settings_.weight_pressure * (barrier_gradient(u, margin) - barrier_gradient(1 - u, margin)) /
                           pmax * kPressureUnit;
     }
-  return terms.curvature + terms.skin + terms.pressure;
+  if (clearance_barrier_) {
+    terms.clearance = weight_clearance_ * clearance_barrier_->value(r.routes);
+    if (!std::isfinite(terms.clearance)) return HUGE_VAL;
+    if (gradient) {
+      const std::vector<FiberParameterGradient> g = clearance_barrier_->gradient(r.routes);
+      for (int f = 0; f < num_fibers(); ++f) add_fiber_gradient(f, g[f], weight_clearance_, -1, *gradient);
+    }
+  }
+  return terms.curvature + terms.skin + terms.pressure + terms.clearance;
 }
 
 double RoutingProblem::evaluate(const Eigen::VectorXd& z, Eigen::VectorXd* gradient, RoutingTerms* terms_out)
@@ -237,7 +246,7 @@ double RoutingProblem::evaluate(const Eigen::VectorXd& z, Eigen::VectorXd* gradi
     seconds_adjoint_ += since(start);
     for (int f = 0; f < num_fibers(); ++f) add_fiber_gradient(f, by_fiber[f], 1.0, t, g);
   }
-  terms.total = terms.distance + terms.curvature + terms.skin + terms.pressure;
+  terms.total = terms.distance + terms.curvature + terms.skin + terms.pressure + terms.clearance;
   if (gradient) *gradient = g;
   if (terms_out) *terms_out = terms;
   last_terms_ = terms;

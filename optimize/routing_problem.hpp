@@ -5,7 +5,8 @@
 //        + w_p Σ_{t,f} [b(p/p_max) + b(1 − p/p_max)],
 // with f_dist as in distance_objective.hpp, L_f the fiber's starting length (which makes the
 // curvature term dimensionless), B_skin as in skin_barrier.hpp and b the log barrier acting within
-// `pressure_margin` of either pressure bound. The end points of each route stay fixed.
+// `pressure_margin` of either pressure bound. The end points of each route stay fixed. After
+// collide, w_clear B_clear (clearance_barrier.hpp) may join, to keep fibers apart.
 //
 // The optimizer sees a flat vector z of the free variables, in mm (points, tangents) and 10 kPa
 // (pressures), so that one unit is a comparable change of the design.
@@ -21,6 +22,8 @@
 #include "sim/simulation.hpp"
 
 namespace fibermold {
+
+class ClearanceBarrier;
 
 struct Route {
   std::string name;
@@ -46,7 +49,7 @@ struct RoutingSettings {
 
 /// The value of each term at a routing.
 struct RoutingTerms {
-  double total = 0, distance = 0, curvature = 0, skin = 0, pressure = 0;
+  double total = 0, distance = 0, curvature = 0, skin = 0, pressure = 0, clearance = 0;
   std::vector<double> per_target;  ///< f_dist per target (0 for inactive ones)
 };
 
@@ -63,6 +66,13 @@ public:
   /// (target, fiber); and which targets count. Default: everything.
   void set_free(std::vector<bool> routes, Eigen::Matrix<bool, Eigen::Dynamic, Eigen::Dynamic> pressures,
                 std::vector<bool> targets);
+  /// Adds weight · B_clear (clearance_barrier.hpp) to the objective: fibers keep their clearance
+  /// from each other. `barrier` must outlive the problem; null removes it.
+  void set_clearance_barrier(const ClearanceBarrier* barrier, double weight)
+  {
+    clearance_barrier_ = barrier;
+    weight_clearance_ = weight;
+  }
   /// The routing that unfree variables take their values from.
   void set_base(const Routing& routing) { base_ = routing; }
   const Routing& base() const { return base_; }
@@ -126,6 +136,8 @@ private:
   Eigen::MatrixXi pressure_entry_;          ///< targets × fibers → entry or −1
   RoutingTerms last_terms_, best_terms_;
   std::vector<Eigen::VectorXd> best_warm_;  ///< equilibria at the best evaluation since set_free
+  const ClearanceBarrier* clearance_barrier_ = nullptr;
+  double weight_clearance_ = 0;
   int newton_iterations_ = 0;
   double seconds_simulation_ = 0, seconds_adjoint_ = 0;
 };

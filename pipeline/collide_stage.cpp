@@ -1,5 +1,7 @@
 #include "pipeline/collide_stage.hpp"
 
+#include <cmath>
+
 #include <fmt/format.h>
 #include <nlohmann/json.hpp>
 #include <spdlog/spdlog.h>
@@ -7,6 +9,7 @@
 #include "core/atomic_file.hpp"
 #include "core/input_error.hpp"
 #include "core/units.hpp"
+#include "optimize/clearance_barrier.hpp"
 #include "optimize/collision_resolution.hpp"
 #include "pipeline/design_simulation.hpp"
 #include "pipeline/fibers_file.hpp"
@@ -17,6 +20,20 @@ namespace fibermold {
 namespace {
 
 using Json = nlohmann::ordered_json;
+
+constexpr double kReoptimizeRoom = 0.1e-3;  // m
+// Each contact of each 1/samples_per_mm of fiber adds its own barrier term: a small weight keeps
+// them from outweighing the targets while they stay infinite at the clearance (as IPC's κ).
+constexpr double kClearanceBarrierWeight = 1e-3;
+constexpr double kReportReach = 10e-3;      // m: clearances are reported up to this much above the asked one
+
+/// The smallest clearance (mm) among fibers and skin, or null when it is more than kReportReach
+/// above the clearance asked for.
+Json smallest_json(const FiberClearance& measure, const std::vector<Route>& routes, double clearance)
+{
+  const double c = smallest_clearance(measure.contacts(routes, clearance + kReportReach));
+  return std::isfinite(c) ? Json(c / units::mm) : Json(nullptr);
+}
 
 Json vec_mm(const Eigen::Vector3d& v) { return {v.x() / units::mm, v.y() / units::mm, v.z() / units::mm}; }
 
@@ -56,28 +73,41 @@ void check_inside(const Design& d, const FiberClearance& measure, const std::vec
                                               format_mm(c.point_a))});
 }
 
-/// Every target simulated under the routing before and after; deformed-<target>.vtu of the latter.
-Json resimulate(StageContext& ctx, const FibersFile& fibers, const Routing& resolved, bool changed)
+/// The errors of every target under routing r.
+std::vector<TargetErrors> errors_under(RoutingProblem& problem, DesignRouting& dr, const Routing& r,
+                                       std::vector<Eigen::VectorXd>* states = nullptr)
 {
-  DesignRouting dr(ctx);
-  RoutingProblem& problem = dr.start(fibers.routing);
-  Json out = Json::object();
+  std::vector<TargetErrors> out;
   for (int t = 0; t < problem.num_targets(); ++t) {
-    const std::string& name = dr.target_names[t];
-    ctx.progress.checkpoint(0.3 + 0.7 * t / problem.num_targets(), "simulating target " + name);
-    const Eigen::VectorXd x_before = problem.equilibrium(fibers.routing, t);
-    const Eigen::VectorXd x_after = changed ? problem.equilibrium(resolved, t) : x_before;
-    const TargetErrors before = target_errors(problem, dr.mesh, t, x_before);
-    const TargetErrors after = target_errors(problem, dr.mesh, t, x_after);
-    write_deformed_target(ctx.output_dir / fmt::format("deformed-{}.vtu", name), dr, resolved, t, x_after);
-    const double change = before.rmse > 0 ? 100 * (after.rmse - before.rmse) / before.rmse : 0;
-    out[name] = {{"before", errors_json(before)}, {"after", errors_json(after)}, {"rmse_change_percent", change}};
-    ctx.log.info("target {}: RMSE {:.3f} mm before, {:.3f} mm after ({:+.1f} %); max {:.3f} → {:.3f} mm on the tracking "
-                 "curves; surface RMSE {:.3f} → {:.3f} mm",
-                 name, before.rmse / units::mm, after.rmse / units::mm, change, before.max / units::mm,
-                 after.max / units::mm, before.surface_rmse / units::mm, after.surface_rmse / units::mm);
+    const Eigen::VectorXd x = problem.equilibrium(r, t);
+    out.push_back(target_errors(problem, dr.mesh, t, x));
+    if (states) states->push_back(x);
   }
   return out;
+}
+
+/// Optimizes again from the resolved routing with the clearance between fibers as a barrier
+/// (the skin barrier keeps them off the skin), as the paper suggests (section V-B).
+Routing reoptimize(StageContext& ctx, RoutingProblem& problem, const FiberClearance& measure, const Routing& resolved)
+{
+  const Design& d = ctx.design;
+  const ClearanceBarrier barrier(measure, d.collide.clearance, d.muscle.model.diameter / 2);
+  problem.set_base(resolved);
+  problem.set_clearance_barrier(&barrier, kClearanceBarrierWeight);
+  const BfgsOptions o = bfgs_options(d);
+  const RoutingCallback on_iteration = [&](int, const BfgsIteration& it, const RoutingTerms& terms) {
+    const std::string what = fmt::format("optimizing again, iteration {}: objective {:.4g} (distance {:.4g}, clearance "
+                                         "barrier {:.3g})",
+                                         it.iteration, terms.total, terms.distance, terms.clearance);
+    ctx.progress.update(0.2 + 0.6 * it.iteration / std::max(1, o.max_iterations), what);
+    ctx.log.info("{}", what);
+  };
+  const std::string strategy = d.optimize.strategy == "sequential" ? "simultaneous" : d.optimize.strategy;
+  const RoutingResult r = optimize_routing(problem, strategy, o, on_iteration, ctx.progress, actuator_mask(d));
+  problem.set_clearance_barrier(nullptr, 0);
+  if (r.interrupted) throw Interrupted();
+  ctx.log.info("optimized again: {} after {} iterations", r.message, r.iterations);
+  return r.routing;
 }
 
 } // namespace
@@ -85,9 +115,6 @@ Json resimulate(StageContext& ctx, const FibersFile& fibers, const Routing& reso
 void CollideStage::run(StageContext& ctx) const
 {
   const Design& d = ctx.design;
-  if (d.collide.reoptimize)
-    throw InputError(Diagnostic{d.file, 0, 0, "[collide].reoptimize",
-                                "optimizing again with the clearance as a barrier is not available yet; remove the key"});
   const FibersFile fibers = read_fibers_json(ctx.upstream("optimize", "fibers.json"));
   const TetMesh mesh = load_tet_mesh(ctx.upstream("mesh", "body.tetmesh"));
   const SurfaceDistance skin(mesh.nodes, mesh.boundary_faces);
@@ -97,7 +124,8 @@ void CollideStage::run(StageContext& ctx) const
                                d.collide.samples_per_length);
   check_inside(d, measure, fibers.routing.routes);
   ResolutionSettings settings;
-  settings.clearance = d.collide.clearance;
+  // Optimizing again needs room inside its barriers, which are infinite at the clearance itself.
+  settings.clearance = d.collide.clearance + (d.collide.reoptimize ? kReoptimizeRoom : 0);
   settings.smoothness = d.collide.smoothness;
   const CollisionResolution r = resolve_collisions(measure, fibers.routing.routes, settings);
   for (const Contact& c : r.collided)
@@ -116,15 +144,49 @@ void CollideStage::run(StageContext& ctx) const
   Json report{{"clearance_mm", d.collide.clearance / units::mm},
               {"changed", r.changed},
               {"rounds", r.iterations},
-              {"smallest_clearance_mm", {{"before", r.before / units::mm}, {"after", r.after / units::mm}}},
+              {"smallest_clearance_mm",
+               {{"before", smallest_json(measure, fibers.routing.routes, d.collide.clearance)},
+                {"after", smallest_json(measure, r.routes, d.collide.clearance)}}},
               {"collisions", collisions_json(r.collided, fibers.routing.routes)},
-              {"moves_mm", moves_json(fibers.routing.routes, r.routes)}};
+              {"reoptimized", false}};
   if (fibers.optimized && !d.targets.empty() && !d.tracking_curves.empty()) {
-    report["targets"] = resimulate(ctx, fibers, out.routing, r.changed);
+    DesignRouting dr(ctx);
+    RoutingProblem& problem = dr.start(fibers.routing);
+    ctx.progress.update(0.1, "simulating the targets under the optimized routing");
+    const std::vector<TargetErrors> before = errors_under(problem, dr, fibers.routing);
+    std::vector<TargetErrors> resolved;
+    if (r.changed && d.collide.reoptimize) {
+      resolved = errors_under(problem, dr, out.routing);
+      out.routing = reoptimize(ctx, problem, measure, out.routing);
+      if (const auto left = measure.contacts(out.routing.routes, d.collide.clearance - settings.tolerance); !left.empty())
+        throw std::runtime_error(fmt::format("optimizing again left {} closer than the clearance at {}",
+                                             left.front().with_skin() ? "a fiber and the skin" : "two fibers",
+                                             format_mm(left.front().point_a)));
+      report["reoptimized"] = true;
+      report["smallest_clearance_mm"]["after"] = smallest_json(measure, out.routing.routes, d.collide.clearance);
+    }
+    ctx.progress.update(0.85, "simulating the targets under the final routing");
+    std::vector<Eigen::VectorXd> states;
+    const std::vector<TargetErrors> after = errors_under(problem, dr, out.routing, &states);
+    Json targets = Json::object();
+    for (int t = 0; t < problem.num_targets(); ++t) {
+      const std::string& name = dr.target_names[t];
+      write_deformed_target(ctx.output_dir / fmt::format("deformed-{}.vtu", name), dr, out.routing, t, states[t]);
+      const double change = before[t].rmse > 0 ? 100 * (after[t].rmse - before[t].rmse) / before[t].rmse : 0;
+      targets[name] = {{"before", errors_json(before[t])}, {"after", errors_json(after[t])}, {"rmse_change_percent", change}};
+      if (!resolved.empty()) targets[name]["resolved"] = errors_json(resolved[t]);
+      ctx.log.info("target {}: RMSE {:.3f} mm before, {:.3f} mm after ({:+.1f} %); max {:.3f} → {:.3f} mm on the "
+                   "tracking curves; surface RMSE {:.3f} → {:.3f} mm",
+                   name, before[t].rmse / units::mm, after[t].rmse / units::mm, change, before[t].max / units::mm,
+                   after[t].max / units::mm, before[t].surface_rmse / units::mm, after[t].surface_rmse / units::mm);
+    }
+    report["targets"] = targets;
   } else {
     report["targets"] = nullptr;
+    if (d.collide.reoptimize) ctx.log.warn("[collide] reoptimize: the routing was not optimized, so it is not optimized again");
     ctx.log.info("the routing was not optimized: nothing to compare against the targets");
   }
+  report["moves_mm"] = moves_json(fibers.routing.routes, out.routing.routes);
   write_file_atomic(ctx.output_dir / "fibers.json", fibers_json(out));
   write_file_atomic(ctx.output_dir / "report.json", report.dump(2) + "\n");
 }

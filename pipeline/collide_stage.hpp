@@ -3,7 +3,8 @@
 // skin than [collide] clearance are moved apart by the smallest smooth change of their routes
 // (optimize/collision_resolution.hpp; the paper did this by hand, sections V-B and VIII-F), and
 // every target is simulated again with the resolved routing and its pressures, to show the robot
-// still does its job. Outputs: collide/fibers.json (optimize's schema), report.json (collisions,
+// still does its job; with [collide] reoptimize = true the optimizer then runs again from the
+// resolved routing with the clearance between fibers as a barrier. Outputs: collide/fibers.json (optimize's schema), report.json (collisions,
 // smallest clearance before and after, how far each control point moved, per-target errors before
 // and after), deformed-<target>.vtu. A clear routing passes through bit for bit; a clearance that
 // cannot be had fails the stage, naming the fibers and the place.
@@ -18,7 +19,7 @@ public:
   std::vector<std::string> upstream() const override { return {"mesh", "targets", "optimize"}; }
   std::vector<std::string> design_keys() const override
   {
-    return {"design.units", "material", "sim", "fixed", "muscle", "tracking_curve", "target", "collide"};
+    return {"design.units", "material", "sim", "fixed", "muscle", "tracking_curve", "target", "optimize", "collide"};
   }
   void run(StageContext& ctx) const override;
 };

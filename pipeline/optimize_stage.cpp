@@ -37,22 +37,6 @@ std::vector<std::string> target_names(const Design& d)
   return names;
 }
 
-/// Which fibers drive which target: a target's `actuators`, all fibers when it names none, fiber k
-/// alone for target k with the sequential strategy.
-ActuatorMask actuator_mask(const Design& d)
-{
-  const auto T = static_cast<Eigen::Index>(d.targets.size()), F = static_cast<Eigen::Index>(d.fibers.size());
-  ActuatorMask m = ActuatorMask::Constant(T, F, d.optimize.strategy != "sequential");
-  for (Eigen::Index t = 0; t < T; ++t) {
-    if (d.optimize.strategy == "sequential" && t < F) m(t, t) = true;
-    const std::vector<std::string>& names = d.targets[t].actuators;
-    if (names.empty()) continue;
-    for (Eigen::Index f = 0; f < F; ++f)
-      m(t, f) = std::find(names.begin(), names.end(), d.fibers[f].name) != names.end();
-  }
-  return m;
-}
-
 /// The [[fiber]] routes; pressures half the maximum for each target's actuators, 0 for the others.
 Routing starting_routing(const Design& d)
 {
@@ -141,10 +125,7 @@ void OptimizeStage::run(StageContext& ctx) const
     ctx.log.info("target {}: at the start, RMSE {:.3f} mm, max {:.3f} mm on the tracking curves", names[t],
                  before[t].rmse / units::mm, before[t].max / units::mm);
 
-  BfgsOptions o;
-  o.max_iterations = d.optimize.max_iterations;
-  o.gradient_tolerance = d.optimize.gradient_tolerance;
-  o.relative_tolerance = d.optimize.relative_tolerance;
+  const BfgsOptions o = bfgs_options(d);
   History history(names);
   int iterations = 0;
   const int stages = d.optimize.strategy == "sequential" ? static_cast<int>(d.fibers.size()) : 1;

@@ -1,5 +1,6 @@
 #include "pipeline/routing_evaluation.hpp"
 
+#include <algorithm>
 #include <cmath>
 
 #include <fmt/format.h>
@@ -47,6 +48,29 @@ RoutingSettings routing_settings(const Design& d)
   s.weight_skin = d.optimize.weight_skin_barrier;
   s.weight_pressure = d.optimize.weight_pressure_barrier;
   return s;
+}
+
+ActuatorMask actuator_mask(const Design& d)
+{
+  const auto T = static_cast<Eigen::Index>(d.targets.size()), F = static_cast<Eigen::Index>(d.fibers.size());
+  ActuatorMask m = ActuatorMask::Constant(T, F, d.optimize.strategy != "sequential");
+  for (Eigen::Index t = 0; t < T; ++t) {
+    if (d.optimize.strategy == "sequential" && t < F) m(t, t) = true;
+    const std::vector<std::string>& names = d.targets[t].actuators;
+    if (names.empty()) continue;
+    for (Eigen::Index f = 0; f < F; ++f)
+      m(t, f) = std::find(names.begin(), names.end(), d.fibers[f].name) != names.end();
+  }
+  return m;
+}
+
+BfgsOptions bfgs_options(const Design& d)
+{
+  BfgsOptions o;
+  o.max_iterations = d.optimize.max_iterations;
+  o.gradient_tolerance = d.optimize.gradient_tolerance;
+  o.relative_tolerance = d.optimize.relative_tolerance;
+  return o;
 }
 
 TargetErrors target_errors(RoutingProblem& problem, const TetMesh& mesh, int t, const Eigen::VectorXd& x)

@@ -11,7 +11,7 @@
 
 #include "mesh/surface_distance.hpp"
 #include "mesh/tet_mesh.hpp"
-#include "optimize/routing_problem.hpp"
+#include "optimize/routing_optimizer.hpp"
 #include "pipeline/design.hpp"
 #include "pipeline/stage.hpp"
 
@@ -42,6 +42,13 @@ struct DesignRouting {
 /// The [optimize] weights, [muscle] limits and the skin distance ([muscle] diameter/2 + [collide]
 /// clearance) as the routing problem takes them.
 RoutingSettings routing_settings(const Design& d);
+
+/// Which fibers drive which target: a target's `actuators`, all fibers when it names none, fiber k
+/// alone for target k with the sequential strategy.
+ActuatorMask actuator_mask(const Design& d);
+
+/// The [optimize] stopping rules.
+BfgsOptions bfgs_options(const Design& d);
 
 struct TargetErrors {
   double rmse = 0, max = 0, surface_rmse = 0, surface_max = 0;  ///< m

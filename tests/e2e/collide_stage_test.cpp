@@ -102,7 +102,7 @@ TEST_F(CollideE2E, ImpossibleClearanceStopsTheStage)
 
 TEST_F(CollideE2E, OptimizedRoutingIsSimulatedBeforeAndAfter)
 {
-  design(std::string(kCrossing) + R"([[tracking_curve]]
+  const std::string routing = std::string(kCrossing) + R"([[tracking_curve]]
 name = "centre"
 points = [[0, 0, 0], [60, 0, 0]]
 samples = 12
@@ -114,8 +114,9 @@ fibers = [{ name = "a", pressure = 200, points = [[0, 0, -0.5], [30, 0, -0.5], [
 actuators = ["a"]
 [optimize]
 max_iterations = 2
-)");
-  const auto r = make();
+)";
+  design(routing);
+  auto r = make();
   ASSERT_EQ(r.exit_code, 0) << r.err;
   const auto report = json("collide", "report.json");
   EXPECT_TRUE(report["changed"].get<bool>());
@@ -130,6 +131,20 @@ max_iterations = 2
   const auto fibers = json("optimize", "fibers.json");  // only its actuator drives the target
   EXPECT_GT(fibers["fibers"][0]["pressure_kPa"]["lift"].get<double>(), 0);
   EXPECT_EQ(fibers["fibers"][1]["pressure_kPa"]["lift"].get<double>(), 0);
+
+  // Optimizing again from the resolved routing keeps the clearance (its barrier) and says how it did.
+  design(routing + "[collide]\nreoptimize = true\n");
+  EXPECT_THAT(status(), HasSubstr("optimize  fresh\ncollide   stale ([collide].reoptimize changed (false → true))"));
+  r = make();
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const auto again = json("collide", "report.json");
+  EXPECT_TRUE(again["reoptimized"].get<bool>());
+  EXPECT_GE(again["smallest_clearance_mm"]["after"].get<double>(), 1.0 - 1e-3);
+  const auto& t = again["targets"]["lift"];
+  std::printf("collide e2e, optimized again: RMSE %.3f mm resolved, %.3f mm after\n", t["resolved"]["rmse_mm"].get<double>(),
+              t["after"]["rmse_mm"].get<double>());
+  EXPECT_GT(t["resolved"]["rmse_mm"].get<double>(), before);
+  EXPECT_LT(t["after"]["rmse_mm"].get<double>(), t["resolved"]["rmse_mm"].get<double>());  // it wins some back
 }
 
 TEST_F(CollideE2E, CollideEditsRerunCollideAndWhatFollowsNotOptimize)
