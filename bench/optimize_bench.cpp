@@ -1,8 +1,11 @@
-// Optimization speed and accuracy on the paper's examples: recovery (section VIII-B) and the
+// Optimization speed and accuracy on the paper's examples: recovery (section VIII-B), the
 // twisting bar (VIII-C; Table II: 381 iterations, 169 min on a 4-core i7; surface RMSE 1.9 mm, max
-// 4.8 mm). Runs the pipeline up to optimize in a temporary folder and prints a Markdown table with
-// the time per iteration split into simulation, adjoint and the rest (line search, regularizers).
-//   build/bench/optimize_bench [recovery|twisting-bar ...]
+// 4.8 mm) and the walking robot (VIII-F; Table II: bend 18 iterations, 76 min; twist 31, 85 min,
+// optimized separately). Runs the pipeline up to optimize (walking robot: up to collide) in a
+// temporary folder and prints a Markdown table with the time per iteration split into simulation,
+// adjoint and the rest (line search, regularizers), the first target's errors, and for the
+// walking robot every target's errors before and after collide moved the fibers apart.
+//   build/bench/optimize_bench [recovery|twisting-bar|walking-robot ...]
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -80,7 +83,8 @@ void run(const std::string& example, const Paper& paper)
   const fs::path build = fs::temp_directory_path() / ("fibermold-bench-" + example);
   fs::remove_all(build);
   Runner runner(shipped_stages());
-  runner.make(d, {build, {"optimize"}, false}, nullptr);
+  const bool collide = example == "walking-robot";
+  runner.make(d, {build, {collide ? "collide" : "optimize"}, false}, nullptr);
   const auto report = nlohmann::json::parse(read_file(build / "optimize" / "report.json"));
   const auto mesh_report = nlohmann::json::parse(read_file(build / "mesh" / "report.json"));
   const auto& t = report["targets"].begin().value();
@@ -98,6 +102,16 @@ void run(const std::string& example, const Paper& paper)
     twist_angles(d, build, target_deg, reached_deg);
     std::printf("|   twist of the free end: target %.1f°, reached %.1f° (paper: 39.3°) |\n", target_deg, reached_deg);
   }
+  if (collide) {
+    const auto c = nlohmann::json::parse(read_file(build / "collide" / "report.json"));
+    std::printf("|   collide: %zu colliding pair(s), smallest clearance %s → %s mm |\n", c["collisions"].size(),
+                c["smallest_clearance_mm"]["before"].dump().c_str(), c["smallest_clearance_mm"]["after"].dump().c_str());
+    for (const auto& [name, e] : c["targets"].items())
+      std::printf("|   %s: curve RMSE %.3f → %.3f mm (%+.1f %%), surface RMSE %.3f → %.3f mm |\n", name.c_str(),
+                  e["before"]["rmse_mm"].get<double>(), e["after"]["rmse_mm"].get<double>(),
+                  e["rmse_change_percent"].get<double>(), e["before"]["surface_rmse_mm"].get<double>(),
+                  e["after"]["surface_rmse_mm"].get<double>());
+  }
   std::fflush(stdout);
 }
 
@@ -112,6 +126,7 @@ int main(int argc, char** argv)
   for (const std::string& e : examples) {
     if (e == "recovery") run(e, {0, 0, 0.10, 0.20});
     else if (e == "twisting-bar") run(e, {169, 381, 1.9, 4.8});
+    else if (e == "walking-robot") run(e, {76 + 85, 18 + 31, NAN, NAN});
     else std::fprintf(stderr, "unknown example %s\n", e.c_str());
   }
 }

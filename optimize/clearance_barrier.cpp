@@ -2,16 +2,26 @@
 
 #include <cmath>
 
+#include "core/units.hpp"
 #include "optimize/barrier.hpp"
 
 namespace fibermold {
 
+ClearanceBarrier::ClearanceBarrier(const FiberClearance& measure, const std::vector<Route>& start, double clearance,
+                                   double band)
+    : measure_(measure), min_(clearance), band_(band)
+{
+  for (const auto& line : measure.lines(start)) {
+    length_.emplace_back();
+    for (std::size_t k = 0; k + 1 < line.size(); ++k) length_.back().push_back((line[k + 1] - line[k]).norm() / units::mm);
+  }
+}
+
 double ClearanceBarrier::value(const std::vector<Route>& routes) const
 {
   double B = 0;
-  for (const Contact& c : measure_.contacts(routes, min_ + band_)) {
-    if (c.with_skin()) continue;  // the skin barrier's job
-    B += barrier((c.clearance - min_) / band_, 1.0);
+  for (const Contact& c : measure_.contacts(measure_.lines(routes), min_ + band_, false)) {
+    B += length_[c.a][c.segment_a] * barrier((c.clearance - min_) / band_, 1.0);
     if (!std::isfinite(B)) return HUGE_VAL;
   }
   return B;
@@ -36,9 +46,10 @@ std::vector<FiberParameterGradient> ClearanceBarrier::gradient(const std::vector
     g[f].points[span + 1] += w * h[2] * by_p;
     g[f].tangents[span + 1] += w * h[3] * by_p;
   };
-  for (const Contact& c : measure_.contacts(routes, min_ + band_)) {
-    if (c.with_skin() || c.clearance <= min_) continue;
-    const Eigen::Vector3d by_p = barrier_gradient((c.clearance - min_) / band_, 1.0) / band_ * c.normal;
+  for (const Contact& c : measure_.contacts(measure_.lines(routes), min_ + band_, false)) {
+    if (c.clearance <= min_) continue;
+    const Eigen::Vector3d by_p =
+        length_[c.a][c.segment_a] * barrier_gradient((c.clearance - min_) / band_, 1.0) / band_ * c.normal;
     add_sample(c.a, c.segment_a, 1 - c.u_a, by_p);
     add_sample(c.a, c.segment_a + 1, c.u_a, by_p);
     add_sample(c.b, c.segment_b, -(1 - c.u_b), by_p);

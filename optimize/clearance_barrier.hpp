@@ -1,9 +1,10 @@
 #pragma once
 // The clearance barrier between fibers, for optimizing again after collide (the paper's suggestion,
 // section V-B): keeps every pair of fibers at least c_min apart,
-//   B = Σ_i b((c_i − c_min) / w, 1)
+//   B = Σ_i h_i b((c_i − c_min) / w, 1)  ≈  ∫ b ds
 // over the contacts i of fiber_clearance.hpp between two fibers (one per sample segment of a fiber
-// and other fiber) with c_i < c_min + w; b is the IPC log barrier (barrier.hpp), +∞ once a
+// and other fiber) with c_i < c_min + w; h_i is that segment's length (mm) on the starting routing,
+// so that B does not grow with the sampling; b is the IPC log barrier (barrier.hpp), +∞ once a
 // clearance falls to c_min. The closest points are linear in the control points and tangents at
 // their segment positions, and ∂c_i/∂p_a = n_i = −∂c_i/∂p_b.
 
@@ -16,10 +17,8 @@ namespace fibermold {
 
 class ClearanceBarrier {
 public:
-  ClearanceBarrier(const FiberClearance& measure, double clearance, double band)
-      : measure_(measure), min_(clearance), band_(band)
-  {
-  }
+  /// `start`: the routing whose sample spacing gives the h_i.
+  ClearanceBarrier(const FiberClearance& measure, const std::vector<Route>& start, double clearance, double band);
 
   double value(const std::vector<Route>& routes) const;
   /// ∂B/∂(points, tangents) of every fiber (pressure entries 0); zero where B is +∞.
@@ -28,6 +27,7 @@ public:
 private:
   const FiberClearance& measure_;
   double min_, band_;
+  std::vector<std::vector<double>> length_;  ///< [fiber][segment], mm
 };
 
 } // namespace fibermold

@@ -148,7 +148,9 @@ void linearize(const RouteVariables& v, const std::vector<Contact>& contacts, do
       v.add_sample(c.b, c.segment_b + 1, -c.u_b, c.normal, row);
     }
     for (const auto& [j, value] : row) entries.emplace_back(static_cast<int>(i), j, value);
-    b[static_cast<Eigen::Index>(i)] = (clearance - c.clearance) / units::mm;
+    // A contact that no free parameter moves (near fixed ends) cannot be helped: left to the final check.
+    const bool movable = std::any_of(row.begin(), row.end(), [](const auto& e) { return e.second != 0; });
+    b[static_cast<Eigen::Index>(i)] = movable ? (clearance - c.clearance) / units::mm : -HUGE_VAL;
   }
   A.resize(static_cast<Eigen::Index>(contacts.size()), v.size());
   A.setFromTriplets(entries.begin(), entries.end());
@@ -168,16 +170,19 @@ public:
   }
 
   /// From y and multipliers λ (the last round's, for the contacts seen before); both updated.
-  void solve(Eigen::VectorXd& y, Eigen::VectorXd& lambda)
+  /// False when a factorization failed (a non-finite value).
+  bool solve(Eigen::VectorXd& y, Eigen::VectorXd& lambda)
   {
     lambda_ = lambda;
     for (int outer = 0; outer < 50; ++outer) {
-      minimize(y);
+      if (!minimize(y)) return false;
       const Eigen::VectorXd r = A_ * y - Az_b_;
+      // The first-order multiplier update for inequalities (Nocedal & Wright, eq. 17.65).
       lambda_ = (lambda_ - mu_ * r).cwiseMax(0.0);
       if (r.size() == 0 || r.minCoeff() > -1e-5) break;  // mm: 10 nm
     }
     lambda = lambda_;
+    return true;
   }
 
 private:
@@ -190,12 +195,12 @@ private:
     return 0.5 * d.dot(W_ * d) + pull(y).squaredNorm() / (2 * mu_);
   }
 
-  void minimize(Eigen::VectorXd& y)
+  bool minimize(Eigen::VectorXd& y)
   {
     for (int iteration = 0; iteration < 100; ++iteration) {
       const Eigen::VectorXd q = pull(y);
       const Eigen::VectorXd g = W_ * (y - y0_) - A_.transpose() * q;
-      if (g.lpNorm<Eigen::Infinity>() < 1e-12 * (1 + q.lpNorm<Eigen::Infinity>())) return;
+      if (g.lpNorm<Eigen::Infinity>() < 1e-12 * (1 + q.lpNorm<Eigen::Infinity>())) return true;
       // H = W + μ Σ_{q_i > 0} a_i a_iᵀ: dense, since contacts couple the fibers that cross (a
       // design has tens to hundreds of variables)
       Eigen::MatrixXd H = W_;
@@ -205,14 +210,15 @@ private:
           for (RowMatrix::InnerIterator r(A_, i); r; ++r) H(p.col(), r.col()) += mu_ * p.value() * r.value();
       }
       llt_.compute(H);
-      if (llt_.info() != Eigen::Success) return;
+      if (llt_.info() != Eigen::Success) return false;
       const Eigen::VectorXd step = -llt_.solve(g);
       const double f = phi(y), slope = g.dot(step);
       double alpha = 1;
       while (alpha > 1e-10 && phi(y + alpha * step) > f + 1e-4 * alpha * slope) alpha /= 2;
       y += alpha * step;
-      if (alpha == 1 && (pull(y).array() > 0).matrix() == (q.array() > 0).matrix()) return;  // the active set held
+      if (alpha == 1 && (pull(y).array() > 0).matrix() == (q.array() > 0).matrix()) return true;  // the active set held
     }
+    return true;
   }
 
   const Eigen::MatrixXd& W_;
@@ -258,14 +264,95 @@ std::vector<Contact> worst_per_pair(const std::vector<Contact>& contacts)
   return out;
 }
 
+namespace {
+
+/// The rounds of the sequential linearization, and what they keep between them: every contact
+/// seen (measured again each round, so that one pushed away does not drop out and come back) and
+/// its multiplier.
+class Resolver {
+public:
+  Resolver(const FiberClearance& measure, const std::vector<Route>& routes, const ResolutionSettings& s)
+      : measure_(measure), routes_(routes), s_(s), v_(measure, routes), lines_(measure.lines(routes)),
+        W_(v_.smoothness(lines_, s.smoothness)), y0_(v_.values(routes)), y_(y0_)
+  {
+  }
+
+  /// One round: measure, linearize, solve. Returns the largest parameter change (mm).
+  double round()
+  {
+    std::vector<Contact> contacts = measure_.contacts(lines_, aim() + measure_.radius());
+    std::set<Key> fresh;
+    for (const Contact& c : contacts) fresh.insert(key_of(c));
+    for (const Key& k : seen_)
+      if (!fresh.count(k)) contacts.push_back(measure_.remeasure(lines_, std::get<0>(k), std::get<1>(k), std::get<2>(k)));
+    for (const Contact& c : contacts) {
+      seen_.insert(key_of(c));
+      moved_.insert(c.a);
+      if (!c.with_skin()) moved_.insert(c.b);
+    }
+    RowMatrix A;
+    Eigen::VectorXd b;
+    linearize(v_, contacts, aim(), A, b);
+    Eigen::VectorXd lambda(A.rows()), next = y_;
+    for (std::size_t i = 0; i < contacts.size(); ++i) {
+      const auto it = multipliers_.find(key_of(contacts[i]));
+      lambda[static_cast<Eigen::Index>(i)] = it == multipliers_.end() ? 0.0 : it->second;
+    }
+    if (!QuadraticProblem(W_, A, b, y0_, y_).solve(next, lambda))
+      throw std::runtime_error("collision resolution: a factorization failed (non-finite values in the routes?)");
+    for (std::size_t i = 0; i < contacts.size(); ++i) multipliers_[key_of(contacts[i])] = lambda[static_cast<Eigen::Index>(i)];
+    const double step = (next - y_).lpNorm<Eigen::Infinity>();
+    y_ = next;
+    lines_ = measure_.lines(current());
+    return step;
+  }
+
+  /// The smallest clearance now, among contacts within reach of the aim.
+  double smallest() const { return smallest_clearance(measure_.contacts(lines_, aim() + measure_.radius())); }
+  double aim() const { return s_.clearance + s_.room; }
+
+  /// The routes now; fibers that no contact involved are the originals, bit for bit.
+  std::vector<Route> current() const
+  {
+    std::vector<Route> out = v_.routes(y_, routes_);
+    for (int f = 0; f < measure_.num_fibers(); ++f)
+      if (!moved_.count(f)) out[f] = routes_[f];
+    return out;
+  }
+
+private:
+  const FiberClearance& measure_;
+  const std::vector<Route>& routes_;
+  const ResolutionSettings& s_;
+  RouteVariables v_;
+  FiberClearance::Lines lines_;
+  Eigen::MatrixXd W_;
+  Eigen::VectorXd y0_, y_;
+  std::set<Key> seen_;
+  std::map<Key, double> multipliers_;
+  std::set<int> moved_;
+};
+
+[[noreturn]] void impossible(const std::vector<Contact>& left, const std::vector<Route>& routes, double clearance)
+{
+  const Contact& worst = *std::min_element(left.begin(), left.end(),
+                                           [](const Contact& x, const Contact& y) { return x.clearance < y.clearance; });
+  throw CollisionError(fmt::format(
+      "{} cannot be given {:.2f} mm of clearance near {}: the most found there is {:.2f} mm{}", describe(worst, routes),
+      clearance / units::mm, where_mm(worst.point_a), worst.clearance / units::mm,
+      worst.with_skin() ? "; the body is too thin there for the muscle and its clearance"
+                        : "; the passage is narrower than two muscles and their clearance, or the fibers are locked "
+                          "together by their fixed end points"));
+}
+
+} // namespace
+
 CollisionResolution resolve_collisions(const FiberClearance& measure, const std::vector<Route>& routes,
                                        const ResolutionSettings& s)
 {
   CollisionResolution result;
   result.routes = routes;
-  const double margin = measure.radius();  // contacts this close join before they are short
-  FiberClearance::Lines lines = measure.lines(routes);
-  std::vector<Contact> near = measure.contacts(lines, s.clearance + margin);
+  const std::vector<Contact> near = measure.contacts(routes, s.clearance + measure.radius());
   result.before = result.after = smallest_clearance(near);
   std::vector<Contact> short_of;
   for (const Contact& c : near)
@@ -274,58 +361,21 @@ CollisionResolution resolve_collisions(const FiberClearance& measure, const std:
   if (short_of.empty()) return result;
   check_end_points(routes, measure.radius(), s);
 
-  const RouteVariables v(measure, routes);
-  const Eigen::MatrixXd W = v.smoothness(lines, s.smoothness);
-  const Eigen::VectorXd y0 = v.values(routes);
-  Eigen::VectorXd y = y0;
-  std::set<Key> seen;
-  std::map<Key, double> multipliers;
-  std::set<int> moved;
+  Resolver resolver(measure, routes, s);
   double last_step = HUGE_VAL;
   for (result.iterations = 1; result.iterations <= s.max_iterations; ++result.iterations) {
-    std::vector<Contact> contacts = measure.contacts(lines, s.clearance + margin);
-    std::set<Key> fresh;
-    for (const Contact& c : contacts) fresh.insert(key_of(c));
-    for (const Key& k : seen)
-      if (!fresh.count(k)) contacts.push_back(measure.remeasure(lines, std::get<0>(k), std::get<1>(k), std::get<2>(k)));
-    for (const Contact& c : contacts) {
-      seen.insert(key_of(c));
-      moved.insert(c.a);
-      if (!c.with_skin()) moved.insert(c.b);
-    }
-    RowMatrix A;
-    Eigen::VectorXd b;
-    linearize(v, contacts, s.clearance, A, b);
-    Eigen::VectorXd lambda(A.rows()), next = y;
-    for (std::size_t i = 0; i < contacts.size(); ++i)
-      lambda[static_cast<Eigen::Index>(i)] = multipliers.count(key_of(contacts[i])) ? multipliers[key_of(contacts[i])] : 0.0;
-    QuadraticProblem(W, A, b, y0, y).solve(next, lambda);
-    for (std::size_t i = 0; i < contacts.size(); ++i) multipliers[key_of(contacts[i])] = lambda[static_cast<Eigen::Index>(i)];
-    const double step = (next - y).lpNorm<Eigen::Infinity>();
-    y = next;
-    result.routes = v.routes(y, routes);
-    lines = measure.lines(result.routes);
-    result.after = smallest_clearance(measure.contacts(lines, s.clearance + margin));
+    const double step = resolver.round();
+    result.after = resolver.smallest();
     // Done when every clearance holds and the routes stop moving, or only flip between two
-    // linearizations (a closest point hopping between neighbouring segments: a few µm).
-    if (result.after >= s.clearance - s.tolerance && (step < 1e-4 || step > 0.9 * last_step)) break;  // mm
+    // linearizations (a closest point hopping between neighbouring segments moves them by µm).
+    const bool flipping = step < 0.05 && step > 0.9 * last_step;  // mm
+    if (result.after >= resolver.aim() - s.tolerance && (step < 1e-4 || flipping)) break;
     last_step = step;
   }
-  for (int f = 0; f < measure.num_fibers(); ++f)
-    if (!moved.count(f)) result.routes[f] = routes[f];  // untouched, bit for bit
+  result.routes = resolver.current();
   result.changed = true;
-
-  const std::vector<Contact> left = measure.contacts(measure.lines(result.routes), s.clearance - s.tolerance);
-  if (!left.empty()) {
-    const Contact& worst = *std::min_element(
-        left.begin(), left.end(), [](const Contact& x, const Contact& y) { return x.clearance < y.clearance; });
-    throw CollisionError(fmt::format(
-        "{} cannot be given {:.2f} mm of clearance near {}: the most found there is {:.2f} mm{}",
-        describe(worst, routes), s.clearance / units::mm, where_mm(worst.point_a), worst.clearance / units::mm,
-        worst.with_skin() ? "; the body is too thin there for the muscle and its clearance"
-                          : "; the passage is narrower than two muscles and their clearance, or the fibers are locked "
-                            "together by their fixed end points"));
-  }
+  const std::vector<Contact> left = measure.contacts(result.routes, s.clearance - s.tolerance);
+  if (!left.empty()) impossible(left, routes, s.clearance);
   return result;
 }
 

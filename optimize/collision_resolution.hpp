@@ -21,7 +21,8 @@
 namespace fibermold {
 
 struct ResolutionSettings {
-  double clearance = 1e-3;    ///< c_min, m
+  double clearance = 1e-3;    ///< c_min, m: what must hold
+  double room = 0;            ///< m: where fibers move, they are moved to c_min + room
   double smoothness = 10e-3;  ///< ℓ, m
   int max_iterations = 30;    ///< measure–solve rounds
   double tolerance = 1e-6;    ///< m: a clearance this much short of c_min still holds

@@ -143,11 +143,11 @@ Contact pair_contact(const std::vector<Eigen::Vector3d>& la, int a, int i, const
 
 } // namespace
 
-std::vector<Contact> FiberClearance::contacts(const Lines& lines, double below) const
+std::vector<Contact> FiberClearance::contacts(const Lines& lines, double below, bool skin) const
 {
   const int F = num_fibers();
   std::vector<Contact> out;
-  for (int a = 0; a < F; ++a)
+  for (int a = 0; a < F && skin; ++a)
     for (int k = 0; k < static_cast<int>(lines[a].size()); ++k)
       if (skin_tested_[a][k])
         if (Contact c = skin_contact(lines[a], a, k); c.clearance < below) out.push_back(c);

@@ -48,8 +48,8 @@ public:
   Lines lines(const std::vector<Route>& routes) const;
 
   /// Every place whose clearance is below `below` (m): for each sample segment of a fiber, the
-  /// closest segment of each fiber after it; for each tested sample, the skin.
-  std::vector<Contact> contacts(const Lines& lines, double below) const;
+  /// closest segment of each fiber after it; for each tested sample, the skin (unless `skin` is false).
+  std::vector<Contact> contacts(const Lines& lines, double below, bool skin = true) const;
   std::vector<Contact> contacts(const std::vector<Route>& routes, double below) const
   {
     return contacts(lines(routes), below);

@@ -97,6 +97,12 @@ public:
   /// evaluation so far (so that a multi-stable body shows the state the optimizer scored); throws
   /// std::runtime_error when Newton fails.
   Eigen::VectorXd equilibrium(const Routing& r, int t);
+  /// Solves from here on start from the rest state, as a robot does.
+  void forget_states()
+  {
+    warm_.assign(targets_.size(), sim_.rest());
+    best_warm_.clear();
+  }
   const DistanceObjective& distance(int t) const { return distances_[t]; }
   const Eigen::VectorXd& target(int t) const { return targets_[t]; }
   int num_targets() const { return static_cast<int>(targets_.size()); }

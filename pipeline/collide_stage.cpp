@@ -22,9 +22,9 @@ namespace {
 using Json = nlohmann::ordered_json;
 
 constexpr double kReoptimizeRoom = 0.1e-3;  // m
-// Each contact of each 1/samples_per_mm of fiber adds its own barrier term: a small weight keeps
-// them from outweighing the targets while they stay infinite at the clearance (as IPC's κ).
-constexpr double kClearanceBarrierWeight = 1e-3;
+// The barrier is ∫ b ds over the fibers in contact (mm): a small weight keeps it from outweighing
+// the targets while it stays infinite at the clearance (as IPC's κ).
+constexpr double kClearanceBarrierWeight = 4e-3;
 constexpr double kReportReach = 10e-3;      // m: clearances are reported up to this much above the asked one
 
 /// The smallest clearance (mm) among fibers and skin, or null when it is more than kReportReach
@@ -62,21 +62,24 @@ Json moves_json(const std::vector<Route>& before, const std::vector<Route>& afte
   return out;
 }
 
-/// A centre line outside the body is a routing error, not a collision: refused rather than pulled in.
-void check_inside(const Design& d, const FiberClearance& measure, const std::vector<Route>& routes)
+/// A centre line outside the body is a routing error, not a collision: refused rather than pulled
+/// in; the design's when the routes are hand-made (exit 2), the optimizer's otherwise (exit 1).
+void check_inside(const Design& d, const FiberClearance& measure, const FibersFile& fibers)
 {
-  const FiberClearance::Lines lines = measure.lines(routes);
-  for (const Contact& c : measure.contacts(lines, -measure.radius()))
-    if (c.with_skin())
-      throw InputError(Diagnostic{d.file, 0, 0, fmt::format("[fiber.{}]", routes[c.a].name),
-                                  fmt::format("the fiber (as routed in optimize/fibers.json) leaves the body at {}",
-                                              format_mm(c.point_a))});
+  const std::vector<Route>& routes = fibers.routing.routes;
+  for (const Contact& c : measure.contacts(measure.lines(routes), -measure.radius())) {
+    if (!c.with_skin()) continue;
+    const std::string what = fmt::format("the fiber (as routed in optimize/fibers.json) leaves the body at {}", format_mm(c.point_a));
+    if (fibers.optimized) throw std::runtime_error(fmt::format("fiber {}: {}", routes[c.a].name, what));
+    throw InputError(Diagnostic{d.file, 0, 0, fmt::format("[fiber.{}]", routes[c.a].name), what});
+  }
 }
 
-/// The errors of every target under routing r.
+/// The errors of every target under routing r, each equilibrium found from rest.
 std::vector<TargetErrors> errors_under(RoutingProblem& problem, DesignRouting& dr, const Routing& r,
                                        std::vector<Eigen::VectorXd>* states = nullptr)
 {
+  problem.forget_states();
   std::vector<TargetErrors> out;
   for (int t = 0; t < problem.num_targets(); ++t) {
     const Eigen::VectorXd x = problem.equilibrium(r, t);
@@ -91,7 +94,7 @@ std::vector<TargetErrors> errors_under(RoutingProblem& problem, DesignRouting& d
 Routing reoptimize(StageContext& ctx, RoutingProblem& problem, const FiberClearance& measure, const Routing& resolved)
 {
   const Design& d = ctx.design;
-  const ClearanceBarrier barrier(measure, d.collide.clearance, d.muscle.model.diameter / 2);
+  const ClearanceBarrier barrier(measure, resolved.routes, d.collide.clearance, d.muscle.model.diameter / 2);
   problem.set_base(resolved);
   problem.set_clearance_barrier(&barrier, kClearanceBarrierWeight);
   const BfgsOptions o = bfgs_options(d);
@@ -110,6 +113,73 @@ Routing reoptimize(StageContext& ctx, RoutingProblem& problem, const FiberCleara
   return r.routing;
 }
 
+/// Resolves the clearances of the routing and says what it found.
+CollisionResolution resolve(StageContext& ctx, const FiberClearance& measure, const FibersFile& fibers)
+{
+  const Design& d = ctx.design;
+  const std::vector<Route>& routes = fibers.routing.routes;
+  check_inside(d, measure, fibers);
+  ResolutionSettings settings;
+  settings.clearance = d.collide.clearance;
+  // Optimizing again needs room inside its barriers, which are infinite at the clearance itself.
+  settings.room = d.collide.reoptimize ? kReoptimizeRoom : 0;
+  settings.smoothness = d.collide.smoothness;
+  CollisionResolution r = resolve_collisions(measure, routes, settings);
+  for (const Contact& c : r.collided)
+    ctx.log.info("{}: clearance {:.2f} mm at {}",
+                 c.with_skin() ? "fiber " + routes[c.a].name + " and the skin"
+                               : "fibers " + routes[c.a].name + " and " + routes[c.b].name,
+                 c.clearance / units::mm, format_mm(c.point_a));
+  if (r.changed)
+    ctx.log.info("resolved in {} rounds: the smallest clearance went from {:.3f} mm to {:.3f} mm", r.iterations,
+                 r.before / units::mm, r.after / units::mm);
+  else
+    ctx.log.info("every clearance holds (the smallest is {:.3f} mm): the routing is unchanged", r.before / units::mm);
+  return r;
+}
+
+/// Every target simulated from rest under the optimized routing and under the final one (optimized
+/// again first when asked), into the report; deformed-<target>.vtu of the final one.
+void simulate_targets(StageContext& ctx, const FiberClearance& measure, const FibersFile& fibers, bool changed,
+                      Routing& final, Json& report)
+{
+  const Design& d = ctx.design;
+  if (fibers.routing.routes.size() != d.fibers.size())
+    throw std::runtime_error(fmt::format("optimize/fibers.json has {} fibers, the design {}: run optimize again",
+                                         fibers.routing.routes.size(), d.fibers.size()));
+  DesignRouting dr(ctx);
+  RoutingProblem& problem = dr.start(starting_routing(d));  // the muscle segments as the optimizer had them
+  ctx.progress.update(0.1, "simulating the targets under the optimized routing");
+  const std::vector<TargetErrors> before = errors_under(problem, dr, fibers.routing);
+  std::vector<TargetErrors> resolved;
+  if (changed && d.collide.reoptimize) {
+    resolved = errors_under(problem, dr, final);
+    final = reoptimize(ctx, problem, measure, final);
+    if (const auto left = measure.contacts(final.routes, d.collide.clearance - 1e-6); !left.empty())
+      throw std::runtime_error(fmt::format("optimizing again left {} closer than the clearance at {}",
+                                           left.front().with_skin() ? "a fiber and the skin" : "two fibers",
+                                           format_mm(left.front().point_a)));
+    report["reoptimized"] = true;
+    report["smallest_clearance_mm"]["after"] = smallest_json(measure, final.routes, d.collide.clearance);
+  }
+  ctx.progress.update(0.85, "simulating the targets under the final routing");
+  std::vector<Eigen::VectorXd> states;
+  const std::vector<TargetErrors> after = errors_under(problem, dr, final, &states);
+  Json targets = Json::object();
+  for (int t = 0; t < problem.num_targets(); ++t) {
+    const std::string& name = dr.target_names[t];
+    write_deformed_target(ctx.output_dir / fmt::format("deformed-{}.vtu", name), dr, final, t, states[t]);
+    const double change = before[t].rmse > 0 ? 100 * (after[t].rmse - before[t].rmse) / before[t].rmse : 0;
+    targets[name] = {{"before", errors_json(before[t])}, {"after", errors_json(after[t])}, {"rmse_change_percent", change}};
+    if (!resolved.empty()) targets[name]["resolved"] = errors_json(resolved[t]);
+    ctx.log.info("target {}: RMSE {:.3f} mm before, {:.3f} mm after ({:+.1f} %); max {:.3f} → {:.3f} mm on the "
+                 "tracking curves; surface RMSE {:.3f} → {:.3f} mm",
+                 name, before[t].rmse / units::mm, after[t].rmse / units::mm, change, before[t].max / units::mm,
+                 after[t].max / units::mm, before[t].surface_rmse / units::mm, after[t].surface_rmse / units::mm);
+  }
+  report["targets"] = targets;
+}
+
 } // namespace
 
 void CollideStage::run(StageContext& ctx) const
@@ -118,26 +188,10 @@ void CollideStage::run(StageContext& ctx) const
   const FibersFile fibers = read_fibers_json(ctx.upstream("optimize", "fibers.json"));
   const TetMesh mesh = load_tet_mesh(ctx.upstream("mesh", "body.tetmesh"));
   const SurfaceDistance skin(mesh.nodes, mesh.boundary_faces);
-
   ctx.progress.update(0.05, "measuring clearances");
   const FiberClearance measure(skin, fibers.routing.routes, d.muscle.model.diameter / 2, d.collide.clearance,
                                d.collide.samples_per_length);
-  check_inside(d, measure, fibers.routing.routes);
-  ResolutionSettings settings;
-  // Optimizing again needs room inside its barriers, which are infinite at the clearance itself.
-  settings.clearance = d.collide.clearance + (d.collide.reoptimize ? kReoptimizeRoom : 0);
-  settings.smoothness = d.collide.smoothness;
-  const CollisionResolution r = resolve_collisions(measure, fibers.routing.routes, settings);
-  for (const Contact& c : r.collided)
-    ctx.log.info("{} {}: clearance {:.2f} mm at {}", c.with_skin() ? "fiber" : "fibers",
-                 c.with_skin() ? fibers.routing.routes[c.a].name + " and the skin"
-                               : fibers.routing.routes[c.a].name + " and " + fibers.routing.routes[c.b].name,
-                 c.clearance / units::mm, format_mm(c.point_a));
-  if (r.changed)
-    ctx.log.info("resolved in {} rounds: the smallest clearance went from {:.3f} mm to {:.3f} mm", r.iterations,
-                 r.before / units::mm, r.after / units::mm);
-  else
-    ctx.log.info("every clearance holds (the smallest is {:.3f} mm): the routing is unchanged", r.before / units::mm);
+  const CollisionResolution r = resolve(ctx, measure, fibers);
 
   FibersFile out = fibers;
   out.routing.routes = r.routes;
@@ -148,41 +202,11 @@ void CollideStage::run(StageContext& ctx) const
                {{"before", smallest_json(measure, fibers.routing.routes, d.collide.clearance)},
                 {"after", smallest_json(measure, r.routes, d.collide.clearance)}}},
               {"collisions", collisions_json(r.collided, fibers.routing.routes)},
-              {"reoptimized", false}};
+              {"reoptimized", false},
+              {"targets", nullptr}};
   if (fibers.optimized && !d.targets.empty() && !d.tracking_curves.empty()) {
-    DesignRouting dr(ctx);
-    RoutingProblem& problem = dr.start(fibers.routing);
-    ctx.progress.update(0.1, "simulating the targets under the optimized routing");
-    const std::vector<TargetErrors> before = errors_under(problem, dr, fibers.routing);
-    std::vector<TargetErrors> resolved;
-    if (r.changed && d.collide.reoptimize) {
-      resolved = errors_under(problem, dr, out.routing);
-      out.routing = reoptimize(ctx, problem, measure, out.routing);
-      if (const auto left = measure.contacts(out.routing.routes, d.collide.clearance - settings.tolerance); !left.empty())
-        throw std::runtime_error(fmt::format("optimizing again left {} closer than the clearance at {}",
-                                             left.front().with_skin() ? "a fiber and the skin" : "two fibers",
-                                             format_mm(left.front().point_a)));
-      report["reoptimized"] = true;
-      report["smallest_clearance_mm"]["after"] = smallest_json(measure, out.routing.routes, d.collide.clearance);
-    }
-    ctx.progress.update(0.85, "simulating the targets under the final routing");
-    std::vector<Eigen::VectorXd> states;
-    const std::vector<TargetErrors> after = errors_under(problem, dr, out.routing, &states);
-    Json targets = Json::object();
-    for (int t = 0; t < problem.num_targets(); ++t) {
-      const std::string& name = dr.target_names[t];
-      write_deformed_target(ctx.output_dir / fmt::format("deformed-{}.vtu", name), dr, out.routing, t, states[t]);
-      const double change = before[t].rmse > 0 ? 100 * (after[t].rmse - before[t].rmse) / before[t].rmse : 0;
-      targets[name] = {{"before", errors_json(before[t])}, {"after", errors_json(after[t])}, {"rmse_change_percent", change}};
-      if (!resolved.empty()) targets[name]["resolved"] = errors_json(resolved[t]);
-      ctx.log.info("target {}: RMSE {:.3f} mm before, {:.3f} mm after ({:+.1f} %); max {:.3f} → {:.3f} mm on the "
-                   "tracking curves; surface RMSE {:.3f} → {:.3f} mm",
-                   name, before[t].rmse / units::mm, after[t].rmse / units::mm, change, before[t].max / units::mm,
-                   after[t].max / units::mm, before[t].surface_rmse / units::mm, after[t].surface_rmse / units::mm);
-    }
-    report["targets"] = targets;
+    simulate_targets(ctx, measure, fibers, r.changed, out.routing, report);
   } else {
-    report["targets"] = nullptr;
     if (d.collide.reoptimize) ctx.log.warn("[collide] reoptimize: the routing was not optimized, so it is not optimized again");
     ctx.log.info("the routing was not optimized: nothing to compare against the targets");
   }

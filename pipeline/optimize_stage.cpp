@@ -37,18 +37,6 @@ std::vector<std::string> target_names(const Design& d)
   return names;
 }
 
-/// The [[fiber]] routes; pressures half the maximum for each target's actuators, 0 for the others.
-Routing starting_routing(const Design& d)
-{
-  Routing r;
-  for (const Fiber& f : d.fibers) {
-    const HermiteSpline s(f.points, f.tangents);
-    r.routes.push_back({f.name, s.points(), s.tangents()});
-  }
-  r.pressures = actuator_mask(d).cast<double>() * (d.muscle.max_pressure / 2);
-  return r;
-}
-
 void check_inputs(const Design& d)
 {
   if (d.fibers.empty()) bad(d, "[[fiber]]", "nothing to optimize: give at least one fiber");

@@ -64,6 +64,17 @@ ActuatorMask actuator_mask(const Design& d)
   return m;
 }
 
+Routing starting_routing(const Design& d)
+{
+  Routing r;
+  for (const Fiber& f : d.fibers) {
+    const HermiteSpline s(f.points, f.tangents);
+    r.routes.push_back({f.name, s.points(), s.tangents()});
+  }
+  r.pressures = actuator_mask(d).cast<double>() * (d.muscle.max_pressure / 2);
+  return r;
+}
+
 BfgsOptions bfgs_options(const Design& d)
 {
   BfgsOptions o;

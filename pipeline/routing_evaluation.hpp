@@ -32,7 +32,9 @@ struct DesignRouting {
 
   /// Throws InputError for a tracking curve that leaves the body.
   explicit DesignRouting(const StageContext& ctx);
-  /// The routing problem from `routing`; std::invalid_argument when it refuses it.
+  /// The routing problem from `routing`, which also fixes where the muscles' segments sit on the
+  /// splines (the optimizer's: from the design's starting routing); std::invalid_argument when it
+  /// refuses it.
   RoutingProblem& start(const Routing& routing);
 
   DesignRouting(const DesignRouting&) = delete;  // the simulation holds the mesh
@@ -46,6 +48,9 @@ RoutingSettings routing_settings(const Design& d);
 /// Which fibers drive which target: a target's `actuators`, all fibers when it names none, fiber k
 /// alone for target k with the sequential strategy.
 ActuatorMask actuator_mask(const Design& d);
+
+/// The [[fiber]] routes; pressures half the maximum for each target's actuators, 0 for the others.
+Routing starting_routing(const Design& d);
 
 /// The [optimize] stopping rules.
 BfgsOptions bfgs_options(const Design& d);
