@@ -47,8 +47,9 @@ int main()
   using namespace fibermold;
   const SurfaceMesh block = test::box(mm(-70, -70, -30), mm(70, 70, 30), 8);
   const SurfaceDistance skin(block.vertices, block.faces);
-  const double radius = 1.5e-3, clearance = 1e-3, samples_per_length = 1990;  // 200 samples on 100 mm
-  std::printf("| fibers | samples/fiber | contacts | measure (ms) | resolve (s) | rounds | clearance before → after (mm) |\n");
+  const double radius = 1.5e-3, clearance = 1e-3, samples_per_length = 1990; // 200 samples on 100 mm
+  std::printf(
+      "| fibers | samples/fiber | contacts | measure (ms) | resolve (s) | rounds | clearance before → after (mm) |\n");
   std::printf("|---|---|---|---|---|---|---|\n");
   for (int n : {2, 8, 32}) {
     const std::vector<Route> routes = grid(n);

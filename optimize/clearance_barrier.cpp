@@ -13,7 +13,8 @@ ClearanceBarrier::ClearanceBarrier(const FiberClearance& measure, const std::vec
 {
   for (const auto& line : measure.lines(start)) {
     length_.emplace_back();
-    for (std::size_t k = 0; k + 1 < line.size(); ++k) length_.back().push_back((line[k + 1] - line[k]).norm() / units::mm);
+    for (std::size_t k = 0; k + 1 < line.size(); ++k)
+      length_.back().push_back((line[k + 1] - line[k]).norm() / units::mm);
   }
 }
 

@@ -27,7 +27,7 @@ public:
 private:
   const FiberClearance& measure_;
   double min_, band_;
-  std::vector<std::vector<double>> length_;  ///< [fiber][segment], mm
+  std::vector<std::vector<double>> length_; ///< [fiber][segment], mm
 };
 
 } // namespace fibermold

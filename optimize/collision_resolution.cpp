@@ -126,8 +126,8 @@ private:
   }
 
   int size_ = 0;
-  std::vector<std::vector<int>> slot_index_;             ///< [fiber][slot] → first variable, or −1 (fixed)
-  std::vector<std::vector<Eigen::VectorXd>> weights_;    ///< [fiber][sample] → weight per slot
+  std::vector<std::vector<int>> slot_index_;          ///< [fiber][slot] → first variable, or −1 (fixed)
+  std::vector<std::vector<Eigen::VectorXd>> weights_; ///< [fiber][sample] → weight per slot
 };
 
 /// The linearized constraints a_iᵀ (y − z) ≥ b_i of the contacts: b_i = c_min − c_i (mm).
@@ -179,7 +179,7 @@ public:
       const Eigen::VectorXd r = A_ * y - Az_b_;
       // The first-order multiplier update for inequalities (Nocedal & Wright, eq. 17.65).
       lambda_ = (lambda_ - mu_ * r).cwiseMax(0.0);
-      if (r.size() == 0 || r.minCoeff() > -1e-5) break;  // mm: 10 nm
+      if (r.size() == 0 || r.minCoeff() > -1e-5) break; // mm: 10 nm
     }
     lambda = lambda_;
     return true;
@@ -216,7 +216,7 @@ private:
       double alpha = 1;
       while (alpha > 1e-10 && phi(y + alpha * step) > f + 1e-4 * alpha * slope) alpha /= 2;
       y += alpha * step;
-      if (alpha == 1 && (pull(y).array() > 0).matrix() == (q.array() > 0).matrix()) return true;  // the active set held
+      if (alpha == 1 && (pull(y).array() > 0).matrix() == (q.array() > 0).matrix()) return true; // the active set held
     }
     return true;
   }
@@ -249,7 +249,7 @@ void check_end_points(const std::vector<Route>& routes, double radius, const Res
                 (2 * radius + s.clearance) / units::mm));
 }
 
-using Key = std::tuple<int, int, int>;  // (a, segment or sample of a, b or −1)
+using Key = std::tuple<int, int, int>; // (a, segment or sample of a, b or −1)
 Key key_of(const Contact& c) { return {c.a, c.segment_a, c.b}; }
 
 } // namespace
@@ -258,7 +258,8 @@ std::vector<Contact> worst_per_pair(const std::vector<Contact>& contacts)
 {
   std::map<std::pair<int, int>, Contact> worst;
   for (const Contact& c : contacts)
-    if (auto it = worst.find({c.a, c.b}); it == worst.end() || c.clearance < it->second.clearance) worst[{c.a, c.b}] = c;
+    if (auto it = worst.find({c.a, c.b}); it == worst.end() || c.clearance < it->second.clearance)
+      worst[{c.a, c.b}] = c;
   std::vector<Contact> out;
   for (const auto& [pair, c] : worst) out.push_back(c);
   return out;
@@ -284,7 +285,8 @@ public:
     std::set<Key> fresh;
     for (const Contact& c : contacts) fresh.insert(key_of(c));
     for (const Key& k : seen_)
-      if (!fresh.count(k)) contacts.push_back(measure_.remeasure(lines_, std::get<0>(k), std::get<1>(k), std::get<2>(k)));
+      if (!fresh.count(k))
+        contacts.push_back(measure_.remeasure(lines_, std::get<0>(k), std::get<1>(k), std::get<2>(k)));
     for (const Contact& c : contacts) {
       seen_.insert(key_of(c));
       moved_.insert(c.a);
@@ -300,7 +302,8 @@ public:
     }
     if (!QuadraticProblem(W_, A, b, y0_, y_).solve(next, lambda))
       throw std::runtime_error("collision resolution: a factorization failed (non-finite values in the routes?)");
-    for (std::size_t i = 0; i < contacts.size(); ++i) multipliers_[key_of(contacts[i])] = lambda[static_cast<Eigen::Index>(i)];
+    for (std::size_t i = 0; i < contacts.size(); ++i)
+      multipliers_[key_of(contacts[i])] = lambda[static_cast<Eigen::Index>(i)];
     const double step = (next - y_).lpNorm<Eigen::Infinity>();
     y_ = next;
     lines_ = measure_.lines(current());
@@ -335,8 +338,8 @@ private:
 
 [[noreturn]] void impossible(const std::vector<Contact>& left, const std::vector<Route>& routes, double clearance)
 {
-  const Contact& worst = *std::min_element(left.begin(), left.end(),
-                                           [](const Contact& x, const Contact& y) { return x.clearance < y.clearance; });
+  const Contact& worst = *std::min_element(
+      left.begin(), left.end(), [](const Contact& x, const Contact& y) { return x.clearance < y.clearance; });
   throw CollisionError(fmt::format(
       "{} cannot be given {:.2f} mm of clearance near {}: the most found there is {:.2f} mm{}", describe(worst, routes),
       clearance / units::mm, where_mm(worst.point_a), worst.clearance / units::mm,
@@ -368,7 +371,7 @@ CollisionResolution resolve_collisions(const FiberClearance& measure, const std:
     result.after = resolver.smallest();
     // Done when every clearance holds and the routes stop moving, or only flip between two
     // linearizations (a closest point hopping between neighbouring segments moves them by µm).
-    const bool flipping = step < 0.05 && step > 0.9 * last_step;  // mm
+    const bool flipping = step < 0.05 && step > 0.9 * last_step; // mm
     if (result.after >= resolver.aim() - s.tolerance && (step < 1e-4 || flipping)) break;
     last_step = step;
   }

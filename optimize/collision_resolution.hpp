@@ -21,19 +21,20 @@
 namespace fibermold {
 
 struct ResolutionSettings {
-  double clearance = 1e-3;    ///< c_min, m: what must hold
-  double room = 0;            ///< m: where fibers move, they are moved to c_min + room
-  double smoothness = 10e-3;  ///< ℓ, m
-  int max_iterations = 30;    ///< measure–solve rounds
-  double tolerance = 1e-6;    ///< m: a clearance this much short of c_min still holds
+  double clearance = 1e-3;   ///< c_min, m: what must hold
+  double room = 0;           ///< m: where fibers move, they are moved to c_min + room
+  double smoothness = 10e-3; ///< ℓ, m
+  int max_iterations = 30;   ///< measure–solve rounds
+  double tolerance = 1e-6;   ///< m: a clearance this much short of c_min still holds
 };
 
 struct CollisionResolution {
   std::vector<Route> routes;
   bool changed = false;
   int iterations = 0;
-  double before = 0, after = 0;    ///< the smallest clearance, m (+∞: nothing within reach)
-  std::vector<Contact> collided;   ///< at the start: the worst contact of each fiber pair (or fiber and skin) short of c_min
+  double before = 0, after = 0; ///< the smallest clearance, m (+∞: nothing within reach)
+  /// At the start: the worst contact of each fiber pair (or fiber and skin) short of c_min.
+  std::vector<Contact> collided;
 };
 
 /// Clearance that cannot be had: two fixed end points too close, or a passage narrower than the

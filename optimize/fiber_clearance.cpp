@@ -102,7 +102,7 @@ Contact FiberClearance::skin_contact(const std::vector<Eigen::Vector3d>& line, i
   c.clearance = (at.inside ? at.distance : -at.distance) - radius_;
   if (at.distance > kEpsilon) {
     c.normal = (at.inside ? 1.0 : -1.0) * (line[k] - at.point) / at.distance;
-  } else {  // on the skin: the gradient of the signed distance, by central differences
+  } else { // on the skin: the gradient of the signed distance, by central differences
     const double h = 1e-6;
     for (int i = 0; i < 3; ++i) {
       const auto signed_at = [&](double step) {
@@ -118,8 +118,8 @@ Contact FiberClearance::skin_contact(const std::vector<Eigen::Vector3d>& line, i
 
 namespace {
 
-Contact pair_contact(const std::vector<Eigen::Vector3d>& la, int a, int i, const std::vector<Eigen::Vector3d>& lb, int b,
-                     int j, double radius)
+Contact pair_contact(const std::vector<Eigen::Vector3d>& la, int a, int i, const std::vector<Eigen::Vector3d>& lb,
+                     int b, int j, double radius)
 {
   Contact c;
   c.a = a;
@@ -134,7 +134,7 @@ Contact pair_contact(const std::vector<Eigen::Vector3d>& la, int a, int i, const
   c.clearance = distance - 2 * radius;
   if (distance > kEpsilon) {
     c.normal = gap / distance;
-  } else {  // the centre lines cross: part them across both
+  } else { // the centre lines cross: part them across both
     const Eigen::Vector3d across = (la[i + 1] - la[i]).cross(lb[j + 1] - lb[j]);
     c.normal = across.norm() > kEpsilon ? across.normalized() : any_normal(la[i + 1] - la[i]);
   }
@@ -154,7 +154,7 @@ std::vector<Contact> FiberClearance::contacts(const Lines& lines, double below, 
   if (F < 2) return out;
 
   // Broad phase: segments by their midpoints.
-  std::vector<std::pair<int, int>> owner;  // (fiber, segment)
+  std::vector<std::pair<int, int>> owner; // (fiber, segment)
   for (int f = 0; f < F; ++f)
     for (int k = 0; k + 1 < static_cast<int>(lines[f].size()); ++k) owner.emplace_back(f, k);
   Eigen::MatrixX3d mids(static_cast<Eigen::Index>(owner.size()), 3);
@@ -172,7 +172,7 @@ std::vector<Contact> FiberClearance::contacts(const Lines& lines, double below, 
     const Eigen::Vector3d m = mids.row(static_cast<Eigen::Index>(n)).transpose();
     found.clear();
     tree.index->radiusSearch(m.data(), reach * reach, found, nanoflann::SearchParams(32, 0, false));
-    std::map<int, Contact> closest;  // per other fiber
+    std::map<int, Contact> closest; // per other fiber
     for (const auto& [index, squared] : found) {
       const auto [b, j] = owner[static_cast<std::size_t>(index)];
       if (b <= a) continue;

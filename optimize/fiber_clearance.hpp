@@ -20,12 +20,12 @@ namespace fibermold {
 
 /// Where two fibers, or a fiber and the skin, come closest.
 struct Contact {
-  int a = -1, b = -1;   ///< fibers; b = −1: the skin
-  int segment_a = 0, segment_b = 0;  ///< sample segments (k: between samples k and k+1); skin: the sample
-  double u_a = 0, u_b = 0;           ///< where along them, in [0, 1]
-  Eigen::Vector3d point_a, point_b;  ///< the closest points; b on the skin
-  Eigen::Vector3d normal;            ///< unit: the clearance grows as a moves along it and b against it
-  double clearance = 0;              ///< surface to surface, m (negative: overlap)
+  int a = -1, b = -1;               ///< fibers; b = −1: the skin
+  int segment_a = 0, segment_b = 0; ///< sample segments (k: between samples k and k+1); skin: the sample
+  double u_a = 0, u_b = 0;          ///< where along them, in [0, 1]
+  Eigen::Vector3d point_a, point_b; ///< the closest points; b on the skin
+  Eigen::Vector3d normal;           ///< unit: the clearance grows as a moves along it and b against it
+  double clearance = 0;             ///< surface to surface, m (negative: overlap)
 
   bool with_skin() const { return b < 0; }
 };

@@ -21,11 +21,11 @@ namespace {
 
 using Json = nlohmann::ordered_json;
 
-constexpr double kReoptimizeRoom = 0.1e-3;  // m
+constexpr double kReoptimizeRoom = 0.1e-3; // m
 // The barrier is ∫ b ds over the fibers in contact (mm): a small weight keeps it from outweighing
 // the targets while it stays infinite at the clearance (as IPC's κ).
 constexpr double kClearanceBarrierWeight = 4e-3;
-constexpr double kReportReach = 10e-3;      // m: clearances are reported up to this much above the asked one
+constexpr double kReportReach = 10e-3; // m: clearances are reported up to this much above the asked one
 
 /// The smallest clearance (mm) among fibers and skin, or null when it is more than kReportReach
 /// above the clearance asked for.
@@ -41,9 +41,10 @@ Json collisions_json(const std::vector<Contact>& contacts, const std::vector<Rou
 {
   Json out = Json::array();
   for (const Contact& c : contacts)
-    out.push_back({{"between", c.with_skin() ? Json{routes[c.a].name, "skin"} : Json{routes[c.a].name, routes[c.b].name}},
-                   {"clearance_mm", c.clearance / units::mm},
-                   {"at_mm", vec_mm(c.point_a)}});
+    out.push_back(
+        {{"between", c.with_skin() ? Json{routes[c.a].name, "skin"} : Json{routes[c.a].name, routes[c.b].name}},
+         {"clearance_mm", c.clearance / units::mm},
+         {"at_mm", vec_mm(c.point_a)}});
   return out;
 }
 
@@ -69,7 +70,8 @@ void check_inside(const Design& d, const FiberClearance& measure, const FibersFi
   const std::vector<Route>& routes = fibers.routing.routes;
   for (const Contact& c : measure.contacts(measure.lines(routes), -measure.radius())) {
     if (!c.with_skin()) continue;
-    const std::string what = fmt::format("the fiber (as routed in optimize/fibers.json) leaves the body at {}", format_mm(c.point_a));
+    const std::string what =
+        fmt::format("the fiber (as routed in optimize/fibers.json) leaves the body at {}", format_mm(c.point_a));
     if (fibers.optimized) throw std::runtime_error(fmt::format("fiber {}: {}", routes[c.a].name, what));
     throw InputError(Diagnostic{d.file, 0, 0, fmt::format("[fiber.{}]", routes[c.a].name), what});
   }
@@ -148,7 +150,7 @@ void simulate_targets(StageContext& ctx, const FiberClearance& measure, const Fi
     throw std::runtime_error(fmt::format("optimize/fibers.json has {} fibers, the design {}: run optimize again",
                                          fibers.routing.routes.size(), d.fibers.size()));
   DesignRouting dr(ctx);
-  RoutingProblem& problem = dr.start(starting_routing(d));  // the muscle segments as the optimizer had them
+  RoutingProblem& problem = dr.start(starting_routing(d)); // the muscle segments as the optimizer had them
   ctx.progress.update(0.1, "simulating the targets under the optimized routing");
   const std::vector<TargetErrors> before = errors_under(problem, dr, fibers.routing);
   std::vector<TargetErrors> resolved;
@@ -170,7 +172,8 @@ void simulate_targets(StageContext& ctx, const FiberClearance& measure, const Fi
     const std::string& name = dr.target_names[t];
     write_deformed_target(ctx.output_dir / fmt::format("deformed-{}.vtu", name), dr, final, t, states[t]);
     const double change = before[t].rmse > 0 ? 100 * (after[t].rmse - before[t].rmse) / before[t].rmse : 0;
-    targets[name] = {{"before", errors_json(before[t])}, {"after", errors_json(after[t])}, {"rmse_change_percent", change}};
+    targets[name] = {
+        {"before", errors_json(before[t])}, {"after", errors_json(after[t])}, {"rmse_change_percent", change}};
     if (!resolved.empty()) targets[name]["resolved"] = errors_json(resolved[t]);
     ctx.log.info("target {}: RMSE {:.3f} mm before, {:.3f} mm after ({:+.1f} %); max {:.3f} → {:.3f} mm on the "
                  "tracking curves; surface RMSE {:.3f} → {:.3f} mm",
@@ -207,7 +210,8 @@ void CollideStage::run(StageContext& ctx) const
   if (fibers.optimized && !d.targets.empty() && !d.tracking_curves.empty()) {
     simulate_targets(ctx, measure, fibers, r.changed, out.routing, report);
   } else {
-    if (d.collide.reoptimize) ctx.log.warn("[collide] reoptimize: the routing was not optimized, so it is not optimized again");
+    if (d.collide.reoptimize)
+      ctx.log.warn("[collide] reoptimize: the routing was not optimized, so it is not optimized again");
     ctx.log.info("the routing was not optimized: nothing to compare against the targets");
   }
   report["moves_mm"] = moves_json(fibers.routing.routes, out.routing.routes);

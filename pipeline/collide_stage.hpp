@@ -4,10 +4,10 @@
 // (optimize/collision_resolution.hpp; the paper did this by hand, sections V-B and VIII-F), and
 // every target is simulated again with the resolved routing and its pressures, to show the robot
 // still does its job; with [collide] reoptimize = true the optimizer then runs again from the
-// resolved routing with the clearance between fibers as a barrier. Outputs: collide/fibers.json (optimize's schema), report.json (collisions,
-// smallest clearance before and after, how far each control point moved, per-target errors before
-// and after), deformed-<target>.vtu. A clear routing passes through bit for bit; a clearance that
-// cannot be had fails the stage, naming the fibers and the place.
+// resolved routing with the clearance between fibers as a barrier. Outputs: collide/fibers.json (optimize's schema),
+// report.json (collisions, smallest clearance before and after, how far each control point moved, per-target errors
+// before and after), deformed-<target>.vtu. A clear routing passes through bit for bit; a clearance that cannot be had
+// fails the stage, naming the fibers and the place.
 
 #include "pipeline/stage.hpp"
 

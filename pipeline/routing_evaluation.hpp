@@ -28,7 +28,7 @@ struct DesignRouting {
   std::vector<std::string> target_names;
   std::vector<Eigen::VectorXd> targets;
   std::vector<TrackingSamples> curves;
-  std::unique_ptr<RoutingProblem> problem;  ///< after start()
+  std::unique_ptr<RoutingProblem> problem; ///< after start()
 
   /// Throws InputError for a tracking curve that leaves the body.
   explicit DesignRouting(const StageContext& ctx);
@@ -37,7 +37,7 @@ struct DesignRouting {
   /// refuses it.
   RoutingProblem& start(const Routing& routing);
 
-  DesignRouting(const DesignRouting&) = delete;  // the simulation holds the mesh
+  DesignRouting(const DesignRouting&) = delete; // the simulation holds the mesh
   DesignRouting& operator=(const DesignRouting&) = delete;
 };
 
@@ -56,7 +56,7 @@ Routing starting_routing(const Design& d);
 BfgsOptions bfgs_options(const Design& d);
 
 struct TargetErrors {
-  double rmse = 0, max = 0, surface_rmse = 0, surface_max = 0;  ///< m
+  double rmse = 0, max = 0, surface_rmse = 0, surface_max = 0; ///< m
 };
 /// The errors of equilibrium x of target t.
 TargetErrors target_errors(RoutingProblem& problem, const TetMesh& mesh, int t, const Eigen::VectorXd& x);

@@ -36,7 +36,10 @@ points = [[30, -30, 0.5], [30, 0, 0.5], [30, 30, 0.5]]
 
 class CollideE2E : public ::testing::Test {
 protected:
-  void SetUp() override { write_stl(dir_ / "block.stl", test::box({0, -0.03, -0.01}, {0.06, 0.03, 0.01}, Eigen::Vector3i(6, 6, 2))); }
+  void SetUp() override
+  {
+    write_stl(dir_ / "block.stl", test::box({0, -0.03, -0.01}, {0.06, 0.03, 0.01}, Eigen::Vector3i(6, 6, 2)));
+  }
   void design(const std::string& body) { test::write_text(dir_ / "design.toml", std::string(kDesign) + body); }
   test::CommandResult make(const std::string& stage = "collide")
   {
@@ -62,13 +65,13 @@ TEST_F(CollideE2E, CrossingFibersAreMovedApartToTheClearance)
   EXPECT_EQ(report["collisions"][0]["between"], nlohmann::json({"a", "b"}));
   EXPECT_NEAR(report["collisions"][0]["clearance_mm"].get<double>(), 1.0 - 3.0, 1e-6);
   EXPECT_NEAR(report["smallest_clearance_mm"]["after"].get<double>(), 1.0, 0.05);
-  EXPECT_TRUE(report["targets"].is_null());  // hand-routed: nothing to simulate against
+  EXPECT_TRUE(report["targets"].is_null()); // hand-routed: nothing to simulate against
   const auto fibers = json("collide", "fibers.json");
   const auto& a = fibers["fibers"][0]["points_mm"];
   const auto& b = fibers["fibers"][1]["points_mm"];
-  EXPECT_NEAR(a[1][2].get<double>(), -2.0, 0.05);  // 3 mm of movement, half each
+  EXPECT_NEAR(a[1][2].get<double>(), -2.0, 0.05); // 3 mm of movement, half each
   EXPECT_NEAR(b[1][2].get<double>(), 2.0, 0.05);
-  EXPECT_EQ(a[0], nlohmann::json({0.0, 0.0, -0.5}));  // end points stay
+  EXPECT_EQ(a[0], nlohmann::json({0.0, 0.0, -0.5})); // end points stay
   EXPECT_EQ(b[2], nlohmann::json({30.0, 30.0, 0.5}));
   EXPECT_NEAR(report["moves_mm"]["a"]["points"][1].get<double>(), 1.5, 0.05);
 }
@@ -80,7 +83,8 @@ TEST_F(CollideE2E, ClearRoutingPassesThroughUnchanged)
   design(routing + "[optimize]\nenabled = false\n");
   ASSERT_EQ(make().exit_code, 0);
   EXPECT_FALSE(json("collide", "report.json")["changed"].get<bool>());
-  EXPECT_EQ(test::read_text(dir_ / "build" / "collide" / "fibers.json"), test::read_text(dir_ / "build" / "optimize" / "fibers.json"));
+  EXPECT_EQ(test::read_text(dir_ / "build" / "collide" / "fibers.json"),
+            test::read_text(dir_ / "build" / "optimize" / "fibers.json"));
 }
 
 TEST_F(CollideE2E, ImpossibleClearanceStopsTheStage)
@@ -128,7 +132,7 @@ max_iterations = 2
   EXPECT_LT(before, after);
   EXPECT_NEAR(lift["rmse_change_percent"].get<double>(), 100 * (after - before) / before, 1e-6);
   EXPECT_TRUE(fs::exists(dir_ / "build" / "collide" / "deformed-lift.vtu"));
-  const auto fibers = json("optimize", "fibers.json");  // only its actuator drives the target
+  const auto fibers = json("optimize", "fibers.json"); // only its actuator drives the target
   EXPECT_GT(fibers["fibers"][0]["pressure_kPa"]["lift"].get<double>(), 0);
   EXPECT_EQ(fibers["fibers"][1]["pressure_kPa"]["lift"].get<double>(), 0);
 
@@ -141,10 +145,10 @@ max_iterations = 2
   EXPECT_TRUE(again["reoptimized"].get<bool>());
   EXPECT_GE(again["smallest_clearance_mm"]["after"].get<double>(), 1.0 - 1e-3);
   const auto& t = again["targets"]["lift"];
-  std::printf("collide e2e, optimized again: RMSE %.3f mm resolved, %.3f mm after\n", t["resolved"]["rmse_mm"].get<double>(),
-              t["after"]["rmse_mm"].get<double>());
+  std::printf("collide e2e, optimized again: RMSE %.3f mm resolved, %.3f mm after\n",
+              t["resolved"]["rmse_mm"].get<double>(), t["after"]["rmse_mm"].get<double>());
   EXPECT_GT(t["resolved"]["rmse_mm"].get<double>(), before);
-  EXPECT_LT(t["after"]["rmse_mm"].get<double>(), t["resolved"]["rmse_mm"].get<double>());  // it wins some back
+  EXPECT_LT(t["after"]["rmse_mm"].get<double>(), t["resolved"]["rmse_mm"].get<double>()); // it wins some back
 }
 
 TEST_F(CollideE2E, CollideEditsRerunCollideAndWhatFollows)

@@ -3,8 +3,8 @@
 
 #include <gtest/gtest.h>
 
-#include "optimize/clearance_barrier.hpp"
 #include "clearance_fixture.hpp"
+#include "optimize/clearance_barrier.hpp"
 
 namespace fibermold {
 namespace {
@@ -20,9 +20,9 @@ TEST(ClearanceBarrier, InfiniteAtTheClearanceZeroBeyondItsBandAndItsGradientMatc
   };
   const FiberClearance measure(body.skin, routes_at(4.8), kRadius, kClearance, kSamplesPerLength);
   const ClearanceBarrier B(measure, routes_at(4.8), kClearance, kRadius);
-  EXPECT_EQ(B.value(routes_at(3.5)), HUGE_VAL);  // 0.5 mm of clearance
-  EXPECT_EQ(B.value(routes_at(9.0)), 0.0);       // beyond the band
-  std::vector<Route> r = routes_at(4.8);         // within the band
+  EXPECT_EQ(B.value(routes_at(3.5)), HUGE_VAL); // 0.5 mm of clearance
+  EXPECT_EQ(B.value(routes_at(9.0)), 0.0);      // beyond the band
+  std::vector<Route> r = routes_at(4.8);        // within the band
   const double v = B.value(r);
   ASSERT_GT(v, 0);
   ASSERT_TRUE(std::isfinite(v));
@@ -44,7 +44,7 @@ TEST(ClearanceBarrier, InfiniteAtTheClearanceZeroBeyondItsBandAndItsGradientMatc
           ++checked;
         }
   EXPECT_EQ(checked, 36);
-  EXPECT_GT(largest, 100);  // per m: the barrier pushes
+  EXPECT_GT(largest, 100); // per m: the barrier pushes
 }
 
 } // namespace

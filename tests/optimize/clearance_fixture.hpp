@@ -5,10 +5,10 @@
 #include <string>
 #include <vector>
 
+#include "../primitives.hpp"
 #include "core/units.hpp"
 #include "mesh/surface_distance.hpp"
 #include "optimize/routing_problem.hpp"
-#include "../primitives.hpp"
 
 namespace fibermold::test {
 

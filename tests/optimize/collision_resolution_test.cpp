@@ -3,8 +3,8 @@
 
 #include <gtest/gtest.h>
 
-#include "optimize/collision_resolution.hpp"
 #include "clearance_fixture.hpp"
+#include "optimize/collision_resolution.hpp"
 
 namespace fibermold {
 namespace {
@@ -62,9 +62,9 @@ TEST(CollisionResolution, ThreeTwistedFibersAreSeparated)
   }
   const FiberClearance measure(body.skin, routes, kRadius, kClearance, kSamplesPerLength);
   const CollisionResolution r = resolve_collisions(measure, routes, settings());
-  EXPECT_EQ(r.collided.size(), 3u);  // every pair
+  EXPECT_EQ(r.collided.size(), 3u); // every pair
   EXPECT_LT(r.before / units::mm, -1.0);
-  EXPECT_GE(smallest(measure, r.routes) / units::mm, 1.0 - 1e-3);  // pairs and skin
+  EXPECT_GE(smallest(measure, r.routes) / units::mm, 1.0 - 1e-3); // pairs and skin
   for (int f = 0; f < 3; ++f) {
     EXPECT_EQ(r.routes[f].points.front(), routes[f].points.front());
     EXPECT_EQ(r.routes[f].points.back(), routes[f].points.back());
@@ -93,9 +93,9 @@ TEST(CollisionResolution, ClearRoutingIsLeftUnchanged)
   const CollisionResolution r = resolve_collisions(measure, routes, settings());
   EXPECT_FALSE(r.changed);
   EXPECT_TRUE(r.collided.empty());
-  EXPECT_NEAR(smallest(measure, routes) / units::mm, 5 - 1.5, 1e-6);  // the ends, 5 mm from the skin
+  EXPECT_NEAR(smallest(measure, routes) / units::mm, 5 - 1.5, 1e-6); // the ends, 5 mm from the skin
   ResolutionSettings with_room = settings();
-  with_room.room = 5 * units::mm;  // room is only where fibers move: a clear routing stays put
+  with_room.room = 5 * units::mm; // room is only where fibers move: a clear routing stays put
   EXPECT_FALSE(resolve_collisions(measure, routes, with_room).changed);
   for (int f = 0; f < 2; ++f) {
     EXPECT_EQ(r.routes[f].points, routes[f].points);
@@ -113,7 +113,8 @@ TEST(CollisionResolution, SharedEndPointIsImpossible)
     resolve_collisions(measure, routes, settings());
     FAIL() << "a shared end point cannot be cleared";
   } catch (const CollisionError& e) {
-    EXPECT_NE(std::string(e.what()).find("fibers a and b have fixed end points 0.00 mm apart"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("fibers a and b have fixed end points 0.00 mm apart"), std::string::npos)
+        << e.what();
     EXPECT_NE(std::string(e.what()).find("(-25.00, 0.00, 0.00) mm"), std::string::npos) << e.what();
   }
 }
