@@ -5,6 +5,7 @@
 
 #include <Eigen/Eigenvalues>
 #include <Eigen/Geometry>
+#include <fmt/format.h>
 
 #include "mesh/surface_distance.hpp"
 
@@ -123,7 +124,12 @@ Mold make_mold(const SurfaceMesh& cavity_world, const Parting& parting, const st
   // starts a little inside the cavity so that the booleans meet no tangent faces.
   const double band = 0.5e-3;
   const std::vector<Eigen::Vector3d> lowest = top_points(flipped_z(cavity), 1, band, o.sprue_diameter / 2, o.min_wall);
-  if (lowest.empty()) throw std::runtime_error(shot + ": no flat spot at the cavity's bottom for the sprue");
+  if (lowest.empty())
+    throw std::runtime_error(fmt::format(
+        "{}: no flat spot at the cavity's bottom (within {:.1f} mm of its lowest point, seen along the pull direction) "
+        "takes the sprue: it needs a circle of {:.1f} mm across ([mold] sprue_diameter + 2 × [export] min_wall); make "
+        "sprue_diameter smaller or give the body a wider flat bottom",
+        shot, band / 1e-3, (o.sprue_diameter + 2 * o.min_wall) / 1e-3));
   Eigen::Vector3d sprue = lowest.front();
   sprue.z() *= -1;
   const double dip = std::min(0.5e-3, o.sprue_diameter / 2);

@@ -22,9 +22,6 @@ namespace {
 using Json = nlohmann::ordered_json;
 
 constexpr double kReoptimizeRoom = 0.1e-3; // m
-// The barrier is ∫ b ds over the fibers in contact (mm): a small weight keeps it from outweighing
-// the targets while it stays infinite at the clearance (as IPC's κ).
-constexpr double kClearanceBarrierWeight = 4e-3;
 constexpr double kReportReach = 10e-3; // m: clearances are reported up to this much above the asked one
 
 /// The smallest clearance (mm) among fibers and skin, or null when it is more than kReportReach

@@ -11,6 +11,7 @@
 #include "core/atomic_file.hpp"
 #include "core/input_error.hpp"
 #include "core/units.hpp"
+#include "optimize/clearance_barrier.hpp"
 #include "optimize/routing_optimizer.hpp"
 #include "pipeline/design_simulation.hpp"
 #include "pipeline/fibers_file.hpp"
@@ -58,19 +59,43 @@ void check_fibers_inside(const Design& d, const SurfaceDistance& skin)
   }
 }
 
+/// Fibers that start clear of each other are kept clear: the clearance barrier between fibers joins
+/// eq. 4, so that collide finds nothing to move. Fibers that start too close are left to cross and
+/// to collide, which parts them afterwards. Returns whether the barrier is on.
+bool keep_fibers_apart(StageContext& ctx, RoutingProblem& problem, const SurfaceDistance& skin, const Routing& start,
+                       std::unique_ptr<FiberClearance>& measure, std::unique_ptr<ClearanceBarrier>& barrier)
+{
+  const Design& d = ctx.design;
+  if (start.routes.size() < 2) return false;
+  const double radius = d.muscle.model.diameter / 2;
+  measure = std::make_unique<FiberClearance>(skin, start.routes, radius, d.collide.clearance, d.collide.samples_per_length);
+  const std::vector<Contact> close = measure->contacts(measure->lines(start.routes), d.collide.clearance, false);
+  if (!close.empty()) {
+    const Contact& c = close.front();
+    ctx.log.info("fibers {} and {} start {:.2f} mm apart at {}, less than the [collide] clearance: the optimizer lets "
+                 "fibers cross, and collide parts them afterwards",
+                 start.routes[c.a].name, start.routes[c.b].name, c.clearance / units::mm, format_mm(c.point_a));
+    return false;
+  }
+  barrier = std::make_unique<ClearanceBarrier>(*measure, start.routes, d.collide.clearance, radius);
+  problem.set_clearance_barrier(barrier.get(), kClearanceBarrierWeight);
+  ctx.log.info("the fibers start clear of each other; a barrier keeps them {:.2f} mm apart", d.collide.clearance / units::mm);
+  return true;
+}
+
 /// history.csv: one row per accepted BFGS step.
 class History {
 public:
   explicit History(const std::vector<std::string>& targets)
   {
-    text_ = "iteration,stage,objective,distance,curvature,skin_barrier,pressure_barrier";
+    text_ = "iteration,stage,objective,distance,curvature,skin_barrier,pressure_barrier,clearance_barrier";
     for (const std::string& t : targets) text_ += ",distance_" + t;
     text_ += ",gradient_norm,step,evaluations,seconds\n";
   }
   void add(int iteration, int stage, const BfgsIteration& it, const RoutingTerms& terms, double seconds)
   {
-    text_ += fmt::format("{},{},{:.9g},{:.9g},{:.9g},{:.9g},{:.9g}", iteration, stage + 1, terms.total, terms.distance,
-                         terms.curvature, terms.skin, terms.pressure);
+    text_ += fmt::format("{},{},{:.9g},{:.9g},{:.9g},{:.9g},{:.9g},{:.9g}", iteration, stage + 1, terms.total,
+                         terms.distance, terms.curvature, terms.skin, terms.pressure, terms.clearance);
     for (double v : terms.per_target) text_ += fmt::format(",{:.9g}", v);
     text_ += fmt::format(",{:.6g},{:.6g},{},{:.3f}\n", it.gradient_norm, it.step, it.evaluations, seconds);
   }
@@ -106,6 +131,10 @@ void OptimizeStage::run(StageContext& ctx) const
         fmt::format("the starting route passes {:.2f} mm from the skin at {}; the optimizer keeps fibers at least {:.2f} mm "
                     "inside ([muscle] diameter/2 + [collide] clearance)",
                     closest / units::mm, format_mm(where), settings.skin_distance / units::mm));
+
+  std::unique_ptr<FiberClearance> measure;
+  std::unique_ptr<ClearanceBarrier> barrier;
+  const bool kept_apart = keep_fibers_apart(ctx, problem, *dr.skin, start, measure, barrier);
 
   std::vector<TargetErrors> before;
   for (int t = 0; t < problem.num_targets(); ++t) before.push_back(target_errors(problem, dr.mesh, t, problem.equilibrium(start, t)));
@@ -160,6 +189,7 @@ void OptimizeStage::run(StageContext& ctx) const
       {"optimized", true},
       {"strategy", d.optimize.strategy},
       {"converged", result.converged},
+      {"fibers_kept_apart", kept_apart},
       {"message", result.message},
       {"iterations", result.iterations},
       {"evaluations", result.evaluations},

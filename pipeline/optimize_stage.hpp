@@ -17,7 +17,7 @@ public:
   std::vector<std::string> design_keys() const override
   {
     return {"design.units", "material", "sim", "fixed", "muscle", "fiber", "tracking_curve", "target", "optimize",
-            "collide.clearance"};
+            "collide.clearance", "collide.samples_per_mm"};
   }
   void run(StageContext& ctx) const override;
 };

@@ -45,6 +45,11 @@ struct DesignRouting {
 /// clearance) as the routing problem takes them.
 RoutingSettings routing_settings(const Design& d);
 
+/// Weight of the clearance barrier between fibers (optimize/clearance_barrier.hpp), which is ∫ b ds
+/// over the fibers in contact (mm): small, so that it does not outweigh the targets while it stays
+/// infinite at the clearance (as IPC's κ).
+inline constexpr double kClearanceBarrierWeight = 4e-3;
+
 /// Which fibers drive which target: a target's `actuators`, all fibers when it names none, fiber k
 /// alone for target k with the sequential strategy.
 ActuatorMask actuator_mask(const Design& d);

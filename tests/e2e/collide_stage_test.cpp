@@ -151,6 +151,37 @@ max_iterations = 2
   EXPECT_LT(t["after"]["rmse_mm"].get<double>(), t["resolved"]["rmse_mm"].get<double>()); // it wins some back
 }
 
+TEST_F(CollideE2E, FibersThatStartClearAreKeptClearByTheOptimizer)
+{
+  // The target is made by a alone, straight 1 mm under b; a starts 5 mm under b in the middle and
+  // the optimizer pulls it up, as far as the clearance barrier lets it.
+  std::string routing = kCrossing;
+  routing.replace(routing.find("[30, 0, -0.5]"), 13, "[30, 0, -4.5]");
+  design(routing + R"([[tracking_curve]]
+name = "centre"
+points = [[0, 0, 0], [60, 0, 0]]
+samples = 12
+[[target]]
+name = "lift"
+kind = "fibers"
+fibers = [{ name = "a", pressure = 200, points = [[0, 0, -0.5], [30, 0, -0.5], [60, 0, -0.5]] }]
+actuators = ["a"]
+[optimize]
+max_iterations = 15
+)");
+  const auto r = make();
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_TRUE(json("optimize", "report.json")["fibers_kept_apart"].get<bool>());
+  const auto report = json("collide", "report.json");
+  EXPECT_FALSE(report["changed"].get<bool>());
+  const double smallest = report["smallest_clearance_mm"]["before"].get<double>();
+  const auto fibers = json("optimize", "fibers.json");
+  const double a_z = fibers["fibers"][0]["points_mm"][1][2].get<double>();
+  std::printf("kept apart: a's middle point rose from -4.5 to %.3f mm; smallest clearance %.3f mm\n", a_z, smallest);
+  EXPECT_GE(smallest, 1.0 - 1e-3);
+  EXPECT_GT(a_z, -4.0);  // it did move toward b
+}
+
 TEST_F(CollideE2E, CollideEditsRerunCollideAndWhatFollows)
 {
   design(std::string(kCrossing) + "[optimize]\nenabled = false\n[collide]\nsmoothness = 10\n");
