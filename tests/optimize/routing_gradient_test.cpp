@@ -1,11 +1,13 @@
 // The gradient of the whole objective of eq. 4 (distance through equilibrium for two targets,
-// curvature, skin barrier, pressure barrier) against central finite differences of the objective
-// itself: relative error ≤ 1e-5 for control points, tangents and pressures.
+// curvature, skin barrier, pressure barrier, clearance barrier between the fibers) against central
+// finite differences of the objective itself: relative error ≤ 1e-5 for control points, tangents
+// and pressures.
 #include <cmath>
 #include <random>
 
 #include <gtest/gtest.h>
 
+#include "optimize/clearance_barrier.hpp"
 #include "routing_fixture.hpp"
 
 namespace fibermold {
@@ -36,6 +38,11 @@ TEST(RoutingProblem, GradientMatchesFiniteDifferencesAtRandomDesigns)
   settings.skin_distance = 1e-3;
   settings.skin_band = 1.5e-3;
   RoutingProblem problem(*fx.sim, fx.model, *fx.skin, targets, fx.curves, start, settings);
+  // Thin muscles (0.2 mm radius) 0.1 mm apart at least, the barrier acting over 3 mm: a and b, a
+  // few mm apart, are within its reach.
+  const FiberClearance measure(*fx.skin, start.routes, 0.2e-3, 0.1e-3, 4000);
+  const ClearanceBarrier clearance(measure, start.routes, 0.1e-3, 3e-3);
+  problem.set_clearance_barrier(&clearance, 0.1);
 
   const Eigen::VectorXd z = problem.variables(start);
   Eigen::VectorXd analytic;
@@ -47,6 +54,7 @@ TEST(RoutingProblem, GradientMatchesFiniteDifferencesAtRandomDesigns)
   EXPECT_GT(terms.curvature, 0);
   EXPECT_GT(terms.skin, 0) << "the skin barrier should be active";
   EXPECT_GT(terms.pressure, 0) << "the pressure barrier should be active";
+  EXPECT_GT(terms.clearance, 0) << "the clearance barrier should be active";
 
   const double h = 1e-3;  // 1 µm, 10 Pa
   Eigen::VectorXd fd(z.size());
