@@ -80,7 +80,7 @@ TEST_F(OptimizeE2E, RecoversTheTargetAndWritesItsOutputs)
   EXPECT_GT(m1["length_mm"].get<double>(), 60);
 
   const std::string history = test::read_text(dir_ / "build" / "optimize" / "history.csv");
-  EXPECT_THAT(history, HasSubstr("iteration,stage,objective,distance,curvature,skin_barrier,pressure_barrier,distance_s,"));
+  EXPECT_THAT(history, HasSubstr("iteration,stage,objective,distance,curvature,skin_barrier,pressure_barrier,clearance_barrier,distance_s,"));
   EXPECT_EQ(std::count(history.begin(), history.end(), '\n'), report["iterations"].get<int>() + 1);
   EXPECT_TRUE(fs::exists(dir_ / "build" / "optimize" / "deformed-s.vtu"));
 
