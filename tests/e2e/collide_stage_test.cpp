@@ -34,6 +34,16 @@ name = "b"
 points = [[30, -30, 0.5], [30, 0, 0.5], [30, 30, 0.5]]
 )";
 
+// A tracking curve along the block and a target made by known fibers, which follow.
+const char* kLiftTarget = R"([[tracking_curve]]
+name = "centre"
+points = [[0, 0, 0], [60, 0, 0]]
+samples = 12
+[[target]]
+name = "lift"
+kind = "fibers"
+)";
+
 class CollideE2E : public ::testing::Test {
 protected:
   void SetUp() override
@@ -106,14 +116,7 @@ TEST_F(CollideE2E, ImpossibleClearanceStopsTheStage)
 
 TEST_F(CollideE2E, OptimizedRoutingIsSimulatedBeforeAndAfter)
 {
-  const std::string routing = std::string(kCrossing) + R"([[tracking_curve]]
-name = "centre"
-points = [[0, 0, 0], [60, 0, 0]]
-samples = 12
-[[target]]
-name = "lift"
-kind = "fibers"
-fibers = [{ name = "a", pressure = 200, points = [[0, 0, -0.5], [30, 0, -0.5], [60, 0, -0.5]] },
+  const std::string routing = std::string(kCrossing) + kLiftTarget + R"(fibers = [{ name = "a", pressure = 200, points = [[0, 0, -0.5], [30, 0, -0.5], [60, 0, -0.5]] },
           { name = "b", pressure = 200, points = [[30, -30, 0.5], [30, 0, 0.5], [30, 30, 0.5]] }]
 actuators = ["a"]
 [optimize]
@@ -157,14 +160,7 @@ TEST_F(CollideE2E, FibersThatStartClearAreKeptClearByTheOptimizer)
   // the optimizer pulls it up, as far as the clearance barrier lets it.
   std::string routing = kCrossing;
   routing.replace(routing.find("[30, 0, -0.5]"), 13, "[30, 0, -4.5]");
-  design(routing + R"([[tracking_curve]]
-name = "centre"
-points = [[0, 0, 0], [60, 0, 0]]
-samples = 12
-[[target]]
-name = "lift"
-kind = "fibers"
-fibers = [{ name = "a", pressure = 200, points = [[0, 0, -0.5], [30, 0, -0.5], [60, 0, -0.5]] }]
+  design(routing + kLiftTarget + R"(fibers = [{ name = "a", pressure = 200, points = [[0, 0, -0.5], [30, 0, -0.5], [60, 0, -0.5]] }]
 actuators = ["a"]
 [optimize]
 max_iterations = 15
