@@ -1,8 +1,10 @@
 // The molds and export stages as a user runs them: a 60 × 16 × 16 mm bar with one straight hand-
 // routed fiber ([optimize] enabled = false) becomes four printable parts; admesh, an independent
-// checker, finds nothing to fix in any of them; bad inputs stop with an error and no STL.
+// checker, finds nothing to fix in any of them, and PrusaSlicer slices each one to its full height;
+// bad inputs stop with an error and no STL.
 #include <cstdio>
 #include <regex>
+#include <sstream>
 
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
@@ -87,6 +89,57 @@ TEST_F(MoldsE2E, HandRoutedBarBecomesFourCheckedParts)
     EXPECT_EQ(a.at("Facets removed"), 0) << name;
     EXPECT_EQ(a.at("Backwards edges"), 0) << name;
     EXPECT_EQ(a.at("Number of parts"), 1) << name;
+  }
+}
+
+/// What a command printed (stdout and stderr) and its exit code.
+std::pair<int, std::string> run(const std::string& command)
+{
+  std::string text;
+  FILE* pipe = popen((command + " 2>&1").c_str(), "r");
+  if (!pipe) return {-1, text};
+  char buffer[4096];
+  while (fgets(buffer, sizeof buffer, pipe)) text += buffer;
+  return {pclose(pipe), text};
+}
+
+/// The heights of the layers of a PrusaSlicer G-code file (its ";Z:" comments), in mm.
+std::vector<double> layer_heights(const fs::path& gcode)
+{
+  std::vector<double> z;
+  std::istringstream lines(test::read_text(gcode));
+  for (std::string line; std::getline(lines, line);)
+    if (line.rfind(";Z:", 0) == 0) z.push_back(std::stod(line.substr(3)));
+  return z;
+}
+
+TEST_F(MoldsE2E, ExportedPartsSliceInPrusaSlicer)
+{
+  if (std::system("command -v prusa-slicer >/dev/null 2>&1") != 0) GTEST_SKIP() << "prusa-slicer is not installed (scripts/setup installs it)";
+  design("");
+  ASSERT_EQ(make().exit_code, 0);
+  const auto manifest = nlohmann::json::parse(test::read_text(out("manifest.json")));
+  ASSERT_EQ(manifest["parts"].size(), 4u);
+  for (const auto& p : manifest["parts"]) {
+    const std::string name = p["name"];
+    const fs::path stl = out(p["file"].get<std::string>()), gcode = dir_ / (name + ".gcode");
+
+    const auto [info_code, info] = run("prusa-slicer --info '" + stl.string() + "'");
+    ASSERT_EQ(info_code, 0) << name << ": " << info;
+    EXPECT_THAT(info, HasSubstr("manifold = yes")) << name;
+    EXPECT_THAT(info, HasSubstr("number_of_parts =  1")) << name;
+    std::smatch volume;
+    ASSERT_TRUE(std::regex_search(info, volume, std::regex(R"(volume = ([0-9.]+))"))) << name;
+    EXPECT_NEAR(std::stod(volume[1]) * 1e-3, p["volume_mL"].get<double>(), 1e-3 * p["volume_mL"].get<double>()) << name;
+
+    const auto [slice_code, log] = run("prusa-slicer --export-gcode '" + stl.string() + "' --output '" + gcode.string() + "'");
+    ASSERT_EQ(slice_code, 0) << name << ": " << log;
+    EXPECT_THAT(log, ::testing::Not(HasSubstr("error"))) << name;
+    const auto z = layer_heights(gcode);
+    ASSERT_FALSE(z.empty()) << name;
+    const double height = p["size_mm"][2];
+    EXPECT_NEAR(z.back(), height, 0.35) << name << ": the top layer is not at the part's height";  // a 0.3 mm layer
+    EXPECT_GE(z.size(), static_cast<std::size_t>(height / 0.3)) << name;
   }
 }
 
