@@ -142,9 +142,12 @@ SurfaceMesh LevelSet::mesh(double adaptivity) const
   std::vector<openvdb::Vec3s> points;
   std::vector<openvdb::Vec3I> triangles;
   std::vector<openvdb::Vec4I> quads;
-  openvdb::tools::volumeToMesh(*impl_->grid, points, triangles, quads, 0.0, adaptivity);
-  // OpenVDB places some vertices of neighbouring cells at exactly the same point: merge them and
-  // drop the faces that collapse.
+  // Meshed a thousandth of a voxel inside the zero level: grid values of exactly zero (a groove's
+  // wall on a grid plane) put the vertices of neighbouring cells at the same point, and merging them
+  // pinches the mesh into non-manifold edges. Inside, not outside, so that a zero stays outside and
+  // no film of zero thickness becomes solid.
+  openvdb::tools::volumeToMesh(*impl_->grid, points, triangles, quads, -1e-3 * impl_->voxel, adaptivity);
+  // Should two vertices still coincide, merge them and drop the faces that collapse.
   std::map<std::array<float, 3>, int> index_of;
   std::vector<int> merged(points.size());
   SurfaceMesh s;

@@ -26,8 +26,11 @@ Mesh to_cgal(const SurfaceMesh& s)
   std::vector<Mesh::Vertex_index> v;
   for (Eigen::Index i = 0; i < s.num_vertices(); ++i) v.push_back(m.add_vertex(Point(s.vertices(i, 0), s.vertices(i, 1), s.vertices(i, 2))));
   for (Eigen::Index f = 0; f < s.num_faces(); ++f)
-    if (m.add_face(v[s.faces(f, 0)], v[s.faces(f, 1)], v[s.faces(f, 2)]) == Mesh::null_face())
-      throw std::runtime_error("mesh boolean: the input is not a manifold surface");
+    if (m.add_face(v[s.faces(f, 0)], v[s.faces(f, 1)], v[s.faces(f, 2)]) == Mesh::null_face()) {
+      const Eigen::Vector3d at = s.vertices.row(s.faces(f, 0)).transpose() * 1e3;
+      throw std::runtime_error("mesh boolean: the input is not a manifold surface (face " + std::to_string(f) + " near (" +
+                               std::to_string(at.x()) + ", " + std::to_string(at.y()) + ", " + std::to_string(at.z()) + ") mm)");
+    }
   return m;
 }
 

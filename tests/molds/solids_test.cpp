@@ -78,5 +78,23 @@ TEST(LevelSet, GrooveVolumeMatchesTheAnalyticValue)
   EXPECT_NEAR(signed_volume(m), expected, 0.01 * expected);
 }
 
+TEST(LevelSet, GroovesTouchingOnAGridPlaneMeshAsOneManifoldCavity)
+{
+  // Two parallel grooves of radius 1.8 mm whose walls meet exactly on the plane y = 0, a grid plane at
+  // voxel 0.2 mm: the level set is exactly zero there. The grooves must merge into one cavity with a
+  // manifold mesh, not leave a wall of zero thickness. (bench/molds_bench's walking robot, whose
+  // grooves leave sub-voxel walls, is where exact zeros once pinched the mesh.)
+  const double r = 1.8 * mm, h = 10 * mm, L = 40 * mm, voxel = 0.2 * mm;
+  LevelSet body = LevelSet::from_mesh(box_solid({0, -10 * mm, -10 * mm}, {L, 10 * mm, 10 * mm}), voxel);
+  LevelSet grooves(voxel);
+  for (double y : {-r, r}) grooves.add_swept_tube({{-mm, y, 0}, {L + mm, y, 0}}, r, {0, 0, h + 2 * r});
+  body.subtract(grooves);
+  const SurfaceMesh m = body.mesh(0.0);
+  expect_valid_solid(m, "grooves touching");
+  // Cross-section removed: a 4 r × h rectangle above the fibers and two half discs below.
+  const double expected = L * 400e-6 - L * (4 * r * h + M_PI * r * r);
+  EXPECT_NEAR(signed_volume(m), expected, 0.005 * expected);
+}
+
 } // namespace
 } // namespace fibermold
