@@ -10,9 +10,9 @@ GrooveBody groove_body(const SurfaceMesh& body, const std::vector<std::vector<Ei
   const Eigen::Vector3d pull = pull_in.normalized();
   const Eigen::VectorXd heights = body.vertices * pull;
   const double through = heights.maxCoeff() - heights.minCoeff() + 2 * radius;  // out of the body from anywhere
-  LevelSet solid = LevelSet::from_mesh(body, voxel);
-  LevelSet grooves(voxel);
-  for (const auto& fiber : fibers) grooves.add_swept_tube(fiber, radius, through * pull);
+  LevelSet solid = LevelSet::from_mesh(body, voxel, pull);
+  LevelSet grooves(voxel, pull);
+  for (const auto& fiber : fibers) grooves.add_swept_tube(fiber, radius, through);
   solid.subtract(grooves);
   GrooveBody out;
   out.volume = solid.volume();

@@ -2,12 +2,12 @@
 
 #include <algorithm>
 #include <array>
-#include <map>
 #include <cmath>
+#include <map>
 #include <mutex>
+#include <unordered_map>
 
-#include <Eigen/Cholesky>
-#include <Eigen/LU>
+#include <Eigen/Geometry>
 
 #include <openvdb/openvdb.h>
 #include <openvdb/tools/Composite.h>
@@ -22,17 +22,35 @@ namespace fibermold {
 
 namespace {
 
+// The grids' world unit (m). OpenVDB takes a transform whose determinant is within 1e-8 of zero
+// as degenerate: a rotated frame of 0.2 mm voxels in metres (det 8e-12) would fail its uniform-scale
+// test, so the grids live in millimetres.
+constexpr double kUnit = 1e-3;
+
 void initialize_once()
 {
   static std::once_flag once;
   std::call_once(once, [] { openvdb::initialize(); });
 }
 
-openvdb::FloatGrid::Ptr empty_grid(double voxel, double half_width)
+/// Index space to world: voxel-sized cells whose third axis points along `up`.
+openvdb::math::Transform::Ptr frame(double voxel, const Eigen::Vector3d& up)
+{
+  const Eigen::Vector3d u = up.normalized();
+  const Eigen::Matrix3d R = u == Eigen::Vector3d::UnitZ()
+                                ? Eigen::Matrix3d::Identity()
+                                : Eigen::Quaterniond::FromTwoVectors(Eigen::Vector3d::UnitZ(), u).toRotationMatrix();
+  openvdb::math::Mat4d m = openvdb::math::Mat4d::identity();
+  for (int i = 0; i < 3; ++i)
+    for (int j = 0; j < 3; ++j) m(i, j) = voxel * R(j, i);  // OpenVDB maps row vectors: world = index · m
+  return openvdb::math::Transform::createLinearTransform(m);
+}
+
+openvdb::FloatGrid::Ptr empty_grid(const openvdb::math::Transform& xf, double voxel, double half_width)
 {
   initialize_once();
   auto grid = openvdb::FloatGrid::create(static_cast<float>(voxel * half_width));
-  grid->setTransform(openvdb::math::Transform::createLinearTransform(voxel));
+  grid->setTransform(xf.copy());
   grid->setGridClass(openvdb::GRID_LEVEL_SET);
   return grid;
 }
@@ -45,20 +63,50 @@ double segment_distance(const Eigen::Vector3d& p, const Eigen::Vector3d& a, cons
   return (p - a - t * ab).norm();
 }
 
-/// Distance from p to the parallelogram a + s e1 + t e2, (s, t) ∈ [0, 1]².
-double parallelogram_distance(const Eigen::Vector3d& p, const Eigen::Vector3d& a, const Eigen::Vector3d& e1,
-                              const Eigen::Vector3d& e2)
-{
-  Eigen::Matrix<double, 3, 2> E;
-  E << e1, e2;
-  const Eigen::Matrix2d G = E.transpose() * E;
-  if (std::abs(G.determinant()) > 1e-30 * G.squaredNorm()) {
-    const Eigen::Vector2d st = G.ldlt().solve(E.transpose() * (p - a));
-    if (st.minCoeff() >= 0 && st.maxCoeff() <= 1) return (p - a - E * st).norm();
+/// One piece of a groove in index space, where up is +z: the segment ab swept `length` upward.
+struct SweptSegment {
+  Eigen::Vector3d a, b;
+  double length;
+
+  /// Where the segment's shadow comes closest to the column through (x, y): the horizontal
+  /// distance, and the heights of the piece's bottom and top there. Between them the distance to
+  /// the piece is the horizontal one.
+  struct Column {
+    double horizontal, bottom, top;
+  };
+  Column column(double x, double y) const
+  {
+    const Eigen::Vector2d q = Eigen::Vector2d(x, y) - a.head<2>(), e = (b - a).head<2>();
+    const double len2 = e.squaredNorm();
+    // A segment along up casts one shadow: the piece spans its whole height.
+    if (len2 <= 1e-24) return {q.norm(), std::min(a.z(), b.z()), std::max(a.z(), b.z()) + length};
+    const double s = std::clamp(q.dot(e) / len2, 0.0, 1.0);
+    const double z = a.z() + s * (b.z() - a.z());
+    return {(q - s * e).norm(), z, z + length};
   }
-  return std::min({segment_distance(p, a, a + e1), segment_distance(p, a, a + e2), segment_distance(p, a + e1, a + e1 + e2),
-                   segment_distance(p, a + e2, a + e1 + e2)});
-}
+
+  /// Exact distance from p: to the bottom edge, the top edge, or, for the stretch of ab whose
+  /// piece spans p's height, horizontally to its shadow.
+  double distance(const Eigen::Vector3d& p) const
+  {
+    const Eigen::Vector3d up(0, 0, length);
+    const double edges = std::min(segment_distance(p, a, b), segment_distance(p, a + up, b + up));
+    const double dz = b.z() - a.z();
+    double s0 = 0, s1 = 1;  // a.z + s dz <= p.z <= a.z + s dz + length
+    if (std::abs(dz) > 1e-12) {
+      const double lo = (p.z() - length - a.z()) / dz, hi = (p.z() - a.z()) / dz;
+      s0 = std::max(0.0, std::min(lo, hi));
+      s1 = std::min(1.0, std::max(lo, hi));
+    } else if (p.z() < a.z() || p.z() > a.z() + length) {
+      return edges;
+    }
+    if (s0 > s1) return edges;
+    const Eigen::Vector2d e = (b - a).head<2>(), q = p.head<2>() - a.head<2>();
+    const double len2 = e.squaredNorm();
+    const double s = len2 > 1e-24 ? std::clamp(q.dot(e) / len2, s0, s1) : s0;
+    return std::min(edges, (q - s * e).norm());
+  }
+};
 
 } // namespace
 
@@ -67,9 +115,9 @@ struct LevelSet::Impl {
   double voxel, half_width;
 };
 
-LevelSet::LevelSet(double voxel, double half_width) : impl_(std::make_unique<Impl>())
+LevelSet::LevelSet(double voxel, const Eigen::Vector3d& up, double half_width) : impl_(std::make_unique<Impl>())
 {
-  impl_->grid = empty_grid(voxel, half_width);
+  impl_->grid = empty_grid(*frame(voxel / kUnit, up), voxel / kUnit, half_width);
   impl_->voxel = voxel;
   impl_->half_width = half_width;
 }
@@ -80,13 +128,14 @@ LevelSet& LevelSet::operator=(LevelSet&&) noexcept = default;
 
 double LevelSet::voxel() const { return impl_->voxel; }
 
-LevelSet LevelSet::from_mesh(const SurfaceMesh& s, double voxel, double half_width)
+LevelSet LevelSet::from_mesh(const SurfaceMesh& s, double voxel, const Eigen::Vector3d& up, double half_width)
 {
-  LevelSet out(voxel, half_width);
+  LevelSet out(voxel, up, half_width);
   std::vector<openvdb::Vec3s> points;
   std::vector<openvdb::Vec3I> triangles;
   for (Eigen::Index i = 0; i < s.num_vertices(); ++i)
-    points.emplace_back(static_cast<float>(s.vertices(i, 0)), static_cast<float>(s.vertices(i, 1)), static_cast<float>(s.vertices(i, 2)));
+    points.emplace_back(static_cast<float>(s.vertices(i, 0) / kUnit), static_cast<float>(s.vertices(i, 1) / kUnit),
+                        static_cast<float>(s.vertices(i, 2) / kUnit));
   for (Eigen::Index f = 0; f < s.num_faces(); ++f)
     triangles.emplace_back(static_cast<unsigned>(s.faces(f, 0)), static_cast<unsigned>(s.faces(f, 1)), static_cast<unsigned>(s.faces(f, 2)));
   out.impl_->grid = openvdb::tools::meshToLevelSet<openvdb::FloatGrid>(out.impl_->grid->transform(), points, triangles,
@@ -94,40 +143,64 @@ LevelSet LevelSet::from_mesh(const SurfaceMesh& s, double voxel, double half_wid
   return out;
 }
 
-void LevelSet::add_swept_tube(const std::vector<Eigen::Vector3d>& polyline, double radius, const Eigen::Vector3d& sweep)
+void LevelSet::add_swept_tube(const std::vector<Eigen::Vector3d>& polyline, double radius, double length)
 {
   if (polyline.size() < 2) return;
-  const double band = impl_->voxel * impl_->half_width;
-  auto tube = empty_grid(impl_->voxel, impl_->half_width);
-  auto acc = tube->getAccessor();
+  const double v = impl_->voxel / kUnit, band = impl_->half_width;  // in voxels from here on
+  const double r = radius / impl_->voxel, reach = r + band;
+  auto tube = empty_grid(impl_->grid->transform(), v, band);
   const openvdb::math::Transform& xf = tube->transform();
-  // Every voxel within the band of any piece gets the distance to the whole swept solid, so that
-  // pieces overlap without leaving spurious surfaces inside one another.
-  const auto distance = [&](const Eigen::Vector3d& p) {
-    double d = HUGE_VAL;
-    for (std::size_t k = 0; k + 1 < polyline.size(); ++k)
-      d = std::min(d, parallelogram_distance(p, polyline[k], polyline[k + 1] - polyline[k], sweep));
-    return d - radius;
+  auto acc = tube->getAccessor();
+  // Each voxel within the band of a piece keeps the least distance: the union of the pieces.
+  const auto write = [&](const openvdb::Coord& c, double d) {
+    if (d >= band) return;
+    const float value = static_cast<float>(std::max(d, -band) * v);
+    float old;
+    if (!acc.probeValue(c, old)) acc.setValueOn(c, value);
+    else if (value < old) acc.setValue(c, value);
   };
+  // Columns whose middle is deep inside a piece (more than the band): those voxels are skipped, and
+  // whatever another piece wrote there is cleared at the end, so that only the band stays active.
+  std::unordered_map<std::uint64_t, std::vector<std::pair<int, int>>> deep;
+  const auto key = [](int i, int j) { return (static_cast<std::uint64_t>(static_cast<std::uint32_t>(i)) << 32) | static_cast<std::uint32_t>(j); };
+
   for (std::size_t k = 0; k + 1 < polyline.size(); ++k) {
-    Eigen::Vector3d lo = polyline[k].cwiseMin(polyline[k + 1]), hi = polyline[k].cwiseMax(polyline[k + 1]);
-    lo = lo.cwiseMin(lo + sweep).array() - (radius + band);
-    hi = hi.cwiseMax(hi + sweep).array() + (radius + band);
-    const openvdb::Coord a = xf.worldToIndexCellCentered(openvdb::Vec3d(lo.x(), lo.y(), lo.z()));
-    const openvdb::Coord b = xf.worldToIndexCellCentered(openvdb::Vec3d(hi.x(), hi.y(), hi.z()));
-    for (int i = a.x(); i <= b.x(); ++i)
-      for (int j = a.y(); j <= b.y(); ++j)
-        for (int l = a.z(); l <= b.z(); ++l) {
-          const openvdb::Coord c(i, j, l);
-          if (acc.isValueOn(c)) continue;
-          const openvdb::Vec3d w = xf.indexToWorld(c);
-          const Eigen::Vector3d p(w.x(), w.y(), w.z());
-          // Cheap rejection: far from this piece's own parallelogram means far from all.
-          if (parallelogram_distance(p, polyline[k], polyline[k + 1] - polyline[k], sweep) - radius > band) continue;
-          const double d = distance(p);
-          if (d < band) acc.setValueOn(c, static_cast<float>(std::max(d, -band)));
+    const auto index = [&](const Eigen::Vector3d& w) {
+      const openvdb::Vec3d i = xf.worldToIndex(openvdb::Vec3d(w.x(), w.y(), w.z()) / kUnit);
+      return Eigen::Vector3d(i.x(), i.y(), i.z());
+    };
+    const SweptSegment piece{index(polyline[k]), index(polyline[k + 1]), length / impl_->voxel};
+    const Eigen::Vector3d lo = piece.a.cwiseMin(piece.b).array() - reach, hi = piece.a.cwiseMax(piece.b).array() + reach;
+    const int l_lo = static_cast<int>(std::ceil(lo.z())), l_hi = static_cast<int>(std::floor(hi.z() + piece.length));
+    for (int i = static_cast<int>(std::ceil(lo.x())); i <= static_cast<int>(std::floor(hi.x())); ++i)
+      for (int j = static_cast<int>(std::ceil(lo.y())); j <= static_cast<int>(std::floor(hi.y())); ++j) {
+        const SweptSegment::Column column = piece.column(i, j);
+        const double wall = column.horizontal - r;
+        if (wall >= band) continue;
+        const int bottom = static_cast<int>(std::ceil(column.bottom)), top = static_cast<int>(std::floor(column.top));
+        const bool is_deep = wall <= -band && bottom <= top;
+        if (is_deep) deep[key(i, j)].emplace_back(bottom, top);
+        for (int l = l_lo; l <= l_hi; ++l) {
+          if (l >= bottom && l <= top) {
+            if (is_deep) l = top;
+            else write(openvdb::Coord(i, j, l), wall);
+            continue;
+          }
+          write(openvdb::Coord(i, j, l), piece.distance(Eigen::Vector3d(i, j, l)) - r);
         }
+      }
   }
+
+  std::vector<openvdb::Coord> inside;
+  const float deepest = static_cast<float>(-band * v);
+  for (auto it = tube->cbeginValueOn(); it; ++it) {
+    const openvdb::Coord c = it.getCoord();
+    bool is_inside = *it <= deepest;
+    if (const auto found = deep.find(key(c.x(), c.y())); !is_inside && found != deep.end())
+      is_inside = std::any_of(found->second.begin(), found->second.end(), [&](const auto& span) { return c.z() >= span.first && c.z() <= span.second; });
+    if (is_inside) inside.push_back(c);
+  }
+  for (const openvdb::Coord& c : inside) acc.setValueOff(c, deepest);
   openvdb::tools::signedFloodFill(tube->tree());
   openvdb::tools::csgUnion(*impl_->grid, *tube);
 }
@@ -135,7 +208,7 @@ void LevelSet::add_swept_tube(const std::vector<Eigen::Vector3d>& polyline, doub
 void LevelSet::unite(LevelSet& other) { openvdb::tools::csgUnion(*impl_->grid, *other.impl_->grid); }
 void LevelSet::subtract(LevelSet& other) { openvdb::tools::csgDifference(*impl_->grid, *other.impl_->grid); }
 
-double LevelSet::volume() const { return openvdb::tools::levelSetVolume(*impl_->grid); }
+double LevelSet::volume() const { return openvdb::tools::levelSetVolume(*impl_->grid) * kUnit * kUnit * kUnit; }
 
 SurfaceMesh LevelSet::mesh(double adaptivity) const
 {
@@ -146,7 +219,7 @@ SurfaceMesh LevelSet::mesh(double adaptivity) const
   // wall on a grid plane) put the vertices of neighbouring cells at the same point, and merging them
   // pinches the mesh into non-manifold edges. Inside, not outside, so that a zero stays outside and
   // no film of zero thickness becomes solid.
-  openvdb::tools::volumeToMesh(*impl_->grid, points, triangles, quads, -1e-3 * impl_->voxel, adaptivity);
+  openvdb::tools::volumeToMesh(*impl_->grid, points, triangles, quads, -1e-3 * impl_->voxel / kUnit, adaptivity);
   // Should two vertices still coincide, merge them and drop the faces that collapse.
   std::map<std::array<float, 3>, int> index_of;
   std::vector<int> merged(points.size());
@@ -154,7 +227,7 @@ SurfaceMesh LevelSet::mesh(double adaptivity) const
   std::vector<Eigen::Vector3d> vertices;
   for (std::size_t i = 0; i < points.size(); ++i) {
     const auto [it, added] = index_of.try_emplace({points[i].x(), points[i].y(), points[i].z()}, static_cast<int>(vertices.size()));
-    if (added) vertices.emplace_back(points[i].x(), points[i].y(), points[i].z());
+    if (added) vertices.emplace_back(points[i].x() * kUnit, points[i].y() * kUnit, points[i].z() * kUnit);
     merged[i] = it->second;
   }
   s.vertices.resize(static_cast<Eigen::Index>(vertices.size()), 3);

@@ -14,19 +14,20 @@ namespace fibermold {
 
 class LevelSet {
 public:
-  /// An empty solid on a grid of `voxel` (m) with a band of `half_width` voxels on each side.
-  explicit LevelSet(double voxel, double half_width = 3);
+  /// An empty solid on a grid of `voxel` (m) whose third axis points along `up`, with a band of
+  /// `half_width` voxels on each side. Solids combined by CSG must share voxel and up.
+  explicit LevelSet(double voxel, const Eigen::Vector3d& up = Eigen::Vector3d::UnitZ(), double half_width = 3);
   ~LevelSet();
   LevelSet(LevelSet&&) noexcept;
   LevelSet& operator=(LevelSet&&) noexcept;
 
   /// The solid bounded by a closed surface (self-intersections and overlaps allowed: a union).
-  static LevelSet from_mesh(const SurfaceMesh& surface, double voxel, double half_width = 3);
+  static LevelSet from_mesh(const SurfaceMesh& surface, double voxel, const Eigen::Vector3d& up = Eigen::Vector3d::UnitZ(),
+                            double half_width = 3);
 
   /// Adds the solid swept by a ball of `radius` whose centre runs along `polyline` and, from every
-  /// point of it, along `sweep` (a vector: direction and length): a tube when sweep is zero, a
-  /// groove open towards sweep otherwise.
-  void add_swept_tube(const std::vector<Eigen::Vector3d>& polyline, double radius, const Eigen::Vector3d& sweep);
+  /// point of it, `length` (m) along up: a tube when length is zero, a groove open upward otherwise.
+  void add_swept_tube(const std::vector<Eigen::Vector3d>& polyline, double radius, double length);
 
   void unite(LevelSet& other);     ///< this ∪ other; empties other
   void subtract(LevelSet& other);  ///< this − other; empties other

@@ -66,7 +66,7 @@ TEST(LevelSet, GrooveVolumeMatchesTheAnalyticValue)
   LevelSet body = LevelSet::from_mesh(box_solid({0, -10 * mm, -10 * mm}, {L, 10 * mm, 10 * mm}), voxel);
   EXPECT_NEAR(body.volume(), L * 400e-6, 0.002 * L * 400e-6);
   LevelSet groove(voxel);
-  groove.add_swept_tube({{0, 0, 0}, {L / 2, 0, 0}, {L, 0, 0}}, r, {0, 0, h + 2 * r});
+  groove.add_swept_tube({{0, 0, 0}, {L / 2, 0, 0}, {L, 0, 0}}, r, h + 2 * r);
   body.subtract(groove);
   const double expected = L * 400e-6 - L * (2 * r * h + M_PI * r * r / 2);
   std::printf("groove body: %.1f mm³ (analytic %.1f)\n", body.volume() / 1e-9, expected / 1e-9);
@@ -78,6 +78,27 @@ TEST(LevelSet, GrooveVolumeMatchesTheAnalyticValue)
   EXPECT_NEAR(signed_volume(m), expected, 0.01 * expected);
 }
 
+TEST(LevelSet, GrooveSweptAlongATiltedPullMatchesTheAnalyticValue)
+{
+  // The same box and fiber, pulled 30° off z towards +y: the grid is aligned with pull. Inside the
+  // box the groove is a half disc plus a strip 2 r wide along pull up to the top face, whose centre
+  // line is h / cos 30° long.
+  const double r = 1.8 * mm, h = 10 * mm, L = 60 * mm, voxel = 0.2 * mm, tilt = M_PI / 6;
+  const Eigen::Vector3d pull(0, std::sin(tilt), std::cos(tilt));
+  LevelSet body = LevelSet::from_mesh(box_solid({0, -10 * mm, -10 * mm}, {L, 10 * mm, 10 * mm}), voxel, pull);
+  EXPECT_NEAR(body.volume(), L * 400e-6, 0.002 * L * 400e-6);
+  LevelSet groove(voxel, pull);
+  groove.add_swept_tube({{-mm, 0, 0}, {L / 2, 0, 0}, {L + mm, 0, 0}}, r, 2 * h);
+  body.subtract(groove);
+  const double expected = L * 400e-6 - L * (2 * r * h / std::cos(tilt) + M_PI * r * r / 2);
+  const SurfaceMesh m = body.mesh(0.0);
+  expect_valid_solid(m, "tilted groove body mesh");
+  EXPECT_NEAR(body.volume(), expected, 0.005 * expected);
+  EXPECT_NEAR(signed_volume(m), expected, 0.005 * expected);
+  // The groove's bottom is round about the fiber, whatever the grid's orientation.
+  EXPECT_NEAR((m.vertices.rowwise() - Eigen::RowVector3d(L / 2, 0, 0)).rowwise().norm().minCoeff(), r, voxel / 4);
+}
+
 TEST(LevelSet, GroovesTouchingOnAGridPlaneMeshAsOneManifoldCavity)
 {
   // Two parallel grooves of radius 1.8 mm whose walls meet exactly on the plane y = 0, a grid plane at
@@ -87,7 +108,7 @@ TEST(LevelSet, GroovesTouchingOnAGridPlaneMeshAsOneManifoldCavity)
   const double r = 1.8 * mm, h = 10 * mm, L = 40 * mm, voxel = 0.2 * mm;
   LevelSet body = LevelSet::from_mesh(box_solid({0, -10 * mm, -10 * mm}, {L, 10 * mm, 10 * mm}), voxel);
   LevelSet grooves(voxel);
-  for (double y : {-r, r}) grooves.add_swept_tube({{-mm, y, 0}, {L + mm, y, 0}}, r, {0, 0, h + 2 * r});
+  for (double y : {-r, r}) grooves.add_swept_tube({{-mm, y, 0}, {L + mm, y, 0}}, r, h + 2 * r);
   body.subtract(grooves);
   const SurfaceMesh m = body.mesh(0.0);
   expect_valid_solid(m, "grooves touching");
