@@ -1,5 +1,7 @@
 #include "molds/groove.hpp"
 
+#include "mesh/surface_check.hpp"
+
 #include "molds/level_set.hpp"
 
 namespace fibermold {
@@ -16,7 +18,12 @@ GrooveBody groove_body(const SurfaceMesh& body, const std::vector<std::vector<Ei
   solid.subtract(grooves);
   GrooveBody out;
   out.volume = solid.volume();
+  out.adaptivity = adaptivity;
   out.mesh = solid.mesh(adaptivity);
+  if (adaptivity > 0 && !check_surface(out.mesh).problems.empty()) {
+    out.adaptivity = 0;
+    out.mesh = solid.mesh(0);
+  }
   return out;
 }
 

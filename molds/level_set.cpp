@@ -11,6 +11,7 @@
 
 #include <openvdb/openvdb.h>
 #include <openvdb/tools/Composite.h>
+#include <openvdb/tools/Interpolation.h>
 #include <openvdb/tools/LevelSetMeasure.h>
 #include <openvdb/tools/MeshToVolume.h>
 #include <openvdb/tools/SignedFloodFill.h>
@@ -210,41 +211,103 @@ void LevelSet::subtract(LevelSet& other) { openvdb::tools::csgDifference(*impl_-
 
 double LevelSet::volume() const { return openvdb::tools::levelSetVolume(*impl_->grid) * kUnit * kUnit * kUnit; }
 
-SurfaceMesh LevelSet::mesh(double adaptivity) const
+namespace {
+
+/// The mesher's output as one triangle mesh in metres, outward oriented. Should two vertices
+/// coincide, they are merged and the faces that collapse dropped.
+SurfaceMesh collect(openvdb::tools::VolumeToMesh& mesher)
 {
-  std::vector<openvdb::Vec3s> points;
-  std::vector<openvdb::Vec3I> triangles;
-  std::vector<openvdb::Vec4I> quads;
-  // Meshed a thousandth of a voxel inside the zero level: grid values of exactly zero (a groove's
-  // wall on a grid plane) put the vertices of neighbouring cells at the same point, and merging them
-  // pinches the mesh into non-manifold edges. Inside, not outside, so that a zero stays outside and
-  // no film of zero thickness becomes solid.
-  openvdb::tools::volumeToMesh(*impl_->grid, points, triangles, quads, -1e-3 * impl_->voxel / kUnit, adaptivity);
-  // Should two vertices still coincide, merge them and drop the faces that collapse.
   std::map<std::array<float, 3>, int> index_of;
-  std::vector<int> merged(points.size());
-  SurfaceMesh s;
+  std::vector<int> merged(mesher.pointListSize());
   std::vector<Eigen::Vector3d> vertices;
-  for (std::size_t i = 0; i < points.size(); ++i) {
-    const auto [it, added] = index_of.try_emplace({points[i].x(), points[i].y(), points[i].z()}, static_cast<int>(vertices.size()));
-    if (added) vertices.emplace_back(points[i].x() * kUnit, points[i].y() * kUnit, points[i].z() * kUnit);
+  for (std::size_t i = 0; i < mesher.pointListSize(); ++i) {
+    const openvdb::Vec3s& p = mesher.pointList()[i];
+    const auto [it, added] = index_of.try_emplace({p.x(), p.y(), p.z()}, static_cast<int>(vertices.size()));
+    if (added) vertices.emplace_back(p.x() * kUnit, p.y() * kUnit, p.z() * kUnit);
     merged[i] = it->second;
   }
-  s.vertices.resize(static_cast<Eigen::Index>(vertices.size()), 3);
-  for (std::size_t i = 0; i < vertices.size(); ++i) s.vertices.row(static_cast<Eigen::Index>(i)) = vertices[i].transpose();
   std::vector<Eigen::Vector3i> faces;
   const auto add = [&](unsigned a, unsigned b, unsigned c) {
     const int i = merged[a], j = merged[b], k = merged[c];
     if (i != j && j != k && i != k) faces.emplace_back(i, j, k);
   };
-  for (const auto& t : triangles) add(t[0], t[1], t[2]);
-  for (const auto& q : quads) {
-    add(q[0], q[1], q[2]);
-    add(q[0], q[2], q[3]);
+  for (std::size_t n = 0; n < mesher.polygonPoolListSize(); ++n) {
+    const openvdb::tools::PolygonPool& pool = mesher.polygonPoolList()[n];
+    for (std::size_t t = 0; t < pool.numTriangles(); ++t) add(pool.triangle(t)[0], pool.triangle(t)[1], pool.triangle(t)[2]);
+    for (std::size_t q = 0; q < pool.numQuads(); ++q) {
+      const openvdb::Vec4I& quad = pool.quad(q);
+      add(quad[0], quad[1], quad[2]);
+      add(quad[0], quad[2], quad[3]);
+    }
   }
+  SurfaceMesh s;
+  s.vertices.resize(static_cast<Eigen::Index>(vertices.size()), 3);
+  for (std::size_t i = 0; i < vertices.size(); ++i) s.vertices.row(static_cast<Eigen::Index>(i)) = vertices[i].transpose();
   s.faces.resize(static_cast<Eigen::Index>(faces.size()), 3);
   for (std::size_t f = 0; f < faces.size(); ++f) s.faces.row(static_cast<Eigen::Index>(f)) = faces[f].transpose();
   if (signed_volume(s) < 0) s.faces.col(1).swap(s.faces.col(2));  // OpenVDB's winding is inward
+  return s;
+}
+
+/// Faces more than 60° off the level set's gradient (index coordinates of their centres): adaptive
+/// meshing folds or tilts a few small triangles where it merges cells near thin features, and the
+/// thinnest-wall check would see those as walls of almost no thickness.
+constexpr double kCosFold = 0.5;
+std::vector<openvdb::Coord> steep_faces(const SurfaceMesh& s, const openvdb::FloatGrid& grid)
+{
+  const openvdb::tools::GridSampler<openvdb::FloatGrid, openvdb::tools::BoxSampler> sampler(grid);
+  const openvdb::math::Transform& xf = grid.transform();
+  const auto index = [&](const Eigen::Vector3d& w) { return xf.worldToIndex(openvdb::Vec3d(w.x(), w.y(), w.z()) / kUnit); };
+  std::vector<openvdb::Coord> out;
+  for (Eigen::Index f = 0; f < s.num_faces(); ++f) {
+    const openvdb::Vec3d a = index(s.vertices.row(s.faces(f, 0))), b = index(s.vertices.row(s.faces(f, 1))),
+                         c = index(s.vertices.row(s.faces(f, 2)));
+    const openvdb::Vec3d normal = (b - a).cross(c - a), centre = (a + b + c) / 3;
+    openvdb::Vec3d gradient;
+    for (int i = 0; i < 3; ++i) {
+      openvdb::Vec3d h(0);
+      h[i] = 0.5;
+      gradient[i] = sampler.isSample(centre + h) - sampler.isSample(centre - h);
+    }
+    if (normal.dot(gradient) < kCosFold * normal.length() * gradient.length()) out.push_back(openvdb::Coord::round(centre));
+  }
+  return out;
+}
+
+} // namespace
+
+SurfaceMesh LevelSet::mesh(double adaptivity) const
+{
+  // Meshed a thousandth of a voxel inside the zero level: grid values of exactly zero (a groove's
+  // wall on a grid plane) put the vertices of neighbouring cells at the same point, and merging them
+  // pinches the mesh into non-manifold edges. Inside, not outside, so that a zero stays outside and
+  // no film of zero thickness becomes solid.
+  const double iso = -1e-3 * impl_->voxel / kUnit;
+  const auto mesh_with = [&](double a, const openvdb::BoolTree::Ptr& uniform) {
+    openvdb::tools::VolumeToMesh mesher(iso, a);
+    if (uniform && !uniform->empty()) mesher.setAdaptivityMask(uniform);
+    mesher(*impl_->grid);
+    return collect(mesher);
+  };
+  SurfaceMesh s = mesh_with(0, nullptr);
+  if (adaptivity == 0) return s;
+  // Adaptive meshing is confined to where it tilts no face more than the uniform mesh does: cells
+  // around the uniform mesh's steep faces (creases, walls thinner than a voxel) stay uniform
+  // (OpenVDB's adaptivity mask), and so do cells around any face the adaptive mesh tilts, round by
+  // round. After three rounds the uniform mesh is kept.
+  auto uniform = std::make_shared<openvdb::BoolTree>(false);
+  constexpr int kRounds = 3, kMargin = 3;  // voxels around a steep face
+  const auto keep_uniform_around = [&](const std::vector<openvdb::Coord>& faces) {
+    for (const openvdb::Coord& c : faces) uniform->fill(openvdb::CoordBBox(c.offsetBy(-kMargin), c.offsetBy(kMargin)), true, true);
+  };
+  keep_uniform_around(steep_faces(s, *impl_->grid));
+  for (int round = 0; round < kRounds; ++round) {
+    SurfaceMesh adaptive = mesh_with(adaptivity, uniform);
+    std::vector<openvdb::Coord> steep = steep_faces(adaptive, *impl_->grid);
+    std::erase_if(steep, [&](const openvdb::Coord& c) { return uniform->isValueOn(c); });
+    if (steep.empty()) return adaptive;
+    keep_uniform_around(steep);
+  }
   return s;
 }
 

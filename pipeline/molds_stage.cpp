@@ -97,6 +97,10 @@ SurfaceMesh scaled_about(SurfaceMesh m, const Eigen::Vector3d& centre, double fa
   return m;
 }
 
+/// An undercut below this projected area (m²) is facets of the meshed level set, not a shape the
+/// mold holds on to: it is reported but not warned about.
+constexpr double kUndercutWarning = 1e-6;
+
 Json vec_mm(const Eigen::Vector3d& v) { return {v.x() / units::mm, v.y() / units::mm, v.z() / units::mm}; }
 
 } // namespace
@@ -140,8 +144,8 @@ void MoldsStage::run(StageContext& ctx) const
   ctx.progress.checkpoint(0.1, "carving the grooves (level set)");
   const GrooveBody groove = groove_body(body, lines, radius, pull, m.voxel);
   const double groove_mesh_error = std::abs(signed_volume(groove.mesh) - groove.volume) / groove.volume;
-  ctx.log.info("groove body: {} triangles, {:.2f} mL (meshed {:.2f} mL), voxel {:.2f} mm", groove.mesh.num_faces(),
-               groove.volume / 1e-6, signed_volume(groove.mesh) / 1e-6, m.voxel / units::mm);
+  ctx.log.info("groove body: {} triangles (adaptivity {}), {:.2f} mL (meshed {:.2f} mL), voxel {:.2f} mm", groove.mesh.num_faces(),
+               groove.adaptivity, groove.volume / 1e-6, signed_volume(groove.mesh) / 1e-6, m.voxel / units::mm);
 
   MoldBlockOptions o;
   o.wall = m.wall;
@@ -175,7 +179,7 @@ void MoldsStage::run(StageContext& ctx) const
     const SurfaceMesh cavity = grow != 1 ? scaled_about(*shot.cavity, centre, grow) : *shot.cavity;
     Parting parting = m.parting ? Parting{m.parting->point, m.parting->normal.normalized(), 0} : choose_parting(cavity, pull);
     if (m.parting) parting.undercut_area = undercut_area(cavity, parting.point, parting.normal);
-    if (parting.undercut_area > 0.1e-6)
+    if (parting.undercut_area > kUndercutWarning)
       ctx.log.warn("{}: {:.1f} mm² of the cavity is an undercut for the parting plane: demolding relies on the silicone bending",
                    shot.name, parting.undercut_area / 1e-6);
     const Mold mold = make_mold(cavity, parting, shot.channels, o, shot.name);

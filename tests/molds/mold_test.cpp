@@ -46,7 +46,7 @@ TEST(Molds, GrooveShotOfABoxWithAStraightFiber)
   const Parting parting = choose_parting(g.mesh, {0, 0, 1});
   std::printf("shot 1 parting at z = %.2f mm, undercut %.3f mm²\n", parting.point.z() / mm, parting.undercut_area / 1e-6);
   EXPECT_LT(parting.point.z(), -1.8 * mm);
-  EXPECT_LT(parting.undercut_area, 0.1e-6);  // voxel facets only
+  EXPECT_LT(parting.undercut_area, 0.5e-6);  // facets only: a groove's worth would be 360 mm²
   const Mold mold = make_mold(g.mesh, parting, {}, {}, "shot1");
   ASSERT_EQ(mold.parts.size(), 2u);
   expect_parts_ok(mold);
