@@ -1,10 +1,45 @@
 #include "molds/groove.hpp"
 
+#include <algorithm>
+
 #include "mesh/surface_check.hpp"
 
 #include "molds/level_set.hpp"
 
 namespace fibermold {
+
+namespace {
+
+/// The polyline with the fewest points that stays within `tolerance` of it (Douglas–Peucker):
+/// straight stretches become one long piece of the sweep.
+std::vector<Eigen::Vector3d> simplified(const std::vector<Eigen::Vector3d>& line, double tolerance)
+{
+  if (line.size() < 3) return line;
+  std::vector<bool> keep(line.size(), false);
+  keep.front() = keep.back() = true;
+  std::vector<std::pair<std::size_t, std::size_t>> spans{{0, line.size() - 1}};
+  while (!spans.empty()) {
+    const auto [a, b] = spans.back();
+    spans.pop_back();
+    const Eigen::Vector3d ab = line[b] - line[a];
+    double worst = 0;
+    std::size_t at = a;
+    for (std::size_t i = a + 1; i < b; ++i) {
+      const double t = ab.squaredNorm() > 0 ? std::clamp((line[i] - line[a]).dot(ab) / ab.squaredNorm(), 0.0, 1.0) : 0.0;
+      if (const double d = (line[i] - line[a] - t * ab).norm(); d > worst) worst = d, at = i;
+    }
+    if (worst <= tolerance) continue;
+    keep[at] = true;
+    spans.emplace_back(a, at);
+    spans.emplace_back(at, b);
+  }
+  std::vector<Eigen::Vector3d> out;
+  for (std::size_t i = 0; i < line.size(); ++i)
+    if (keep[i]) out.push_back(line[i]);
+  return out;
+}
+
+} // namespace
 
 GrooveBody groove_body(const SurfaceMesh& body, const std::vector<std::vector<Eigen::Vector3d>>& fibers, double radius,
                        const Eigen::Vector3d& pull_in, double voxel, double adaptivity)
@@ -14,7 +49,7 @@ GrooveBody groove_body(const SurfaceMesh& body, const std::vector<std::vector<Ei
   const double through = heights.maxCoeff() - heights.minCoeff() + 2 * radius;  // out of the body from anywhere
   LevelSet solid = LevelSet::from_mesh(body, voxel, pull);
   LevelSet grooves(voxel, pull);
-  for (const auto& fiber : fibers) grooves.add_swept_tube(fiber, radius, through);
+  for (const auto& fiber : fibers) grooves.add_swept_tube(simplified(fiber, voxel / 10), radius, through);
   solid.subtract(grooves);
   GrooveBody out;
   out.volume = solid.volume();

@@ -14,6 +14,7 @@
 #include <openvdb/tools/Interpolation.h>
 #include <openvdb/tools/LevelSetMeasure.h>
 #include <openvdb/tools/MeshToVolume.h>
+#include <openvdb/tools/Prune.h>
 #include <openvdb/tools/SignedFloodFill.h>
 #include <openvdb/tools/VolumeToMesh.h>
 
@@ -202,6 +203,9 @@ void LevelSet::add_swept_tube(const std::vector<Eigen::Vector3d>& polyline, doub
     if (is_inside) inside.push_back(c);
   }
   for (const openvdb::Coord& c : inside) acc.setValueOff(c, deepest);
+  // A leaf left with no active voxel would take the sign of its first voxel, which may never have
+  // been written: make such leaves tiles, whose signs the flood fill takes from their neighbours.
+  openvdb::tools::pruneInactive(tube->tree());
   openvdb::tools::signedFloodFill(tube->tree());
   openvdb::tools::csgUnion(*impl_->grid, *tube);
 }

@@ -1,5 +1,7 @@
 #include "pipeline/molds_stage.hpp"
 
+#include <chrono>
+
 #include <cmath>
 
 #include <Eigen/Geometry>
@@ -142,10 +144,14 @@ void MoldsStage::run(StageContext& ctx) const
   }
 
   ctx.progress.checkpoint(0.1, "carving the grooves (level set)");
+  using Clock = std::chrono::steady_clock;
+  const auto since = [](Clock::time_point t) { return std::chrono::duration<double>(Clock::now() - t).count(); };
+  auto started = Clock::now();
   const GrooveBody groove = groove_body(body, lines, radius, pull, m.voxel);
   const double groove_mesh_error = std::abs(signed_volume(groove.mesh) - groove.volume) / groove.volume;
-  ctx.log.info("groove body: {} triangles (adaptivity {}), {:.2f} mL (meshed {:.2f} mL), voxel {:.2f} mm", groove.mesh.num_faces(),
-               groove.adaptivity, groove.volume / 1e-6, signed_volume(groove.mesh) / 1e-6, m.voxel / units::mm);
+  ctx.log.info("groove body: {} triangles (adaptivity {}), {:.2f} mL (meshed {:.2f} mL), voxel {:.2f} mm, in {:.2f} s",
+               groove.mesh.num_faces(), groove.adaptivity, groove.volume / 1e-6, signed_volume(groove.mesh) / 1e-6, m.voxel / units::mm,
+               since(started));
 
   MoldBlockOptions o;
   o.wall = m.wall;
@@ -182,7 +188,9 @@ void MoldsStage::run(StageContext& ctx) const
     if (parting.undercut_area > kUndercutWarning)
       ctx.log.warn("{}: {:.1f} mm² of the cavity is an undercut for the parting plane: demolding relies on the silicone bending",
                    shot.name, parting.undercut_area / 1e-6);
+    started = Clock::now();
     const Mold mold = make_mold(cavity, parting, shot.channels, o, shot.name);
+    ctx.log.info("{}: mold block and parts in {:.2f} s", shot.name, since(started));
     shots[shot.name] = {{"cavity_volume_mL", signed_volume(cavity) / 1e-6},
                         {"silicone_volume_mL", shot.silicone / 1e-6},
                         {"silicone_mass_g", shot.silicone * d.material.density * 1e3},
@@ -194,7 +202,9 @@ void MoldsStage::run(StageContext& ctx) const
                         {"keys", mold.keys.size()}};
     for (const MoldPart& p : mold.parts) {
       ctx.progress.checkpoint(-1, "checking " + p.name);
+      started = Clock::now();
       const PartCheck c = check_part(p.mesh, d.export_.min_wall, d.export_.printer_volume);
+      ctx.log.info("{}: {} triangles, checked in {:.2f} s", p.name, p.mesh.num_faces(), since(started));
       for (const std::string& problem : c.problems) failures.push_back(fmt::format("part {} {}", p.name, problem));
       parts[p.name] = {{"shot", shot.name},
                        {"file", p.name + ".stl"},

@@ -4,7 +4,9 @@
 
 #include <gtest/gtest.h>
 
+#include "mesh/surface_check.hpp"
 #include "molds/groove.hpp"
+#include "molds/level_set.hpp"
 #include "molds/mesh_boolean.hpp"
 #include "molds/mold_block.hpp"
 #include "molds/part_checks.hpp"
@@ -52,6 +54,40 @@ TEST(Molds, GrooveShotOfABoxWithAStraightFiber)
   expect_parts_ok(mold);
   EXPECT_EQ(mold.keys.size(), 4u);
   EXPECT_EQ(mold.vents.size(), 2u);
+}
+
+/// A half-turn helix about the x axis from x = 0 to 42 mm, as a dense polyline (the walking robot's
+/// twist muscles).
+std::vector<Eigen::Vector3d> helix(double sign)
+{
+  std::vector<Eigen::Vector3d> line;
+  for (int i = 0; i <= 210; ++i) {
+    const double t = i / 210.0, a = M_PI * t;
+    line.emplace_back(42 * mm * t, sign * 5 * mm * std::cos(a), sign * 4 * mm * std::sin(a));
+  }
+  return line;
+}
+
+TEST(Molds, GroovesOfCrossingFibersMatchTheirDenseSweep)
+{
+  // A 42 × 20 × 14 mm block with a straight fiber on its axis and two helices about it, crossing it
+  // 4 mm above and below, at 0.1 mm voxels. The groove body sweeps simplified polylines (a tenth of
+  // a voxel) and meshes adaptively: its volume must match a sweep of the dense polylines, and its
+  // mesh must be a valid solid of the same volume.
+  const SurfaceMesh block = box_solid({0, -10 * mm, -7 * mm}, {42 * mm, 10 * mm, 7 * mm});
+  const std::vector<std::vector<Eigen::Vector3d>> fibers{{{0, 0, 0}, {21 * mm, 0, 0}, {42 * mm, 0, 0}}, helix(1), helix(-1)};
+  const double r = 1.8 * mm, voxel = 0.1 * mm;
+  const GrooveBody g = groove_body(block, fibers, r, {0, 0, 1}, voxel);
+  LevelSet dense = LevelSet::from_mesh(block, voxel), grooves(voxel);
+  for (const auto& f : fibers) grooves.add_swept_tube(f, r, 20 * mm);
+  dense.subtract(grooves);
+  std::printf("crossing grooves: %.1f mm³ (mesh %.1f, %ld faces, adaptivity %g); dense sweep %.1f mm³\n", g.volume / 1e-9,
+              signed_volume(g.mesh) / 1e-9, static_cast<long>(g.mesh.num_faces()), g.adaptivity, dense.volume() / 1e-9);
+  EXPECT_NEAR(g.volume, dense.volume(), 1e-3 * dense.volume());
+  EXPECT_NEAR(signed_volume(g.mesh), g.volume, 1e-3 * g.volume);
+  EXPECT_EQ(g.adaptivity, kGrooveAdaptivity);
+  const SurfaceCheck c = check_surface(g.mesh);
+  for (const auto& p : c.problems) ADD_FAILURE() << p.message;
 }
 
 TEST(Molds, OvermoldShotPartsPutBackTogetherMakeTheBlockMinusTheCavity)
