@@ -18,6 +18,10 @@
 #include <openvdb/tools/SignedFloodFill.h>
 #include <openvdb/tools/VolumeToMesh.h>
 
+#include <tbb/blocked_range.h>
+#include <tbb/enumerable_thread_specific.h>
+#include <tbb/parallel_for.h>
+
 #include "mesh/surface_mesh.hpp"
 
 namespace fibermold {
@@ -145,15 +149,22 @@ LevelSet LevelSet::from_mesh(const SurfaceMesh& s, double voxel, const Eigen::Ve
   return out;
 }
 
-void LevelSet::add_swept_tube(const std::vector<Eigen::Vector3d>& polyline, double radius, double length)
+namespace {
+
+/// Per column (i, j), the heights deep inside some piece (more than the band): those voxels are
+/// skipped, and whatever another piece wrote there is cleared at the end, so that only the band
+/// stays active.
+using DeepSpans = std::unordered_map<std::uint64_t, std::vector<std::pair<int, int>>>;
+
+std::uint64_t column_key(int i, int j)
 {
-  if (polyline.size() < 2) return;
-  const double v = impl_->voxel / kUnit, band = impl_->half_width;  // in voxels from here on
-  const double r = radius / impl_->voxel, reach = r + band;
-  auto tube = empty_grid(impl_->grid->transform(), v, band);
-  const openvdb::math::Transform& xf = tube->transform();
-  auto acc = tube->getAccessor();
-  // Each voxel within the band of a piece keeps the least distance: the union of the pieces.
+  return (static_cast<std::uint64_t>(static_cast<std::uint32_t>(i)) << 32) | static_cast<std::uint32_t>(j);
+}
+
+/// Writes the band of one piece (distances in voxels, stored × `v` in grid units) into a grid
+/// through `acc`; each voxel keeps the least distance: the union of the pieces.
+void sweep(const SweptSegment& piece, double r, double band, double v, openvdb::FloatGrid::Accessor& acc, DeepSpans& deep)
+{
   const auto write = [&](const openvdb::Coord& c, double d) {
     if (d >= band) return;
     const float value = static_cast<float>(std::max(d, -band) * v);
@@ -161,36 +172,60 @@ void LevelSet::add_swept_tube(const std::vector<Eigen::Vector3d>& polyline, doub
     if (!acc.probeValue(c, old)) acc.setValueOn(c, value);
     else if (value < old) acc.setValue(c, value);
   };
-  // Columns whose middle is deep inside a piece (more than the band): those voxels are skipped, and
-  // whatever another piece wrote there is cleared at the end, so that only the band stays active.
-  std::unordered_map<std::uint64_t, std::vector<std::pair<int, int>>> deep;
-  const auto key = [](int i, int j) { return (static_cast<std::uint64_t>(static_cast<std::uint32_t>(i)) << 32) | static_cast<std::uint32_t>(j); };
-
-  for (std::size_t k = 0; k + 1 < polyline.size(); ++k) {
-    const auto index = [&](const Eigen::Vector3d& w) {
-      const openvdb::Vec3d i = xf.worldToIndex(openvdb::Vec3d(w.x(), w.y(), w.z()) / kUnit);
-      return Eigen::Vector3d(i.x(), i.y(), i.z());
-    };
-    const SweptSegment piece{index(polyline[k]), index(polyline[k + 1]), length / impl_->voxel};
-    const Eigen::Vector3d lo = piece.a.cwiseMin(piece.b).array() - reach, hi = piece.a.cwiseMax(piece.b).array() + reach;
-    const int l_lo = static_cast<int>(std::ceil(lo.z())), l_hi = static_cast<int>(std::floor(hi.z() + piece.length));
-    for (int i = static_cast<int>(std::ceil(lo.x())); i <= static_cast<int>(std::floor(hi.x())); ++i)
-      for (int j = static_cast<int>(std::ceil(lo.y())); j <= static_cast<int>(std::floor(hi.y())); ++j) {
-        const SweptSegment::Column column = piece.column(i, j);
-        const double wall = column.horizontal - r;
-        if (wall >= band) continue;
-        const int bottom = static_cast<int>(std::ceil(column.bottom)), top = static_cast<int>(std::floor(column.top));
-        const bool is_deep = wall <= -band && bottom <= top;
-        if (is_deep) deep[key(i, j)].emplace_back(bottom, top);
-        for (int l = l_lo; l <= l_hi; ++l) {
-          if (l >= bottom && l <= top) {
-            if (is_deep) l = top;
-            else write(openvdb::Coord(i, j, l), wall);
-            continue;
-          }
-          write(openvdb::Coord(i, j, l), piece.distance(Eigen::Vector3d(i, j, l)) - r);
+  const double reach = r + band;
+  const Eigen::Vector3d lo = piece.a.cwiseMin(piece.b).array() - reach, hi = piece.a.cwiseMax(piece.b).array() + reach;
+  const int l_lo = static_cast<int>(std::ceil(lo.z())), l_hi = static_cast<int>(std::floor(hi.z() + piece.length));
+  for (int i = static_cast<int>(std::ceil(lo.x())); i <= static_cast<int>(std::floor(hi.x())); ++i)
+    for (int j = static_cast<int>(std::ceil(lo.y())); j <= static_cast<int>(std::floor(hi.y())); ++j) {
+      const SweptSegment::Column column = piece.column(i, j);
+      const double wall = column.horizontal - r;
+      if (wall >= band) continue;
+      const int bottom = static_cast<int>(std::ceil(column.bottom)), top = static_cast<int>(std::floor(column.top));
+      const bool is_deep = wall <= -band && bottom <= top;
+      if (is_deep) deep[column_key(i, j)].emplace_back(bottom, top);
+      for (int l = l_lo; l <= l_hi; ++l) {
+        if (l >= bottom && l <= top) {
+          if (is_deep) l = top;
+          else write(openvdb::Coord(i, j, l), wall);
+          continue;
         }
+        write(openvdb::Coord(i, j, l), piece.distance(Eigen::Vector3d(i, j, l)) - r);
       }
+    }
+}
+
+} // namespace
+
+void LevelSet::add_swept_tube(const std::vector<Eigen::Vector3d>& polyline, double radius, double length)
+{
+  if (polyline.size() < 2) return;
+  const double v = impl_->voxel / kUnit, band = impl_->half_width;  // in voxels from here on
+  const double r = radius / impl_->voxel;
+  const openvdb::math::Transform& xf = impl_->grid->transform();
+  std::vector<SweptSegment> pieces;
+  const auto index = [&](const Eigen::Vector3d& w) {
+    const openvdb::Vec3d i = xf.worldToIndex(openvdb::Vec3d(w.x(), w.y(), w.z()) / kUnit);
+    return Eigen::Vector3d(i.x(), i.y(), i.z());
+  };
+  for (std::size_t k = 0; k + 1 < polyline.size(); ++k) pieces.push_back({index(polyline[k]), index(polyline[k + 1]), length / impl_->voxel});
+
+  // Pieces in parallel, each thread into its own grid; then the least value of all.
+  struct Partial {
+    openvdb::FloatGrid::Ptr grid;
+    DeepSpans deep;
+  };
+  tbb::enumerable_thread_specific<Partial> partials([&] { return Partial{empty_grid(xf, v, band), {}}; });
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, pieces.size(), 1), [&](const tbb::blocked_range<std::size_t>& range) {
+    Partial& part = partials.local();
+    auto acc = part.grid->getAccessor();
+    for (std::size_t k = range.begin(); k != range.end(); ++k) sweep(pieces[k], r, band, v, acc, part.deep);
+  });
+  openvdb::FloatGrid::Ptr tube;
+  DeepSpans deep;
+  for (Partial& part : partials) {
+    if (!tube) tube = part.grid;
+    else openvdb::tools::compMin(*tube, *part.grid);
+    for (auto& [column, spans] : part.deep) deep[column].insert(deep[column].end(), spans.begin(), spans.end());
   }
 
   std::vector<openvdb::Coord> inside;
@@ -198,10 +233,11 @@ void LevelSet::add_swept_tube(const std::vector<Eigen::Vector3d>& polyline, doub
   for (auto it = tube->cbeginValueOn(); it; ++it) {
     const openvdb::Coord c = it.getCoord();
     bool is_inside = *it <= deepest;
-    if (const auto found = deep.find(key(c.x(), c.y())); !is_inside && found != deep.end())
+    if (const auto found = deep.find(column_key(c.x(), c.y())); !is_inside && found != deep.end())
       is_inside = std::any_of(found->second.begin(), found->second.end(), [&](const auto& span) { return c.z() >= span.first && c.z() <= span.second; });
     if (is_inside) inside.push_back(c);
   }
+  auto acc = tube->getAccessor();
   for (const openvdb::Coord& c : inside) acc.setValueOff(c, deepest);
   // A leaf left with no active voxel would take the sign of its first voxel, which may never have
   // been written: make such leaves tiles, whose signs the flood fill takes from their neighbours.
@@ -259,22 +295,28 @@ SurfaceMesh collect(openvdb::tools::VolumeToMesh& mesher)
 constexpr double kCosFold = 0.5;
 std::vector<openvdb::Coord> steep_faces(const SurfaceMesh& s, const openvdb::FloatGrid& grid)
 {
-  const openvdb::tools::GridSampler<openvdb::FloatGrid, openvdb::tools::BoxSampler> sampler(grid);
   const openvdb::math::Transform& xf = grid.transform();
   const auto index = [&](const Eigen::Vector3d& w) { return xf.worldToIndex(openvdb::Vec3d(w.x(), w.y(), w.z()) / kUnit); };
-  std::vector<openvdb::Coord> out;
-  for (Eigen::Index f = 0; f < s.num_faces(); ++f) {
-    const openvdb::Vec3d a = index(s.vertices.row(s.faces(f, 0))), b = index(s.vertices.row(s.faces(f, 1))),
-                         c = index(s.vertices.row(s.faces(f, 2)));
-    const openvdb::Vec3d normal = (b - a).cross(c - a), centre = (a + b + c) / 3;
-    openvdb::Vec3d gradient;
-    for (int i = 0; i < 3; ++i) {
-      openvdb::Vec3d h(0);
-      h[i] = 0.5;
-      gradient[i] = sampler.isSample(centre + h) - sampler.isSample(centre - h);
+  tbb::enumerable_thread_specific<std::vector<openvdb::Coord>> found;
+  tbb::parallel_for(tbb::blocked_range<Eigen::Index>(0, s.num_faces(), 4096), [&](const tbb::blocked_range<Eigen::Index>& range) {
+    const openvdb::FloatGrid::ConstAccessor acc = grid.getConstAccessor();
+    const openvdb::tools::GridSampler<openvdb::FloatGrid::ConstAccessor, openvdb::tools::BoxSampler> sampler(acc, xf);
+    std::vector<openvdb::Coord>& out = found.local();
+    for (Eigen::Index f = range.begin(); f != range.end(); ++f) {
+      const openvdb::Vec3d a = index(s.vertices.row(s.faces(f, 0))), b = index(s.vertices.row(s.faces(f, 1))),
+                           c = index(s.vertices.row(s.faces(f, 2)));
+      const openvdb::Vec3d normal = (b - a).cross(c - a), centre = (a + b + c) / 3;
+      openvdb::Vec3d gradient;
+      for (int i = 0; i < 3; ++i) {
+        openvdb::Vec3d h(0);
+        h[i] = 0.5;
+        gradient[i] = sampler.isSample(centre + h) - sampler.isSample(centre - h);
+      }
+      if (normal.dot(gradient) < kCosFold * normal.length() * gradient.length()) out.push_back(openvdb::Coord::round(centre));
     }
-    if (normal.dot(gradient) < kCosFold * normal.length() * gradient.length()) out.push_back(openvdb::Coord::round(centre));
-  }
+  });
+  std::vector<openvdb::Coord> out;
+  for (const auto& part : found) out.insert(out.end(), part.begin(), part.end());
   return out;
 }
 
