@@ -158,7 +158,11 @@ Mold make_mold(const SurfaceMesh& cavity_world, const Parting& parting, const st
     if (d.norm() < 1e-6) d = Eigen::Vector3d(0, 0, vertical < 0 ? -1 : 1);  // straight up or down: out through the top or bottom
     d.normalize();
     if (d.z() == 0 && std::abs(a.z() - h) < c.diameter / 2 + o.min_wall) a.z() = h;
-    block = mesh_difference(block, cylinder_solid(a, a + reach * d, c.diameter / 2, 24));
+    const bool stepped = c.through_diameter > 0 && c.through_diameter < c.diameter && c.socket < reach;
+    block = mesh_difference(block, cylinder_solid(a, a + (stepped ? c.socket : reach) * d, c.diameter / 2, 24));
+    // The hole starts a little inside the socket, and has other facets than the socket (20, not
+    // 24): coaxial prisms with vertices on the same rays leave CGAL's cut with crossing faces.
+    if (stepped) block = mesh_difference(block, cylinder_solid(a + (c.socket - c.diameter / 4) * d, a + reach * d, c.through_diameter / 2, 20));
     passages.push_back({a.head<2>(), (a + reach * d).head<2>(), c.diameter / 2});
   }
 

@@ -28,10 +28,14 @@ struct MoldBlockOptions {
 
 /// A straight channel, e.g. where a fiber leaves the body: from `start` (inside the body) along
 /// `direction` out through the mold wall; laid parallel to the parting plane, and onto it when it
-/// starts within its radius + min_wall of it.
+/// starts within its radius + min_wall of it. It is `diameter` wide for `socket` from its start (the
+/// muscle's end and its supply tube sit there, and the silicone closes around them), then
+/// `through_diameter` wide out through the wall (the tube leaves the mold; 0: `diameter` all the way).
 struct Channel {
   Eigen::Vector3d start, direction;
   double diameter;
+  double socket = 0;            ///< m
+  double through_diameter = 0;  ///< m
 };
 
 struct MoldPart {

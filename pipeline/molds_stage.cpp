@@ -137,7 +137,7 @@ void MoldsStage::run(StageContext& ctx) const
       const Eigen::Vector3d inside = end - 1e-3 * along.normalized();
       const auto at = skin.closest(inside);
       const Eigen::Vector3d out = at.inside && at.distance > 1e-6 ? Eigen::Vector3d((at.point - inside).normalized()) : along.normalized();
-      channels.push_back({end - 1e-3 * out, out, m.end_channel_diameter});
+      channels.push_back({end - 1e-3 * out, out, m.end_channel_diameter, 1e-3 + m.end_channel_length, d.muscle.model.diameter});
     };
     add_channel(r.points.front(), -r.tangents.front());
     add_channel(r.points.back(), r.tangents.back());
@@ -168,6 +168,10 @@ void MoldsStage::run(StageContext& ctx) const
   const Eigen::Vector3d centre = body.vertices.colwise().mean().transpose();
   for (Channel& c : channels) c.start = centre + (c.start - centre) * grow;
   const double body_volume = signed_volume(body), g3 = grow * grow * grow;
+  // The silicone that fills each channel's socket around the muscle's end.
+  const double sleeves = static_cast<double>(channels.size()) * M_PI *
+                         (std::pow(m.end_channel_diameter / 2, 2) - std::pow(std::min(m.end_channel_diameter, d.muscle.model.diameter) / 2, 2)) *
+                         m.end_channel_length;
 
   Json shots = Json::object(), parts = Json::object();
   std::vector<std::string> failures;
@@ -179,7 +183,7 @@ void MoldsStage::run(StageContext& ctx) const
     std::vector<Channel> channels;
   } shot_list[] = {// shot 1 fills the scaled-up groove cavity; its cured part shrinks back to nominal size
                    {"shot1", &groove.mesh, g3 * groove.volume, {}},
-                   {"shot2", &body, std::max(0.0, g3 * body_volume - groove.volume - muscle_volume), channels}};
+                   {"shot2", &body, std::max(0.0, g3 * body_volume - groove.volume - muscle_volume + sleeves), channels}};
   for (const auto& shot : shot_list) {
     ctx.progress.checkpoint(shot.name == std::string("shot1") ? 0.3 : 0.6, fmt::format("{}: mold block", shot.name));
     const SurfaceMesh cavity = grow != 1 ? scaled_about(*shot.cavity, centre, grow) : *shot.cavity;

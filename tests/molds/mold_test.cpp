@@ -114,6 +114,28 @@ TEST(Molds, OvermoldShotPartsPutBackTogetherMakeTheBlockMinusTheCavity)
   EXPECT_NEAR(together_volume, block - holes, 0.005 * (block - holes));
 }
 
+TEST(Molds, EndChannelIsASocketThenAHoleForTheTube)
+{
+  // A channel leaving the box's end face 1 mm in from it, through the 4 mm wall: 4 mm wide for 2 mm
+  // beyond the skin (socket 3 mm from its start), then 3 mm wide. What it takes from the mold is
+  // the volume of those two prisms (24 and 20 facets).
+  const BoxBody b;
+  const Parting parting = choose_parting(b.body, {0, 0, 1});
+  MoldBlockOptions o;
+  o.keys = 0;
+  const auto mold_volume = [&](const std::vector<Channel>& channels) {
+    const Mold mold = make_mold(b.body, parting, channels, o, "shot2");
+    expect_parts_ok(mold);
+    return signed_volume(mold.parts[0].mesh) + signed_volume(mold.parts[1].mesh);
+  };
+  const double plain = mold_volume({});
+  const double stepped = mold_volume({{{1 * mm, 0, 0}, {-1, 0, 0}, 4 * mm, 3 * mm, 3 * mm}});
+  const auto prism = [](double radius, double length, int n) { return n / 2.0 * radius * radius * std::sin(2 * M_PI / n) * length; };
+  const double expected = prism(2 * mm, 2 * mm, 24) + prism(1.5 * mm, 2 * mm, 20);
+  std::printf("end channel takes %.2f mm³ of the mold (expected %.2f)\n", (plain - stepped) / 1e-9, expected / 1e-9);
+  EXPECT_NEAR(plain - stepped, expected, 0.002 * expected);
+}
+
 TEST(Molds, KeysFitTheirSocketsWithTheClearance)
 {
   const BoxBody b;
