@@ -5,10 +5,10 @@
 #include <spdlog/spdlog.h>
 
 #include "core/atomic_file.hpp"
-#include "core/input_error.hpp"
 #include "core/units.hpp"
 #include "export/lay_flat.hpp"
 #include "export/stl_writer.hpp"
+#include "export/three_mf_writer.hpp"
 #include "mesh/surface_import.hpp"
 
 namespace fibermold {
@@ -17,29 +17,30 @@ namespace {
 
 using Json = nlohmann::ordered_json;
 
-std::string casting_guide(const std::string& design, const Json& shots)
+std::string casting_guide(const std::string& design, const Json& shots, const std::string& format)
 {
+  const std::string ext = "." + format, FORMAT = format == "3mf" ? "3MF file" : "STL";
   const auto ml = [&](const char* shot) { return shots[shot]["silicone_volume_mL"].get<double>(); };
   const auto g = [&](const char* shot) { return shots[shot]["silicone_mass_g"].get<double>(); };
   return fmt::format(R"(fibermold mold parts for "{}"
 
-Print every STL as it lies (each stands on its largest flat face; units mm).
+Print every {} as it lies (each stands on its largest flat face; units mm).
 
-Shot 1, the grooved body: shot1-lower.stl and shot1-upper.stl.
+Shot 1, the grooved body: shot1-lower{} and shot1-upper{}.
   Close the two halves on their keys, clamp them, inject about {:.1f} mL ({:.1f} g) of silicone
   through the sprue hole at the bottom until it rises out of the vents, and let it cure.
   Demold: the body has an open groove for each muscle.
 
 Lay each muscle into its groove, its ends and supply tubes along the grooves' ends.
 
-Shot 2, the overmold: shot2-lower.stl and shot2-upper.stl.
+Shot 2, the overmold: shot2-lower{} and shot2-upper{}.
   Put the grooved body with its muscles into the lower half, route the supply tubes out through
   the channels at the fibers' ends, close, clamp, inject about {:.1f} mL ({:.1f} g) of silicone
   through the sprue until it rises out of the vents, and let it cure.
 
 manifest.json lists each part's size, volume and checks.
 )",
-                     design, ml("shot1"), g("shot1"), ml("shot2"), g("shot2"));
+                     design, FORMAT, ext, ext, ml("shot1"), g("shot1"), ext, ext, ml("shot2"), g("shot2"));
 }
 
 } // namespace
@@ -47,19 +48,23 @@ manifest.json lists each part's size, volume and checks.
 void ExportStage::run(StageContext& ctx) const
 {
   const Design& d = ctx.design;
-  for (const std::string& f : d.export_.formats)
-    if (f != "stl")
-      throw InputError(Diagnostic{d.file, 0, 0, "[export].formats", fmt::format("{} export is not available yet; use [\"stl\"]", f)});
   const Json molds = Json::parse(read_file(ctx.upstream("molds", "report.json")));
   Json parts = Json::array();
   for (const auto& [name, info] : molds["parts"].items()) {
     ctx.progress.checkpoint(-1, "laying out " + name);
     const SurfaceMesh part = import_surface(ctx.upstream("molds", info["file"].get<std::string>()), units::mm);
     const Placement placed = lay_flat(part, d.export_.printer_volume);
-    write_stl(ctx.output_dir / info["file"].get<std::string>(), placed.part, fmt::format("fibermold {} {} (mm)", d.design.name, name));
+    Json files = Json::array();
+    for (const std::string& format : d.export_.formats) {
+      const std::string file = name + "." + format;
+      if (format == "3mf") write_3mf(ctx.output_dir / file, placed.part, name);
+      else write_stl(ctx.output_dir / file, placed.part, fmt::format("fibermold {} {} (mm)", d.design.name, name));
+      files.push_back(file);
+    }
     parts.push_back({{"name", name},
                      {"shot", info["shot"]},
-                     {"file", info["file"]},
+                     {"file", files[0]},
+                     {"files", files},
                      {"size_mm", {placed.size.x() / units::mm, placed.size.y() / units::mm, placed.size.z() / units::mm}},
                      {"lies_on_mm2", placed.flat_area / 1e-6},
                      {"fits_printer_as_placed", placed.fits},
@@ -75,7 +80,7 @@ void ExportStage::run(StageContext& ctx) const
     shots[shot] = {{"silicone_volume_mL", info["silicone_volume_mL"]}, {"silicone_mass_g", info["silicone_mass_g"]}};
   const Json manifest{{"design", d.design.name}, {"units", "mm"}, {"voxel_mm", molds["voxel_mm"]}, {"parts", parts}, {"shots", shots}};
   write_file_atomic(ctx.output_dir / "manifest.json", manifest.dump(2) + "\n");
-  write_file_atomic(ctx.output_dir / "README.txt", casting_guide(d.design.name, molds["shots"]));
+  write_file_atomic(ctx.output_dir / "README.txt", casting_guide(d.design.name, molds["shots"], d.export_.formats.front()));
 }
 
 } // namespace fibermold

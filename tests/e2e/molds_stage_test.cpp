@@ -1,6 +1,7 @@
 // The molds and export stages as a user runs them: a 60 × 16 × 16 mm bar with one straight hand-
 // routed fiber ([optimize] enabled = false) becomes four printable parts; admesh, an independent
-// checker, finds nothing to fix in any of them, and PrusaSlicer slices each one to its full height;
+// checker, finds nothing to fix in any of them, and PrusaSlicer slices each one to its full height
+// and reads the same part from its 3MF;
 // bad inputs stop with an error and no STL.
 #include <cstdio>
 #include <regex>
@@ -116,13 +117,22 @@ std::vector<double> layer_heights(const fs::path& gcode)
 TEST_F(MoldsE2E, ExportedPartsSliceInPrusaSlicer)
 {
   if (std::system("command -v prusa-slicer >/dev/null 2>&1") != 0) GTEST_SKIP() << "prusa-slicer is not installed (scripts/setup installs it)";
-  design("");
+  design("[export]\nformats = [\"stl\", \"3mf\"]\n");
   ASSERT_EQ(make().exit_code, 0);
   const auto manifest = nlohmann::json::parse(test::read_text(out("manifest.json")));
   ASSERT_EQ(manifest["parts"].size(), 4u);
   for (const auto& p : manifest["parts"]) {
     const std::string name = p["name"];
+    ASSERT_EQ(p["files"], nlohmann::json::array({name + ".stl", name + ".3mf"}));
     const fs::path stl = out(p["file"].get<std::string>()), gcode = dir_ / (name + ".gcode");
+
+    // The 3MF holds the same part: PrusaSlicer measures the same volume in it.
+    const auto [three_mf_code, three_mf_info] = run("prusa-slicer --info '" + out(name + ".3mf").string() + "'");
+    ASSERT_EQ(three_mf_code, 0) << name << ": " << three_mf_info;
+    EXPECT_THAT(three_mf_info, HasSubstr("manifold = yes")) << name;
+    std::smatch three_mf_volume;
+    ASSERT_TRUE(std::regex_search(three_mf_info, three_mf_volume, std::regex(R"(volume = ([0-9.]+))"))) << name;
+    EXPECT_NEAR(std::stod(three_mf_volume[1]) * 1e-3, p["volume_mL"].get<double>(), 1e-3 * p["volume_mL"].get<double>()) << name;
 
     const auto [info_code, info] = run("prusa-slicer --info '" + stl.string() + "'");
     ASSERT_EQ(info_code, 0) << name << ": " << info;
