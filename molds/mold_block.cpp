@@ -89,13 +89,25 @@ SurfaceMesh flipped_z(SurfaceMesh m)
   return m;
 }
 
-/// Key centres in the parting plane: the block's corners, then its edge midpoints, inset by `inset`.
-std::vector<Eigen::Vector2d> key_sites(const Eigen::Vector3d& lo, const Eigen::Vector3d& hi, double inset, int count)
+/// Sites in the rim around the cavity, in the parting plane, inset by `inset` from the block's
+/// sides: its corners, then its edge midpoints, then the edges' quarter points (16 in all).
+std::vector<Eigen::Vector2d> rim_sites(const Eigen::Vector3d& lo, const Eigen::Vector3d& hi, double inset)
 {
   const double x0 = lo.x() + inset, x1 = hi.x() - inset, y0 = lo.y() + inset, y1 = hi.y() - inset;
-  const double xm = (x0 + x1) / 2, ym = (y0 + y1) / 2;
-  const std::vector<Eigen::Vector2d> all{{x0, y0}, {x1, y1}, {x1, y0}, {x0, y1}, {xm, y0}, {xm, y1}, {x0, ym}, {x1, ym}};
-  return {all.begin(), all.begin() + std::clamp(count, 0, 8)};
+  const auto x = [&](double t) { return x0 + t * (x1 - x0); };
+  const auto y = [&](double t) { return y0 + t * (y1 - y0); };
+  return {{x0, y0}, {x1, y1}, {x1, y0}, {x0, y1},                                   // corners
+          {x(0.5), y0}, {x(0.5), y1}, {x0, y(0.5)}, {x1, y(0.5)},                   // edge midpoints
+          {x(0.25), y0}, {x(0.75), y1}, {x0, y(0.75)}, {x1, y(0.25)},               // quarter points
+          {x(0.75), y0}, {x(0.25), y1}, {x0, y(0.25)}, {x1, y(0.75)}};
+}
+
+/// Distance in the parting plane from `s` to a segment ab.
+double distance_to_segment(const Eigen::Vector2d& s, const Eigen::Vector2d& a, const Eigen::Vector2d& b)
+{
+  const Eigen::Vector2d ab = b - a;
+  const double t = ab.squaredNorm() > 0 ? std::clamp((s - a).dot(ab) / ab.squaredNorm(), 0.0, 1.0) : 0.0;
+  return (s - a - t * ab).norm();
 }
 
 SurfaceMesh key_solid(const Eigen::Vector3d& base, double radius, const std::string& shape, double sink)
@@ -114,7 +126,8 @@ Mold make_mold(const SurfaceMesh& cavity_world, const Parting& parting, const st
   const double h = (R * parting.point).z();
   const Eigen::Vector3d lo = cavity.vertices.colwise().minCoeff(), hi = cavity.vertices.colwise().maxCoeff();
   const double key_room = o.keys > 0 ? o.key_diameter + 2 * o.key_clearance + 2 * o.min_wall : 0;
-  const double side = std::max(o.wall, key_room);
+  const double screw_room = o.screw_holes > 0 ? o.screw_diameter + 2 * o.min_wall : 0;
+  const double side = std::max({o.wall, key_room, screw_room});
   const Eigen::Vector3d grow(side, side, o.wall);
   const Eigen::Vector3d box_lo = lo - grow, box_hi = hi + grow;
   SurfaceMesh block = mesh_difference(box_solid(box_lo, box_hi), cavity);
@@ -166,16 +179,30 @@ Mold make_mold(const SurfaceMesh& cavity_world, const Parting& parting, const st
     passages.push_back({a.head<2>(), (a + reach * d).head<2>(), c.diameter / 2});
   }
 
-  auto [lower, upper] = split_by_plane(block, {0, 0, h}, Eigen::Vector3d::UnitZ());
-  const double radius = o.key_diameter / 2, sink = 0.5e-3;
-  for (const Eigen::Vector2d& s : key_sites(box_lo, box_hi, side / 2, o.keys)) {
-    // A key where a channel runs would plug it (pin) or widen it (socket): leave that one out.
-    const bool blocked = std::any_of(passages.begin(), passages.end(), [&](const Passage& p) {
-      const Eigen::Vector2d ab = p.b - p.a;
-      const double t = ab.squaredNorm() > 0 ? std::clamp((s - p.a).dot(ab) / ab.squaredNorm(), 0.0, 1.0) : 0.0;
-      return (s - p.a - t * ab).norm() < radius + o.key_clearance + p.radius + o.min_wall;
+  // Keys take the first sites (corners, then edge midpoints), screws the next free ones; a site
+  // where a channel runs, or too close to a key, is left out.
+  const double radius = o.key_diameter / 2, sink = 0.5e-3, screw = o.screw_diameter / 2;
+  const auto clear_of_channels = [&](const Eigen::Vector2d& s, double r) {
+    return std::none_of(passages.begin(), passages.end(),
+                        [&](const Passage& p) { return distance_to_segment(s, p.a, p.b) < r + p.radius + o.min_wall; });
+  };
+  const std::vector<Eigen::Vector2d> sites = rim_sites(box_lo, box_hi, side / 2);
+  std::vector<Eigen::Vector2d> keys, screws;
+  for (int k = 0; k < std::min(o.keys, 8); ++k)
+    if (clear_of_channels(sites[k], radius + o.key_clearance)) keys.push_back(sites[k]);
+  for (std::size_t k = static_cast<std::size_t>(std::min(o.keys, 8)); k < sites.size() && static_cast<int>(screws.size()) < o.screw_holes; ++k) {
+    const bool clear_of_keys = std::all_of(keys.begin(), keys.end(), [&](const Eigen::Vector2d& key) {
+      return (key - sites[k]).norm() >= radius + o.key_clearance + screw + o.min_wall;
     });
-    if (blocked) continue;
+    if (clear_of_keys && clear_of_channels(sites[k], screw)) screws.push_back(sites[k]);
+  }
+  for (const Eigen::Vector2d& s : screws) {
+    block = mesh_difference(block, cylinder_solid({s.x(), s.y(), box_lo.z() - 1e-3}, {s.x(), s.y(), box_hi.z() + 1e-3}, screw, 24));
+    mold.screws.push_back(R.transpose() * Eigen::Vector3d(s.x(), s.y(), h));
+  }
+
+  auto [lower, upper] = split_by_plane(block, {0, 0, h}, Eigen::Vector3d::UnitZ());
+  for (const Eigen::Vector2d& s : keys) {
     const Eigen::Vector3d base(s.x(), s.y(), h);
     lower = mesh_union(lower, key_solid(base, radius, o.key_shape, sink));
     upper = mesh_difference(upper, key_solid(base, radius + o.key_clearance, o.key_shape, sink));  // clearance all round

@@ -24,6 +24,8 @@ struct MoldBlockOptions {
   double sprue_diameter = 4e-3;
   int vents = 2;
   double vent_diameter = 1.5e-3;
+  int screw_holes = 0;                ///< 0 to 16, through both halves along pull, in the rim around the cavity
+  double screw_diameter = 3.4e-3;
 };
 
 /// A straight channel, e.g. where a fiber leaves the body: from `start` (inside the body) along
@@ -48,6 +50,7 @@ struct Mold {
   Eigen::Vector3d sprue;               ///< the cavity point the sprue reaches
   std::vector<Eigen::Vector3d> vents;  ///< the cavity points the vents reach
   std::vector<Eigen::Vector3d> keys;   ///< key centres on the parting plane; sites on a channel's way are left out
+  std::vector<Eigen::Vector3d> screws; ///< screw hole axes' points on the parting plane (fewer than asked when channels and keys leave no room)
 };
 
 /// Throws std::runtime_error when a boolean fails.

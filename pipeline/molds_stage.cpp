@@ -112,7 +112,6 @@ void MoldsStage::run(StageContext& ctx) const
   const Design& d = ctx.design;
   const MoldOptions& m = d.mold;
   if (m.draft_deg > 0) bad(d, "[mold].draft_deg", "draft angles are not available yet; remove the key");
-  if (m.screw_holes > 0) bad(d, "[mold].screw_holes", "screw holes are not available yet; remove the key");
 
   const TetMesh mesh = load_tet_mesh(ctx.upstream("mesh", "body.tetmesh"));
   const SurfaceMesh body = body_surface(mesh);
@@ -163,6 +162,8 @@ void MoldsStage::run(StageContext& ctx) const
   o.sprue_diameter = m.sprue_diameter;
   o.vents = m.vents;
   o.vent_diameter = m.vent_diameter;
+  o.screw_holes = m.screw_holes;
+  o.screw_diameter = m.screw_diameter;
   // Shrink compensation: cavities (and channel starts) scaled up about the body's centre.
   const double grow = m.shrink > 0 ? 1 / (1 - m.shrink) : 1.0;
   const Eigen::Vector3d centre = body.vertices.colwise().mean().transpose();
@@ -203,7 +204,11 @@ void MoldsStage::run(StageContext& ctx) const
                         {"undercut_area_mm2", parting.undercut_area / 1e-6},
                         {"sprue_mm", vec_mm(mold.sprue)},
                         {"vents", mold.vents.size()},
-                        {"keys", mold.keys.size()}};
+                        {"keys", mold.keys.size()},
+                        {"screw_holes", mold.screws.size()}};
+    if (static_cast<int>(mold.screws.size()) < m.screw_holes)
+      ctx.log.warn("{}: room for {} of the {} screw holes asked for (channels and keys take the other sites in the rim)", shot.name,
+                   mold.screws.size(), m.screw_holes);
     for (const MoldPart& p : mold.parts) {
       ctx.progress.checkpoint(-1, "checking " + p.name);
       started = Clock::now();

@@ -136,6 +136,32 @@ TEST(Molds, EndChannelIsASocketThenAHoleForTheTube)
   EXPECT_NEAR(plain - stepped, expected, 0.002 * expected);
 }
 
+TEST(Molds, ScrewHolesGoThroughBothHalvesInTheRim)
+{
+  // Four M3 clearance holes (3.4 mm) besides the four corner keys: at the edge midpoints, through
+  // the whole block along pull. They take their prisms' volume from the two parts, which still pass
+  // every check (no hole reaches the cavity, no wall thinner than 1 mm).
+  const BoxBody b;
+  const Parting parting = choose_parting(b.body, {0, 0, 1});
+  MoldBlockOptions o;
+  const Mold plain = make_mold(b.body, parting, {}, o, "shot2");
+  o.screw_holes = 4;
+  const Mold screwed = make_mold(b.body, parting, {}, o, "shot2");
+  expect_parts_ok(screwed);
+  ASSERT_EQ(screwed.screws.size(), 4u);
+  const auto volume = [](const Mold& m) { return signed_volume(m.parts[0].mesh) + signed_volume(m.parts[1].mesh); };
+  const double height = 20 * mm + 2 * 4 * mm, r = 1.7 * mm;
+  const double expected = 4 * 12 * r * r * std::sin(2 * M_PI / 24) * height;
+  std::printf("4 screw holes take %.1f mm³ (expected %.1f)\n", (volume(plain) - volume(screwed)) / 1e-9, expected / 1e-9);
+  EXPECT_NEAR(volume(plain) - volume(screwed), expected, 0.002 * expected);
+  for (const Eigen::Vector3d& s : screwed.screws) {
+    for (const Eigen::Vector3d& k : screwed.keys) EXPECT_GE((s - k).norm(), 3 * mm + 0.2 * mm + r + 1 * mm);
+    // In the rim: outside the cavity's footprint by at least the hole's radius and the printer's wall.
+    const double outside = std::max({-s.x(), s.x() - 100 * mm, std::abs(s.y()) - 10 * mm});
+    EXPECT_GE(outside, r + 1 * mm);
+  }
+}
+
 TEST(Molds, KeysFitTheirSocketsWithTheClearance)
 {
   const BoxBody b;
