@@ -1,5 +1,6 @@
 #include "pipeline/export_stage.hpp"
 
+#include <Eigen/Geometry>
 #include <fmt/format.h>
 #include <nlohmann/json.hpp>
 #include <spdlog/spdlog.h>
@@ -8,7 +9,10 @@
 #include "core/units.hpp"
 #include "export/lay_flat.hpp"
 #include "export/stl_writer.hpp"
+#include "export/report_html.hpp"
 #include "export/three_mf_writer.hpp"
+#include "pipeline/fibers_file.hpp"
+#include "sim/hermite_spline.hpp"
 #include "mesh/surface_import.hpp"
 
 namespace fibermold {
@@ -41,6 +45,67 @@ Shot 2, the overmold: shot2-lower{} and shot2-upper{}.
 manifest.json lists each part's size, volume and checks.
 )",
                      design, FORMAT, ext, ext, ml("shot1"), g("shot1"), ext, ext, ml("shot2"), g("shot2"));
+}
+
+/// Each fiber's centre line, 10 points per mm.
+std::vector<ReportLine> fiber_lines(const FibersFile& fibers)
+{
+  std::vector<ReportLine> out;
+  for (const Route& r : fibers.routing.routes) {
+    const HermiteSpline spline(r.points, r.tangents);
+    const int n = std::max(2, static_cast<int>(spline.length() / 0.1e-3));
+    ReportLine line{r.name, {}};
+    for (double t : segment_parameters(spline, n)) line.points.push_back(spline.position(t));
+    out.push_back(std::move(line));
+  }
+  return out;
+}
+
+std::string fixed(double value, int digits) { return fmt::format("{:.{}f}", value, digits); }
+
+/// The page users open first: the groove body with its muscles in the shot 1 mold (upper half
+/// lifted off along pull), the shot 2 mold beside it (hidden), the parts' checks, the silicone and
+/// the stage timings.
+std::string report(const StageContext& ctx, const Json& molds, const Json& parts, const Json& shots)
+{
+  const Design& d = ctx.design;
+  const auto load = [&](const std::string& file) { return import_surface(ctx.upstream("molds", file), units::mm); };
+  std::vector<ReportMesh> meshes;
+  meshes.push_back({"groove body (shot 1)", load("groove-body.stl"), {0.93F, 0.55F, 0.45F}, true, Eigen::Vector3d::Zero()});
+  double width = 0, height = 0;
+  for (const auto& [name, info] : molds["parts"].items()) {
+    const Eigen::Vector3d size(info["size_mm"][0], info["size_mm"][1], info["size_mm"][2]);
+    width = std::max(width, size.maxCoeff() * units::mm);
+    height = std::max(height, size.minCoeff() * units::mm);
+  }
+  const Eigen::Vector3d pull = d.mold.pull.normalized();
+  const Eigen::Vector3d aside = (pull.cross(Eigen::Vector3d::UnitZ()).norm() > 0.5 ? pull.cross(Eigen::Vector3d::UnitZ()) : pull.cross(Eigen::Vector3d::UnitX())).normalized();
+  for (const auto& [name, info] : molds["parts"].items()) {
+    const bool shot1 = info["shot"] == "shot1", upper = name.find("upper") != std::string::npos;
+    const Eigen::Vector3d offset = (upper ? 1.5 * height : 0.0) * pull + (shot1 ? 0.0 : 1.3 * width) * aside;
+    meshes.push_back({name, load(info["file"].get<std::string>()), upper ? std::array{0.55F, 0.65F, 0.8F} : std::array{0.45F, 0.55F, 0.7F},
+                      shot1, offset});
+  }
+  const FibersFile fibers = read_fibers_json(ctx.upstream("collide", "fibers.json"));
+
+  ReportTable checks{"Mold parts", {"part", "files", "triangles", "volume (mL)", "thinnest wall (mm)", "fits the printer", "checks"}, {}};
+  for (const Json& p : parts) {
+    std::string files;
+    for (const Json& f : p["files"]) files += (files.empty() ? "" : ", ") + f.get<std::string>();
+    checks.rows.push_back({p["name"], files, std::to_string(p["triangles"].get<long>()), fixed(p["volume_mL"], 2), fixed(p["min_wall_mm"], 2),
+                           p["fits_printer_as_placed"].get<bool>() ? "lying flat" : "turned", p["checks_passed"].get<bool>() ? "passed" : "FAILED"});
+  }
+  ReportTable silicone{"Silicone", {"shot", "volume (mL)", "mass (g)"}, {}};
+  for (const auto& [shot, info] : shots.items())
+    silicone.rows.push_back({shot, fixed(info["silicone_volume_mL"], 2), fixed(info["silicone_mass_g"], 2)});
+  ReportTable timings{"Stage timings", {"stage", "seconds"}, {}};
+  for (const char* stage : {"mesh", "targets", "optimize", "collide", "molds"}) {
+    const auto stamp = ctx.build_dir / ".stamps" / (std::string(stage) + ".json");
+    if (!std::filesystem::exists(stamp)) continue;
+    const Json s = Json::parse(read_file(stamp), nullptr, false);
+    if (s.is_object() && s.contains("seconds")) timings.rows.push_back({stage, fixed(s["seconds"], 2)});
+  }
+  return report_html("fibermold: " + d.design.name, meshes, fiber_lines(fibers), {checks, silicone, timings});
 }
 
 } // namespace
@@ -81,6 +146,8 @@ void ExportStage::run(StageContext& ctx) const
   const Json manifest{{"design", d.design.name}, {"units", "mm"}, {"voxel_mm", molds["voxel_mm"]}, {"parts", parts}, {"shots", shots}};
   write_file_atomic(ctx.output_dir / "manifest.json", manifest.dump(2) + "\n");
   write_file_atomic(ctx.output_dir / "README.txt", casting_guide(d.design.name, molds["shots"], d.export_.formats.front()));
+  ctx.progress.checkpoint(-1, "writing the report");
+  write_file_atomic(ctx.output_dir / "report.html", report(ctx, molds, parts, shots));
 }
 
 } // namespace fibermold

@@ -4,6 +4,7 @@
 // and reads the same part from its 3MF;
 // bad inputs stop with an error and no STL.
 #include <cstdio>
+#include <cstring>
 #include <regex>
 #include <sstream>
 
@@ -151,6 +152,35 @@ TEST_F(MoldsE2E, ExportedPartsSliceInPrusaSlicer)
     EXPECT_NEAR(z.back(), height, 0.35) << name << ": the top layer is not at the part's height";  // a 0.3 mm layer
     EXPECT_GE(z.size(), static_cast<std::size_t>(height / 0.3)) << name;
   }
+}
+
+TEST_F(MoldsE2E, ReportOpensInAHeadlessBrowser)
+{
+  design("");
+  ASSERT_EQ(make().exit_code, 0);
+  const std::string html = test::read_text(out("report.html"));
+  for (const char* part : {"shot1-lower", "shot1-upper", "shot2-lower", "shot2-upper", "groove body (shot 1)", "Stage timings"})
+    EXPECT_NE(html.find(part), std::string::npos) << part;
+  if (std::system("command -v chromium >/dev/null 2>&1") != 0) GTEST_SKIP() << "chromium is not installed (scripts/setup installs it)";
+
+  // The page draws every mesh it carries: the groove body and the four parts, in the molds' frame.
+  const auto report = nlohmann::json::parse(test::read_text(dir_ / "build" / "molds" / "report.json"));
+  long triangles = 0;
+  for (const auto& [name, part] : report["parts"].items()) triangles += part["triangles"].get<long>();
+  const std::string groove = test::read_text(dir_ / "build" / "molds" / "groove-body.stl");
+  std::uint32_t groove_triangles = 0;
+  std::memcpy(&groove_triangles, groove.data() + 80, sizeof groove_triangles);
+  triangles += groove_triangles;
+  const std::string browser = "chromium --headless=new --no-sandbox --enable-unsafe-swiftshader --use-angle=swiftshader "
+                              "--virtual-time-budget=4000 --enable-logging=stderr --v=0 ";
+  const std::string page = "file://" + out("report.html").string();
+  const auto [code, dom] = run(browser + "--dump-dom '" + page + "'");
+  ASSERT_EQ(code, 0) << dom;
+  EXPECT_THAT(dom, HasSubstr("<p id=\"status\">drawn " + std::to_string(triangles) + " triangles</p>"));
+  EXPECT_THAT(dom, ::testing::Not(HasSubstr("Uncaught"))) << "a script error on the page";
+  const fs::path png = dir_ / "report.png";
+  ASSERT_EQ(run(browser + "--window-size=1000,800 --screenshot='" + png.string() + "' '" + page + "'").first, 0);
+  EXPECT_GT(fs::file_size(png), 10000u) << "the screenshot of the view is blank";
 }
 
 TEST_F(MoldsE2E, MoldEditsRerunMoldsAndExportOnly)

@@ -1,0 +1,41 @@
+#pragma once
+// A report as one self-contained HTML page that opens in any browser without network access:
+// tables, and a 3D view (plain WebGL, no library) of meshes and polylines that can be turned,
+// zoomed and switched on and off.
+
+#include <array>
+#include <string>
+#include <vector>
+
+#include <Eigen/Core>
+
+#include "mesh/surface_mesh.hpp"
+
+namespace fibermold {
+
+struct ReportMesh {
+  std::string name;
+  SurfaceMesh mesh;                         ///< m
+  std::array<float, 3> colour{0.7F, 0.7F, 0.7F};
+  bool visible = true;
+  Eigen::Vector3d offset = Eigen::Vector3d::Zero();  ///< m, where it is drawn (e.g. a mold half lifted off)
+};
+
+struct ReportLine {
+  std::string name;
+  std::vector<Eigen::Vector3d> points;  ///< m
+  std::array<float, 3> colour{0.8F, 0.1F, 0.1F};
+};
+
+struct ReportTable {
+  std::string title;
+  std::vector<std::string> header;
+  std::vector<std::vector<std::string>> rows;
+};
+
+/// The page. Once the 3D view has drawn, the element #status says "drawn N triangles" (or why it
+/// could not draw), so that a headless browser can check it.
+std::string report_html(const std::string& title, const std::vector<ReportMesh>& meshes, const std::vector<ReportLine>& lines,
+                        const std::vector<ReportTable>& tables);
+
+} // namespace fibermold
