@@ -89,8 +89,8 @@ constexpr const char* kViewer = R"JS(
   const program = gl.createProgram();
   gl.attachShader(program, shader(gl.VERTEX_SHADER, 'attribute vec3 p; attribute vec3 n; uniform mat4 m; varying vec3 vn;' +
     'void main() { vn = n; gl_Position = m * vec4(p, 1.0); }'));
-  gl.attachShader(program, shader(gl.FRAGMENT_SHADER, 'precision mediump float; varying vec3 vn; uniform vec3 c; uniform float lit;' +
-    'void main() { float d = abs(dot(normalize(vn + vec3(0.0, 0.0, 1e-6)), normalize(vec3(0.4, -0.5, 0.8))));' +
+  gl.attachShader(program, shader(gl.FRAGMENT_SHADER, 'precision highp float; varying vec3 vn; uniform vec3 c; uniform float lit;' +
+    'void main() { float d = lit > 0.5 ? abs(dot(normalize(vn), vec3(0.35, -0.44, 0.83))) : 1.0;' +
     'gl_FragColor = vec4(c * mix(1.0, 0.35 + 0.65 * d, lit), 1.0); }'));
   gl.linkProgram(program);
   gl.useProgram(program);
@@ -106,7 +106,8 @@ constexpr const char* kViewer = R"JS(
     for (let t = 0; t < f.length; t += 3) {
       const a = f[t] * 3, b = f[t + 1] * 3, c = f[t + 2] * 3;
       const u = [p[b] - p[a], p[b + 1] - p[a + 1], p[b + 2] - p[a + 2]], w = [p[c] - p[a], p[c + 1] - p[a + 1], p[c + 2] - p[a + 2]];
-      const n = [u[1] * w[2] - u[2] * w[1], u[2] * w[0] - u[0] * w[2], u[0] * w[1] - u[1] * w[0]];
+      const n = [u[1] * w[2] - u[2] * w[1], u[2] * w[0] - u[0] * w[2], u[0] * w[1] - u[1] * w[0]], nl = Math.hypot(...n) || 1;
+      n.forEach((v, k) => n[k] = v / nl);
       [a, b, c].forEach((v, k) => { data.set([p[v], p[v + 1], p[v + 2], n[0], n[1], n[2]], (t + k) * 6); if (mesh.visible) grow(p[v], p[v + 1], p[v + 2]); });
     }
     triangles += f.length / 3;
@@ -119,7 +120,7 @@ constexpr const char* kViewer = R"JS(
   }
   for (const item of items) { item.buffer = gl.createBuffer(); gl.bindBuffer(gl.ARRAY_BUFFER, item.buffer); gl.bufferData(gl.ARRAY_BUFFER, item.data, gl.STATIC_DRAW); }
   const centre = [0, 1, 2].map(k => (lo[k] + hi[k]) / 2), size = Math.max(1, ...[0, 1, 2].map(k => hi[k] - lo[k]));
-  let yaw = -0.6, pitch = 0.5, distance = 1.8 * size;
+  let yaw = -0.6, pitch = 0.5, distance = 1.8 * size, painted = null;
   const multiply = (a, b) => { const r = new Float32Array(16);
     for (let i = 0; i < 4; ++i) for (let j = 0; j < 4; ++j) { let s = 0; for (let k = 0; k < 4; ++k) s += a[k * 4 + j] * b[i * 4 + k]; r[i * 4 + j] = s; } return r; };
   function draw() {
@@ -135,8 +136,10 @@ constexpr const char* kViewer = R"JS(
     const near = distance / 100, far = distance * 10, t = 1 / Math.tan(0.4), aspect = canvas.width / Math.max(1, canvas.height);
     const projection = new Float32Array([t / aspect, 0, 0, 0, 0, t, 0, 0, 0, 0, (far + near) / (near - far), -1, 0, 0, 2 * far * near / (near - far), 0]);
     gl.uniformMatrix4fv(loc.m, false, multiply(projection, view));
+    let drawn = 0;
     for (const item of items) {
       if (!item.visible) continue;
+      if (item.mode === gl.TRIANGLES) drawn += item.count / 3;
       gl.bindBuffer(gl.ARRAY_BUFFER, item.buffer);
       gl.enableVertexAttribArray(loc.p); gl.vertexAttribPointer(loc.p, 3, gl.FLOAT, false, 24, 0);
       gl.enableVertexAttribArray(loc.n); gl.vertexAttribPointer(loc.n, 3, gl.FLOAT, false, 24, 12);
@@ -144,7 +147,14 @@ constexpr const char* kViewer = R"JS(
       gl.drawArrays(item.mode, 0, item.count);
     }
     const error = gl.getError();
-    status.textContent = error === gl.NO_ERROR ? 'drawn ' + triangles + ' triangles' : 'WebGL error ' + error;
+    if (error !== gl.NO_ERROR) { status.textContent = 'WebGL error ' + error; return; }
+    if (painted === null) {  // once: how much of the view the scene covers
+      const pixels = new Uint8Array(canvas.width * canvas.height * 4);
+      gl.readPixels(0, 0, canvas.width, canvas.height, gl.RGBA, gl.UNSIGNED_BYTE, pixels);
+      painted = 0;
+      for (let i = 0; i < pixels.length; i += 4) if (pixels[i] < 250 || pixels[i + 1] < 250 || pixels[i + 2] < 250) ++painted;
+    }
+    status.textContent = 'drawn ' + drawn + ' of ' + triangles + ' triangles, ' + painted + ' of ' + canvas.width * canvas.height + ' pixels painted';
   }
   const list = document.getElementById('items');
   for (const item of items) {
@@ -178,9 +188,9 @@ std::string report_html(const std::string& title, const std::vector<ReportMesh>&
   html += "<h1>" + escaped(title) + "</h1>\n<canvas id=\"view\"></canvas>\n<p id=\"items\"></p>\n<p id=\"status\">loading</p>\n";
   html += "<p>Drag to turn, scroll to zoom; lengths in mm.</p>\n";
   for (const ReportTable& t : tables) html += table_html(t);
-  // "</" would end the script element early; JSON allows "<\/".
-  std::string data = scene.dump();
-  for (std::size_t at = data.find("</"); at != std::string::npos; at = data.find("</", at + 3)) data.replace(at, 2, "<\\/");
+  // No "<" inside the script element ("</script>", "<!--" would end or confuse it): JSON's \u003c.
+  std::string data;
+  for (char c : scene.dump()) data += c == '<' ? std::string("\\u003c") : std::string(1, c);
   html += "<script>\nconst SCENE = " + data + ";\n" + kViewer + "</script>\n</body>\n</html>\n";
   return html;
 }

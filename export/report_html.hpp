@@ -33,8 +33,9 @@ struct ReportTable {
   std::vector<std::vector<std::string>> rows;
 };
 
-/// The page. Once the 3D view has drawn, the element #status says "drawn N triangles" (or why it
-/// could not draw), so that a headless browser can check it.
+/// The page. Once the 3D view has drawn, the element #status says "drawn N of M triangles, P of Q
+/// pixels painted" (the visible meshes' triangles, and the pixels of the first view that are not
+/// background), or why it could not draw, so that a headless browser can check it.
 std::string report_html(const std::string& title, const std::vector<ReportMesh>& meshes, const std::vector<ReportLine>& lines,
                         const std::vector<ReportTable>& tables);
 

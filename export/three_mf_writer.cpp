@@ -55,11 +55,16 @@ void write_3mf(const std::filesystem::path& path, const SurfaceMesh& surface, co
   // The exporter zips straight into a file (it cannot export to memory): a temporary one, renamed.
   const std::filesystem::path temporary = path.string() + ".tmp-" + std::to_string(::getpid());
   Assimp::Exporter exporter;
+  std::error_code error;
   if (exporter.Export(scene.get(), "3mf", temporary.string()) != AI_SUCCESS) {
-    std::filesystem::remove(temporary);
+    std::filesystem::remove(temporary, error);
     throw std::runtime_error("writing " + path.string() + ": assimp's 3MF exporter failed: " + exporter.GetErrorString());
   }
-  std::filesystem::rename(temporary, path);
+  std::filesystem::rename(temporary, path, error);
+  if (error) {
+    std::filesystem::remove(temporary, error);
+    throw std::runtime_error("writing " + path.string() + ": cannot rename the finished file into place");
+  }
 }
 
 } // namespace fibermold

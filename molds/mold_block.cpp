@@ -180,7 +180,7 @@ Mold make_mold(const SurfaceMesh& cavity_world, const Parting& parting, const st
   }
 
   // Keys take the first sites (corners, then edge midpoints), screws the next free ones; a site
-  // where a channel runs, or too close to a key, is left out.
+  // where a channel runs, or too close to a key or another screw, is left out.
   const double radius = o.key_diameter / 2, sink = 0.5e-3, screw = o.screw_diameter / 2;
   const auto clear_of_channels = [&](const Eigen::Vector2d& s, double r) {
     return std::none_of(passages.begin(), passages.end(),
@@ -194,7 +194,9 @@ Mold make_mold(const SurfaceMesh& cavity_world, const Parting& parting, const st
     const bool clear_of_keys = std::all_of(keys.begin(), keys.end(), [&](const Eigen::Vector2d& key) {
       return (key - sites[k]).norm() >= radius + o.key_clearance + screw + o.min_wall;
     });
-    if (clear_of_keys && clear_of_channels(sites[k], screw)) screws.push_back(sites[k]);
+    const bool clear_of_screws = std::all_of(screws.begin(), screws.end(),
+                                             [&](const Eigen::Vector2d& other) { return (other - sites[k]).norm() >= 2 * screw + o.min_wall; });
+    if (clear_of_keys && clear_of_screws && clear_of_channels(sites[k], screw)) screws.push_back(sites[k]);
   }
   for (const Eigen::Vector2d& s : screws) {
     block = mesh_difference(block, cylinder_solid({s.x(), s.y(), box_lo.z() - 1e-3}, {s.x(), s.y(), box_hi.z() + 1e-3}, screw, 24));

@@ -163,24 +163,34 @@ TEST_F(MoldsE2E, ReportOpensInAHeadlessBrowser)
     EXPECT_NE(html.find(part), std::string::npos) << part;
   if (std::system("command -v chromium >/dev/null 2>&1") != 0) GTEST_SKIP() << "chromium is not installed (scripts/setup installs it)";
 
-  // The page draws every mesh it carries: the groove body and the four parts, in the molds' frame.
+  // The page draws the groove body and shot 1's parts (shot 2's are switched off), in the molds'
+  // frame, and they cover a good part of the view.
   const auto report = nlohmann::json::parse(test::read_text(dir_ / "build" / "molds" / "report.json"));
-  long triangles = 0;
-  for (const auto& [name, part] : report["parts"].items()) triangles += part["triangles"].get<long>();
+  long all = 0, shown = 0;
+  for (const auto& [name, part] : report["parts"].items()) {
+    all += part["triangles"].get<long>();
+    if (part["shot"] == "shot1") shown += part["triangles"].get<long>();
+  }
   const std::string groove = test::read_text(dir_ / "build" / "molds" / "groove-body.stl");
   std::uint32_t groove_triangles = 0;
   std::memcpy(&groove_triangles, groove.data() + 80, sizeof groove_triangles);
-  triangles += groove_triangles;
+  all += groove_triangles;
+  shown += groove_triangles;
   const std::string browser = "chromium --headless=new --no-sandbox --enable-unsafe-swiftshader --use-angle=swiftshader "
                               "--virtual-time-budget=4000 --enable-logging=stderr --v=0 ";
   const std::string page = "file://" + out("report.html").string();
   const auto [code, dom] = run(browser + "--dump-dom '" + page + "'");
   ASSERT_EQ(code, 0) << dom;
-  EXPECT_THAT(dom, HasSubstr("<p id=\"status\">drawn " + std::to_string(triangles) + " triangles</p>"));
+  std::smatch status;
+  ASSERT_TRUE(std::regex_search(dom, status, std::regex(R"(<p id="status">drawn (\d+) of (\d+) triangles, (\d+) of (\d+) pixels painted</p>)")))
+      << "the view did not draw: " << dom.substr(0, 2000);
+  EXPECT_EQ(std::stol(status[1]), shown);
+  EXPECT_EQ(std::stol(status[2]), all);
+  EXPECT_GT(std::stod(status[3]), 0.05 * std::stod(status[4])) << "the view is almost empty";
   EXPECT_THAT(dom, ::testing::Not(HasSubstr("Uncaught"))) << "a script error on the page";
   const fs::path png = dir_ / "report.png";
   ASSERT_EQ(run(browser + "--window-size=1000,800 --screenshot='" + png.string() + "' '" + page + "'").first, 0);
-  EXPECT_GT(fs::file_size(png), 10000u) << "the screenshot of the view is blank";
+  EXPECT_EQ(test::read_text(png).substr(1, 3), "PNG");
 }
 
 TEST_F(MoldsE2E, MoldEditsRerunMoldsAndExportOnly)

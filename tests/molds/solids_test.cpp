@@ -99,6 +99,19 @@ TEST(LevelSet, GrooveSweptAlongATiltedPullMatchesTheAnalyticValue)
   EXPECT_NEAR((m.vertices.rowwise() - Eigen::RowVector3d(L / 2, 0, 0)).rowwise().norm().minCoeff(), r, voxel / 4);
 }
 
+TEST(LevelSet, SlopedPieceMatchesSteinersFormula)
+{
+  // One straight piece rising 4 mm over 40 mm, swept 20 mm up: a parallelogram K (area A, perimeter
+  // P) grown by a ball of radius r, whose volume is A · 2r + P · π r² / 2 + 4/3 π r³ (Steiner).
+  const double r = 1.8 * mm, L = 20 * mm, voxel = 0.1 * mm;
+  const Eigen::Vector3d a(0, 0, -2 * mm), b(40 * mm, 3 * mm, 2 * mm);
+  LevelSet piece(voxel);
+  piece.add_swept_tube({a, b}, r, L);
+  const double area = (b - a).head<2>().norm() * L, perimeter = 2 * ((b - a).norm() + L);
+  const double expected = area * 2 * r + perimeter * M_PI * r * r / 2 + 4.0 / 3 * M_PI * r * r * r;
+  EXPECT_NEAR(piece.volume(), expected, 0.002 * expected);
+}
+
 TEST(LevelSet, GroovesTouchingOnAGridPlaneMeshAsOneManifoldCavity)
 {
   // Two parallel grooves of radius 1.8 mm whose walls meet exactly on the plane y = 0, a grid plane at
