@@ -53,8 +53,7 @@ GrooveBody groove_body(const SurfaceMesh& body, const std::vector<std::vector<Ei
   solid.subtract(grooves);
   GrooveBody out;
   out.volume = solid.volume();
-  out.adaptivity = adaptivity;
-  out.mesh = solid.mesh(adaptivity);
+  out.mesh = solid.mesh(adaptivity, &out.adaptivity);
   if (adaptivity > 0 && !check_surface(out.mesh).problems.empty()) {
     out.adaptivity = 0;
     out.mesh = solid.mesh(0);

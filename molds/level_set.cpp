@@ -322,8 +322,9 @@ std::vector<openvdb::Coord> steep_faces(const SurfaceMesh& s, const openvdb::Flo
 
 } // namespace
 
-SurfaceMesh LevelSet::mesh(double adaptivity) const
+SurfaceMesh LevelSet::mesh(double adaptivity, double* used) const
 {
+  if (used) *used = 0;
   // Meshed a thousandth of a voxel inside the zero level: grid values of exactly zero (a groove's
   // wall on a grid plane) put the vertices of neighbouring cells at the same point, and merging them
   // pinches the mesh into non-manifold edges. Inside, not outside, so that a zero stays outside and
@@ -340,9 +341,10 @@ SurfaceMesh LevelSet::mesh(double adaptivity) const
   // Adaptive meshing is confined to where it tilts no face more than the uniform mesh does: cells
   // around the uniform mesh's steep faces (creases, walls thinner than a voxel) stay uniform
   // (OpenVDB's adaptivity mask), and so do cells around any face the adaptive mesh tilts, round by
-  // round. After three rounds the uniform mesh is kept.
+  // round (the walking robot's crossing grooves need three or four). After ten rounds the uniform
+  // mesh is kept.
   auto uniform = std::make_shared<openvdb::BoolTree>(false);
-  constexpr int kRounds = 3, kMargin = 3;  // voxels around a steep face
+  constexpr int kRounds = 10, kMargin = 3;  // voxels around a steep face
   const auto keep_uniform_around = [&](const std::vector<openvdb::Coord>& faces) {
     for (const openvdb::Coord& c : faces) uniform->fill(openvdb::CoordBBox(c.offsetBy(-kMargin), c.offsetBy(kMargin)), true, true);
   };
@@ -351,7 +353,10 @@ SurfaceMesh LevelSet::mesh(double adaptivity) const
     SurfaceMesh adaptive = mesh_with(adaptivity, uniform);
     std::vector<openvdb::Coord> steep = steep_faces(adaptive, *impl_->grid);
     std::erase_if(steep, [&](const openvdb::Coord& c) { return uniform->isValueOn(c); });
-    if (steep.empty()) return adaptive;
+    if (steep.empty()) {
+      if (used) *used = adaptivity;
+      return adaptive;
+    }
     keep_uniform_around(steep);
   }
   return s;

@@ -33,8 +33,9 @@ public:
   void subtract(LevelSet& other);  ///< this − other; empties other
 
   /// A closed triangle mesh of the zero level, outward oriented; adaptivity in [0, 1] merges flat
-  /// regions into fewer, larger triangles.
-  SurfaceMesh mesh(double adaptivity = 0) const;
+  /// regions into fewer, larger triangles. `used` (optional) receives the adaptivity the mesh was
+  /// made with: 0 when adaptive meshing kept tilting faces and the uniform mesh was returned.
+  SurfaceMesh mesh(double adaptivity = 0, double* used = nullptr) const;
   double volume() const;  ///< m³
   double voxel() const;
 
