@@ -6,6 +6,8 @@
 
 #include <Eigen/Geometry>
 #include <fmt/format.h>
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_reduce.h>
 
 #include "mesh/surface_check.hpp"
 #include "mesh/surface_distance.hpp"
@@ -38,24 +40,39 @@ double cone_thickness(const SurfaceDistance& surface, const Eigen::Vector3d& cen
   return d[4];
 }
 
-/// The thinnest wall: each face's inward ray, confirmed by the cone where it looks thin.
+/// The thinnest wall: each face's inward ray, confirmed by the cone where it looks thin. Faces in
+/// parallel; the first face (by index) of the least thickness wins, so the answer does not depend on
+/// the threads.
 double thinnest_wall(const SurfaceMesh& m, double min_wall, Eigen::Vector3d& where)
 {
   const SurfaceDistance surface(m.vertices, m.faces);
-  double thinnest = HUGE_VAL;
-  for (Eigen::Index f = 0; f < m.num_faces(); ++f) {
-    const Eigen::Vector3d a = m.vertices.row(m.faces(f, 0)), b = m.vertices.row(m.faces(f, 1)), c = m.vertices.row(m.faces(f, 2));
-    const Eigen::Vector3d n = (b - a).cross(c - a);
-    if (!(n.norm() > 0)) continue;
-    const Eigen::Vector3d centre = (a + b + c) / 3, inward = -n.normalized();
-    double d = surface.ray_distance(centre, inward, 1e-7);
-    if (d < min_wall) d = cone_thickness(surface, centre, inward);
-    if (d < thinnest) {
-      thinnest = d;
-      where = centre;
-    }
-  }
-  return thinnest;
+  if (m.num_faces() == 0) return HUGE_VAL;
+  surface.ray_distance(m.vertices.row(0), Eigen::Vector3d::UnitZ());  // builds the search trees before the threads share them
+  struct Thinnest {
+    double thickness = HUGE_VAL;
+    Eigen::Index face = -1;
+    bool operator<(const Thinnest& o) const { return thickness < o.thickness || (thickness == o.thickness && face < o.face); }
+  };
+  const auto centre_of = [&](Eigen::Index f) {
+    return Eigen::Vector3d((m.vertices.row(m.faces(f, 0)) + m.vertices.row(m.faces(f, 1)) + m.vertices.row(m.faces(f, 2))) / 3);
+  };
+  const Thinnest best = tbb::parallel_reduce(
+      tbb::blocked_range<Eigen::Index>(0, m.num_faces(), 1024), Thinnest{},
+      [&](const tbb::blocked_range<Eigen::Index>& range, Thinnest t) {
+        for (Eigen::Index f = range.begin(); f != range.end(); ++f) {
+          const Eigen::Vector3d a = m.vertices.row(m.faces(f, 0)), b = m.vertices.row(m.faces(f, 1)), c = m.vertices.row(m.faces(f, 2));
+          const Eigen::Vector3d n = (b - a).cross(c - a);
+          if (!(n.norm() > 0)) continue;
+          const Eigen::Vector3d centre = centre_of(f), inward = -n.normalized();
+          double d = surface.ray_distance(centre, inward, 1e-7);
+          if (d < min_wall) d = cone_thickness(surface, centre, inward);
+          t = std::min(t, Thinnest{d, f});
+        }
+        return t;
+      },
+      [](const Thinnest& x, const Thinnest& y) { return std::min(x, y); });
+  if (best.face >= 0) where = centre_of(best.face);
+  return best.thickness;
 }
 
 } // namespace
