@@ -146,11 +146,13 @@ void MoldsStage::run(StageContext& ctx) const
   using Clock = std::chrono::steady_clock;
   const auto since = [](Clock::time_point t) { return std::chrono::duration<double>(Clock::now() - t).count(); };
   auto started = Clock::now();
-  const GrooveBody groove = groove_body(body, lines, radius, pull, m.voxel);
-  const double groove_mesh_error = std::abs(signed_volume(groove.mesh) - groove.volume) / groove.volume;
-  ctx.log.info("groove body: {} triangles (adaptivity {}), {:.2f} mL (meshed {:.2f} mL), voxel {:.2f} mm, in {:.2f} s",
-               groove.mesh.num_faces(), groove.adaptivity, groove.volume / 1e-6, signed_volume(groove.mesh) / 1e-6, m.voxel / units::mm,
-               since(started));
+  GrooveBody groove = groove_body(body, lines, radius, pull, m.voxel);
+  const auto log_groove = [&] {
+    ctx.log.info("groove body: {} triangles (adaptivity {}), {:.2f} mL (meshed {:.2f} mL), voxel {:.2f} mm, in {:.2f} s",
+                 groove.mesh.num_faces(), groove.adaptivity, groove.volume / 1e-6, signed_volume(groove.mesh) / 1e-6,
+                 m.voxel / units::mm, since(started));
+  };
+  log_groove();
 
   MoldBlockOptions o;
   o.wall = m.wall;
@@ -177,45 +179,39 @@ void MoldsStage::run(StageContext& ctx) const
   Json shots = Json::object(), parts = Json::object();
   std::vector<std::string> failures;
   std::vector<MoldPart> all;
-  const struct {
-    const char* name;
-    const SurfaceMesh* cavity;
-    double silicone;
-    std::vector<Channel> channels;
-  } shot_list[] = {// shot 1 fills the scaled-up groove cavity; its cured part shrinks back to nominal size
-                   {"shot1", &groove.mesh, g3 * groove.volume, {}},
-                   {"shot2", &body, std::max(0.0, g3 * body_volume - groove.volume - muscle_volume + sleeves), channels}};
-  for (const auto& shot : shot_list) {
-    ctx.progress.checkpoint(shot.name == std::string("shot1") ? 0.3 : 0.6, fmt::format("{}: mold block", shot.name));
-    const SurfaceMesh cavity = grow != 1 ? scaled_about(*shot.cavity, centre, grow) : *shot.cavity;
+  // One shot's mold: its parts checked; the problems found, one line each.
+  const auto make_shot = [&](const char* name, const SurfaceMesh& shot_cavity, double silicone, const std::vector<Channel>& shot_channels) {
+    std::vector<std::string> problems;
+    ctx.progress.checkpoint(name == std::string("shot1") ? 0.3 : 0.6, fmt::format("{}: mold block", name));
+    const SurfaceMesh cavity = grow != 1 ? scaled_about(shot_cavity, centre, grow) : shot_cavity;
     Parting parting = m.parting ? Parting{m.parting->point, m.parting->normal.normalized(), 0} : choose_parting(cavity, pull);
     if (m.parting) parting.undercut_area = undercut_area(cavity, parting.point, parting.normal);
     if (parting.undercut_area > kUndercutWarning)
       ctx.log.warn("{}: {:.1f} mm² of the cavity is an undercut for the parting plane: demolding relies on the silicone bending",
-                   shot.name, parting.undercut_area / 1e-6);
+                   name, parting.undercut_area / 1e-6);
     started = Clock::now();
-    const Mold mold = make_mold(cavity, parting, shot.channels, o, shot.name);
-    ctx.log.info("{}: mold block and parts in {:.2f} s", shot.name, since(started));
-    shots[shot.name] = {{"cavity_volume_mL", signed_volume(cavity) / 1e-6},
-                        {"silicone_volume_mL", shot.silicone / 1e-6},
-                        {"silicone_mass_g", shot.silicone * d.material.density * 1e3},
-                        {"parting_point_mm", vec_mm(parting.point)},
-                        {"parting_normal", {parting.normal.x(), parting.normal.y(), parting.normal.z()}},
-                        {"undercut_area_mm2", parting.undercut_area / 1e-6},
-                        {"sprue_mm", vec_mm(mold.sprue)},
-                        {"vents", mold.vents.size()},
-                        {"keys", mold.keys.size()},
-                        {"screw_holes", mold.screws.size()}};
+    const Mold mold = make_mold(cavity, parting, shot_channels, o, name);
+    ctx.log.info("{}: mold block and parts in {:.2f} s", name, since(started));
+    shots[name] = {{"cavity_volume_mL", signed_volume(cavity) / 1e-6},
+                   {"silicone_volume_mL", silicone / 1e-6},
+                   {"silicone_mass_g", silicone * d.material.density * 1e3},
+                   {"parting_point_mm", vec_mm(parting.point)},
+                   {"parting_normal", {parting.normal.x(), parting.normal.y(), parting.normal.z()}},
+                   {"undercut_area_mm2", parting.undercut_area / 1e-6},
+                   {"sprue_mm", vec_mm(mold.sprue)},
+                   {"vents", mold.vents.size()},
+                   {"keys", mold.keys.size()},
+                   {"screw_holes", mold.screws.size()}};
     if (static_cast<int>(mold.screws.size()) < m.screw_holes)
-      ctx.log.warn("{}: room for {} of the {} screw holes asked for (channels and keys take the other sites in the rim)", shot.name,
+      ctx.log.warn("{}: room for {} of the {} screw holes asked for (channels and keys take the other sites in the rim)", name,
                    mold.screws.size(), m.screw_holes);
     for (const MoldPart& p : mold.parts) {
       ctx.progress.checkpoint(-1, "checking " + p.name);
       started = Clock::now();
       const PartCheck c = check_part(p.mesh, d.export_.min_wall, d.export_.printer_volume);
       ctx.log.info("{}: {} triangles, checked in {:.2f} s", p.name, p.mesh.num_faces(), since(started));
-      for (const std::string& problem : c.problems) failures.push_back(fmt::format("part {} {}", p.name, problem));
-      parts[p.name] = {{"shot", shot.name},
+      for (const std::string& problem : c.problems) problems.push_back(fmt::format("part {} {}", p.name, problem));
+      parts[p.name] = {{"shot", name},
                        {"file", p.name + ".stl"},
                        {"triangles", p.mesh.num_faces()},
                        {"volume_mL", c.volume / 1e-6},
@@ -226,7 +222,24 @@ void MoldsStage::run(StageContext& ctx) const
                        {"checks_passed", c.ok()}};
       all.push_back(p);
     }
+    return problems;
+  };
+  // Shot 1 fills the scaled-up groove cavity; its cured part shrinks back to nominal size. The
+  // adaptive mesh of the groove body can leave a facet that a part's checks reject (a sliver wall):
+  // then shot 1 is made again from the uniform mesh, which they have been proven on.
+  failures = make_shot("shot1", groove.mesh, g3 * groove.volume, {});
+  if (!failures.empty() && groove.adaptivity > 0) {
+    ctx.log.info("shot 1 from the adaptive groove body mesh failed its checks ({}); meshing the groove body uniformly", failures.front());
+    all.clear();
+    started = Clock::now();
+    groove = groove_body(body, lines, radius, pull, m.voxel, 0);
+    log_groove();
+    failures = make_shot("shot1", groove.mesh, g3 * groove.volume, {});
   }
+  const std::vector<std::string> shot2 =
+      make_shot("shot2", body, std::max(0.0, g3 * body_volume - groove.volume - muscle_volume + sleeves), channels);
+  failures.insert(failures.end(), shot2.begin(), shot2.end());
+  const double groove_mesh_error = std::abs(signed_volume(groove.mesh) - groove.volume) / groove.volume;
   if (!failures.empty()) {
     std::string list;
     for (const auto& f : failures) list += "\n  " + f;
