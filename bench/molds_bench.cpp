@@ -2,7 +2,7 @@
 // on four legs) with its three hand-routed fibers, at voxel 0.2 mm and 0.1 mm (or the voxels given).
 // The body is meshed and the fibers are moved apart first (not timed); molds + export then run in
 // a child process of their own, so that its peak resident memory is theirs. Goal: ≤ 10 s at 0.1 mm on 2 cores.
-//   build/bench/molds_bench [VOXEL_MM ...]
+//   build/bench/molds_bench [--draft DEG] [VOXEL_MM ...]
 #include <sys/resource.h>
 #include <sys/wait.h>
 #include <unistd.h>
@@ -26,13 +26,14 @@ namespace {
 using Clock = std::chrono::steady_clock;
 
 /// The walking robot with its [[fiber]] routes as they are: no targets, no optimization.
-Design hand_routed_walking_robot(double voxel_mm)
+Design hand_routed_walking_robot(double voxel_mm, double draft_deg)
 {
   Design d = load_design(fs::path(FIBERMOLD_SOURCE_DIR) / "examples" / "walking-robot" / "design.toml");
   d.targets.clear();
   d.optimize.enabled = false;
   d.collide.reoptimize = false;
   d.mold.voxel = voxel_mm * 1e-3;
+  d.mold.draft_deg = draft_deg;
   return d;
 }
 
@@ -44,9 +45,9 @@ double stage_seconds(const fs::path& build, const std::string& stage)
   return at == std::string::npos ? NAN : std::stod(log.substr(at + 8));
 }
 
-void run(double voxel_mm)
+void run(double voxel_mm, double draft_deg)
 {
-  const Design d = hand_routed_walking_robot(voxel_mm);
+  const Design d = hand_routed_walking_robot(voxel_mm, draft_deg);
   const fs::path build = fs::temp_directory_path() / "fibermold-bench-molds";
   fs::remove_all(build);
   const Runner runner(shipped_stages());
@@ -97,9 +98,14 @@ void run(double voxel_mm)
 int main(int argc, char** argv)
 {
   std::vector<double> voxels;
-  for (int i = 1; i < argc; ++i) voxels.push_back(std::stod(argv[i]));
+  double draft_deg = 0;
+  for (int i = 1; i < argc; ++i) {
+    if (std::string(argv[i]) == "--draft" && i + 1 < argc) draft_deg = std::stod(argv[++i]);
+    else voxels.push_back(std::stod(argv[i]));
+  }
   if (voxels.empty()) voxels = {0.2, 0.1};
+  if (draft_deg > 0) std::printf("draft %.1f°\n", draft_deg);
   std::printf("| voxel mm | molds s | export s | wall s | peak MiB | triangles | silicone mL (shot 1 + 2) |\n|---|---|---|---|---|---|---|\n");
   std::fflush(stdout);
-  for (double v : voxels) run(v);
+  for (double v : voxels) run(v, draft_deg);
 }

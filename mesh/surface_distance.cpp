@@ -4,6 +4,8 @@
 #include <iterator>
 #include <vector>
 
+#include <Eigen/Geometry>
+
 #include <CGAL/AABB_face_graph_triangle_primitive.h>
 #include <CGAL/AABB_traits.h>
 #include <CGAL/AABB_tree.h>
@@ -59,14 +61,32 @@ SurfaceDistance::Closest SurfaceDistance::closest(const Eigen::Vector3d& p) cons
 
 double SurfaceDistance::ray_distance(const Eigen::Vector3d& origin, const Eigen::Vector3d& direction, double skip) const
 {
+  return ray_hit(origin, direction, skip).distance;
+}
+
+SurfaceDistance::Hit SurfaceDistance::ray_hit(const Eigen::Vector3d& origin, const Eigen::Vector3d& direction, double skip) const
+{
   const Eigen::Vector3d start = origin + skip * direction;
   const Kernel::Ray_3 ray(Point(start.x(), start.y(), start.z()), Kernel::Vector_3(direction.x(), direction.y(), direction.z()));
   std::vector<Tree::Intersection_and_primitive_id<Kernel::Ray_3>::Type> hits;
   impl_->tree.all_intersections(ray, std::back_inserter(hits));
-  double best = HUGE_VAL;
-  for (const auto& h : hits)
-    if (const Point* p = boost::get<Point>(&h.first)) best = std::min(best, std::sqrt(CGAL::squared_distance(*p, ray.source())));
-  return best + skip;
+  Hit best;
+  for (const auto& h : hits) {
+    const Point* p = boost::get<Point>(&h.first);
+    if (!p) continue;
+    const double d = std::sqrt(CGAL::squared_distance(*p, ray.source()));
+    if (d >= best.distance) continue;
+    best.distance = d;
+    const Mesh::Halfedge_index he = impl_->mesh.halfedge(h.second);
+    const auto at = [&](Mesh::Halfedge_index e) {
+      const Point& q = impl_->mesh.point(impl_->mesh.target(e));
+      return Eigen::Vector3d(q.x(), q.y(), q.z());
+    };
+    const Eigen::Vector3d a = at(he), b = at(impl_->mesh.next(he)), c = at(impl_->mesh.next(impl_->mesh.next(he)));
+    best.normal = (b - a).cross(c - a).normalized();
+  }
+  best.distance += skip;
+  return best;
 }
 
 } // namespace fibermold

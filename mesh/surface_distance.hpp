@@ -3,6 +3,7 @@
 // triangles (CGAL), built once. Used by the skin barrier of the optimizer (section V-B) and the
 // clearance checks of collide, and ray casts for the wall thickness of mold parts.
 
+#include <cmath>
 #include <memory>
 
 #include <Eigen/Core>
@@ -26,6 +27,12 @@ public:
   /// Distance along the ray from `origin` in unit `direction` to the first surface point farther
   /// than `skip`; +∞ when it hits nothing.
   double ray_distance(const Eigen::Vector3d& origin, const Eigen::Vector3d& direction, double skip = 0) const;
+  struct Hit {
+    double distance = HUGE_VAL;  ///< +∞: no hit
+    Eigen::Vector3d normal = Eigen::Vector3d::Zero();  ///< the hit face's unit outward normal
+  };
+  /// The same ray's first hit and the face it hits.
+  Hit ray_hit(const Eigen::Vector3d& origin, const Eigen::Vector3d& direction, double skip = 0) const;
 
 private:
   struct Impl;

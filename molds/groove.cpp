@@ -42,14 +42,16 @@ std::vector<Eigen::Vector3d> simplified(const std::vector<Eigen::Vector3d>& line
 } // namespace
 
 GrooveBody groove_body(const SurfaceMesh& body, const std::vector<std::vector<Eigen::Vector3d>>& fibers, double radius,
-                       const Eigen::Vector3d& pull_in, double voxel, double adaptivity)
+                       const Eigen::Vector3d& pull_in, double voxel, double adaptivity, const Draft* draft)
 {
   const Eigen::Vector3d pull = pull_in.normalized();
   const Eigen::VectorXd heights = body.vertices * pull;
-  const double through = heights.maxCoeff() - heights.minCoeff() + 2 * radius;  // out of the body from anywhere
+  // Out of the (drafted) body from anywhere.
+  const double through = heights.maxCoeff() - heights.minCoeff() + 2 * radius + (draft ? 2 * draft->most() : 0);
   LevelSet solid = LevelSet::from_mesh(body, voxel, pull);
+  if (draft) solid.grow([&](double h) { return draft->offset(h); }, draft->most());
   LevelSet grooves(voxel, pull);
-  for (const auto& fiber : fibers) grooves.add_swept_tube(simplified(fiber, voxel / 10), radius, through);
+  for (const auto& fiber : fibers) grooves.add_swept_tube(simplified(fiber, voxel / 10), radius, through, draft ? draft->slope : 0);
   solid.subtract(grooves);
   GrooveBody out;
   out.volume = solid.volume();

@@ -12,9 +12,11 @@
 #include <openvdb/openvdb.h>
 #include <openvdb/tools/Composite.h>
 #include <openvdb/tools/Interpolation.h>
+#include <openvdb/tools/LevelSetRebuild.h>
 #include <openvdb/tools/LevelSetMeasure.h>
 #include <openvdb/tools/MeshToVolume.h>
 #include <openvdb/tools/Prune.h>
+#include <openvdb/tools/ValueTransformer.h>
 #include <openvdb/tools/SignedFloodFill.h>
 #include <openvdb/tools/VolumeToMesh.h>
 
@@ -162,8 +164,10 @@ std::uint64_t column_key(int i, int j)
 }
 
 /// Writes the band of one piece (distances in voxels, stored × `v` in grid units) into a grid
-/// through `acc`; each voxel keeps the least distance: the union of the pieces.
-void sweep(const SweptSegment& piece, double r, double band, double v, openvdb::FloatGrid::Accessor& acc, DeepSpans& deep)
+/// through `acc`; each voxel keeps the least distance: the union of the pieces. Above the fiber the
+/// piece widens by `taper` per voxel of height (a drafted groove): there the distance to its wall,
+/// inclined by atan(taper), is the horizontal one times cos(atan(taper)).
+void sweep(const SweptSegment& piece, double r, double taper, double band, double v, openvdb::FloatGrid::Accessor& acc, DeepSpans& deep)
 {
   const auto write = [&](const openvdb::Coord& c, double d) {
     if (d >= band) return;
@@ -172,21 +176,26 @@ void sweep(const SweptSegment& piece, double r, double band, double v, openvdb::
     if (!acc.probeValue(c, old)) acc.setValueOn(c, value);
     else if (value < old) acc.setValue(c, value);
   };
-  const double reach = r + band;
+  const double cos_a = 1 / std::sqrt(1 + taper * taper);
+  const double reach = r + band + taper * piece.length;
   const Eigen::Vector3d lo = piece.a.cwiseMin(piece.b).array() - reach, hi = piece.a.cwiseMax(piece.b).array() + reach;
   const int l_lo = static_cast<int>(std::ceil(lo.z())), l_hi = static_cast<int>(std::floor(hi.z() + piece.length));
   for (int i = static_cast<int>(std::ceil(lo.x())); i <= static_cast<int>(std::floor(hi.x())); ++i)
     for (int j = static_cast<int>(std::ceil(lo.y())); j <= static_cast<int>(std::floor(hi.y())); ++j) {
       const SweptSegment::Column column = piece.column(i, j);
-      const double wall = column.horizontal - r;
-      if (wall >= band) continue;
+      const double wall = column.horizontal - r;  // at the column's bottom
+      const auto wall_at = [&](int l) { return (wall - taper * (l - column.bottom)) * cos_a; };
+      if (wall_at(static_cast<int>(std::floor(column.top))) >= band && wall >= band) continue;
       const int bottom = static_cast<int>(std::ceil(column.bottom)), top = static_cast<int>(std::floor(column.top));
-      const bool is_deep = wall <= -band && bottom <= top;
-      if (is_deep) deep[column_key(i, j)].emplace_back(bottom, top);
+      // From this height up the column is deeper inside the piece than the band.
+      const int deep_from = taper > 0 ? static_cast<int>(std::ceil(column.bottom + std::max(0.0, (wall + band / cos_a) / taper)))
+                                      : (wall <= -band ? bottom : top + 1);
+      const bool is_deep = std::max(bottom, deep_from) <= top;
+      if (is_deep) deep[column_key(i, j)].emplace_back(std::max(bottom, deep_from), top);
       for (int l = l_lo; l <= l_hi; ++l) {
         if (l >= bottom && l <= top) {
-          if (is_deep) l = top;
-          else write(openvdb::Coord(i, j, l), wall);
+          if (is_deep && l >= deep_from) l = top;
+          else write(openvdb::Coord(i, j, l), wall_at(l));
           continue;
         }
         write(openvdb::Coord(i, j, l), piece.distance(Eigen::Vector3d(i, j, l)) - r);
@@ -196,7 +205,7 @@ void sweep(const SweptSegment& piece, double r, double band, double v, openvdb::
 
 } // namespace
 
-void LevelSet::add_swept_tube(const std::vector<Eigen::Vector3d>& polyline, double radius, double length)
+void LevelSet::add_swept_tube(const std::vector<Eigen::Vector3d>& polyline, double radius, double length, double taper)
 {
   if (polyline.size() < 2) return;
   const double v = impl_->voxel / kUnit, band = impl_->half_width;  // in voxels from here on
@@ -218,7 +227,7 @@ void LevelSet::add_swept_tube(const std::vector<Eigen::Vector3d>& polyline, doub
   tbb::parallel_for(tbb::blocked_range<std::size_t>(0, pieces.size(), 1), [&](const tbb::blocked_range<std::size_t>& range) {
     Partial& part = partials.local();
     auto acc = part.grid->getAccessor();
-    for (std::size_t k = range.begin(); k != range.end(); ++k) sweep(pieces[k], r, band, v, acc, part.deep);
+    for (std::size_t k = range.begin(); k != range.end(); ++k) sweep(pieces[k], r, taper, band, v, acc, part.deep);
   });
   openvdb::FloatGrid::Ptr tube;
   DeepSpans deep;
@@ -244,6 +253,17 @@ void LevelSet::add_swept_tube(const std::vector<Eigen::Vector3d>& polyline, doub
   openvdb::tools::pruneInactive(tube->tree());
   openvdb::tools::signedFloodFill(tube->tree());
   openvdb::tools::csgUnion(*impl_->grid, *tube);
+}
+
+void LevelSet::grow(const std::function<double(double)>& by_height, double most)
+{
+  // The offset surface must lie inside the band: widen it first when it is too narrow.
+  if (const double needed = std::ceil(most / impl_->voxel) + impl_->half_width; needed > impl_->half_width)
+    impl_->grid = openvdb::tools::levelSetRebuild(*impl_->grid, 0.0f, static_cast<float>(needed));
+  openvdb::tools::foreach(impl_->grid->beginValueOn(), [&](const openvdb::FloatGrid::ValueOnIter& it) {
+    it.setValue(*it - static_cast<float>(by_height(it.getCoord().z() * impl_->voxel) / kUnit));
+  });
+  impl_->grid = openvdb::tools::levelSetRebuild(*impl_->grid, 0.0f, static_cast<float>(impl_->half_width));
 }
 
 void LevelSet::unite(LevelSet& other) { openvdb::tools::csgUnion(*impl_->grid, *other.impl_->grid); }

@@ -3,6 +3,7 @@
 // direction, combined by CSG, and meshed back. The geometric error of a round trip is about a tenth
 // of the voxel size on smooth parts; sharp edges are rounded to about one voxel.
 
+#include <functional>
 #include <memory>
 #include <vector>
 
@@ -27,7 +28,13 @@ public:
 
   /// Adds the solid swept by a ball of `radius` whose centre runs along `polyline` and, from every
   /// point of it, `length` (m) along up: a tube when length is zero, a groove open upward otherwise.
-  void add_swept_tube(const std::vector<Eigen::Vector3d>& polyline, double radius, double length);
+  /// With a `taper` (tan of a draft angle) the groove widens upward: its half-width grows by taper
+  /// per unit of height above the fiber.
+  void add_swept_tube(const std::vector<Eigen::Vector3d>& polyline, double radius, double length, double taper = 0);
+
+  /// Grows the solid outward by by_height(h) (m, ≥ 0, at most `most`) where h is a point's height
+  /// along up (m, from the frame's origin): a variable offset, φ − r(h), rebuilt as a distance field.
+  void grow(const std::function<double(double)>& by_height, double most);
 
   void unite(LevelSet& other);     ///< this ∪ other; empties other
   void subtract(LevelSet& other);  ///< this − other; empties other

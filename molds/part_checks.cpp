@@ -22,6 +22,18 @@ std::string mm3(const Eigen::Vector3d& v)
   return fmt::format("{:.1f} × {:.1f} × {:.1f} mm", v.x() * 1e3, v.y() * 1e3, v.z() * 1e3);
 }
 
+/// How far a ray from inside a part goes to the opposite side of the wall: the first surface it
+/// leaves through, unless it leaves through a face more than 53° off its direction (cos = 0.6). That
+/// face meets the ray's own at an edge of more than 53°, a corner of the part (where a cavity's wall
+/// meets the parting face, or a level-set mesh's step a few µm high), which is no wall; sharper
+/// edges, knife edges, still count. The cone's rays, 30° off the inward normal, see a face at a
+/// right angle to their own at 60° at least.
+double through_wall(const SurfaceDistance& surface, const Eigen::Vector3d& origin, const Eigen::Vector3d& direction)
+{
+  const SurfaceDistance::Hit hit = surface.ray_hit(origin, direction, 1e-7);
+  return hit.normal.dot(direction) >= 0.6 ? hit.distance : HUGE_VAL;
+}
+
 /// Wall thickness at a face, as the shape diameter function does it: the median over a cone of
 /// rays into the material (the inward normal and 8 rays 30° off it) of the distance to the opposite
 /// surface projected on the normal. A single ray would see the facets of a voxelized surface as
@@ -30,11 +42,11 @@ double cone_thickness(const SurfaceDistance& surface, const Eigen::Vector3d& cen
 {
   const Eigen::Vector3d u = inward.unitOrthogonal(), w = inward.cross(u);
   const double tilt = M_PI / 6;
-  std::vector<double> d{surface.ray_distance(centre, inward, 1e-7)};
+  std::vector<double> d{through_wall(surface, centre, inward)};
   for (int k = 0; k < 8; ++k) {
     const double a = 2 * M_PI * k / 8;
     const Eigen::Vector3d dir = std::cos(tilt) * inward + std::sin(tilt) * (std::cos(a) * u + std::sin(a) * w);
-    d.push_back(surface.ray_distance(centre, dir, 1e-7) * std::cos(tilt));
+    d.push_back(through_wall(surface, centre, dir) * std::cos(tilt));
   }
   std::nth_element(d.begin(), d.begin() + 4, d.end());
   return d[4];
@@ -64,7 +76,7 @@ double thinnest_wall(const SurfaceMesh& m, double min_wall, Eigen::Vector3d& whe
           const Eigen::Vector3d n = (b - a).cross(c - a);
           if (!(n.norm() > 0)) continue;
           const Eigen::Vector3d centre = centre_of(f), inward = -n.normalized();
-          double d = surface.ray_distance(centre, inward, 1e-7);
+          double d = through_wall(surface, centre, inward);
           if (d < min_wall) d = cone_thickness(surface, centre, inward);
           t = std::min(t, Thinnest{d, f});
         }

@@ -1,8 +1,8 @@
 #include "pipeline/molds_stage.hpp"
 
 #include <chrono>
-
 #include <cmath>
+#include <optional>
 
 #include <Eigen/Geometry>
 #include <fmt/format.h>
@@ -111,7 +111,6 @@ void MoldsStage::run(StageContext& ctx) const
 {
   const Design& d = ctx.design;
   const MoldOptions& m = d.mold;
-  if (m.draft_deg > 0) bad(d, "[mold].draft_deg", "draft angles are not available yet; remove the key");
 
   const TetMesh mesh = load_tet_mesh(ctx.upstream("mesh", "body.tetmesh"));
   const SurfaceMesh body = body_surface(mesh);
@@ -180,12 +179,13 @@ void MoldsStage::run(StageContext& ctx) const
   std::vector<std::string> failures;
   std::vector<MoldPart> all;
   // One shot's mold: its parts checked; the problems found, one line each.
-  const auto make_shot = [&](const char* name, const SurfaceMesh& shot_cavity, double silicone, const std::vector<Channel>& shot_channels) {
+  const auto make_shot = [&](const char* name, const SurfaceMesh& shot_cavity, Parting parting, double silicone,
+                             const std::vector<Channel>& shot_channels) {
     std::vector<std::string> problems;
     ctx.progress.checkpoint(name == std::string("shot1") ? 0.3 : 0.6, fmt::format("{}: mold block", name));
     const SurfaceMesh cavity = grow != 1 ? scaled_about(shot_cavity, centre, grow) : shot_cavity;
-    Parting parting = m.parting ? Parting{m.parting->point, m.parting->normal.normalized(), 0} : choose_parting(cavity, pull);
-    if (m.parting) parting.undercut_area = undercut_area(cavity, parting.point, parting.normal);
+    parting.point = centre + (parting.point - centre) * grow;
+    parting.undercut_area = undercut_area(cavity, parting.point, parting.normal);
     if (parting.undercut_area > kUndercutWarning)
       ctx.log.warn("{}: {:.1f} mm² of the cavity is an undercut for the parting plane: demolding relies on the silicone bending",
                    name, parting.undercut_area / 1e-6);
@@ -227,17 +227,36 @@ void MoldsStage::run(StageContext& ctx) const
   // Shot 1 fills the scaled-up groove cavity; its cured part shrinks back to nominal size. The
   // adaptive mesh of the groove body can leave a facet that a part's checks reject (a sliver wall):
   // then shot 1 is made again from the uniform mesh, which they have been proven on.
-  failures = make_shot("shot1", groove.mesh, g3 * groove.volume, {});
+  const auto user_parting = [&] { return Parting{m.parting->point, m.parting->normal.normalized(), 0}; };
+  const Parting parting1 = m.parting ? user_parting() : choose_parting(groove.mesh, pull);
+  Parting parting2 = m.parting ? user_parting() : choose_parting(body, pull);
+  // With a draft both shots share shot 1's plane (see molds/draft.hpp), and both cavities are made again drafted.
+  std::optional<Draft> draft;
+  SurfaceMesh shot2_cavity = body;
+  double shot2_volume = body_volume;
+  if (m.draft_deg > 0) {
+    draft = draft_for(body, pull, parting1.point, m.draft_deg * M_PI / 180, m.voxel);
+    parting2 = parting1;
+    started = Clock::now();
+    groove = groove_body(body, lines, radius, pull, m.voxel, kGrooveAdaptivity, &*draft);
+    log_groove();
+    const GrooveBody drafted = groove_body(body, {}, radius, pull, m.voxel, kGrooveAdaptivity, &*draft);
+    shot2_cavity = drafted.mesh;
+    shot2_volume = drafted.volume;
+    ctx.log.info("draft {}°: cavities grown by up to {:.2f} mm at the parting plane; the body takes {:.2f} mL more silicone",
+                 m.draft_deg, draft->most() / units::mm, (shot2_volume - body_volume) / 1e-6);
+  }
+  failures = make_shot("shot1", groove.mesh, parting1, g3 * groove.volume, {});
   if (!failures.empty() && groove.adaptivity > 0) {
     ctx.log.info("shot 1 from the adaptive groove body mesh failed its checks ({}); meshing the groove body uniformly", failures.front());
     all.clear();
     started = Clock::now();
-    groove = groove_body(body, lines, radius, pull, m.voxel, 0);
+    groove = groove_body(body, lines, radius, pull, m.voxel, 0, draft ? &*draft : nullptr);
     log_groove();
-    failures = make_shot("shot1", groove.mesh, g3 * groove.volume, {});
+    failures = make_shot("shot1", groove.mesh, parting1, g3 * groove.volume, {});
   }
   const std::vector<std::string> shot2 =
-      make_shot("shot2", body, std::max(0.0, g3 * body_volume - groove.volume - muscle_volume + sleeves), channels);
+      make_shot("shot2", shot2_cavity, parting2, std::max(0.0, g3 * shot2_volume - groove.volume - muscle_volume + sleeves), channels);
   failures.insert(failures.end(), shot2.begin(), shot2.end());
   const double groove_mesh_error = std::abs(signed_volume(groove.mesh) - groove.volume) / groove.volume;
   if (!failures.empty()) {
@@ -251,6 +270,8 @@ void MoldsStage::run(StageContext& ctx) const
                     {"groove_radius_mm", radius / units::mm},
                     {"groove_mesh_volume_error", groove_mesh_error},
                     {"shrink", m.shrink},
+                    {"draft_deg", m.draft_deg},
+                    {"draft_offset_mm", draft ? draft->most() / units::mm : 0.0},
                     {"shots", shots},
                     {"parts", parts}};
   write_file_atomic(ctx.output_dir / "report.json", report.dump(2) + "\n");

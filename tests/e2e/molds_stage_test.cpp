@@ -193,6 +193,37 @@ TEST_F(MoldsE2E, ReportOpensInAHeadlessBrowser)
   EXPECT_EQ(test::read_text(png).substr(1, 3), "PNG");
 }
 
+TEST_F(MoldsE2E, DraftAngleLeansTheCavitiesAndTheirPartsPass)
+{
+  // A 2° draft: both shots share shot 1's plane; the overmold cavity is the bar grown by
+  // r(z) = (reach − |z − plane|) tan 2° (walls within two voxels of the plane stay upright), of volume
+  // ∫ A + P r + π r² dz over the bar's height plus the slab its nearer end face moves out by.
+  test::write_text(dir_ / "design.toml", std::string(kDesign) + "draft_deg = 2\n[[fiber]]\nname = \"m1\"\npoints = [[0, 0, 0], [60, 0, 0]]\n");
+  const auto r = make();
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const auto report = nlohmann::json::parse(test::read_text(dir_ / "build" / "molds" / "report.json"));
+  ASSERT_EQ(report["parts"].size(), 4u);
+  for (const auto& [name, part] : report["parts"].items()) EXPECT_TRUE(part["checks_passed"].get<bool>()) << name;
+  const auto& shots = report["shots"];
+  const double plane = shots["shot1"]["parting_point_mm"][2];
+  EXPECT_EQ(shots["shot2"]["parting_point_mm"][2].get<double>(), plane);
+  EXPECT_LT(plane, -1.8);  // below the groove
+  const double t = std::tan(2 * M_PI / 180), reach = std::max(8 - plane, plane + 8), flat = 0.6;
+  EXPECT_NEAR(report["draft_offset_mm"].get<double>(), (reach - flat) * t, 1e-9);
+  const auto radius = [&](double z) { return std::max(0.0, reach - std::max(flat, std::abs(z - plane))) * t; };
+  const double A = 60 * 16, P = 2 * (60 + 16);
+  double expected = 0;
+  for (int k = 0; k < 1600; ++k) {
+    const double rz = radius(-8 + (k + 0.5) * 0.01);
+    expected += (A + P * rz + M_PI * rz * rz) * 0.01;
+  }
+  const double end_face = radius(plane < 0 ? -8 : 8);  // the end face nearer the plane moves out by δ = r − δ tan
+  expected += A * end_face / (1 + t);
+  const double cavity = shots["shot2"]["cavity_volume_mL"].get<double>() * 1e3;
+  std::printf("drafted bar: plane z = %.2f mm, shot 2 cavity %.1f mm³, expected %.1f (undrafted %.1f)\n", plane, cavity, expected, A * 16);
+  EXPECT_NEAR(cavity, expected, 0.05 * (expected - A * 16));
+}
+
 TEST_F(MoldsE2E, MoldEditsRerunMoldsAndExportOnly)
 {
   design("");
@@ -227,17 +258,19 @@ TEST_F(MoldsE2E, BadInputsStopWithoutWritingParts)
   EXPECT_THAT(r.err, HasSubstr("[fiber.m1]"));
 }
 
-TEST(MoldsExample, HandRoutedTwistMakesCheckedPartsThroughTheUniformFallback)
+TEST(MoldsExample, HandRoutedTwistMakesCheckedPartsFromTheAdaptiveMesh)
 {
   // The example's helix leaves its groove through the bar's top face, where the adaptive groove
-  // body mesh leaves a 0.04 mm sliver in shot 1's upper part: shot 1 is made again from the
-  // uniform mesh, and every part passes. (Should the adaptive mesh stop making that sliver, this
-  // test needs another case for the fallback.)
+  // body mesh leaves a step 0.03 mm high in shot 1's upper part. The thinnest-wall check once took
+  // that step's corner for a wall of 0.04 mm and sent shot 1 to the uniform mesh; a corner is no
+  // wall, and the adaptive mesh's parts pass.
   test::TempDir dir;
   const fs::path design = fs::path(FIBERMOLD_SOURCE_DIR) / "examples" / "hand-routed-twist" / "design.toml";
   const auto r = test::run_fibermold("make '" + design.string() + "' molds --build-dir build", dir.path());
   ASSERT_EQ(r.exit_code, 0) << r.err;
-  EXPECT_THAT(test::read_text(dir / "build" / "logs" / "molds.log"), HasSubstr("meshing the groove body uniformly"));
+  const std::string log = test::read_text(dir / "build" / "logs" / "molds.log");
+  EXPECT_THAT(log, HasSubstr("(adaptivity 0.01)"));
+  EXPECT_THAT(log, ::testing::Not(HasSubstr("meshing the groove body uniformly")));
   const auto report = nlohmann::json::parse(test::read_text(dir / "build" / "molds" / "report.json"));
   ASSERT_EQ(report["parts"].size(), 4u);
   for (const auto& [name, part] : report["parts"].items()) {

@@ -90,6 +90,30 @@ TEST(Molds, GroovesOfCrossingFibersMatchTheirDenseSweep)
   for (const auto& p : c.problems) ADD_FAILURE() << p.message;
 }
 
+TEST(Molds, DraftedShotsShareTheirPartingAndShot1FitsShot2)
+{
+  // A 3° draft on the box: shot 1's plane (below the groove) serves both shots; every part passes its
+  // checks, the drafted groove body lies inside the drafted shot 2 cavity, and neither cavity has an
+  // undercut.
+  const BoxBody b;
+  const double voxel = 0.25 * mm;
+  const Eigen::Vector3d pull(0, 0, 1);
+  const Parting parting = choose_parting(groove_body(b.body, {b.fiber}, b.radius, pull, voxel).mesh, pull);
+  const Draft draft = draft_for(b.body, pull, parting.point, 3 * M_PI / 180, voxel);
+  EXPECT_NEAR(draft.reach, 10 * mm - parting.point.z(), 1e-12);
+  const GrooveBody shot1 = groove_body(b.body, {b.fiber}, b.radius, pull, voxel, kGrooveAdaptivity, &draft);
+  const GrooveBody shot2 = groove_body(b.body, {}, b.radius, pull, voxel, kGrooveAdaptivity, &draft);
+  const double outside = signed_volume(mesh_difference(shot1.mesh, shot2.mesh));
+  std::printf("drafted: parting z = %.2f mm, offset at the plane %.2f mm; shot 1 %.1f mm³, shot 2 %.1f mm³, shot 1 outside shot 2 %.3f mm³\n",
+              parting.point.z() / mm, draft.most() / mm, shot1.volume / 1e-9, shot2.volume / 1e-9, outside / 1e-9);
+  EXPECT_LT(outside, 1e-3 * shot1.volume);
+  EXPECT_GT(shot2.volume, signed_volume(b.body) + 240 * mm * draft.reach * draft.reach * draft.slope / 2);
+  for (const auto& [name, cavity] : {std::pair{"shot1", shot1.mesh}, std::pair{"shot2", shot2.mesh}}) {
+    EXPECT_LT(undercut_area(cavity, parting.point, pull), 0.5e-6) << name;
+    expect_parts_ok(make_mold(cavity, parting, {}, {}, name));
+  }
+}
+
 TEST(Molds, OvermoldShotPartsPutBackTogetherMakeTheBlockMinusTheCavity)
 {
   const BoxBody b;

@@ -112,6 +112,58 @@ TEST(LevelSet, SlopedPieceMatchesSteinersFormula)
   EXPECT_NEAR(piece.volume(), expected, 0.002 * expected);
 }
 
+TEST(LevelSet, DraftedBoxLeansItsWallsByTheAngle)
+{
+  // A 100 × 20 × 20 mm box grown by r(z) = (10 mm − |z|) tan 3° (parting plane z = 0): every
+  // section is its rectangle grown by a disc of r(z), of area A + P r + π r², so the volume is
+  // ∫ A + P r + π r² dz, and the walls lean out by 3° toward the plane.
+  const double voxel = 0.2 * mm, t = std::tan(3 * M_PI / 180), reach = 10 * mm;
+  LevelSet box = LevelSet::from_mesh(box_solid({0, -10 * mm, -10 * mm}, {100 * mm, 10 * mm, 10 * mm}), voxel);
+  box.grow([&](double z) { return std::max(0.0, reach - std::abs(z)) * t; }, reach * t);
+  const double A = 100 * mm * 20 * mm, P = 240 * mm;
+  const double expected = 2 * reach * A + P * reach * reach * t + M_PI * 2 * reach * reach * reach * t * t / 3;
+  const SurfaceMesh m = box.mesh(0);
+  expect_valid_solid(m, "drafted box");
+  std::printf("drafted box: %.1f mm³ (mesh %.1f), analytic %.1f (undrafted %.1f)\n", box.volume() / 1e-9, signed_volume(m) / 1e-9,
+              expected / 1e-9, 2 * reach * A / 1e-9);
+  EXPECT_NEAR(box.volume(), expected, 0.002 * expected);
+  EXPECT_NEAR(signed_volume(m), expected, 0.002 * expected);
+  // The end wall x = 100 mm, measured along y = 0: 100 mm + r(z).
+  for (const double z : {-8.0, -4.0, 0.0, 4.0, 8.0}) {
+    double x = 0;
+    for (Eigen::Index i = 0; i < m.num_vertices(); ++i)
+      if (std::abs(m.vertices(i, 1)) < 2 * mm && std::abs(m.vertices(i, 2) - z * mm) < voxel) x = std::max(x, m.vertices(i, 0));
+    EXPECT_NEAR(x, 100 * mm + (reach - std::abs(z * mm)) * t, voxel / 4) << "z = " << z << " mm";
+  }
+}
+
+TEST(LevelSet, TaperedGrooveWidensUpwardByTheDraft)
+{
+  // A groove of radius 1.8 mm in the 100 × 20 × 20 mm box, widening by tan 3° per mm above the fiber:
+  // its cross-section in the box is a half disc and a trapezoid, π r²/2 + 2 r h + h² tan 3°.
+  const double r = 1.8 * mm, h = 10 * mm, L = 100 * mm, voxel = 0.2 * mm, t = std::tan(3 * M_PI / 180);
+  LevelSet body = LevelSet::from_mesh(box_solid({0, -10 * mm, -10 * mm}, {L, 10 * mm, 10 * mm}), voxel);
+  LevelSet groove(voxel);
+  groove.add_swept_tube({{-mm, 0, 0}, {L / 2, 0, 0}, {L + mm, 0, 0}}, r, h + 2 * r, t);
+  body.subtract(groove);
+  const double expected = L * 400e-6 - L * (2 * r * h + h * h * t + M_PI * r * r / 2);
+  const SurfaceMesh m = body.mesh(0);
+  expect_valid_solid(m, "tapered groove body");
+  std::printf("tapered groove body: %.1f mm³, analytic %.1f (untapered %.1f)\n", body.volume() / 1e-9, expected / 1e-9,
+              (expected + L * h * h * t) / 1e-9);
+  EXPECT_NEAR(body.volume(), expected, 0.003 * expected);
+  // The groove's half-width at the top face is r + h tan 3°; at the fiber it is r.
+  double top = HUGE_VAL, bottom = HUGE_VAL;
+  for (Eigen::Index i = 0; i < m.num_vertices(); ++i) {
+    const Eigen::Vector3d p = m.vertices.row(i);
+    if (p.x() < 20 * mm || p.x() > 80 * mm || p.y() < 0) continue;
+    if (std::abs(p.z() - (h - voxel)) < voxel / 2) top = std::min(top, p.y());
+    if (std::abs(p.z()) < voxel / 2) bottom = std::min(bottom, p.y());
+  }
+  EXPECT_NEAR(top, r + (h - voxel) * t, voxel / 4);
+  EXPECT_NEAR(bottom, r, voxel / 4);
+}
+
 TEST(LevelSet, GroovesTouchingOnAGridPlaneMeshAsOneManifoldCavity)
 {
   // Two parallel grooves of radius 1.8 mm whose walls meet exactly on the plane y = 0, a grid plane at
