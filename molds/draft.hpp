@@ -19,18 +19,22 @@
 namespace fibermold {
 
 struct Draft {
-  double parting = 0;  ///< m, the parting plane's height along pull
-  double reach = 0;    ///< m, the cavity's farthest height from it
-  double slope = 0;    ///< tan of the draft angle
-  double flat = 0;     ///< m: within this of the plane the walls stay parallel to pull
+  double parting = 0; ///< m, the parting plane's height along pull
+  double reach = 0;   ///< m, the cavity's farthest height from it
+  double slope = 0;   ///< tan of the draft angle
+  double flat = 0;    ///< m: within this of the plane the walls stay parallel to pull
 
-  double offset(double height) const { return std::max(0.0, reach - std::max(flat, std::abs(height - parting))) * slope; }
+  double offset(double height) const
+  {
+    return std::max(0.0, reach - std::max(flat, std::abs(height - parting))) * slope;
+  }
   double most() const { return std::max(0.0, reach - flat) * slope; }
 };
 
 /// The draft of `angle` (radians) for a cavity and the parting plane through `point` normal to pull,
 /// on a grid of `voxel`.
-inline Draft draft_for(const SurfaceMesh& cavity, const Eigen::Vector3d& pull, const Eigen::Vector3d& point, double angle, double voxel)
+inline Draft draft_for(const SurfaceMesh& cavity, const Eigen::Vector3d& pull, const Eigen::Vector3d& point,
+                       double angle, double voxel)
 {
   const Eigen::Vector3d u = pull.normalized();
   const Eigen::VectorXd heights = cavity.vertices * u;

@@ -18,7 +18,8 @@ const Eigen::Vector3d kPrinter(0.25, 0.21, 0.21);
 SurfaceMesh moved(SurfaceMesh m, double x, double z, double to_x, double to_z)
 {
   for (Eigen::Index i = 0; i < m.num_vertices(); ++i)
-    if (std::abs(m.vertices(i, 0) - x) < 1e-9 && std::abs(m.vertices(i, 2) - z) < 1e-9) m.vertices(i, 0) = to_x, m.vertices(i, 2) = to_z;
+    if (std::abs(m.vertices(i, 0) - x) < 1e-9 && std::abs(m.vertices(i, 2) - z) < 1e-9)
+      m.vertices(i, 0) = to_x, m.vertices(i, 2) = to_z;
   return m;
 }
 
