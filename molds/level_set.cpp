@@ -188,8 +188,9 @@ void sweep(const SweptSegment& piece, double r, double taper, double band, doubl
       if (wall_at(static_cast<int>(std::floor(column.top))) >= band && wall >= band) continue;
       const int bottom = static_cast<int>(std::ceil(column.bottom)), top = static_cast<int>(std::floor(column.top));
       // From this height up the column is deeper inside the piece than the band.
-      const int deep_from = taper > 0 ? static_cast<int>(std::ceil(column.bottom + std::max(0.0, (wall + band / cos_a) / taper)))
-                                      : (wall <= -band ? bottom : top + 1);
+      const double deep_height = taper > 0 ? std::ceil(column.bottom + std::max(0.0, (wall + band / cos_a) / taper))
+                                           : (wall <= -band ? bottom : top + 1);
+      const int deep_from = static_cast<int>(std::min(deep_height, top + 1.0));
       const bool is_deep = std::max(bottom, deep_from) <= top;
       if (is_deep) deep[column_key(i, j)].emplace_back(std::max(bottom, deep_from), top);
       for (int l = l_lo; l <= l_hi; ++l) {
@@ -205,6 +206,8 @@ void sweep(const SweptSegment& piece, double r, double taper, double band, doubl
 
 } // namespace
 
+// With a taper, the distance above a piece's top is to its untapered cap: the cap is not exact, so
+// grooves are swept well out of the solid they are cut from (groove_body's `through`).
 void LevelSet::add_swept_tube(const std::vector<Eigen::Vector3d>& polyline, double radius, double length, double taper)
 {
   if (polyline.size() < 2) return;
@@ -259,7 +262,7 @@ void LevelSet::grow(const std::function<double(double)>& by_height, double most)
 {
   // The offset surface must lie inside the band: widen it first when it is too narrow.
   if (const double needed = std::ceil(most / impl_->voxel) + impl_->half_width; needed > impl_->half_width)
-    impl_->grid = openvdb::tools::levelSetRebuild(*impl_->grid, 0.0f, static_cast<float>(needed));
+    impl_->grid = openvdb::tools::levelSetRebuild(*impl_->grid, 0.0f, static_cast<float>(needed), static_cast<float>(impl_->half_width));
   openvdb::tools::foreach(impl_->grid->beginValueOn(), [&](const openvdb::FloatGrid::ValueOnIter& it) {
     it.setValue(*it - static_cast<float>(by_height(it.getCoord().z() * impl_->voxel) / kUnit));
   });

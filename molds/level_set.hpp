@@ -34,6 +34,7 @@ public:
 
   /// Grows the solid outward by by_height(h) (m, ≥ 0, at most `most`) where h is a point's height
   /// along up (m, from the frame's origin): a variable offset, φ − r(h), rebuilt as a distance field.
+  /// by_height is called from several threads at once.
   void grow(const std::function<double(double)>& by_height, double most);
 
   void unite(LevelSet& other);     ///< this ∪ other; empties other

@@ -25,9 +25,9 @@ std::string mm3(const Eigen::Vector3d& v)
 /// How far a ray from inside a part goes to the opposite side of the wall: the first surface it
 /// leaves through, unless it leaves through a face more than 53° off its direction (cos = 0.6). That
 /// face meets the ray's own at an edge of more than 53°, a corner of the part (where a cavity's wall
-/// meets the parting face, or a level-set mesh's step a few µm high), which is no wall; sharper
-/// edges, knife edges, still count. The cone's rays, 30° off the inward normal, see a face at a
-/// right angle to their own at 60° at least.
+/// meets the parting face, or a level-set mesh's step a few µm high), which is no wall; knife edges
+/// sharper than about 45° still count (most of the cone's rays see their far side). The cone's rays,
+/// 30° off the inward normal, see a face at a right angle to their own at 60° at least.
 double through_wall(const SurfaceDistance& surface, const Eigen::Vector3d& origin, const Eigen::Vector3d& direction)
 {
   const SurfaceDistance::Hit hit = surface.ray_hit(origin, direction, 1e-7);
@@ -77,7 +77,9 @@ double thinnest_wall(const SurfaceMesh& m, double min_wall, Eigen::Vector3d& whe
           if (!(n.norm() > 0)) continue;
           const Eigen::Vector3d centre = centre_of(f), inward = -n.normalized();
           double d = through_wall(surface, centre, inward);
-          if (d < min_wall) d = cone_thickness(surface, centre, inward);
+          // A short ray, or one that left through a steep face (a corner, or a tilted facet of a
+          // thin wall): the cone decides.
+          if (d < min_wall || !std::isfinite(d)) d = cone_thickness(surface, centre, inward);
           t = std::min(t, Thinnest{d, f});
         }
         return t;

@@ -234,6 +234,7 @@ void MoldsStage::run(StageContext& ctx) const
   std::optional<Draft> draft;
   SurfaceMesh shot2_cavity = body;
   double shot2_volume = body_volume;
+  bool shot2_adaptive = false;
   if (m.draft_deg > 0) {
     draft = draft_for(body, pull, parting1.point, m.draft_deg * M_PI / 180, m.voxel);
     parting2 = parting1;
@@ -243,6 +244,9 @@ void MoldsStage::run(StageContext& ctx) const
     const GrooveBody drafted = groove_body(body, {}, radius, pull, m.voxel, kGrooveAdaptivity, &*draft);
     shot2_cavity = drafted.mesh;
     shot2_volume = drafted.volume;
+    shot2_adaptive = drafted.adaptivity > 0;
+    // The sockets reach end_channel_length beyond the drafted skin.
+    for (Channel& c : channels) c.socket += draft->offset(c.start.dot(pull));
     ctx.log.info("draft {}°: cavities grown by up to {:.2f} mm at the parting plane; the body takes {:.2f} mL more silicone",
                  m.draft_deg, draft->most() / units::mm, (shot2_volume - body_volume) / 1e-6);
   }
@@ -255,8 +259,16 @@ void MoldsStage::run(StageContext& ctx) const
     log_groove();
     failures = make_shot("shot1", groove.mesh, parting1, g3 * groove.volume, {});
   }
-  const std::vector<std::string> shot2 =
-      make_shot("shot2", shot2_cavity, parting2, std::max(0.0, g3 * shot2_volume - groove.volume - muscle_volume + sleeves), channels);
+  const auto shot2_silicone = [&] { return std::max(0.0, g3 * shot2_volume - groove.volume - muscle_volume + sleeves); };
+  std::vector<std::string> shot2 = make_shot("shot2", shot2_cavity, parting2, shot2_silicone(), channels);
+  if (!shot2.empty() && shot2_adaptive) {
+    ctx.log.info("shot 2 from the adaptive drafted body mesh failed its checks ({}); meshing it uniformly", shot2.front());
+    std::erase_if(all, [](const MoldPart& p) { return p.name.starts_with("shot2"); });
+    const GrooveBody drafted = groove_body(body, {}, radius, pull, m.voxel, 0, &*draft);
+    shot2_cavity = drafted.mesh;
+    shot2_volume = drafted.volume;
+    shot2 = make_shot("shot2", shot2_cavity, parting2, shot2_silicone(), channels);
+  }
   failures.insert(failures.end(), shot2.begin(), shot2.end());
   const double groove_mesh_error = std::abs(signed_volume(groove.mesh) - groove.volume) / groove.volume;
   if (!failures.empty()) {
