@@ -89,6 +89,15 @@ double thinnest_wall(const SurfaceMesh& m, double min_wall, Eigen::Vector3d& whe
   return best.thickness;
 }
 
+/// The part as its STL file holds it: coordinates as float32 millimetres. Its measures do not depend
+/// on the last bits of the booleans' arithmetic, which vary from run to run (CGAL's corefinement),
+/// so that the same design gives the same report, and they are the printed part's.
+SurfaceMesh as_written(SurfaceMesh m)
+{
+  m.vertices = (m.vertices * 1e3).cast<float>().cast<double>() / 1e3;
+  return m;
+}
+
 } // namespace
 
 PartCheck check_part(const SurfaceMesh& part, double min_wall, const Eigen::Vector3d& printer)
@@ -98,13 +107,14 @@ PartCheck check_part(const SurfaceMesh& part, double min_wall, const Eigen::Vect
   for (const SurfaceProblem& p : surface.problems)
     out.problems.push_back(fmt::format("{}, e.g. near ({:.1f}, {:.1f}, {:.1f}) mm", p.message, p.where.x() * 1e3, p.where.y() * 1e3,
                                        p.where.z() * 1e3));
-  out.volume = signed_volume(part);
-  out.size = part.vertices.colwise().maxCoeff() - part.vertices.colwise().minCoeff();
+  const SurfaceMesh written = as_written(part);
+  out.volume = signed_volume(written);
+  out.size = written.vertices.colwise().maxCoeff() - written.vertices.colwise().minCoeff();
   if (!surface.ok()) return out;  // the rest needs a valid solid
   if (const int shells = count_shells(part); shells != 1)
     out.problems.push_back(fmt::format("is {} separate pieces or has a closed void, not one solid", shells));
   Eigen::Vector3d where = Eigen::Vector3d::Zero();
-  out.min_thickness = thinnest_wall(part, min_wall, where);
+  out.min_thickness = thinnest_wall(written, min_wall, where);
   if (out.min_thickness < min_wall * (1 - 1e-6))
     out.problems.push_back(fmt::format("has a wall of {:.2f} mm near ({:.1f}, {:.1f}, {:.1f}) mm, thinner than [export] min_wall = {:.2f} mm",
                                        out.min_thickness * 1e3, where.x() * 1e3, where.y() * 1e3, where.z() * 1e3, min_wall * 1e3));

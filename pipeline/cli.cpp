@@ -17,6 +17,7 @@
 #include "pipeline/runner.hpp"
 #include "pipeline/simulate_command.hpp"
 #include "pipeline/stages.hpp"
+#include "pipeline/sweep_command.hpp"
 #include "pipeline/terminal_progress.hpp"
 
 #ifndef FIBERMOLD_DEFAULT_DESIGN
@@ -145,6 +146,25 @@ int fibermold_main(int argc, char** argv)
   simulate->add_option("--pressure", pressures, "FIBER=kPa, repeatable");
   simulate->add_option("--build-dir", build_dir_option, "Build folder (default: out/<design name>)");
 
+  SweepRequest sweep_request;
+  std::vector<std::string> sbatch_flags;
+  CLI::App* sweep = app.add_subcommand("sweep", "Many designs: the cases of a sweep file, as local processes or Slurm job arrays");
+  sweep->add_option("SWEEP", sweep_request.sweep, "The sweep file (docs/sweep.md)")->required();
+  sweep->add_option("--engine", sweep_request.engine, "local (processes on this machine) or slurm (job arrays)")->capture_default_str();
+  sweep->add_option("--jobs", sweep_request.jobs, "local: tasks at once (default: one per hardware thread)");
+  sweep->add_option("--build-dir", sweep_request.build_dir, "Sweep folder (default: out/sweep-<name>)");
+  sweep->add_flag("--no-wait{false}", sweep_request.wait, "slurm: return once the jobs are submitted");
+  sweep->add_flag("--status", sweep_request.status, "Report each stage's builds and the queue; run nothing");
+  sweep->add_option("--partition", sweep_request.slurm.partition, "slurm: partition");
+  sweep->add_option("--time", sweep_request.slurm.time, "slurm: time limit per task, e.g. 02:00:00");
+  sweep->add_option("--cpus-per-task", sweep_request.slurm.cpus_per_task, "slurm: CPUs per task");
+  sweep->add_option("--sbatch-flag", sweep_request.slurm.extra, "slurm: one more sbatch flag, repeatable (e.g. --sbatch-flag=--mem=4G)");
+
+  std::vector<std::string> task_words;
+  CLI::App* sweep_task = app.add_subcommand("sweep-task", "One task of a sweep (run by `fibermold sweep`)");
+  sweep_task->group("");  // hidden from --help
+  sweep_task->add_option("BUILD_DIR STAGE CASE", task_words)->expected(3)->required();
+
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
@@ -155,6 +175,8 @@ int fibermold_main(int argc, char** argv)
   install_signal_handlers();
   try {
     const Runner runner(shipped_stages());
+    if (sweep->parsed()) return run_sweep(sweep_request, runner);
+    if (sweep_task->parsed()) return run_sweep_task(task_words[0], task_words[1], task_words[2], runner);
     const DesignAndStages args =
         split_arguments(words, FIBERMOLD_DEFAULT_DESIGN,
                         check->parsed() || simulate->parsed() ? std::vector<std::string>{} : runner.stage_names());

@@ -380,12 +380,23 @@ const std::vector<std::string> kSections = {"design", "material", "mesh",     "s
                                             "collide", "mold",    "export"};
 const std::vector<std::string> kArraySections = {"fixed", "fiber", "tracking_curve", "target"};
 
+} // namespace
+
+const std::vector<std::string>& design_sections() { return kSections; }
+
+bool is_array_section(std::string_view section)
+{
+  return std::find(kArraySections.begin(), kArraySections.end(), section) != kArraySections.end();
+}
+
 std::string default_design_name(const fs::path& file)
 {
   const std::string stem = file.stem().string();
   if (stem == "design" && file.parent_path().has_filename()) return file.parent_path().filename().string();
   return stem;
 }
+
+namespace {
 
 /// Names become folder and file names (out/<design>/, targets/<name>.vtu): letters, digits, '-', '_'
 /// and '.', not starting with '.'.

@@ -103,6 +103,10 @@ SurfaceMesh scaled_about(SurfaceMesh m, const Eigen::Vector3d& centre, double fa
 /// mold holds on to: it is reported but not warned about.
 constexpr double kUndercutWarning = 1e-6;
 
+/// A reported quantity to six decimals (mL: a nanolitre): the digits below vary with the number of
+/// threads that summed it (OpenVDB's level set volume), and the same design should give the same report.
+double six_places(double v) { return std::round(v * 1e6) / 1e6; }
+
 Json vec_mm(const Eigen::Vector3d& v) { return {v.x() / units::mm, v.y() / units::mm, v.z() / units::mm}; }
 
 } // namespace
@@ -192,9 +196,9 @@ void MoldsStage::run(StageContext& ctx) const
     started = Clock::now();
     const Mold mold = make_mold(cavity, parting, shot_channels, o, name);
     ctx.log.info("{}: mold block and parts in {:.2f} s", name, since(started));
-    shots[name] = {{"cavity_volume_mL", signed_volume(cavity) / 1e-6},
-                   {"silicone_volume_mL", silicone / 1e-6},
-                   {"silicone_mass_g", silicone * d.material.density * 1e3},
+    shots[name] = {{"cavity_volume_mL", six_places(signed_volume(cavity) / 1e-6)},
+                   {"silicone_volume_mL", six_places(silicone / 1e-6)},
+                   {"silicone_mass_g", six_places(silicone * d.material.density * 1e3)},
                    {"parting_point_mm", vec_mm(parting.point)},
                    {"parting_normal", {parting.normal.x(), parting.normal.y(), parting.normal.z()}},
                    {"undercut_area_mm2", parting.undercut_area / 1e-6},
@@ -214,7 +218,7 @@ void MoldsStage::run(StageContext& ctx) const
       parts[p.name] = {{"shot", name},
                        {"file", p.name + ".stl"},
                        {"triangles", p.mesh.num_faces()},
-                       {"volume_mL", c.volume / 1e-6},
+                       {"volume_mL", six_places(c.volume / 1e-6)},
                        {"size_mm", vec_mm(c.size)},
                        {"min_wall_mm", c.min_thickness / units::mm},
                        {"fits_printer", c.fits},
@@ -280,7 +284,7 @@ void MoldsStage::run(StageContext& ctx) const
   write_stl(ctx.output_dir / "groove-body.stl", groove.mesh, "fibermold groove body, shot 1 (mm)");
   const Json report{{"voxel_mm", m.voxel / units::mm},
                     {"groove_radius_mm", radius / units::mm},
-                    {"groove_mesh_volume_error", groove_mesh_error},
+                    {"groove_mesh_volume_error", six_places(groove_mesh_error)},
                     {"shrink", m.shrink},
                     {"draft_deg", m.draft_deg},
                     {"draft_offset_mm", draft ? draft->most() / units::mm : 0.0},

@@ -167,15 +167,40 @@ std::vector<std::string> Runner::closure(const std::vector<std::string>& targets
   return ordered;
 }
 
+namespace {
+
+/// The design values a stage reads.
+std::map<std::string, std::string> values_read(const Stage& stage, const Design& design)
+{
+  std::map<std::string, std::string> out;
+  const std::vector<std::string> prefixes = stage.design_keys();
+  for (const auto& [key, value] : design.values)
+    if (std::any_of(prefixes.begin(), prefixes.end(), [&](const std::string& p) { return design_key_matches(key, p); }))
+      out[key] = value;
+  return out;
+}
+
+} // namespace
+
+std::map<std::string, std::string> Runner::fingerprints(const Design& design) const
+{
+  std::map<std::string, std::string> out;
+  for (const auto& stage : stages_) {
+    std::string text = fmt::format("{} {} v{}\n", program_, stage->name(), stage->version());
+    for (const auto& [key, value] : values_read(*stage, design)) text += key + " = " + value + "\n";
+    for (const fs::path& file : stage->input_files(design)) text += file.string() + " " + hash_file(file) + "\n";
+    for (const std::string& up : stage->upstream()) text += up + " " + out.at(up) + "\n";
+    out[stage->name()] = hash_bytes(text);
+  }
+  return out;
+}
+
 Stamp Runner::current_inputs(const Stage& stage, const Design& design, const fs::path& build_dir) const
 {
   Stamp s;
   s.program = program_;
   s.stage_version = stage.version();
-  const std::vector<std::string> prefixes = stage.design_keys();
-  for (const auto& [key, value] : design.values)
-    if (std::any_of(prefixes.begin(), prefixes.end(), [&](const std::string& p) { return design_key_matches(key, p); }))
-      s.design[key] = value;
+  s.design = values_read(stage, design);
   for (const fs::path& file : stage.input_files(design)) s.files[file.string()] = hash_file(file);
   for (const std::string& up : stage.upstream())
     if (auto up_stamp = Stamp::load(stamp_path(build_dir, up)))

@@ -6,6 +6,7 @@
 
 #include <filesystem>
 #include <functional>
+#include <map>
 #include <memory>
 #include <stdexcept>
 #include <string>
@@ -72,6 +73,11 @@ public:
   /// Throws StageFailed, InputError (bad input found by a stage) or Interrupted.
   std::vector<StageRun> make(const Design& design, const MakeOptions& options,
                              const ProgressFactory& progress = {}) const;
+
+  /// Per stage, a hash of everything that decides its outputs before it runs: its design values,
+  /// input files and upstream stages' fingerprints. Designs that agree on a stage's fingerprint
+  /// can share its outputs (fibermold sweep).
+  std::map<std::string, std::string> fingerprints(const Design& design) const;
 
   /// Removes the outputs, stamps and logs of the given stages (all when empty).
   void clean(const std::filesystem::path& build_dir, const std::vector<std::string>& targets = {}) const;
