@@ -125,6 +125,11 @@ Diagnostic at_sweep_line(const SweepFile& sweep, const std::vector<SweepValue>& 
 std::vector<SweepCase> expand_sweep(const SweepFile& sweep)
 {
   const Design base_design = load_design(sweep.base); // the base's own problems, at its own lines
+  for (const std::string& name : sweep.restarts.fibers)
+    if (std::none_of(base_design.fibers.begin(), base_design.fibers.end(),
+                     [&](const Fiber& f) { return f.name == name; }))
+      throw InputError(Diagnostic{sweep.file, sweep.restarts.line, 0, "[restarts].fibers",
+                                  fmt::format("the base design has no [[fiber]] named '{}'", name)});
   const toml::table base = toml::parse_file(sweep.base.string());
   std::vector<SweepCase> out;
   std::vector<Diagnostic> problems;
@@ -154,9 +159,7 @@ std::vector<SweepCase> expand_sweep(const SweepFile& sweep)
       if (!design["design"]["name"]) design["design"].as_table()->insert_or_assign("name", base_design.design.name);
       absolute_paths(design, sweep.base.parent_path());
       std::ostringstream text;
-      text << "# Made by fibermold sweep from " << sweep.file.string() << " (base design " << sweep.base.string()
-           << ")\n"
-           << design << "\n";
+      text << "# Made by fibermold sweep from the base design " << sweep.base.string() << "\n" << design << "\n";
       one.design = text.str();
       try {
         parse_design(one.design, sweep.base);

@@ -1,6 +1,7 @@
 #include "pipeline/sweep_command.hpp"
 
 #include <fcntl.h>
+#include <signal.h>
 #include <spawn.h>
 #include <sys/wait.h>
 #include <unistd.h>
@@ -20,6 +21,9 @@
 
 #include "core/atomic_file.hpp"
 #include "core/input_error.hpp"
+#include "core/progress.hpp"
+#include "pipeline/build_lock.hpp"
+#include "pipeline/content_hash.hpp"
 #include "pipeline/design_file.hpp"
 #include "pipeline/sweep_cases.hpp"
 #include "pipeline/sweep_plan.hpp"
@@ -44,11 +48,12 @@ std::string quoted(const std::string& s)
   return out + "'";
 }
 
-/// A command's standard output and exit status.
-std::pair<int, std::string> capture(const std::string& command)
+/// A command's standard output and exit status; its standard error goes to `errors` when given
+/// (else to ours).
+std::pair<int, std::string> capture(const std::string& command, const fs::path& errors = {})
 {
   std::string out;
-  FILE* pipe = popen((command + " 2>&1").c_str(), "r");
+  FILE* pipe = popen((errors.empty() ? command : command + " 2>" + quoted(errors.string())).c_str(), "r");
   if (!pipe) return {-1, out};
   char buffer[4096];
   while (fgets(buffer, sizeof buffer, pipe)) out += buffer;
@@ -145,8 +150,8 @@ std::vector<TaskResult> run_local(const SweepPlan& plan, const std::map<std::str
     fmt::print("{}: {} task(s)\n", stage, it->second.size());
     std::fflush(stdout);
     std::map<pid_t, Clock::time_point> since;
-    while (next < it->second.size() || !running.empty()) {
-      while (next < it->second.size() && static_cast<int>(running.size()) < jobs) {
+    while ((next < it->second.size() && !interrupt_requested()) || !running.empty()) {
+      while (next < it->second.size() && static_cast<int>(running.size()) < jobs && !interrupt_requested()) {
         const std::string& id = it->second[next++];
         TaskResult r{stage, id, 0, 0, task_output(plan, build_dir, id, stage)};
         fs::create_directories(r.output.parent_path());
@@ -161,13 +166,20 @@ std::vector<TaskResult> run_local(const SweepPlan& plan, const std::map<std::str
         pid_t pid = 0;
         const int failed = posix_spawn(&pid, program.c_str(), &actions, nullptr, argv.data(), environ);
         posix_spawn_file_actions_destroy(&actions);
-        if (failed) throw std::runtime_error(fmt::format("cannot start {}: {}", program, std::strerror(failed)));
+        if (failed) {
+          for (const auto& [child, task] : running) ::waitpid(child, nullptr, 0);
+          throw std::runtime_error(fmt::format("cannot start {}: {}", program, std::strerror(failed)));
+        }
         running[pid] = r;
         since[pid] = Clock::now();
       }
       int status = 0;
       const pid_t done = waitpid(-1, &status, 0);
       if (done < 0) {
+        // Ctrl-C reaches the children too (one process group); a SIGTERM to this process alone is
+        // passed on to them. Either way each stops at its next checkpoint.
+        if (errno == EINTR && interrupt_requested())
+          for (const auto& [child, task] : running) ::kill(child, SIGTERM);
         if (errno == EINTR) continue;
         break;
       }
@@ -182,12 +194,16 @@ std::vector<TaskResult> run_local(const SweepPlan& plan, const std::map<std::str
       std::fflush(stdout);
       results.push_back(r);
     }
+    if (interrupt_requested()) throw Interrupted();
   }
   return results;
 }
 
 SlurmOptions merged(SlurmOptions file, const SlurmOptions& cli)
 {
+  for (const auto& [option, value] : {std::pair{"--partition", cli.partition}, std::pair{"--time", cli.time}})
+    if (!is_slurm_word(value))
+      throw InputError(Diagnostic{{}, 0, 0, option, fmt::format("\"{}\" is not a Slurm value", value)});
   if (!cli.partition.empty()) file.partition = cli.partition;
   if (!cli.time.empty()) file.time = cli.time;
   if (cli.cpus_per_task > 0) file.cpus_per_task = cli.cpus_per_task;
@@ -196,7 +212,8 @@ SlurmOptions merged(SlurmOptions file, const SlurmOptions& cli)
 }
 
 /// The Slurm engine: one job array per stage, each after the one before (afterany: a failed case
-/// does not hold up the others; its downstream tasks see it and fail at once). Returns stage → job id.
+/// does not hold up the others; its downstream tasks see it and fail at once). Each submission is
+/// recorded in slurm/jobs.json as soon as it is made. Returns stage → job id.
 std::map<std::string, std::string> submit_slurm(const SweepPlan& plan,
                                                 const std::map<std::string, std::vector<std::string>>& tasks,
                                                 const fs::path& build_dir, const SlurmOptions& o)
@@ -204,13 +221,12 @@ std::map<std::string, std::string> submit_slurm(const SweepPlan& plan,
   const fs::path dir = fs::absolute(build_dir) / "slurm";
   fs::create_directories(dir);
   std::map<std::string, std::string> jobs;
+  Json recorded = Json::object();
   std::string previous;
   for (const std::string& stage : plan.stages) {
     const auto it = tasks.find(stage);
     if (it == tasks.end()) continue;
-    std::string list;
-    for (const std::string& id : it->second) list += id + "\n";
-    write_file_atomic(dir / (stage + ".tasks"), list);
+    // The cases are in the script itself: a later sweep rewrites the files, not a queued task's list.
     std::string script = "#!/bin/sh\n";
     script += fmt::format("#SBATCH --job-name=fibermold-{}-{}\n", plan.name, stage);
     script += fmt::format("#SBATCH --array=0-{}\n", it->second.size() - 1);
@@ -218,38 +234,42 @@ std::map<std::string, std::string> submit_slurm(const SweepPlan& plan,
     if (!o.partition.empty()) script += "#SBATCH --partition=" + o.partition + "\n";
     if (!o.time.empty()) script += "#SBATCH --time=" + o.time + "\n";
     if (o.cpus_per_task > 0) script += fmt::format("#SBATCH --cpus-per-task={}\n", o.cpus_per_task);
-    script += fmt::format("case=$(sed -n \"$((SLURM_ARRAY_TASK_ID + 1))p\" {})\n",
-                          quoted((dir / (stage + ".tasks")).string()));
-    script += fmt::format("exec {} sweep-task {} {} \"$case\"\n", quoted(this_program().string()),
+    script += fmt::format("set -- {}\nshift \"$SLURM_ARRAY_TASK_ID\"\n", fmt::join(it->second, " "));
+    script += fmt::format("exec {} sweep-task {} {} \"$1\"\n", quoted(this_program().string()),
                           quoted(fs::absolute(build_dir).string()), stage);
-    write_file_atomic(dir / (stage + ".sh"), script);
+    const fs::path file = dir / fmt::format("{}-{}.sh", stage, hash_bytes(script).substr(0, 8));
+    write_file_atomic(file, script);
     std::string command = "sbatch --parsable";
     if (!previous.empty()) command += " --dependency=afterany:" + previous;
     for (const std::string& flag : o.extra) command.append(" ").append(quoted(flag));
-    command.append(" ").append(quoted((dir / (stage + ".sh")).string()));
-    const auto [code, out] = capture(command);
-    if (code != 0) throw std::runtime_error(fmt::format("sbatch failed for stage {} (exit {}): {}", stage, code, out));
+    command.append(" ").append(quoted(file.string()));
+    const auto [code, out] = capture(command, dir / "sbatch.err");
+    if (code != 0 || out.empty())
+      throw std::runtime_error(
+          fmt::format("sbatch failed for stage {} (exit {}): {}", stage, code, read_file(dir / "sbatch.err")));
     previous = out.substr(0, out.find_first_of(";\n"));
     jobs[stage] = previous;
+    recorded[stage] = {{"job", previous}, {"tasks", it->second}};
+    write_file_atomic(dir / "jobs.json", recorded.dump(2) + "\n");
     fmt::print("{}: {} task(s), Slurm job {}\n", stage, it->second.size(), previous);
+    std::fflush(stdout);
   }
-  Json j = Json::object();
-  for (const auto& [stage, id] : jobs) j[stage] = {{"job", id}, {"tasks", tasks.at(stage)}};
-  write_file_atomic(dir / "jobs.json", j.dump(2) + "\n");
   return jobs;
 }
 
 /// Queue states of the sweep's array tasks ("<job>_<index>" → "PENDING"); throws when squeue fails.
-std::map<std::string, std::string> queued(const std::map<std::string, std::string>& jobs)
+std::map<std::string, std::string> queued(const std::map<std::string, std::string>& jobs, const fs::path& build_dir)
 {
   std::map<std::string, std::string> out;
   if (jobs.empty()) return out;
   std::string ids;
   for (const auto& [stage, id] : jobs) ids += (ids.empty() ? "" : ",") + id;
-  const auto [code, text] = capture("squeue -h -r -o '%i %T' -j " + ids);
+  const fs::path errors = fs::absolute(build_dir) / "slurm" / "squeue.err";
+  const auto [code, text] = capture("squeue -h -r -o '%i %T' -j " + ids, errors);
   if (code != 0) {
-    if (text.find("Invalid job id") != std::string::npos) return out; // long finished and purged
-    throw std::runtime_error("squeue failed: " + text);
+    const std::string why = read_file(errors);
+    if (why.find("Invalid job id") != std::string::npos) return out; // long finished and purged
+    throw std::runtime_error("squeue failed: " + why);
   }
   std::istringstream lines(text);
   for (std::string task, state; lines >> task >> state;) out[task] = state;
@@ -286,15 +306,16 @@ int report(const SweepPlan& plan, const Runner& runner, Designs& designs, const 
         ++built;
         continue;
       }
+      // Where a Slurm task of this build wrote its output, and its state if it is still queued.
+      fs::path out = task_output(plan, build_dir, id, stage);
       std::string state;
-      if (const auto job = jobs.find(stage); job != jobs.end()) {
+      if (const auto job = jobs.find(stage); job != jobs.end() && job_tasks.contains(stage)) {
         const auto& list = job_tasks.at(stage);
-        const auto at = std::find(list.begin(), list.end(), id);
-        if (at != list.end())
+        if (const auto at = std::find(list.begin(), list.end(), id); at != list.end()) {
+          out = build_dir / "slurm" / fmt::format("{}-{}.out", stage, at - list.begin());
           if (auto q = queue_states.find(fmt::format("{}_{}", job->second, at - list.begin())); q != queue_states.end())
             state = q->second;
-        if (state.empty() && queue_states.contains(job->second + "_[0-" + std::to_string(list.size() - 1) + "]"))
-          state = "PENDING";
+        }
       }
       if (!state.empty()) {
         ++waiting;
@@ -302,8 +323,7 @@ int report(const SweepPlan& plan, const Runner& runner, Designs& designs, const 
         continue;
       }
       ++failed;
-      const fs::path out = task_output(plan, build_dir, id, stage),
-                     log = Runner::log_path(plan.case_dir(build_dir, id), stage);
+      const fs::path log = Runner::log_path(plan.case_dir(build_dir, id), stage);
       std::error_code ec;
       problems.push_back(fmt::format("case {}: failed or not run; log {}{}", id,
                                      fs::exists(log, ec) ? log.string() : "(none)",
@@ -339,20 +359,36 @@ int run_sweep(const SweepRequest& request, const Runner& runner)
     Designs designs(plan, build_dir);
     std::map<std::string, std::vector<std::string>> job_tasks;
     const auto jobs = recorded_jobs(build_dir, &job_tasks);
-    const auto states = queued(jobs);
+    const auto states = queued(jobs, build_dir);
     print_sharing(plan);
     const int code = report(plan, runner, designs, build_dir, states, jobs, job_tasks);
-    if (states.empty()) {
-      gather(plan, build_dir);
-      write_sweep_summary(plan, build_dir);
-      fmt::print("summary: {}\n", (build_dir / "summary.csv").string());
-    }
+    // Once the queue is empty, the summary (after gathering every case's stages), unless a sweep
+    // is running here.
+    if (states.empty()) try {
+        const BuildLock lock(build_dir);
+        gather(plan, build_dir);
+        write_sweep_summary(plan, build_dir);
+        fmt::print("summary: {}\n", (build_dir / "summary.csv").string());
+      } catch (const BuildLocked&) {
+        fmt::print("a sweep is running in {}: no summary yet\n", build_dir.string());
+      }
     return code;
   }
 
   const auto started = Clock::now();
   const std::vector<SweepCase> cases = expand_sweep(sweep);
   fs::create_directories(build_dir);
+  const BuildLock lock(build_dir);
+  // A sweep whose Slurm jobs are still queued is not planned again: its tasks read the plan.
+  {
+    const auto recorded = recorded_jobs(build_dir, nullptr);
+    if (!recorded.empty() && std::system("command -v squeue >/dev/null 2>&1") == 0 &&
+        !queued(recorded, build_dir).empty())
+      throw std::runtime_error(fmt::format(
+          "the Slurm jobs of the last run of this sweep are still queued or running; see `fibermold sweep {} "
+          "--status`, or scancel them first",
+          request.sweep.string()));
+  }
   const SweepPlan plan = plan_sweep(sweep, cases, runner, build_dir);
   write_plan(plan, build_dir);
   print_sharing(plan);
@@ -367,8 +403,17 @@ int run_sweep(const SweepRequest& request, const Runner& runner)
                  request.build_dir.empty() ? "" : " --build-dir " + request.build_dir.string());
       return 0;
     }
-    while (!queued(jobs).empty()) std::this_thread::sleep_for(std::chrono::seconds(1));
+    // Polling squeue: every second at first, then less often (a cluster's controller is shared).
+    for (int wait = 1; !queued(jobs, build_dir).empty(); wait = std::min(2 * wait, 5)) {
+      std::this_thread::sleep_for(std::chrono::seconds(wait));
+      if (interrupt_requested()) {
+        fmt::print(stderr, "fibermold: stopped waiting; the jobs stay queued (`fibermold sweep {} --status`)\n",
+                   request.sweep.string());
+        return 130;
+      }
+    }
   } else {
+    fs::remove(build_dir / "slurm" / "jobs.json"); // the last run's jobs are history now
     const int jobs =
         request.jobs > 0 ? request.jobs : static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
     run_local(plan, tasks, build_dir, jobs);

@@ -1,6 +1,7 @@
 #include "pipeline/sweep_file.hpp"
 
 #include <algorithm>
+#include <cctype>
 #include <optional>
 #include <sstream>
 
@@ -69,6 +70,15 @@ private:
   std::vector<Diagnostic> problems_;
 };
 
+/// Letters, digits, '-', '_', '.' (and ':', ',' for Slurm values); not starting with '.'.
+bool plain(const std::string& s, bool slurm)
+{
+  if (s.empty()) return slurm;
+  return s[0] != '.' && std::all_of(s.begin(), s.end(), [&](unsigned char c) {
+           return std::isalnum(c) || c == '-' || c == '_' || c == '.' || (slurm && (c == ':' || c == ','));
+         });
+}
+
 std::string toml_text(const toml::node& n)
 {
   std::ostringstream out;
@@ -103,6 +113,8 @@ std::vector<SweepValue> values_of(const std::string& key, const toml::node& v, R
 
 } // namespace
 
+bool is_slurm_word(const std::string& value) { return plain(value, true); }
+
 SweepFile load_sweep(const fs::path& path)
 {
   SweepFile s;
@@ -118,6 +130,11 @@ SweepFile load_sweep(const fs::path& path)
   }
   Reader r(s.file);
   r.only(root, "", {"sweep", "axes", "case", "restarts", "slurm"});
+  for (const char* table : {"sweep", "axes", "restarts", "slurm"})
+    if (const toml::node* n = root.get(table); n && !n->is_table())
+      r.error(n, table, fmt::format("needs a table: [{}]", table));
+  if (const toml::node* n = root.get("case"); n && !n->is_array_of_tables())
+    r.error(n, "case", "needs tables: [[case]]");
 
   const toml::table* sweep = root["sweep"].as_table();
   if (!sweep) {
@@ -134,6 +151,11 @@ SweepFile load_sweep(const fs::path& path)
       r.error(sweep, "[sweep].design", "missing: the base design's path, e.g. design = \"design.toml\"");
     }
     s.name = r.get<std::string>(*sweep, "sweep", "name", "a string").value_or(s.file.stem().string());
+    if (!plain(s.name, false)) {
+      r.error(sweep->get("name"), "[sweep].name",
+              fmt::format("\"{}\" cannot name a folder: use letters, digits, '-', '_' and '.'", s.name));
+      s.name = "sweep";
+    }
   }
 
   const toml::table* axes = root["axes"].as_table();
@@ -186,6 +208,7 @@ SweepFile load_sweep(const fs::path& path)
     if (!(s.restarts.amplitude > 0))
       r.error(restarts->get("amplitude"), "[restarts].amplitude", "needs a length in mm above 0");
     s.restarts.fibers = r.strings(*restarts, "restarts", "fibers");
+    if (const toml::node* f = restarts->get("fibers")) s.restarts.line = static_cast<int>(f->source().begin.line);
     if (s.restarts.count > 0) s.axes.push_back("restart");
   }
 
@@ -196,6 +219,12 @@ SweepFile load_sweep(const fs::path& path)
         r.get<std::string>(*slurm, "slurm", "time", "a time limit as Slurm writes it, e.g. \"02:00:00\"").value_or("");
     s.slurm.cpus_per_task =
         static_cast<int>(r.get<std::int64_t>(*slurm, "slurm", "cpus_per_task", "a whole number").value_or(0));
+    if (slurm->get("cpus_per_task") && s.slurm.cpus_per_task < 1)
+      r.error(slurm->get("cpus_per_task"), "[slurm].cpus_per_task", "needs a whole number of at least 1");
+    // They go into the job script's #SBATCH lines.
+    for (const auto& [key, value] : {std::pair{"partition", s.slurm.partition}, std::pair{"time", s.slurm.time}})
+      if (!plain(value, true))
+        r.error(slurm->get(key), fmt::format("[slurm].{}", key), fmt::format("\"{}\" is not a Slurm {}", value, key));
     s.slurm.extra = r.strings(*slurm, "slurm", "extra");
   }
   if (!r.problems().empty()) throw InputError(std::move(r.problems()));

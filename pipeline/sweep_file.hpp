@@ -22,6 +22,7 @@ struct SweepRestarts {
   std::uint64_t seed = 1;
   double amplitude = 2;            ///< mm: interior control points move this far at most
   std::vector<std::string> fibers; ///< empty: every fiber
+  int line = 0;                    ///< of [restarts].fibers, for errors
 };
 
 struct SlurmOptions {
@@ -39,6 +40,9 @@ struct SweepFile {
   SweepRestarts restarts;
   SlurmOptions slurm;
 };
+
+/// True for a value that can go into an #SBATCH line: letters, digits, '-', '_', '.', ':', ','.
+bool is_slurm_word(const std::string& value);
 
 /// Parses and validates `path`. Throws InputError listing every problem.
 SweepFile load_sweep(const std::filesystem::path& path);

@@ -24,16 +24,33 @@ SweepPlan plan_sweep(const SweepFile& sweep, const std::vector<SweepCase>& cases
                      const fs::path& build_dir)
 {
   SweepPlan plan{sweep.file, sweep.name, sweep.axes, cases, runner.stage_names(), {}};
-  std::map<std::string, std::map<std::string, std::string>> first; // stage → fingerprint → case
+  // The last plan's owners keep their builds: a case added in front of the others adopts them
+  // instead of building them again.
+  std::map<std::string, std::map<std::string, std::string>> owned_before;
+  try {
+    owned_before = read_plan(build_dir).owner;
+  } catch (const std::exception&) {
+  }
+  std::map<std::string, std::map<std::string, std::vector<std::string>>> groups; // stage → fingerprint → cases
   for (const SweepCase& c : cases) {
     const fs::path design_file = plan.case_dir(build_dir, c.id) / "design.toml";
     fs::create_directories(design_file.parent_path());
     std::error_code ec;
     if (!fs::exists(design_file, ec) || read_file(design_file) != c.design) write_file_atomic(design_file, c.design);
     const std::map<std::string, std::string> prints = runner.fingerprints(load_design(design_file));
-    for (const std::string& stage : plan.stages)
-      plan.owner[c.id][stage] = first[stage].try_emplace(prints.at(stage), c.id).first->second;
+    for (const std::string& stage : plan.stages) groups[stage][prints.at(stage)].push_back(c.id);
   }
+  for (const auto& [stage, by_print] : groups)
+    for (const auto& [print, members] : by_print) {
+      std::string owner = members.front();
+      for (const std::string& id : members)
+        if (auto it = owned_before.find(id);
+            it != owned_before.end() && it->second.contains(stage) && it->second.at(stage) == id) {
+          owner = id;
+          break;
+        }
+      for (const std::string& id : members) plan.owner[id][stage] = owner;
+    }
   return plan;
 }
 
@@ -75,11 +92,12 @@ void adopt_stage(const fs::path& from, const fs::path& to, const std::string& st
 {
   const fs::path stamp = Runner::stamp_path(from, stage), their_stamp = Runner::stamp_path(to, stage);
   const fs::path log = Runner::log_path(from, stage), their_log = Runner::log_path(to, stage);
+  std::error_code ec;
+  if (!fs::exists(stamp, ec)) return; // nothing to adopt: what `to` has stays, and the runner judges it
+  if (fs::exists(their_stamp, ec) && fs::equivalent(stamp, their_stamp, ec)) return; // this very build already
   fs::remove(their_stamp);
   fs::remove_all(to / stage);
   fs::remove(their_log);
-  std::error_code ec;
-  if (!fs::exists(stamp, ec)) return;
   const auto link = [](const fs::path& a, const fs::path& b) {
     fs::create_directories(b.parent_path());
     std::error_code failed;

@@ -35,7 +35,8 @@ struct SweepPlan {
   }
 };
 
-/// Loads each case's design (written to its folder first) and assigns owners.
+/// Loads each case's design (written to its folder first) and assigns owners: of the cases that
+/// agree on a stage, the one that owned it in the last plan, else the first.
 SweepPlan plan_sweep(const SweepFile& sweep, const std::vector<SweepCase>& cases, const Runner& runner,
                      const std::filesystem::path& build_dir);
 
@@ -44,7 +45,8 @@ void write_plan(const SweepPlan& plan, const std::filesystem::path& build_dir);
 SweepPlan read_plan(const std::filesystem::path& build_dir);
 
 /// Replaces `stage` in build folder `to` by hard links to its outputs, stamp and a copy of its log
-/// in `from` (copies where hard links are not possible). Nothing is adopted when `from` has no stamp.
+/// in `from` (copies where hard links are not possible). Nothing changes when `from` has no stamp,
+/// or when `to` holds this very build already (the same stamp file).
 void adopt_stage(const std::filesystem::path& from, const std::filesystem::path& to, const std::string& stage);
 
 } // namespace fibermold

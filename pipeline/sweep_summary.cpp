@@ -98,28 +98,39 @@ void write_sweep_summary(const SweepPlan& plan, const fs::path& build_dir)
   for (const SweepCase& c : plan.cases) {
     const fs::path dir = plan.case_dir(build_dir, c.id);
     Row row;
-    if (const auto report = json_file(dir / "collide" / "report.json");
-        report && report->contains("targets") && (*report)["targets"].is_object())
-      for (const auto& [name, t] : (*report)["targets"].items()) {
-        add_column(targets, name);
-        row.numbers[name + " RMSE mm"] = t.at("after").at("rmse_mm").get<double>();
-        row.numbers[name + " max mm"] = t.at("after").at("max_error_mm").get<double>();
-      }
-    if (const auto fibers = json_file(dir / "collide" / "fibers.json"))
-      for (const Json& f : (*fibers)["fibers"])
-        for (const auto& [target, kpa] : f["pressure_kPa"].items()) {
-          const std::string column = fmt::format("{} {} kPa", f["name"].get<std::string>(), target);
-          add_column(pressure_columns, column);
-          row.numbers[column] = kpa.get<double>();
+    // A stage's outputs count only while it is built (its stamp is there): after a failed rerun
+    // they are last time's.
+    const auto built = [&](const std::string& stage) {
+      std::error_code ec;
+      return fs::exists(Runner::stamp_path(dir, stage), ec);
+    };
+    try {
+      if (const auto report = json_file(dir / "collide" / "report.json");
+          built("collide") && report && report->contains("targets") && (*report)["targets"].is_object())
+        for (const auto& [name, t] : (*report)["targets"].items()) {
+          add_column(targets, name);
+          if (t["after"]["rmse_mm"].is_number()) row.numbers[name + " RMSE mm"] = t["after"]["rmse_mm"].get<double>();
+          if (t["after"]["max_error_mm"].is_number())
+            row.numbers[name + " max mm"] = t["after"]["max_error_mm"].get<double>();
         }
-    if (const auto molds = json_file(dir / "molds" / "report.json")) {
-      double silicone = 0;
-      for (const auto& [shot, s] : (*molds)["shots"].items()) silicone += s["silicone_volume_mL"].get<double>();
-      row.numbers["silicone mL"] = silicone;
-      row.numbers["mold parts"] = static_cast<double>((*molds)["parts"].size());
+      if (const auto fibers = json_file(dir / "collide" / "fibers.json"); built("collide") && fibers)
+        for (const Json& f : (*fibers)["fibers"])
+          for (const auto& [target, kpa] : f["pressure_kPa"].items()) {
+            const std::string column = fmt::format("{} {} kPa", f["name"].get<std::string>(), target);
+            add_column(pressure_columns, column);
+            if (kpa.is_number()) row.numbers[column] = kpa.get<double>();
+          }
+      if (const auto molds = json_file(dir / "molds" / "report.json"); built("molds") && molds) {
+        double silicone = 0;
+        for (const auto& [shot, s] : (*molds)["shots"].items()) silicone += s["silicone_volume_mL"].get<double>();
+        row.numbers["silicone mL"] = silicone;
+        row.numbers["mold parts"] = static_cast<double>((*molds)["parts"].size());
+      }
+    } catch (const std::exception&) {
+      // An output of another version: its cells stay empty.
     }
     for (const std::string& stage : plan.stages)
-      if (const auto stamp = json_file(Runner::stamp_path(dir, stage)); stamp && stamp->contains("seconds"))
+      if (const auto stamp = json_file(Runner::stamp_path(dir, stage)); stamp && (*stamp)["seconds"].is_number())
         row.numbers[stage + " s"] = (*stamp)["seconds"].get<double>();
     rows.push_back(std::move(row));
   }

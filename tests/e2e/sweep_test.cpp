@@ -95,7 +95,7 @@ protected:
 
 TEST_F(SweepE2E, SixCasesOptimizeOncePerDistinctOptimizationInput)
 {
-  const auto r = sweep("--jobs 2 --build-dir local");
+  const auto r = sweep("--jobs 3 --build-dir local");
   ASSERT_EQ(r.exit_code, 0) << r.out << r.err;
   EXPECT_THAT(
       r.out,
@@ -123,10 +123,11 @@ TEST_F(SweepE2E, SixCasesOptimizeOncePerDistinctOptimizationInput)
   EXPECT_EQ(best, 1);
   EXPECT_THAT(test::read_text(build / "summary.html"), HasSubstr("<svg"));
 
-  // Nothing is stale: nothing runs. A new wall builds molds and export for its two cases only.
+  // Nothing is stale: nothing runs. A new wall, put first, builds molds and export for its two
+  // cases only: the optimizations stay with the cases that built them.
   EXPECT_THAT(sweep("--build-dir local").out, HasSubstr("every case is up to date"));
   test::write_text(dir_ / "sweep.toml",
-                   std::string(kSweep).replace(std::string(kSweep).find("[3, 4, 5]"), 9, "[3, 4, 6]"));
+                   std::string(kSweep).replace(std::string(kSweep).find("[3, 4, 5]"), 9, "[2, 3, 4, 5]"));
   const auto edited = sweep("--build-dir local");
   ASSERT_EQ(edited.exit_code, 0) << edited.out << edited.err;
   EXPECT_THAT(edited.out, ::testing::Not(HasSubstr("optimize:")));
@@ -275,8 +276,16 @@ TEST_F(SweepE2E, SlurmJobArraysGiveTheLocalResultsAndAKilledTaskIsAllARerunBuild
 
   const auto local = sweep("--jobs 2 --build-dir local");
   ASSERT_EQ(local.exit_code, 0) << local.out << local.err;
-  const auto cluster = sweep("--engine slurm --build-dir slurm", slurm.env());
+  const auto cluster = sweep("--engine slurm --build-dir slurm --time 00:10:00 --cpus-per-task 1", slurm.env());
   ASSERT_EQ(cluster.exit_code, 0) << cluster.out << cluster.err;
+  int scripts = 0;
+  for (const auto& e : fs::directory_iterator(dir_ / "slurm" / "slurm"))
+    if (e.path().extension() == ".sh") {
+      ++scripts;
+      EXPECT_THAT(test::read_text(e.path()), HasSubstr("#SBATCH --time=00:10:00\n#SBATCH --cpus-per-task=1\n"))
+          << e.path();
+    }
+  EXPECT_EQ(scripts, 6);
   EXPECT_THAT(cluster.out, HasSubstr("optimize: 2 task(s), Slurm job"));
   EXPECT_EQ(distinct(dir_ / "slurm", "optimize/fibers.json"), 2u);
   const auto local_cases = cases(dir_ / "local"), slurm_cases = cases(dir_ / "slurm");
@@ -304,6 +313,12 @@ TEST_F(SweepE2E, SlurmJobArraysGiveTheLocalResultsAndAKilledTaskIsAllARerunBuild
       if (state == "RUNNING") running = task;
   }
   ASSERT_FALSE(running.empty()) << "the optimize tasks never ran";
+  const auto while_running = sweep("--status --build-dir killed", slurm.env());
+  EXPECT_THAT(while_running.out, ::testing::ContainsRegex("case [0-9a-f]{10}: RUNNING"));
+  EXPECT_THAT(while_running.out, HasSubstr("task(s) still queued or running"));
+  const auto again = sweep("--engine slurm --build-dir killed", slurm.env());
+  EXPECT_EQ(again.exit_code, 1);
+  EXPECT_THAT(again.err, HasSubstr("still queued or running"));
   slurm.run("scancel " + running);
   for (int i = 0; i < 1200 && !slurm.run("squeue -h -o %i").empty(); ++i)
     std::this_thread::sleep_for(std::chrono::milliseconds(100));

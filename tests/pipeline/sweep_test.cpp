@@ -146,6 +146,13 @@ TEST_F(Sweep, ProblemsAreReportedAtTheSweepFilesLine)
   EXPECT_THAT(problems("[slurm]\npartiton = \"long\"\n"),
               HasSubstr("unknown key 'partiton' in [slurm]; did you mean 'partition'?"));
   EXPECT_THAT(problems("[axes]\n\"mold.wall\" = [3, 3]\n"), HasSubstr("makes the same design as an earlier case"));
+  EXPECT_THAT(problems("name = \"../x\"\n"), HasSubstr(file + ":3:8: [sweep].name: \"../x\" cannot name a folder"));
+  EXPECT_THAT(problems("[slurm]\ncpus_per_task = 0\n"),
+              HasSubstr("[slurm].cpus_per_task: needs a whole number of at least 1"));
+  EXPECT_THAT(problems("[slurm]\ntime = \"1:00\\n#SBATCH --x\"\n"), HasSubstr("is not a Slurm time"));
+  EXPECT_THAT(problems("[[axes]]\n\"mold.wall\" = [3]\n"), HasSubstr("axes: needs a table: [axes]"));
+  EXPECT_THAT(problems("[restarts]\ncount = 2\nfibers = [\"m9\"]\n"),
+              HasSubstr(file + ":5: [restarts].fibers: the base design has no [[fiber]] named 'm9'"));
 }
 
 } // namespace
