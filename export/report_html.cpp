@@ -1,8 +1,9 @@
 #include "export/report_html.hpp"
 
+#include <cmath>
 #include <cstdint>
-#include <cstring>
 
+#include <fmt/format.h>
 #include <nlohmann/json.hpp>
 
 #include "core/units.hpp"
@@ -48,7 +49,7 @@ nlohmann::json line_json(const ReportLine& l)
   std::vector<float> points;
   for (const Eigen::Vector3d& p : l.points)
     for (int k = 0; k < 3; ++k) points.push_back(static_cast<float>(p[k] / units::mm));
-  return {{"name", l.name}, {"colour", l.colour}, {"points", base64(points.data(), points.size() * sizeof(float))}};
+  return {{"name", l.name}, {"colour", l.colour}, {"visible", l.visible}, {"points", base64(points.data(), points.size() * sizeof(float))}};
 }
 
 std::string escaped(const std::string& text)
@@ -74,6 +75,47 @@ std::string table_html(const ReportTable& t)
     out += "</tr>\n";
   }
   return out + "</table>\n";
+}
+
+/// An SVG line plot, 640 × 300 px, with five ticks per axis and a legend.
+std::string plot_svg(const ReportPlot& p)
+{
+  const std::array<std::string, 6> palette{"#1f77b4", "#d62728", "#2ca02c", "#9467bd", "#ff7f0e", "#17becf"};
+  const auto y_of = [&](double y) { return p.log_y ? std::log10(y) : y; };
+  double x0 = HUGE_VAL, x1 = -HUGE_VAL, y0 = HUGE_VAL, y1 = -HUGE_VAL;
+  for (const auto& [name, points] : p.series)
+    for (const Eigen::Vector2d& q : points)
+      if (std::isfinite(q.y()) && (!p.log_y || q.y() > 0)) {
+        x0 = std::min(x0, q.x()), x1 = std::max(x1, q.x());
+        y0 = std::min(y0, y_of(q.y())), y1 = std::max(y1, y_of(q.y()));
+      }
+  if (!(x1 >= x0) || !(y1 >= y0)) return {};
+  if (x1 == x0) x1 = x0 + 1;
+  if (y1 == y0) y1 = y0 + 1;
+  const double W = 640, H = 300, L = 70, R = 20, T = 20, B = 45;
+  const auto px = [&](double x) { return L + (x - x0) / (x1 - x0) * (W - L - R); };
+  const auto py = [&](double y) { return H - B - (y_of(y) - y0) / (y1 - y0) * (H - B - T); };
+  std::string svg = fmt::format("<h2>{}</h2>\n<svg class=\"plot\" xmlns=\"http://www.w3.org/2000/svg\" width=\"{}\" height=\"{}\">", escaped(p.title), W, H);
+  svg += fmt::format("<path d=\"M{0} {1}V{2}H{3}\" fill=\"none\" stroke=\"#444\"/>", L, T, H - B, W - R);
+  for (int k = 0; k <= 4; ++k) {
+    const double x = x0 + (x1 - x0) * k / 4, y = y0 + (y1 - y0) * k / 4;
+    svg += fmt::format("<text x=\"{:.1f}\" y=\"{}\" font-size=\"11\" text-anchor=\"middle\">{:.4g}</text>", px(x), H - B + 15, x);
+    svg += fmt::format("<text x=\"{}\" y=\"{:.1f}\" font-size=\"11\" text-anchor=\"end\">{:.3g}</text>", L - 5,
+                       H - B - (y - y0) / (y1 - y0) * (H - B - T) + 4, p.log_y ? std::pow(10, y) : y);
+  }
+  svg += fmt::format("<text x=\"{}\" y=\"{}\" font-size=\"12\" text-anchor=\"middle\">{}</text>", (L + W - R) / 2, H - 8, escaped(p.x_label));
+  svg += fmt::format("<text x=\"14\" y=\"{0}\" font-size=\"12\" text-anchor=\"middle\" transform=\"rotate(-90 14 {0})\">{1}</text>",
+                     (H - B + T) / 2, escaped(p.y_label + (p.log_y ? " (log)" : "")));
+  for (std::size_t s = 0; s < p.series.size(); ++s) {
+    std::string points;
+    for (const Eigen::Vector2d& q : p.series[s].second)
+      if (std::isfinite(q.y()) && (!p.log_y || q.y() > 0)) points += fmt::format("{:.1f},{:.1f} ", px(q.x()), py(q.y()));
+    const std::string& colour = palette[s % palette.size()];
+    svg += fmt::format("<polyline fill=\"none\" stroke=\"{}\" stroke-width=\"1.5\" points=\"{}\"/>", colour, points);
+    svg += fmt::format("<text x=\"{}\" y=\"{}\" font-size=\"11\" fill=\"{}\" text-anchor=\"end\">{}</text>", W - R, T + 12 * (s + 1), colour,
+                       escaped(p.series[s].first));
+  }
+  return svg + "</svg>\n";
 }
 
 // The viewer: WebGL 1, flat-shaded triangles and unlit lines, orbit by dragging, zoom by wheel.
@@ -116,7 +158,7 @@ constexpr const char* kViewer = R"JS(
   for (const line of SCENE.lines) {
     const p = decode(line.points, Float32Array), data = new Float32Array(p.length * 2);
     for (let i = 0; i < p.length / 3; ++i) data.set([p[3 * i], p[3 * i + 1], p[3 * i + 2], 0, 0, 0], 6 * i);
-    items.push({name: line.name, colour: line.colour, visible: true, data: data, mode: gl.LINE_STRIP, count: p.length / 3, lit: 0});
+    items.push({name: line.name, colour: line.colour, visible: line.visible, data: data, mode: gl.LINE_STRIP, count: p.length / 3, lit: 0});
   }
   for (const item of items) { item.buffer = gl.createBuffer(); gl.bindBuffer(gl.ARRAY_BUFFER, item.buffer); gl.bufferData(gl.ARRAY_BUFFER, item.data, gl.STATIC_DRAW); }
   const centre = [0, 1, 2].map(k => (lo[k] + hi[k]) / 2), size = Math.max(1, ...[0, 1, 2].map(k => hi[k] - lo[k]));
@@ -176,7 +218,7 @@ constexpr const char* kViewer = R"JS(
 } // namespace
 
 std::string report_html(const std::string& title, const std::vector<ReportMesh>& meshes, const std::vector<ReportLine>& lines,
-                        const std::vector<ReportTable>& tables)
+                        const std::vector<ReportTable>& tables, const std::vector<ReportPlot>& plots)
 {
   nlohmann::json scene{{"meshes", nlohmann::json::array()}, {"lines", nlohmann::json::array()}};
   for (const ReportMesh& m : meshes) scene["meshes"].push_back(mesh_json(m));
@@ -188,6 +230,7 @@ std::string report_html(const std::string& title, const std::vector<ReportMesh>&
   html += "<h1>" + escaped(title) + "</h1>\n<canvas id=\"view\"></canvas>\n<p id=\"items\"></p>\n<p id=\"status\">loading</p>\n";
   html += "<p>Drag to turn, scroll to zoom; lengths in mm.</p>\n";
   for (const ReportTable& t : tables) html += table_html(t);
+  for (const ReportPlot& p : plots) html += plot_svg(p);
   // No "<" inside the script element ("</script>", "<!--" would end or confuse it): JSON's \u003c.
   std::string data;
   for (char c : scene.dump()) data += c == '<' ? std::string("\\u003c") : std::string(1, c);

@@ -4,6 +4,7 @@
 // zoomed and switched on and off.
 
 #include <array>
+#include <utility>
 #include <string>
 #include <vector>
 
@@ -25,6 +26,14 @@ struct ReportLine {
   std::string name;
   std::vector<Eigen::Vector3d> points;  ///< m
   std::array<float, 3> colour{0.8F, 0.1F, 0.1F};
+  bool visible = true;
+};
+
+/// A line plot drawn as inline SVG: each series a polyline over shared axes.
+struct ReportPlot {
+  std::string title, x_label, y_label;
+  std::vector<std::pair<std::string, std::vector<Eigen::Vector2d>>> series;  ///< name, (x, y) points
+  bool log_y = false;                                                       ///< y on a log scale (values > 0)
 };
 
 struct ReportTable {
@@ -37,6 +46,6 @@ struct ReportTable {
 /// pixels painted" (the visible meshes' triangles, and the pixels of the first view that are not
 /// background), or why it could not draw, so that a headless browser can check it.
 std::string report_html(const std::string& title, const std::vector<ReportMesh>& meshes, const std::vector<ReportLine>& lines,
-                        const std::vector<ReportTable>& tables);
+                        const std::vector<ReportTable>& tables, const std::vector<ReportPlot>& plots = {});
 
 } // namespace fibermold

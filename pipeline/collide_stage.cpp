@@ -168,6 +168,7 @@ void simulate_targets(StageContext& ctx, const FiberClearance& measure, const Fi
   for (int t = 0; t < problem.num_targets(); ++t) {
     const std::string& name = dr.target_names[t];
     write_deformed_target(ctx.output_dir / fmt::format("deformed-{}.vtu", name), dr, final, t, states[t]);
+    write_file_atomic(ctx.output_dir / fmt::format("deformed-{}.json", name), deformed_json(dr, final, t, states[t]));
     const double change = before[t].rmse > 0 ? 100 * (after[t].rmse - before[t].rmse) / before[t].rmse : 0;
     targets[name] = {
         {"before", errors_json(before[t])}, {"after", errors_json(after[t])}, {"rmse_change_percent", change}};

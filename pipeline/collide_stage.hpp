@@ -21,6 +21,7 @@ public:
   {
     return {"design.units", "material", "sim", "fixed", "muscle", "tracking_curve", "target", "optimize", "collide"};
   }
+  int version() const override { return 2; }  ///< 2: writes deformed-<target>.json for the report
   void run(StageContext& ctx) const override;
 };
 

@@ -1,5 +1,8 @@
 #include "pipeline/export_stage.hpp"
 
+#include <optional>
+#include <sstream>
+
 #include <Eigen/Geometry>
 #include <fmt/format.h>
 #include <nlohmann/json.hpp>
@@ -14,6 +17,7 @@
 #include "pipeline/fibers_file.hpp"
 #include "sim/hermite_spline.hpp"
 #include "mesh/surface_import.hpp"
+#include "mesh/tet_mesh.hpp"
 
 namespace fibermold {
 
@@ -63,6 +67,114 @@ std::vector<ReportLine> fiber_lines(const FibersFile& fibers)
 
 std::string fixed(double value, int digits) { return fmt::format("{:.{}f}", value, digits); }
 
+std::optional<Json> json_if_any(const std::filesystem::path& file)
+{
+  std::error_code ec;
+  if (!std::filesystem::exists(file, ec)) return std::nullopt;
+  Json j = Json::parse(read_file(file), nullptr, false);
+  return j.is_discarded() ? std::nullopt : std::optional<Json>(std::move(j));
+}
+
+/// The body at rest and, per target, deformed under the final routing (collide/deformed-*.json),
+/// with its fibers, at `offset`; the first target's shown, the rest switched off; the tracking
+/// curves at rest.
+void add_bodies(const StageContext& ctx, const Eigen::Vector3d& offset, std::vector<ReportMesh>& meshes, std::vector<ReportLine>& lines)
+{
+  const TetMesh body = load_tet_mesh(ctx.upstream("mesh", "body.tetmesh"));
+  bool first = true;
+  for (const Target& target : ctx.design.targets) {
+    const auto state = json_if_any(ctx.upstream("collide", "deformed-" + target.name + ".json"));
+    if (!state || (*state)["nodes_mm"].size() != static_cast<std::size_t>(body.nodes.rows())) continue;
+    SurfaceMesh deformed{Eigen::MatrixX3d(body.nodes.rows(), 3), body.boundary_faces, {}};
+    for (Eigen::Index i = 0; i < body.nodes.rows(); ++i)
+      for (int k = 0; k < 3; ++k) deformed.vertices(i, k) = (*state)["nodes_mm"][static_cast<std::size_t>(i)][static_cast<std::size_t>(k)].get<double>() * units::mm;
+    meshes.push_back({"body, " + target.name, std::move(deformed), {0.5F, 0.78F, 0.5F}, first, offset});
+    for (const auto& [fiber, points] : (*state)["fibers_mm"].items()) {
+      ReportLine line{target.name + ": " + fiber, {}, {0.8F, 0.1F, 0.1F}, first};
+      for (const Json& p : points) line.points.push_back(offset + Eigen::Vector3d(p[0], p[1], p[2]) * units::mm);
+      lines.push_back(std::move(line));
+    }
+    first = false;
+  }
+  meshes.push_back({"body at rest", SurfaceMesh{body.nodes, body.boundary_faces, {}}, {0.75F, 0.75F, 0.75F}, false, offset});
+  for (const TrackingCurve& c : ctx.design.tracking_curves) {
+    ReportLine line{"tracking curve " + c.name, {}, {0.1F, 0.3F, 0.9F}, true};
+    for (const Eigen::Vector3d& p : c.points) line.points.push_back(offset + p);
+    lines.push_back(std::move(line));
+  }
+}
+
+/// How well the robot does its job, from collide's report: each target's error before and after the
+/// collisions were resolved, and what collide changed.
+std::vector<ReportTable> behaviour_tables(const StageContext& ctx)
+{
+  std::vector<ReportTable> out;
+  const auto report = json_if_any(ctx.upstream("collide", "report.json"));
+  if (!report) return out;
+  const auto mm = [](const Json& v) { return v.is_number() ? fixed(v.get<double>(), 3) : std::string("–"); };
+  if ((*report)["targets"].is_object()) {
+    ReportTable targets{"Targets: error over the tracking curves and the surface (mm)",
+                        {"target", "RMSE before collide", "RMSE after", "change", "max before", "max after", "surface RMSE after", "surface max after"},
+                        {}};
+    for (const auto& [name, t] : (*report)["targets"].items())
+      targets.rows.push_back({name, mm(t["before"]["rmse_mm"]), mm(t["after"]["rmse_mm"]),
+                              t["rmse_change_percent"].is_number() ? fmt::format("{:+.1f} %", t["rmse_change_percent"].get<double>()) : "–",
+                              mm(t["before"]["max_error_mm"]), mm(t["after"]["max_error_mm"]), mm(t["after"]["surface_rmse_mm"]),
+                              mm(t["after"]["surface_max_error_mm"])});
+    out.push_back(std::move(targets));
+  }
+  ReportTable collisions{"Collisions", {"between", "clearance before (mm)", "at (mm)"}, {}};
+  for (const Json& c : (*report)["collisions"]) {
+    std::string between;
+    for (const Json& n : c["between"]) between += (between.empty() ? "" : " and ") + n.get<std::string>();
+    collisions.rows.push_back({between, mm(c["clearance_mm"]),
+                               fmt::format("({:.1f}, {:.1f}, {:.1f})", c["at_mm"][0].get<double>(), c["at_mm"][1].get<double>(), c["at_mm"][2].get<double>())});
+  }
+  if (collisions.rows.empty()) collisions.rows.push_back({"none: every fiber was clear", "", ""});
+  out.push_back(std::move(collisions));
+  ReportTable moves{fmt::format("Collide: smallest clearance {} → {} mm (asked {} mm); {} round(s){}", mm((*report)["smallest_clearance_mm"]["before"]),
+                                mm((*report)["smallest_clearance_mm"]["after"]), mm((*report)["clearance_mm"]), (*report)["rounds"].get<int>(),
+                                (*report)["reoptimized"].get<bool>() ? ", optimized again" : ""),
+                    {"fiber", "largest control point move (mm)", "largest tangent change (mm)"},
+                    {}};
+  for (const auto& [fiber, m] : (*report)["moves_mm"].items()) {
+    double point = 0, tangent = 0;
+    for (const Json& v : m["points"]) point = std::max(point, v.get<double>());
+    for (const Json& v : m["tangents"]) tangent = std::max(tangent, v.get<double>());
+    moves.rows.push_back({fiber, fixed(point, 3), fixed(tangent, 3)});
+  }
+  out.push_back(std::move(moves));
+  return out;
+}
+
+/// The optimizer's objective and distance term per iteration, from optimize/history.csv.
+std::optional<ReportPlot> optimization_history(const StageContext& ctx)
+{
+  std::error_code ec;
+  const std::filesystem::path file = ctx.upstream("optimize", "history.csv");
+  if (!std::filesystem::exists(file, ec)) return std::nullopt;
+  std::istringstream lines(read_file(file));
+  std::string header;
+  std::getline(lines, header);
+  std::vector<std::string> columns;
+  std::istringstream names(header);
+  for (std::string c; std::getline(names, c, ',');) columns.push_back(c);
+  const auto column = [&](const std::string& name) { return std::find(columns.begin(), columns.end(), name) - columns.begin(); };
+  const auto iteration = column("iteration"), objective = column("objective"), distance = column("distance");
+  if (std::max({iteration, objective, distance}) >= std::ssize(columns)) return std::nullopt;
+  ReportPlot plot{"Optimization", "iteration", "objective", {{"objective", {}}, {"distance term", {}}}, true};
+  for (std::string line; std::getline(lines, line);) {
+    std::vector<double> v;
+    std::istringstream cells(line);
+    for (std::string cell; std::getline(cells, cell, ',');) v.push_back(std::strtod(cell.c_str(), nullptr));
+    if (std::ssize(v) < std::ssize(columns)) continue;
+    plot.series[0].second.emplace_back(v[iteration], v[objective]);
+    plot.series[1].second.emplace_back(v[iteration], v[distance]);
+  }
+  if (plot.series[0].second.empty()) return std::nullopt;
+  return plot;
+}
+
 /// The page users open first: the groove body with its muscles in the shot 1 mold (upper half
 /// lifted off along pull), the shot 2 mold beside it (hidden), the parts' checks, the silicone and
 /// the stage timings.
@@ -87,6 +199,8 @@ std::string report(const StageContext& ctx, const Json& molds, const Json& parts
                       shot1, offset});
   }
   const FibersFile fibers = read_fibers_json(ctx.upstream("collide", "fibers.json"));
+  std::vector<ReportLine> lines = fiber_lines(fibers);
+  add_bodies(ctx, -1.3 * width * aside, meshes, lines);
 
   ReportTable checks{"Mold parts", {"part", "files", "triangles", "volume (mL)", "thinnest wall (mm)", "fits the printer", "checks"}, {}};
   for (const Json& p : parts) {
@@ -105,7 +219,11 @@ std::string report(const StageContext& ctx, const Json& molds, const Json& parts
     const Json s = Json::parse(read_file(stamp), nullptr, false);
     if (s.is_object() && s.contains("seconds")) timings.rows.push_back({stage, fixed(s["seconds"], 2)});
   }
-  return report_html("fibermold: " + d.design.name, meshes, fiber_lines(fibers), {checks, silicone, timings});
+  std::vector<ReportTable> tables = behaviour_tables(ctx);
+  tables.insert(tables.end(), {checks, silicone, timings});
+  std::vector<ReportPlot> plots;
+  if (auto history = optimization_history(ctx)) plots.push_back(std::move(*history));
+  return report_html("fibermold: " + d.design.name, meshes, lines, tables, plots);
 }
 
 } // namespace

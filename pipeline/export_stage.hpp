@@ -12,7 +12,7 @@ namespace fibermold {
 class ExportStage final : public Stage {
 public:
   std::string name() const override { return "export"; }
-  std::vector<std::string> upstream() const override { return {"collide", "molds"}; }
+  std::vector<std::string> upstream() const override { return {"mesh", "optimize", "collide", "molds"}; }
   std::vector<std::string> design_keys() const override { return {"design.name", "export"}; }
   void run(StageContext& ctx) const override;
 };

@@ -120,4 +120,20 @@ void write_deformed_target(const std::filesystem::path& path, DesignRouting& dr,
   write_deformed(path, *dr.sim, x, muscles, lame);
 }
 
+std::string deformed_json(DesignRouting& dr, const Routing& r, int t, const Eigen::VectorXd& x)
+{
+  const Eigen::MatrixX3d nodes = dr.sim->deformed_nodes(x);
+  nlohmann::ordered_json points = nlohmann::ordered_json::array(), fibers = nlohmann::ordered_json::object();
+  const auto mm = [](const Eigen::Vector3d& p) { return nlohmann::ordered_json{p.x() / units::mm, p.y() / units::mm, p.z() / units::mm}; };
+  for (Eigen::Index i = 0; i < nodes.rows(); ++i) points.push_back(mm(nodes.row(i).transpose()));
+  const auto muscles = dr.problem->muscles(r, t);
+  for (std::size_t m = 0; m < muscles.size() && m < r.routes.size(); ++m) {
+    nlohmann::ordered_json line = nlohmann::ordered_json::array();
+    for (double s : muscles[m]->segments().t) line.push_back(mm(dr.sim->basis().at(muscles[m]->spline().position(s), 0).position(x)));
+    fibers[r.routes[m].name] = line;
+  }
+  return nlohmann::ordered_json{{"target", dr.target_names[static_cast<std::size_t>(t)]}, {"nodes_mm", points}, {"fibers_mm", fibers}}.dump() +
+         "\n";
+}
+
 } // namespace fibermold

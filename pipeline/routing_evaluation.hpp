@@ -68,6 +68,9 @@ TargetErrors target_errors(RoutingProblem& problem, const TetMesh& mesh, int t, 
 /// {rmse_mm, max_error_mm, surface_rmse_mm, surface_max_error_mm}
 nlohmann::ordered_json errors_json(const TargetErrors& e);
 
+/// Target t's deformed state for the report: every node's position and each fiber's centre line (mm).
+std::string deformed_json(DesignRouting& dr, const Routing& r, int t, const Eigen::VectorXd& x);
+
 /// deformed-<target>.vtu of equilibrium x of target t under routing r.
 void write_deformed_target(const std::filesystem::path& path, DesignRouting& dr, const Routing& r, int t,
                            const Eigen::VectorXd& x);

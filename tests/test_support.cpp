@@ -1,5 +1,6 @@
 #include "test_support.hpp"
 
+#include <cstdio>
 #include <cstdlib>
 #include <fstream>
 #include <random>
@@ -56,6 +57,28 @@ CommandResult run_fibermold(const std::string& arguments, const fs::path& cwd, c
   result.out = read_text(out);
   result.err = read_text(err);
   return result;
+}
+
+std::pair<int, std::string> run_command(const std::string& command)
+{
+  std::string text;
+  FILE* pipe = popen((command + " 2>&1").c_str(), "r");
+  if (!pipe) return {-1, text};
+  char buffer[4096];
+  while (fgets(buffer, sizeof buffer, pipe)) text += buffer;
+  const int status = pclose(pipe);
+  return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, text};
+}
+
+BrowserView open_in_browser(const fs::path& page, const fs::path& screenshot)
+{
+  const std::string browser = "chromium --headless=new --no-sandbox --enable-unsafe-swiftshader --use-angle=swiftshader "
+                              "--virtual-time-budget=4000 --enable-logging=stderr --v=0 ";
+  const std::string url = "'file://" + fs::absolute(page).string() + "'";
+  auto [code, dom] = run_command(browser + "--dump-dom " + url);
+  if (code == 0 && !screenshot.empty())
+    code = run_command(browser + "--window-size=1000,800 --screenshot='" + screenshot.string() + "' " + url).first;
+  return {code, dom};
 }
 
 } // namespace fibermold::test

@@ -3,6 +3,7 @@
 
 #include <filesystem>
 #include <string>
+#include <utility>
 
 namespace fibermold::test {
 
@@ -34,5 +35,16 @@ struct CommandResult {
 /// `launcher` when given (e.g. "timeout -s INT 5").
 CommandResult run_fibermold(const std::string& arguments, const std::filesystem::path& cwd = {},
                             const std::string& launcher = {});
+
+/// Runs a shell command: its exit status and what it printed (stdout and stderr together).
+std::pair<int, std::string> run_command(const std::string& command);
+
+/// A report page opened in headless Chromium (software WebGL): the page's DOM once its scripts
+/// have run, or the browser's output when it failed. Empty `screenshot`: no screenshot.
+struct BrowserView {
+  int exit_code = -1;
+  std::string dom;
+};
+BrowserView open_in_browser(const std::filesystem::path& page, const std::filesystem::path& screenshot = {});
 
 } // namespace fibermold::test

@@ -1,0 +1,103 @@
+// The report users open first (export/report.html) for a design with a target: the body deformed
+// under the final routing beside the molds, each target's error before and after collide as collide
+// measured it, what collide changed, and the optimizer's history as a plot; it draws in headless
+// Chromium without a script error.
+#include <cstring>
+#include <regex>
+
+#include <fmt/format.h>
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
+
+#include "export/stl_writer.hpp"
+#include "mesh/tet_mesh.hpp"
+#include "primitives.hpp"
+#include "test_support.hpp"
+
+namespace fibermold {
+namespace {
+
+using ::testing::HasSubstr;
+namespace fs = std::filesystem;
+
+const char* kDesign = R"([design]
+name = "bar"
+surface = "bar.stl"
+[mesh]
+edge_length = 8
+[[fixed]]
+box = { min = [-1, -9, -9], max = [0.5, 9, 9] }
+[[fiber]]
+name = "m1"
+points = [[0, 0, 0], [20, 3, -3], [40, -3, 2], [60, 0, 0]]
+[[tracking_curve]]
+name = "centre"
+points = [[0, 0, 0], [60, 0, 0]]
+samples = 20
+[[target]]
+name = "s"
+kind = "fibers"
+fibers = [{ name = "m1", pressure = 300, points = [[0, 0, 0], [20, 0, 3], [40, 0, -3], [60, 0, 0]] }]
+[optimize]
+max_iterations = 3
+[mold]
+voxel = 0.4
+)";
+
+TEST(ReportE2E, ShowsTheDeformedBodyTheErrorsAndTheOptimizationHistory)
+{
+  test::TempDir dir;
+  write_stl(dir / "bar.stl", test::box({0, -0.008, -0.008}, {0.06, 0.008, 0.008}, Eigen::Vector3i(10, 3, 3)));
+  test::write_text(dir / "design.toml", kDesign);
+  const auto r = test::run_fibermold("make design.toml --build-dir build", dir.path());
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const fs::path build = dir / "build";
+  const std::string html = test::read_text(build / "export" / "report.html");
+
+  // The errors are collide's, to the micrometre.
+  const auto collide = nlohmann::json::parse(test::read_text(build / "collide" / "report.json"));
+  const auto& s = collide["targets"]["s"];
+  const std::string row = fmt::format("<tr><td>s</td><td>{:.3f}</td><td>{:.3f}</td>",
+                                      s["before"]["rmse_mm"].get<double>(), s["after"]["rmse_mm"].get<double>());
+  EXPECT_THAT(html, HasSubstr("Targets: error over the tracking curves and the surface (mm)"));
+  EXPECT_THAT(html, HasSubstr(row));
+  EXPECT_THAT(html, HasSubstr("none: every fiber was clear"));
+
+  // One plot point per optimizer iteration, for both series.
+  const std::string history = test::read_text(build / "optimize" / "history.csv");
+  const long iterations = std::count(history.begin(), history.end(), '\n') - 1;
+  ASSERT_GT(iterations, 0);
+  std::smatch polyline;
+  ASSERT_TRUE(std::regex_search(html, polyline, std::regex("<polyline [^>]*points=\"([^\"]*)\"")));
+  const std::string points = polyline[1];
+  EXPECT_EQ(std::count(points.begin(), points.end(), ','), iterations);
+
+  if (std::system("command -v chromium >/dev/null 2>&1") != 0)
+    GTEST_SKIP() << "chromium is not installed (scripts/setup installs it)";
+  // Shown: the groove body, shot 1's parts and the deformed body; on the page, also shot 2's parts
+  // and the body at rest.
+  const auto molds = nlohmann::json::parse(test::read_text(build / "molds" / "report.json"));
+  const long body = load_tet_mesh(build / "mesh" / "body.tetmesh").boundary_faces.rows();
+  const std::string groove = test::read_text(build / "molds" / "groove-body.stl");
+  std::uint32_t groove_triangles = 0;
+  std::memcpy(&groove_triangles, groove.data() + 80, sizeof groove_triangles);
+  long shown = groove_triangles + body, all = shown + body;
+  for (const auto& [name, part] : molds["parts"].items()) {
+    all += part["triangles"].get<long>();
+    if (part["shot"] == "shot1") shown += part["triangles"].get<long>();
+  }
+  const auto [code, dom] = test::open_in_browser(build / "export" / "report.html", dir / "report.png");
+  ASSERT_EQ(code, 0) << dom;
+  std::smatch status;
+  ASSERT_TRUE(
+      std::regex_search(dom, status, std::regex(R"(drawn (\d+) of (\d+) triangles, (\d+) of (\d+) pixels painted)")))
+      << dom.substr(0, 2000);
+  EXPECT_EQ(std::stol(status[1]), shown);
+  EXPECT_EQ(std::stol(status[2]), all);
+  EXPECT_THAT(dom, ::testing::Not(HasSubstr("Uncaught")));
+  EXPECT_EQ(test::read_text(dir / "report.png").substr(1, 3), "PNG");
+}
+
+} // namespace
+} // namespace fibermold
