@@ -18,6 +18,7 @@
 #include "sim/hermite_spline.hpp"
 #include "mesh/surface_import.hpp"
 #include "mesh/tet_mesh.hpp"
+#include "optimize/tracking_curve.hpp"
 
 namespace fibermold {
 
@@ -84,7 +85,7 @@ void add_bodies(const StageContext& ctx, const Eigen::Vector3d& offset, std::vec
   bool first = true;
   for (const Target& target : ctx.design.targets) {
     const auto state = json_if_any(ctx.upstream("collide", "deformed-" + target.name + ".json"));
-    if (!state || (*state)["nodes_mm"].size() != static_cast<std::size_t>(body.nodes.rows())) continue;
+    if (!state || !state->contains("nodes_mm") || (*state)["nodes_mm"].size() != static_cast<std::size_t>(body.nodes.rows())) continue;
     SurfaceMesh deformed{Eigen::MatrixX3d(body.nodes.rows(), 3), body.boundary_faces, {}};
     for (Eigen::Index i = 0; i < body.nodes.rows(); ++i)
       for (int k = 0; k < 3; ++k) deformed.vertices(i, k) = (*state)["nodes_mm"][static_cast<std::size_t>(i)][static_cast<std::size_t>(k)].get<double>() * units::mm;
@@ -96,10 +97,11 @@ void add_bodies(const StageContext& ctx, const Eigen::Vector3d& offset, std::vec
     }
     first = false;
   }
-  meshes.push_back({"body at rest", SurfaceMesh{body.nodes, body.boundary_faces, {}}, {0.75F, 0.75F, 0.75F}, false, offset});
+  // At rest: shown when no target's deformed state is (optimize disabled, or no targets).
+  meshes.push_back({"body at rest", SurfaceMesh{body.nodes, body.boundary_faces, {}}, {0.75F, 0.75F, 0.75F}, first, offset});
   for (const TrackingCurve& c : ctx.design.tracking_curves) {
     ReportLine line{"tracking curve " + c.name, {}, {0.1F, 0.3F, 0.9F}, true};
-    for (const Eigen::Vector3d& p : c.points) line.points.push_back(offset + p);
+    for (const Eigen::Vector3d& p : sample_tracking_curve(c.points, std::max(c.samples, 64), 1, 0).points) line.points.push_back(offset + p);
     lines.push_back(std::move(line));
   }
 }
@@ -127,8 +129,9 @@ std::vector<ReportTable> behaviour_tables(const StageContext& ctx)
   for (const Json& c : (*report)["collisions"]) {
     std::string between;
     for (const Json& n : c["between"]) between += (between.empty() ? "" : " and ") + n.get<std::string>();
-    collisions.rows.push_back({between, mm(c["clearance_mm"]),
-                               fmt::format("({:.1f}, {:.1f}, {:.1f})", c["at_mm"][0].get<double>(), c["at_mm"][1].get<double>(), c["at_mm"][2].get<double>())});
+    std::string at;
+    for (const Json& v : c["at_mm"]) at += (at.empty() ? "" : ", ") + (v.is_number() ? fixed(v.get<double>(), 1) : std::string("–"));
+    collisions.rows.push_back({between, mm(c["clearance_mm"]), "(" + at + ")"});
   }
   if (collisions.rows.empty()) collisions.rows.push_back({"none: every fiber was clear", "", ""});
   out.push_back(std::move(collisions));
@@ -139,8 +142,8 @@ std::vector<ReportTable> behaviour_tables(const StageContext& ctx)
                     {}};
   for (const auto& [fiber, m] : (*report)["moves_mm"].items()) {
     double point = 0, tangent = 0;
-    for (const Json& v : m["points"]) point = std::max(point, v.get<double>());
-    for (const Json& v : m["tangents"]) tangent = std::max(tangent, v.get<double>());
+    for (const Json& v : m["points"]) point = std::max(point, v.is_number() ? v.get<double>() : 0.0);
+    for (const Json& v : m["tangents"]) tangent = std::max(tangent, v.is_number() ? v.get<double>() : 0.0);
     moves.rows.push_back({fiber, fixed(point, 3), fixed(tangent, 3)});
   }
   out.push_back(std::move(moves));

@@ -13,7 +13,8 @@ class ExportStage final : public Stage {
 public:
   std::string name() const override { return "export"; }
   std::vector<std::string> upstream() const override { return {"mesh", "optimize", "collide", "molds"}; }
-  std::vector<std::string> design_keys() const override { return {"design.name", "export"}; }
+  /// The report shows the tracking curves and names the targets.
+  std::vector<std::string> design_keys() const override { return {"design.name", "export", "tracking_curve", "target"}; }
   void run(StageContext& ctx) const override;
 };
 

@@ -124,7 +124,11 @@ std::string deformed_json(DesignRouting& dr, const Routing& r, int t, const Eige
 {
   const Eigen::MatrixX3d nodes = dr.sim->deformed_nodes(x);
   nlohmann::ordered_json points = nlohmann::ordered_json::array(), fibers = nlohmann::ordered_json::object();
-  const auto mm = [](const Eigen::Vector3d& p) { return nlohmann::ordered_json{p.x() / units::mm, p.y() / units::mm, p.z() / units::mm}; };
+  // To 0.1 µm: the report draws them in float32 anyway.
+  const auto mm = [](const Eigen::Vector3d& p) {
+    const auto r = [](double v) { return std::round(v / units::mm * 1e4) / 1e4; };
+    return nlohmann::ordered_json{r(p.x()), r(p.y()), r(p.z())};
+  };
   for (Eigen::Index i = 0; i < nodes.rows(); ++i) points.push_back(mm(nodes.row(i).transpose()));
   const auto muscles = dr.problem->muscles(r, t);
   for (std::size_t m = 0; m < muscles.size() && m < r.routes.size(); ++m) {

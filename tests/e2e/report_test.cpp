@@ -33,7 +33,7 @@ name = "m1"
 points = [[0, 0, 0], [20, 3, -3], [40, -3, 2], [60, 0, 0]]
 [[tracking_curve]]
 name = "centre"
-points = [[0, 0, 0], [60, 0, 0]]
+points = [[0, 0, 0], [30, 0, 1], [60, 0, 0]]
 samples = 20
 [[target]]
 name = "s"
@@ -68,10 +68,27 @@ TEST(ReportE2E, ShowsTheDeformedBodyTheErrorsAndTheOptimizationHistory)
   const std::string history = test::read_text(build / "optimize" / "history.csv");
   const long iterations = std::count(history.begin(), history.end(), '\n') - 1;
   ASSERT_GT(iterations, 0);
-  std::smatch polyline;
-  ASSERT_TRUE(std::regex_search(html, polyline, std::regex("<polyline [^>]*points=\"([^\"]*)\"")));
-  const std::string points = polyline[1];
-  EXPECT_EQ(std::count(points.begin(), points.end(), ','), iterations);
+  const std::regex polyline("<polyline [^>]*points=\"([^\"]*)\"");
+  int series = 0;
+  for (auto it = std::sregex_iterator(html.begin(), html.end(), polyline); it != std::sregex_iterator();
+       ++it, ++series) {
+    const std::string points = (*it)[1];
+    EXPECT_EQ(std::count(points.begin(), points.end(), ','), iterations) << "series " << series;
+  }
+  EXPECT_EQ(series, 2);
+
+  // The deformed body is the target's equilibrium, not the body at rest: the free end moved.
+  const TetMesh rest = load_tet_mesh(build / "mesh" / "body.tetmesh");
+  const auto deformed = nlohmann::json::parse(test::read_text(build / "collide" / "deformed-s.json"));
+  ASSERT_EQ(deformed["nodes_mm"].size(), static_cast<std::size_t>(rest.nodes.rows()));
+  double moved = 0;
+  for (Eigen::Index i = 0; i < rest.nodes.rows(); ++i)
+    for (int k = 0; k < 3; ++k)
+      moved = std::max(
+          moved, std::abs(deformed["nodes_mm"][static_cast<std::size_t>(i)][static_cast<std::size_t>(k)].get<double>() -
+                          rest.nodes(i, k) / 1e-3));
+  std::printf("report: the deformed body's nodes moved up to %.2f mm\n", moved);
+  EXPECT_GT(moved, 1.0);
 
   if (std::system("command -v chromium >/dev/null 2>&1") != 0)
     GTEST_SKIP() << "chromium is not installed (scripts/setup installs it)";
