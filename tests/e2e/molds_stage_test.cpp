@@ -216,6 +216,31 @@ TEST_F(MoldsE2E, DraftAngleLeansTheCavitiesAndTheirPartsPass)
   EXPECT_NEAR(cavity, expected, 0.05 * (expected - A * 16));
 }
 
+TEST_F(MoldsE2E, ShrinkScalesTheCavitiesAndThePartingPlane)
+{
+  // Silicone that shrinks 2 % on curing: both cavities are the body scaled by 1/0.98 about its
+  // centre (volume × 1.0625), and so is the plane that parts them.
+  design("");
+  ASSERT_EQ(make().exit_code, 0);
+  const auto nominal = nlohmann::json::parse(test::read_text(dir_ / "build" / "molds" / "report.json"));
+  test::write_text(dir_ / "design.toml", std::string(kDesign) + "shrink = 0.02\n[[fiber]]\nname = \"m1\"\npoints = [[0, 0, 0], [60, 0, 0]]\n");
+  ASSERT_EQ(make().exit_code, 0);
+  const auto shrunk = nlohmann::json::parse(test::read_text(dir_ / "build" / "molds" / "report.json"));
+  const double g = 1 / 0.98;
+  for (const char* shot : {"shot1", "shot2"}) {
+    const auto& a = nominal["shots"][shot];
+    const auto& b = shrunk["shots"][shot];
+    EXPECT_NEAR(b["cavity_volume_mL"].get<double>(), a["cavity_volume_mL"].get<double>() * g * g * g, 1e-3 * b["cavity_volume_mL"].get<double>())
+        << shot;
+    for (int k = 0; k < 3; ++k)  // about the body's centre (30, 0, 0) mm
+      EXPECT_NEAR(b["parting_point_mm"][k].get<double>() - (k == 0 ? 30.0 : 0.0),
+                  (a["parting_point_mm"][k].get<double>() - (k == 0 ? 30.0 : 0.0)) * g, 1e-6)
+          << shot << " " << k;
+  }
+  EXPECT_NEAR(shrunk["shots"]["shot2"]["cavity_volume_mL"].get<double>(), 60 * 16 * 16 * 1e-3 * g * g * g, 0.01);
+  for (const auto& [name, part] : shrunk["parts"].items()) EXPECT_TRUE(part["checks_passed"].get<bool>()) << name;
+}
+
 TEST_F(MoldsE2E, MoldEditsRerunMoldsAndExportOnly)
 {
   design("");
