@@ -1,6 +1,7 @@
 #include "molds/groove.hpp"
 
 #include <algorithm>
+#include <cmath>
 
 #include "mesh/surface_check.hpp"
 
@@ -39,20 +40,9 @@ std::vector<Eigen::Vector3d> simplified(const std::vector<Eigen::Vector3d>& line
   return out;
 }
 
-} // namespace
-
-GrooveBody groove_body(const SurfaceMesh& body, const std::vector<std::vector<Eigen::Vector3d>>& fibers, double radius,
-                       const Eigen::Vector3d& pull_in, double voxel, double adaptivity, const Draft* draft)
+/// The solid's mesh: adaptive unless that one is not a valid solid, then uniform.
+GrooveBody meshed(const LevelSet& solid, double adaptivity)
 {
-  const Eigen::Vector3d pull = pull_in.normalized();
-  const Eigen::VectorXd heights = body.vertices * pull;
-  // Out of the (drafted) body from anywhere.
-  const double through = heights.maxCoeff() - heights.minCoeff() + 2 * radius + (draft ? 2 * draft->most() : 0);
-  LevelSet solid = LevelSet::from_mesh(body, voxel, pull);
-  if (draft) solid.grow([&](double h) { return draft->offset(h); }, draft->most());
-  LevelSet grooves(voxel, pull);
-  for (const auto& fiber : fibers) grooves.add_swept_tube(simplified(fiber, voxel / 10), radius, through, draft ? draft->slope : 0);
-  solid.subtract(grooves);
   GrooveBody out;
   out.volume = solid.volume();
   out.mesh = solid.mesh(adaptivity, &out.adaptivity);
@@ -61,6 +51,26 @@ GrooveBody groove_body(const SurfaceMesh& body, const std::vector<std::vector<Ei
     out.mesh = solid.mesh(0);
   }
   return out;
+}
+
+} // namespace
+
+GrooveBody groove_body(const SurfaceMesh& body, const std::vector<std::vector<Eigen::Vector3d>>& fibers, double radius,
+                       const Eigen::Vector3d& pull_in, double voxel, double adaptivity, const Draft* draft, GrooveBody* solid_body)
+{
+  const Eigen::Vector3d pull = pull_in.normalized();
+  const Eigen::VectorXd heights = body.vertices * pull;
+  // Out of the (drafted) body from anywhere.
+  const double through = heights.maxCoeff() - heights.minCoeff() + 2 * radius + (draft ? 2 * draft->most() : 0);
+  // A drafted body is voxelized with room outside for its growth.
+  const double half_width = 3, exterior = draft ? half_width + std::ceil(draft->most() / voxel) + 1 : 0;
+  LevelSet solid = LevelSet::from_mesh(body, voxel, pull, half_width, exterior);
+  if (draft) solid.grow([&](double h) { return draft->offset(h); }, draft->most());
+  if (solid_body) *solid_body = meshed(solid, adaptivity);
+  LevelSet grooves(voxel, pull);
+  for (const auto& fiber : fibers) grooves.add_swept_tube(simplified(fiber, voxel / 10), radius, through, draft ? draft->slope : 0);
+  solid.subtract(grooves);
+  return meshed(solid, adaptivity);
 }
 
 } // namespace fibermold

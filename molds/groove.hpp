@@ -26,9 +26,10 @@ constexpr double kGrooveAdaptivity = 0.01;
 /// `fibers`: each fiber's centre line as a dense polyline (m). The mesh is adaptive (see
 /// LevelSet::mesh) unless that one is not a valid solid (closed, manifold, oriented, without
 /// self-intersections): then uniform. With a `draft` the body is grown as Draft says and each
-/// groove widens upward by the draft's slope; without fibers that is the drafted body (shot 2).
+/// groove widens upward by the draft's slope. `solid_body`, when given, receives the (drafted) body
+/// before the grooves are cut, meshed the same way: shot 2's cavity.
 GrooveBody groove_body(const SurfaceMesh& body, const std::vector<std::vector<Eigen::Vector3d>>& fibers, double radius,
                        const Eigen::Vector3d& pull, double voxel, double adaptivity = kGrooveAdaptivity,
-                       const Draft* draft = nullptr);
+                       const Draft* draft = nullptr, GrooveBody* solid_body = nullptr);
 
 } // namespace fibermold

@@ -121,6 +121,7 @@ struct SweptSegment {
 struct LevelSet::Impl {
   openvdb::FloatGrid::Ptr grid;
   double voxel, half_width;
+  double exterior = 0;  ///< voxels of band outside, when wider than half_width
 };
 
 LevelSet::LevelSet(double voxel, const Eigen::Vector3d& up, double half_width) : impl_(std::make_unique<Impl>())
@@ -136,7 +137,15 @@ LevelSet& LevelSet::operator=(LevelSet&&) noexcept = default;
 
 double LevelSet::voxel() const { return impl_->voxel; }
 
-LevelSet LevelSet::from_mesh(const SurfaceMesh& s, double voxel, const Eigen::Vector3d& up, double half_width)
+LevelSet LevelSet::copy() const
+{
+  LevelSet out(impl_->voxel, Eigen::Vector3d::UnitZ(), impl_->half_width);
+  out.impl_->grid = impl_->grid->deepCopy();
+  out.impl_->exterior = impl_->exterior;
+  return out;
+}
+
+LevelSet LevelSet::from_mesh(const SurfaceMesh& s, double voxel, const Eigen::Vector3d& up, double half_width, double exterior)
 {
   LevelSet out(voxel, up, half_width);
   std::vector<openvdb::Vec3s> points;
@@ -146,8 +155,9 @@ LevelSet LevelSet::from_mesh(const SurfaceMesh& s, double voxel, const Eigen::Ve
                         static_cast<float>(s.vertices(i, 2) / kUnit));
   for (Eigen::Index f = 0; f < s.num_faces(); ++f)
     triangles.emplace_back(static_cast<unsigned>(s.faces(f, 0)), static_cast<unsigned>(s.faces(f, 1)), static_cast<unsigned>(s.faces(f, 2)));
-  out.impl_->grid = openvdb::tools::meshToLevelSet<openvdb::FloatGrid>(out.impl_->grid->transform(), points, triangles,
-                                                                       static_cast<float>(half_width));
+  out.impl_->exterior = std::max(exterior, half_width);
+  out.impl_->grid = openvdb::tools::meshToSignedDistanceField<openvdb::FloatGrid>(
+      out.impl_->grid->transform(), points, triangles, {}, static_cast<float>(out.impl_->exterior), static_cast<float>(half_width));
   return out;
 }
 
@@ -261,12 +271,13 @@ void LevelSet::add_swept_tube(const std::vector<Eigen::Vector3d>& polyline, doub
 void LevelSet::grow(const std::function<double(double)>& by_height, double most)
 {
   // The offset surface must lie inside the band: widen it first when it is too narrow.
-  if (const double needed = std::ceil(most / impl_->voxel) + impl_->half_width; needed > impl_->half_width)
+  if (const double needed = std::ceil(most / impl_->voxel) + impl_->half_width; needed > std::max(impl_->exterior, impl_->half_width))
     impl_->grid = openvdb::tools::levelSetRebuild(*impl_->grid, 0.0f, static_cast<float>(needed), static_cast<float>(impl_->half_width));
   openvdb::tools::foreach(impl_->grid->beginValueOn(), [&](const openvdb::FloatGrid::ValueOnIter& it) {
     it.setValue(*it - static_cast<float>(by_height(it.getCoord().z() * impl_->voxel) / kUnit));
   });
   impl_->grid = openvdb::tools::levelSetRebuild(*impl_->grid, 0.0f, static_cast<float>(impl_->half_width));
+  impl_->exterior = impl_->half_width;
 }
 
 void LevelSet::unite(LevelSet& other) { openvdb::tools::csgUnion(*impl_->grid, *other.impl_->grid); }

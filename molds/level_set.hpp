@@ -22,9 +22,12 @@ public:
   LevelSet(LevelSet&&) noexcept;
   LevelSet& operator=(LevelSet&&) noexcept;
 
-  /// The solid bounded by a closed surface (self-intersections and overlaps allowed: a union).
+  /// The solid bounded by a closed surface (self-intersections and overlaps allowed: a union). An
+  /// `exterior` band wider than half_width (voxels) leaves room for grow() without a rebuild.
   static LevelSet from_mesh(const SurfaceMesh& surface, double voxel, const Eigen::Vector3d& up = Eigen::Vector3d::UnitZ(),
-                            double half_width = 3);
+                            double half_width = 3, double exterior = 0);
+
+  LevelSet copy() const;  ///< a deep copy
 
   /// Adds the solid swept by a ball of `radius` whose centre runs along `polyline` and, from every
   /// point of it, `length` (m) along up: a tube when length is zero, a groove open upward otherwise.

@@ -243,9 +243,9 @@ void MoldsStage::run(StageContext& ctx) const
     draft = draft_for(body, pull, parting1.point, m.draft_deg * M_PI / 180, m.voxel);
     parting2 = parting1;
     started = Clock::now();
-    groove = groove_body(body, lines, radius, pull, m.voxel, kGrooveAdaptivity, &*draft);
+    GrooveBody drafted;
+    groove = groove_body(body, lines, radius, pull, m.voxel, kGrooveAdaptivity, &*draft, &drafted);
     log_groove();
-    const GrooveBody drafted = groove_body(body, {}, radius, pull, m.voxel, kGrooveAdaptivity, &*draft);
     shot2_cavity = drafted.mesh;
     shot2_volume = drafted.volume;
     shot2_adaptive = drafted.adaptivity > 0;
