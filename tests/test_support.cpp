@@ -1,5 +1,7 @@
 #include "test_support.hpp"
 
+#include "primitives.hpp"
+
 #include <cstdio>
 #include <cstdlib>
 #include <fstream>
@@ -57,6 +59,11 @@ CommandResult run_fibermold(const std::string& arguments, const fs::path& cwd, c
   result.out = read_text(out);
   result.err = read_text(err);
   return result;
+}
+
+void write_bar(const fs::path& dir)
+{
+  write_ascii_stl(dir / "bar.stl", box({0, -0.008, -0.008}, {0.06, 0.008, 0.008}, Eigen::Vector3i(10, 3, 3)));
 }
 
 std::pair<int, std::string> run_command(const std::string& command)

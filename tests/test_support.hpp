@@ -36,6 +36,39 @@ struct CommandResult {
 CommandResult run_fibermold(const std::string& arguments, const std::filesystem::path& cwd = {},
                             const std::string& launcher = {});
 
+/// The bar of the end-to-end tests: 60 × 16 × 16 mm from x = 0, written as `bar.stl` into `dir`.
+void write_bar(const std::filesystem::path& dir);
+// Its design file in pieces (TOML), constants so that tests may build theirs at namespace scope:
+// the opening ([design] "bar" on bar.stl, [mesh] at 8 mm, [[fixed]] at x = 0), a wavy muscle m1
+// end to end, the straight tracking curve "centre" along the axis, and the target "s" (m1 bent into
+// another wave at 300 kPa, a known solution).
+inline constexpr const char* kBarDesign = R"([design]
+name = "bar"
+surface = "bar.stl"
+[mesh]
+edge_length = 8
+[[fixed]]
+box = { min = [-1, -9, -9], max = [0.5, 9, 9] }
+)";
+
+inline constexpr const char* kBarMuscle = R"([[fiber]]
+name = "m1"
+points = [[0, 0, 0], [20, 3, -3], [40, -3, 2], [60, 0, 0]]
+)";
+
+inline constexpr const char* kBarTrackingCurve = R"([[tracking_curve]]
+name = "centre"
+points = [[0, 0, 0], [60, 0, 0]]
+samples = 20
+)";
+
+inline constexpr const char* kBarTarget = R"([[target]]
+name = "s"
+kind = "fibers"
+fibers = [{ name = "m1", pressure = 300, points = [[0, 0, 0], [20, 0, 3], [40, 0, -3], [60, 0, 0]] }]
+)";
+
+
 /// Runs a shell command: its exit status and what it printed (stdout and stderr together).
 std::pair<int, std::string> run_command(const std::string& command);
 

@@ -12,9 +12,7 @@
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
-#include "export/stl_writer.hpp"
 #include "mesh/tet_mesh.hpp"
-#include "primitives.hpp"
 #include "test_support.hpp"
 
 namespace fibermold {
@@ -23,25 +21,14 @@ namespace {
 using ::testing::HasSubstr;
 namespace fs = std::filesystem;
 
-const char* kDesign = R"([design]
-name = "bar"
-surface = "bar.stl"
-[mesh]
-edge_length = 8
-[[fixed]]
-box = { min = [-1, -9, -9], max = [0.5, 9, 9] }
-[optimize]
-enabled = false
-[mold]
-voxel = 0.3
-)";
+const std::string kDesign = std::string(test::kBarDesign) + "[optimize]\nenabled = false\n[mold]\nvoxel = 0.3\n";
 
 class MoldsE2E : public ::testing::Test {
 protected:
-  void SetUp() override { write_stl(dir_ / "bar.stl", test::box({0, -0.008, -0.008}, {0.06, 0.008, 0.008}, Eigen::Vector3i(10, 3, 3))); }
+  void SetUp() override { test::write_bar(dir_.path()); }
   void design(const std::string& extra, const std::string& fiber = "[[fiber]]\nname = \"m1\"\npoints = [[0, 0, 0], [60, 0, 0]]\n")
   {
-    test::write_text(dir_ / "design.toml", std::string(kDesign) + fiber + extra);
+    test::write_text(dir_ / "design.toml", kDesign + fiber + extra);
   }
   test::CommandResult make() { return test::run_fibermold("make design.toml --build-dir build", dir_.path()); }
   fs::path out(const std::string& f) { return dir_ / "build" / "export" / f; }
@@ -190,7 +177,7 @@ TEST_F(MoldsE2E, DraftAngleLeansTheCavitiesAndTheirPartsPass)
   // A 2° draft: both shots share shot 1's plane; the overmold cavity is the bar grown by
   // r(z) = (reach − |z − plane|) tan 2° (walls within two voxels of the plane stay upright), of volume
   // ∫ A + P r + π r² dz over the bar's height plus the slab its nearer end face moves out by.
-  test::write_text(dir_ / "design.toml", std::string(kDesign) + "draft_deg = 2\n[[fiber]]\nname = \"m1\"\npoints = [[0, 0, 0], [60, 0, 0]]\n");
+  test::write_text(dir_ / "design.toml", kDesign + "draft_deg = 2\n[[fiber]]\nname = \"m1\"\npoints = [[0, 0, 0], [60, 0, 0]]\n");
   const auto r = make();
   ASSERT_EQ(r.exit_code, 0) << r.err;
   const auto report = nlohmann::json::parse(test::read_text(dir_ / "build" / "molds" / "report.json"));
@@ -223,7 +210,7 @@ TEST_F(MoldsE2E, ShrinkScalesTheCavitiesAndThePartingPlane)
   design("");
   ASSERT_EQ(make().exit_code, 0);
   const auto nominal = nlohmann::json::parse(test::read_text(dir_ / "build" / "molds" / "report.json"));
-  test::write_text(dir_ / "design.toml", std::string(kDesign) + "shrink = 0.02\n[[fiber]]\nname = \"m1\"\npoints = [[0, 0, 0], [60, 0, 0]]\n");
+  test::write_text(dir_ / "design.toml", kDesign + "shrink = 0.02\n[[fiber]]\nname = \"m1\"\npoints = [[0, 0, 0], [60, 0, 0]]\n");
   ASSERT_EQ(make().exit_code, 0);
   const auto shrunk = nlohmann::json::parse(test::read_text(dir_ / "build" / "molds" / "report.json"));
   const double g = 1 / 0.98;
@@ -245,10 +232,10 @@ TEST_F(MoldsE2E, MoldEditsRerunMoldsAndExportOnly)
 {
   design("");
   ASSERT_EQ(make().exit_code, 0);
-  test::write_text(dir_ / "design.toml", std::string(kDesign) + "wall = 5.0\n[[fiber]]\nname = \"m1\"\npoints = [[0, 0, 0], [60, 0, 0]]\n");
+  test::write_text(dir_ / "design.toml", kDesign + "wall = 5.0\n[[fiber]]\nname = \"m1\"\npoints = [[0, 0, 0], [60, 0, 0]]\n");
   const auto status = test::run_fibermold("status design.toml --build-dir build", dir_.path()).out;
   EXPECT_THAT(status, HasSubstr("optimize  fresh\ncollide   fresh\nmolds     stale ([mold].wall changed (4 → 5))\nexport    stale"));
-  test::write_text(dir_ / "design.toml", std::string(kDesign) + "[collide]\nsmoothness = 20\n[[fiber]]\nname = \"m1\"\npoints = [[0, 0, 0], [60, 0, 0]]\n");
+  test::write_text(dir_ / "design.toml", kDesign + "[collide]\nsmoothness = 20\n[[fiber]]\nname = \"m1\"\npoints = [[0, 0, 0], [60, 0, 0]]\n");
   EXPECT_THAT(test::run_fibermold("status design.toml --build-dir build", dir_.path()).out,
               HasSubstr("optimize  fresh\ncollide   stale ([collide].smoothness changed (10 → 20))\nmolds     stale"));
 }

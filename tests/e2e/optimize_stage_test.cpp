@@ -6,8 +6,6 @@
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
-#include "export/stl_writer.hpp"
-#include "primitives.hpp"
 #include "test_support.hpp"
 
 namespace fibermold {
@@ -16,32 +14,12 @@ namespace {
 using ::testing::HasSubstr;
 namespace fs = std::filesystem;
 
-const char* kDesign = R"([design]
-name = "bar"
-surface = "bar.stl"
-[mesh]
-edge_length = 8
-[[fixed]]
-box = { min = [-1, -9, -9], max = [0.5, 9, 9] }
-[[fiber]]
-name = "m1"
-points = [[0, 0, 0], [20, 3, -3], [40, -3, 2], [60, 0, 0]]
-[[tracking_curve]]
-name = "centre"
-points = [[0, 0, 0], [60, 0, 0]]
-samples = 20
-[[target]]
-name = "s"
-kind = "fibers"
-fibers = [{ name = "m1", pressure = 300, points = [[0, 0, 0], [20, 0, 3], [40, 0, -3], [60, 0, 0]] }]
-[mold]
-wall = 4.0
-)";
+const std::string kDesign = std::string(test::kBarDesign) + test::kBarMuscle + test::kBarTrackingCurve + test::kBarTarget + "[mold]\nwall = 4.0\n";
 
 class OptimizeE2E : public ::testing::Test {
 protected:
-  void SetUp() override { write_stl(dir_ / "bar.stl", test::box({0, -0.008, -0.008}, {0.06, 0.008, 0.008}, Eigen::Vector3i(10, 3, 3))); }
-  void design(const std::string& extra) { test::write_text(dir_ / "design.toml", std::string(kDesign) + extra); }
+  void SetUp() override { test::write_bar(dir_.path()); }
+  void design(const std::string& extra) { test::write_text(dir_ / "design.toml", kDesign + extra); }
   test::CommandResult make(const std::string& launcher = {})
   {
     return test::run_fibermold("make design.toml optimize --build-dir build", dir_.path(), launcher);
@@ -87,12 +65,12 @@ TEST_F(OptimizeE2E, RecoversTheTargetAndWritesItsOutputs)
   EXPECT_TRUE(fs::exists(dir_ / "build" / "optimize" / "deformed-s.vtu"));
 
   // Edits: [mold] leaves optimize fresh; [optimize] reruns it alone; the fiber's start reruns it.
-  test::write_text(dir_ / "design.toml", std::string(kDesign).replace(std::string(kDesign).find("wall = 4.0"), 10, "wall = 5.0") +
+  test::write_text(dir_ / "design.toml", std::string(kDesign).replace(kDesign.find("wall = 4.0"), 10, "wall = 5.0") +
                                              "[optimize]\nmax_iterations = 60\n");
   EXPECT_THAT(status(), HasSubstr("targets   fresh\noptimize  fresh"));
   design("[optimize]\nmax_iterations = 61\n");
   EXPECT_THAT(status(), HasSubstr("targets   fresh\noptimize  stale ([optimize].max_iterations changed (60 → 61))"));
-  test::write_text(dir_ / "design.toml", std::string(kDesign).replace(std::string(kDesign).find("[20, 3, -3]"), 11, "[20, 2, -3]") +
+  test::write_text(dir_ / "design.toml", std::string(kDesign).replace(kDesign.find("[20, 3, -3]"), 11, "[20, 2, -3]") +
                                              "[optimize]\nmax_iterations = 61\n");
   EXPECT_THAT(status(), HasSubstr("optimize  stale"));
 }

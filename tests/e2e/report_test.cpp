@@ -10,9 +10,7 @@
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
-#include "export/stl_writer.hpp"
 #include "mesh/tet_mesh.hpp"
-#include "primitives.hpp"
 #include "test_support.hpp"
 
 namespace fibermold {
@@ -21,34 +19,16 @@ namespace {
 using ::testing::HasSubstr;
 namespace fs = std::filesystem;
 
-const char* kDesign = R"([design]
-name = "bar"
-surface = "bar.stl"
-[mesh]
-edge_length = 8
-[[fixed]]
-box = { min = [-1, -9, -9], max = [0.5, 9, 9] }
-[[fiber]]
-name = "m1"
-points = [[0, 0, 0], [20, 3, -3], [40, -3, 2], [60, 0, 0]]
-[[tracking_curve]]
-name = "centre"
-points = [[0, 0, 0], [30, 0, 1], [60, 0, 0]]
-samples = 20
-[[target]]
-name = "s"
-kind = "fibers"
-fibers = [{ name = "m1", pressure = 300, points = [[0, 0, 0], [20, 0, 3], [40, 0, -3], [60, 0, 0]] }]
-[optimize]
-max_iterations = 3
-[mold]
-voxel = 0.4
-)";
+// A tracking curve of three points: the report draws it along its spline.
+const std::string kDesign =
+    std::string(test::kBarDesign) + test::kBarMuscle +
+    "[[tracking_curve]]\nname = \"centre\"\npoints = [[0, 0, 0], [30, 0, 1], [60, 0, 0]]\nsamples = 20\n" +
+    test::kBarTarget + "[optimize]\nmax_iterations = 3\n[mold]\nvoxel = 0.4\n";
 
 TEST(ReportE2E, ShowsTheDeformedBodyTheErrorsAndTheOptimizationHistory)
 {
   test::TempDir dir;
-  write_stl(dir / "bar.stl", test::box({0, -0.008, -0.008}, {0.06, 0.008, 0.008}, Eigen::Vector3i(10, 3, 3)));
+  test::write_bar(dir.path());
   test::write_text(dir / "design.toml", kDesign);
   const auto r = test::run_fibermold("make design.toml --build-dir build", dir.path());
   ASSERT_EQ(r.exit_code, 0) << r.err;

@@ -19,8 +19,6 @@
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
-#include "export/stl_writer.hpp"
-#include "primitives.hpp"
 #include "test_support.hpp"
 
 namespace fibermold {
@@ -29,27 +27,8 @@ namespace {
 using ::testing::HasSubstr;
 namespace fs = std::filesystem;
 
-const char* kDesign = R"([design]
-name = "bar"
-surface = "bar.stl"
-[mesh]
-edge_length = 8
-[[fixed]]
-box = { min = [-1, -9, -9], max = [0.5, 9, 9] }
-[[fiber]]
-name = "m1"
-points = [[0, 0, 0], [20, 3, -3], [40, -3, 2], [60, 0, 0]]
-[[tracking_curve]]
-name = "centre"
-points = [[0, 0, 0], [60, 0, 0]]
-samples = 20
-[[target]]
-name = "s"
-kind = "fibers"
-fibers = [{ name = "m1", pressure = 300, points = [[0, 0, 0], [20, 0, 3], [40, 0, -3], [60, 0, 0]] }]
-[mold]
-voxel = 0.4
-)";
+const std::string kDesign =
+    std::string(test::kBarDesign) + test::kBarMuscle + test::kBarTrackingCurve + test::kBarTarget + "[mold]\nvoxel = 0.4\n";
 
 const char* kSweep = R"([sweep]
 design = "design.toml"
@@ -63,7 +42,7 @@ class SweepE2E : public ::testing::Test {
 protected:
   void SetUp() override
   {
-    write_stl(dir_ / "bar.stl", test::box({0, -0.008, -0.008}, {0.06, 0.008, 0.008}, Eigen::Vector3i(10, 3, 3)));
+    test::write_bar(dir_.path());
     test::write_text(dir_ / "design.toml", kDesign);
     test::write_text(dir_ / "sweep.toml", kSweep);
   }

@@ -5,13 +5,11 @@
 #include <gtest/gtest.h>
 
 #include "core/input_error.hpp"
-#include "export/stl_writer.hpp"
 #include "pipeline/design_file.hpp"
 #include "pipeline/runner.hpp"
 #include "pipeline/stages.hpp"
 #include "pipeline/sweep_cases.hpp"
 #include "pipeline/sweep_file.hpp"
-#include "primitives.hpp"
 #include "test_support.hpp"
 
 namespace fibermold {
@@ -19,25 +17,13 @@ namespace {
 
 using ::testing::HasSubstr;
 
-const char* kBase = R"([design]
-name = "bar"
-surface = "bar.stl"
-[mesh]
-edge_length = 8
-[[fixed]]
-box = { min = [-1, -9, -9], max = [0.5, 9, 9] }
-[[fiber]]
-name = "m1"
-points = [[0, 0, 0], [20, 3, -3], [40, -3, 2], [60, 0, 0]]
-[mold]
-wall = 4.0
-)";
+const std::string kBase = std::string(test::kBarDesign) + test::kBarMuscle + "[mold]\nwall = 4.0\n";
 
 class Sweep : public ::testing::Test {
 protected:
   void SetUp() override
   {
-    write_stl(dir_ / "bar.stl", test::box({0, -0.008, -0.008}, {0.06, 0.008, 0.008}));
+    test::write_bar(dir_.path());
     test::write_text(dir_ / "design.toml", kBase);
   }
   SweepFile sweep(const std::string& text)
