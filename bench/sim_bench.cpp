@@ -39,9 +39,12 @@ double since(std::chrono::steady_clock::time_point t)
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - t).count();
 }
 
+struct PrintProgress final : Progress {
+  void update(double, std::string_view w) override { std::fprintf(stderr, "%.*s\n", int(w.size()), w.data()); }
+};
 Row twisting_bar()
 {
-  NullProgress progress;
+  PrintProgress progress;
   const SurfaceMesh surface = import_surface(FIBERMOLD_SOURCE_DIR "/examples/twisting-bar/bar.stl", 1e-3);
   const TetMesh mesh = tetrahedralize(surface, {0.006, 1.5, 10, false}, progress);
   const auto start = std::chrono::steady_clock::now();

@@ -100,26 +100,30 @@ void NeoHookean::add_hessian(const Eigen::VectorXd& x, SparseHessian& H, bool pr
     if (project) C = project_psd(C);
     VC[q] = qp_.volume[q] * C;
   });
-  // Column j of the Hessian: for each point q touching j and each node i of q,
+  // Column j of the Hessian: for each point q touching j and each node i ≥ j of q,
   //   H_ij[a][b] += Σ_{c,d} V C[3a+c][3b+d] ∇N_i,c ∇N_j,d.
   tbb::enumerable_thread_specific<std::vector<int>> positions(std::vector<int>(static_cast<std::size_t>(H.num_nodes()), -1));
   const auto n = static_cast<Eigen::Index>(incidence_.offset.size()) - 1;
   tbb::parallel_for(Eigen::Index{0}, n, [&](Eigen::Index j) {
     std::vector<int>& pos = positions.local();
     const auto& nb = H.neighbours(j);
-    for (std::size_t k = 0; k < nb.size(); ++k) pos[nb[k]] = static_cast<int>(k);
+    for (std::size_t k = 0; k < nb.size(); ++k) pos[nb[k]] = 3 * static_cast<int>(k);
+    const auto stride = 3 * static_cast<std::ptrdiff_t>(nb.size());
+    double* column = H.column_values(j);
     for (int e = incidence_.offset[j]; e < incidence_.offset[j + 1]; ++e) {
       const auto [q, kj] = incidence_.entry[e];
       const Eigen::Vector3d& gj = qp_.dN[kj];
-      // T[(a,c)][b] = Σ_d C[3a+c][3b+d] g_j,d
-      Eigen::Matrix<double, 9, 3> T;
-      for (int b = 0; b < 3; ++b) T.col(b) = VC[q].middleCols<3>(3 * b) * gj;
-      for (int ki = qp_.offset[q]; ki < qp_.offset[q + 1]; ++ki) {
-        if (qp_.node[ki] < j) continue;  // upper block triangle: not stored
-        const Eigen::Vector3d& gi = qp_.dN[ki];
-        Eigen::Matrix3d block;
-        for (int a = 0; a < 3; ++a) block.row(a) = gi.transpose() * T.middleRows<3>(3 * a);
-        H.add_block_at(pos[qp_.node[ki]], static_cast<int>(j), block);
+      // T[b][a][c] = Σ_d C[3a+c][3b+d] g_j,d
+      double T[3][3][3];
+      for (int a = 0; a < 3; ++a)
+        for (int c = 0; c < 3; ++c)
+          for (int b = 0; b < 3; ++b) T[b][a][c] = VC[q].row(3 * a + c).segment<3>(3 * b).dot(gj);
+      // A point's nodes ascend, so those ≥ j are the entries from j's onward.
+      for (int ki = kj; ki < qp_.offset[q + 1]; ++ki) {
+        const double* gi = qp_.dN[ki].data();
+        double* block = column + pos[qp_.node[ki]];
+        for (int b = 0; b < 3; ++b)
+          for (int a = 0; a < 3; ++a) block[b * stride + a] += gi[0] * T[b][a][0] + gi[1] * T[b][a][1] + gi[2] * T[b][a][2];
       }
     }
     for (int i : nb) pos[i] = -1;

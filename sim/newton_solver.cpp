@@ -75,6 +75,41 @@ bool NewtonSolver::solve_with_hessian(const Eigen::VectorXd& x, const Eigen::Vec
   return lambda.allFinite();
 }
 
+bool NewtonSolver::factorize_at(const Eigen::VectorXd& x, NewtonSummary& s, double& shift)
+{
+  // The exact Hessian where it is positive definite (quadratic convergence near a stable
+  // equilibrium); the per-point PSD projection where it is not.
+  auto t = Clock::now();
+  hessian(x, false);
+  s.seconds_assembly += since(t);
+  ++s.assemblies;
+  t = Clock::now();
+  shift = 0;
+  bool factorized = cholmod_.factorize(hessian_.matrix(), 0);
+  ++s.factorizations;
+  s.seconds_factorization += since(t);
+  if (factorized) return true;
+  t = Clock::now();
+  hessian(x, true);
+  s.seconds_assembly += since(t);
+  ++s.assemblies;
+  // A PSD-projected Hessian can be singular (e.g. at rest with no load); shift until it factorizes.
+  t = Clock::now();
+  const double diagonal = hessian_.matrix().diagonal().cwiseAbs().maxCoeff();
+  if (!(diagonal > 0 && std::isfinite(diagonal))) {
+    s.message = "the Hessian is zero or not finite";
+    return false;
+  }
+  while (!factorized && shift <= diagonal) {  // at most 11 attempts
+    factorized = cholmod_.factorize(hessian_.matrix(), shift);
+    ++s.factorizations;
+    if (!factorized) shift = shift == 0 ? 1e-10 * diagonal : shift * 10;
+  }
+  s.seconds_factorization += since(t);
+  if (!factorized) s.message = "the Hessian is singular: is the body held (a [[fixed]] region)?";
+  return factorized;
+}
+
 NewtonSummary NewtonSolver::solve(Eigen::VectorXd& x, const NewtonOptions& options, Progress& progress)
 {
   const auto start = Clock::now();
@@ -87,7 +122,9 @@ NewtonSummary NewtonSolver::solve(Eigen::VectorXd& x, const NewtonOptions& optio
   Eigen::VectorXd g = gradient(x);
   s.initial_residual = g.norm();
   const double goal = options.tolerance * options.force_scale;
-  double last_alpha = 0, last_shift = 0;
+  double last_alpha = 0, shift = 0;
+  bool fresh = false;  // the factorization is of the Hessian at x
+  bool stale = true;   // the factorization must be redone before the next step
   for (;;) {
     s.residual = g.norm();
     s.energy = E;
@@ -104,45 +141,14 @@ NewtonSummary NewtonSolver::solve(Eigen::VectorXd& x, const NewtonOptions& optio
       s.message = fmt::format("no convergence in {} iterations", options.max_iterations);
       break;
     }
-    progress.checkpoint(-1, fmt::format("Newton iteration {}: |∇E| = {:.3e} N, last step {:.3g}, shift {:.3g}",
-                                        s.iterations, s.residual, last_alpha, last_shift));
-
-    // The exact Hessian where it is positive definite (quadratic convergence near a stable
-    // equilibrium); the per-point PSD projection where it is not.
+    if (stale) {
+      if (!factorize_at(x, s, shift)) break;
+      stale = false;
+      fresh = true;
+    }
+    progress.checkpoint(-1, fmt::format("Newton iteration {}: |∇E| = {:.3e} N, last step {:.3g}, shift {:.3g}{}", s.iterations,
+                                        s.residual, last_alpha, shift, fresh ? "" : ", Hessian reused"));
     auto t = Clock::now();
-    hessian(x, false);
-    s.seconds_assembly += since(t);
-    ++s.assemblies;
-    t = Clock::now();
-    bool factorized = cholmod_.factorize(hessian_.matrix(), 0);
-    ++s.factorizations;
-    s.seconds_factorization += since(t);
-    if (!factorized) {
-      t = Clock::now();
-      hessian(x, true);
-      s.seconds_assembly += since(t);
-      ++s.assemblies;
-    }
-    t = Clock::now();
-    // A PSD-projected Hessian can be singular (e.g. at rest with no load); shift until it factorizes.
-    double shift = 0;
-    const double diagonal = hessian_.matrix().diagonal().cwiseAbs().maxCoeff();
-    if (!(diagonal > 0 && std::isfinite(diagonal))) {
-      s.message = "the Hessian is zero or not finite";
-      break;
-    }
-    while (!factorized && !cholmod_.factorize(hessian_.matrix(), shift)) {
-      ++s.factorizations;
-      shift = shift == 0 ? 1e-10 * diagonal : shift * 10;
-      if (shift > diagonal) break;  // at most 11 attempts
-    }
-    if (!factorized) ++s.factorizations;
-    s.seconds_factorization += since(t);
-    if (shift > diagonal) {
-      s.message = "the Hessian is singular: is the body held (a [[fixed]] region)?";
-      break;
-    }
-    t = Clock::now();
     const Eigen::VectorXd dx = -cholmod_.solve(g);
     s.seconds_solve += since(t);
 
@@ -152,7 +158,7 @@ NewtonSummary NewtonSolver::solve(Eigen::VectorXd& x, const NewtonOptions& optio
     Eigen::VectorXd trial;
     double trial_E = HUGE_VAL;
     int halvings = 0;
-    for (; halvings <= options.max_halvings; ++halvings, alpha /= 2) {
+    for (; slope < 0 && halvings <= options.max_halvings; ++halvings, alpha /= 2) {
       trial = x + alpha * dx;
       if (!is_valid(trial)) continue;
       trial_E = energy(trial);
@@ -160,16 +166,23 @@ NewtonSummary NewtonSolver::solve(Eigen::VectorXd& x, const NewtonOptions& optio
       // Near the minimum the energy difference drowns in round-off: accept a step that lowers |∇E|.
       if (std::abs(trial_E - E) <= 1e-12 * std::abs(E) && gradient(trial).norm() < s.residual) break;
     }
-    if (halvings > options.max_halvings) {
+    if (!(slope < 0) || halvings > options.max_halvings) {
+      if (!fresh) {  // an old Hessian's direction: refactorize here and try again
+        stale = true;
+        continue;
+      }
       s.message = "the line search found no decrease";
       break;
     }
     x = trial;
     E = trial_E;
     last_alpha = alpha;
-    last_shift = shift;
     g = gradient(x);
     ++s.iterations;
+    // The factorization is kept for the next step while the gradient keeps shrinking fast: a step
+    // then costs a gradient and a solve instead of an assembly and a factorization.
+    stale = !(alpha == 1 && g.norm() <= options.reuse_contraction * s.residual);
+    fresh = false;
   }
   s.seconds_total = since(start);
   return s;

@@ -17,6 +17,9 @@ struct NewtonOptions {
   double tolerance = 1e-8;   ///< converged when |∇E| ≤ tolerance × force_scale
   double force_scale = 1.0;  ///< N
   int max_halvings = 40;
+  /// A full step that shrank |∇E| by at least this factor lets the next step reuse its
+  /// factorization; 0 refactorizes at every step (plain Newton).
+  double reuse_contraction = 0.5;
 };
 
 /// What a solve did. Non-convergence is a status with the residual, never a result to use.
@@ -59,6 +62,10 @@ public:
   bool solve_with_hessian(const Eigen::VectorXd& x, const Eigen::VectorXd& b, Eigen::VectorXd& lambda);
 
 private:
+  /// Assembles and factorizes the Hessian at x (projected and shifted when it is not positive
+  /// definite); false with s.message set when it cannot.
+  bool factorize_at(const Eigen::VectorXd& x, NewtonSummary& s, double& shift);
+
   std::vector<const Energy*> energies_;
   std::size_t fixed_energies_;
   SparseHessian hessian_;

@@ -1,5 +1,8 @@
 #include "sim/quadrature_points.hpp"
 
+#include <algorithm>
+#include <numeric>
+
 #include <tbb/parallel_for.h>
 
 #include "sim/quadrature.hpp"
@@ -30,12 +33,18 @@ QuadraturePoints build_quadrature_points(const TetMesh& mesh, const Basis& basis
   qp.node.resize(qp.offset.back());
   qp.N.resize(qp.offset.back());
   qp.dN.resize(qp.offset.back());
+  // Each point's entries in ascending node order: the nodes ≥ j follow node j, which the
+  // lower-triangle Hessian assembly relies on.
   tbb::parallel_for(Eigen::Index{0}, nq, [&](Eigen::Index q) {
     const ShapeEval& e = evals[q];
+    std::vector<int> order(static_cast<std::size_t>(e.size()));
+    std::iota(order.begin(), order.end(), 0);
+    std::sort(order.begin(), order.end(), [&](int a, int b) { return e.nodes[a] < e.nodes[b]; });
     for (Eigen::Index k = 0; k < e.size(); ++k) {
-      qp.node[qp.offset[q] + k] = e.nodes[k];
-      qp.N[qp.offset[q] + k] = e.N[k];
-      qp.dN[qp.offset[q] + k] = e.dN.row(k).transpose();
+      const int from = order[k];
+      qp.node[qp.offset[q] + k] = e.nodes[from];
+      qp.N[qp.offset[q] + k] = e.N[from];
+      qp.dN[qp.offset[q] + k] = e.dN.row(from).transpose();
     }
   });
   return qp;

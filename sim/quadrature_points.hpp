@@ -15,7 +15,7 @@ struct QuadraturePoints {
   std::vector<Eigen::Vector3d> X;     ///< rest position, m
   std::vector<double> volume;         ///< quadrature weight × tet volume, m³
   std::vector<int> offset;            ///< point q's shape functions are entries offset[q] .. offset[q+1]
-  std::vector<int> node;
+  std::vector<int> node;              ///< ascending within each point
   std::vector<double> N;
   std::vector<Eigen::Vector3d> dN;
 

@@ -29,6 +29,9 @@ public:
   void add_block(int i, int j, const Eigen::Matrix3d& block);
   /// Adds `block` at the k-th stored neighbour (i ≥ j) of column j (fast path for parallel assembly).
   void add_block_at(int k, int j, const Eigen::Matrix3d& block);
+  /// The values of node column j: 3 scalar columns of 3·|neighbours(j)| rows each, one after the
+  /// other; block (k-th neighbour, j) entry (a, b) is at [3·|neighbours(j)|·b + 3k + a].
+  double* column_values(Eigen::Index j) { return matrix_.valuePtr() + 9 * block_start_[j]; }
   /// Index of node i among j's stored neighbours (i ≥ j), or -1.
   int position(int i, int j) const;
 
