@@ -1,5 +1,6 @@
 #include "molds/mesh_boolean.hpp"
 
+#include <numeric>
 #include <stdexcept>
 #include <vector>
 
@@ -93,6 +94,46 @@ std::pair<SurfaceMesh, SurfaceMesh> split_by_plane(const SurfaceMesh& m, const E
     return from_cgal(std::move(mesh));
   };
   return {half(1), half(-1)};
+}
+
+std::vector<SurfaceMesh> split_shells(const SurfaceMesh& s)
+{
+  // Union-find over the vertices, joined along every face.
+  std::vector<int> parent(static_cast<std::size_t>(s.num_vertices()));
+  std::iota(parent.begin(), parent.end(), 0);
+  const auto find = [&](int v) {
+    while (parent[v] != v) v = parent[v] = parent[parent[v]];
+    return v;
+  };
+  for (Eigen::Index f = 0; f < s.num_faces(); ++f)
+    for (int c = 1; c < 3; ++c) parent[find(s.faces(f, c))] = find(s.faces(f, 0));
+  std::vector<int> shell_of(parent.size(), -1), index(parent.size(), -1);
+  std::vector<std::vector<Eigen::Index>> faces;
+  std::vector<std::vector<int>> vertices;
+  for (Eigen::Index f = 0; f < s.num_faces(); ++f) {
+    int& shell = shell_of[find(s.faces(f, 0))];
+    if (shell < 0) {
+      shell = static_cast<int>(faces.size());
+      faces.emplace_back();
+      vertices.emplace_back();
+    }
+    faces[shell].push_back(f);
+    for (int c = 0; c < 3; ++c)
+      if (const int v = s.faces(f, c); index[v] < 0) {
+        index[v] = static_cast<int>(vertices[shell].size());
+        vertices[shell].push_back(v);
+      }
+  }
+  std::vector<SurfaceMesh> out(faces.size());
+  for (std::size_t k = 0; k < faces.size(); ++k) {
+    out[k].source = s.source;
+    out[k].vertices.resize(static_cast<Eigen::Index>(vertices[k].size()), 3);
+    for (std::size_t i = 0; i < vertices[k].size(); ++i) out[k].vertices.row(static_cast<Eigen::Index>(i)) = s.vertices.row(vertices[k][i]);
+    out[k].faces.resize(static_cast<Eigen::Index>(faces[k].size()), 3);
+    for (std::size_t i = 0; i < faces[k].size(); ++i)
+      for (int c = 0; c < 3; ++c) out[k].faces(static_cast<Eigen::Index>(i), c) = index[s.faces(faces[k][i], c)];
+  }
+  return out;
 }
 
 int count_shells(const SurfaceMesh& s)

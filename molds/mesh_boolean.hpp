@@ -5,6 +5,7 @@
 
 #include <string>
 #include <utility>
+#include <vector>
 
 #include <Eigen/Core>
 
@@ -23,5 +24,7 @@ std::pair<SurfaceMesh, SurfaceMesh> split_by_plane(const SurfaceMesh& m, const E
 
 /// Connected surface components: a solid with an internal void has two.
 int count_shells(const SurfaceMesh& m);
+/// The connected surface components, each a mesh of its own, in the order of their first face.
+std::vector<SurfaceMesh> split_shells(const SurfaceMesh& m);
 
 } // namespace fibermold

@@ -110,6 +110,38 @@ double distance_to_segment(const Eigen::Vector2d& s, const Eigen::Vector2d& a, c
   return (s - a - t * ab).norm();
 }
 
+/// Appends b's vertices and faces to a (no boolean: for shells that do not touch).
+void append(SurfaceMesh& a, const SurfaceMesh& b)
+{
+  const Eigen::Index n = a.num_vertices(), m = a.num_faces();
+  a.vertices.conservativeResize(n + b.num_vertices(), 3);
+  a.vertices.bottomRows(b.num_vertices()) = b.vertices;
+  a.faces.conservativeResize(m + b.num_faces(), 3);
+  a.faces.bottomRows(b.num_faces()) = b.faces.array() + static_cast<int>(n);
+}
+
+/// Moves every solid piece of `from` that does not reach the face of the block it belongs to
+/// (height `base`, `below`: from is the lower half) over to `to`, which it touches at the plane.
+/// A groove's rib hangs from the upper half; where the groove's bottom lies below the parting
+/// plane, the cut leaves the rib's end as a loose piece of the lower half. The rib slides out of
+/// its groove along pull with the upper half, so that is where it goes.
+void reattach_loose_pieces(SurfaceMesh& from, SurfaceMesh& to, double base, bool below)
+{
+  std::vector<SurfaceMesh> shells = split_shells(from);
+  if (shells.size() < 2) return;
+  SurfaceMesh kept;
+  kept.vertices.resize(0, 3);
+  kept.faces.resize(0, 3);
+  for (const SurfaceMesh& shell : shells) {
+    const double reach = below ? shell.vertices.col(2).minCoeff() - base : base - shell.vertices.col(2).maxCoeff();
+    if (signed_volume(shell) > 0 && reach > 1e-6)
+      to = mesh_union(to, shell);
+    else
+      append(kept, shell);  // the block's piece, or a void inside it
+  }
+  from = std::move(kept);
+}
+
 SurfaceMesh key_solid(const Eigen::Vector3d& base, double radius, const std::string& shape, double sink)
 {
   if (shape == "hemisphere") return hemisphere_solid(base - Eigen::Vector3d(0, 0, sink), Eigen::Vector3d::UnitZ(), radius + sink, 32);
@@ -204,6 +236,8 @@ Mold make_mold(const SurfaceMesh& cavity_world, const Parting& parting, const st
   }
 
   auto [lower, upper] = split_by_plane(block, {0, 0, h}, Eigen::Vector3d::UnitZ());
+  reattach_loose_pieces(lower, upper, box_lo.z(), true);
+  reattach_loose_pieces(upper, lower, box_hi.z(), false);
   for (const Eigen::Vector2d& s : keys) {
     const Eigen::Vector3d base(s.x(), s.y(), h);
     lower = mesh_union(lower, key_solid(base, radius, o.key_shape, sink));

@@ -56,6 +56,36 @@ TEST(Molds, GrooveShotOfABoxWithAStraightFiber)
   EXPECT_EQ(mold.vents.size(), 2u);
 }
 
+TEST(Molds, GrooveRibBelowThePartingPlaneStaysWithTheUpperHalf)
+{
+  // A round bar whose muscle dips from 2 mm above the axis at its ends to 4 mm below it mid-way
+  // (as the optimized tentacle's): the least undercut is at the widest section, above the groove's
+  // bottom there. The plane cuts the end off the upper half's rib, which must go back to the upper
+  // half (it slides out of its groove with it), not stay a loose piece of the lower one.
+  const SurfaceMesh body = cylinder_solid({0, 0, 0}, {100 * mm, 0, 0}, 10 * mm, 48);
+  std::vector<Eigen::Vector3d> fiber;
+  for (int k = 0; k <= 100; ++k) fiber.emplace_back(k * mm, 0, (2 - 6 * std::sin(M_PI * k / 100)) * mm);
+  const double radius = 1.8 * mm;
+  const GrooveBody g = groove_body(body, {fiber}, radius, {0, 0, 1}, 0.25 * mm);
+  const Parting parting = choose_parting(g.mesh, {0, 0, 1});
+  std::printf("round bar: shot 1 parting at z = %.2f mm, groove bottom at %.2f mm\n", parting.point.z() / mm, (-4 * mm - radius) / mm);
+  ASSERT_GT(parting.point.z(), -4 * mm - radius);
+  MoldBlockOptions o;
+  o.sprue_diameter = 2 * mm;  // the bottom is round
+  const Mold mold = make_mold(g.mesh, parting, {}, o, "shot1");
+  ASSERT_EQ(mold.parts.size(), 2u);
+  expect_parts_ok(mold);
+  // The upper half holds the whole rib, down to the groove's bottom.
+  const SurfaceMesh& upper = mold.parts[1].mesh;
+  EXPECT_LT(upper.vertices.col(2).minCoeff(), -4 * mm - radius + 0.3 * mm);
+  EXPECT_GE(mold.parts[0].mesh.vertices.col(2).maxCoeff(), parting.point.z() - 1e-9);
+  // Both halves together fill the block around the cavity exactly: nothing lost, nothing doubled.
+  const double block = signed_volume(mold.parts[0].mesh) + signed_volume(upper);
+  const Eigen::Vector3d lo = g.mesh.vertices.colwise().minCoeff(), hi = g.mesh.vertices.colwise().maxCoeff();
+  std::printf("halves %.1f mm³\n", block / 1e-9);
+  EXPECT_GT(block, 0.9 * ((hi - lo).prod() - signed_volume(g.mesh)));
+}
+
 /// A half-turn helix about the x axis from x = 0 to 42 mm, as a dense polyline (the walking robot's
 /// twist muscles).
 std::vector<Eigen::Vector3d> helix(double sign)
