@@ -182,7 +182,9 @@ void MoldsStage::run(StageContext& ctx) const
   Json shots = Json::object(), parts = Json::object();
   std::vector<std::string> failures;
   std::vector<MoldPart> all;
-  // One shot's mold: its parts checked; the problems found, one line each.
+  // One shot's mold: its parts checked; the problems found, one line each. Parts too big for the
+  // printer are also listed apart: meshing the cavity again cannot help them.
+  std::vector<std::string> too_big;
   const auto make_shot = [&](const char* name, const SurfaceMesh& shot_cavity, Parting parting, double silicone,
                              const std::vector<Channel>& shot_channels) {
     std::vector<std::string> problems;
@@ -215,6 +217,7 @@ void MoldsStage::run(StageContext& ctx) const
       const PartCheck c = check_part(p.mesh, d.export_.min_wall, d.export_.printer_volume);
       ctx.log.info("{}: {} triangles, checked in {:.2f} s", p.name, p.mesh.num_faces(), since(started));
       for (const std::string& problem : c.problems) problems.push_back(fmt::format("part {} {}", p.name, problem));
+      if (!c.fits) too_big.push_back(p.name);
       parts[p.name] = {{"shot", name},
                        {"file", p.name + ".stl"},
                        {"triangles", p.mesh.num_faces()},
@@ -255,7 +258,7 @@ void MoldsStage::run(StageContext& ctx) const
                  m.draft_deg, draft->most() / units::mm, (shot2_volume - body_volume) / 1e-6);
   }
   failures = make_shot("shot1", groove.mesh, parting1, g3 * groove.volume, {});
-  if (!failures.empty() && groove.adaptivity > 0) {
+  if (!failures.empty() && groove.adaptivity > 0 && too_big.empty()) {
     ctx.log.info("shot 1 from the adaptive groove body mesh failed its checks ({}); meshing the groove body uniformly", failures.front());
     all.clear();
     started = Clock::now();
@@ -265,7 +268,7 @@ void MoldsStage::run(StageContext& ctx) const
   }
   const auto shot2_silicone = [&] { return std::max(0.0, g3 * shot2_volume - groove.volume - muscle_volume + sleeves); };
   std::vector<std::string> shot2 = make_shot("shot2", shot2_cavity, parting2, shot2_silicone(), channels);
-  if (!shot2.empty() && shot2_adaptive) {
+  if (!shot2.empty() && shot2_adaptive && too_big.empty()) {
     ctx.log.info("shot 2 from the adaptive drafted body mesh failed its checks ({}); meshing it uniformly", shot2.front());
     std::erase_if(all, [](const MoldPart& p) { return p.name.starts_with("shot2"); });
     const GrooveBody drafted = groove_body(body, {}, radius, pull, m.voxel, 0, &*draft);
