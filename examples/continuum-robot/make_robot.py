@@ -1,0 +1,38 @@
+#!/usr/bin/env python3
+"""Writes the continuum robot of the paper (section VIII-D, Fig. 11) and its target pose:
+  robot.obj   a cylinder 16 mm across and 300 mm long along +x from the origin, centred on the x
+              axis, with 12 vertices per ring and rings about 8 mm apart;
+  target.obj  the same surface bent in space: its centreline, held at x = 0, curves toward +y with a
+              curvature falling linearly from 1/167 mm to 0 at the tip, and toward +z with a
+              curvature rising from 0 to 1/167 mm mid-way and falling back (a sine), so that the
+              bend turns about two axes with a continuously varying curvature. The centreline does
+              not stretch and the cross-sections stay round.
+The paper's target is not published; this one has its kind. Standard library only:
+python3 make_robot.py [--curvature 0.006]"""
+
+import argparse
+import math
+import os
+import sys
+
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "common"))
+from tube import BentCentreline, tube, write_obj  # noqa: E402
+
+LENGTH, RADIUS = 300.0, 8.0
+
+
+def main():
+    parser = argparse.ArgumentParser(description=__doc__)
+    parser.add_argument("--curvature", type=float, default=0.006, help="largest curvature of each bend, 1/mm")
+    args = parser.parse_args()
+    k = args.curvature
+    vertices, triangles = tube(LENGTH, lambda x: RADIUS, 8.0, 12)
+    bend = BentCentreline(LENGTH, lambda s: k * (1 - s / LENGTH), lambda s: k * math.sin(math.pi * s / LENGTH))
+    write_obj("robot.obj", vertices, triangles, "fibermold continuum robot: 16 mm x 300 mm cylinder")
+    write_obj("target.obj", [bend(v) for v in vertices], triangles, f"continuum robot bent about two axes, curvature up to {k}/mm")
+    tip = bend((LENGTH, 0.0, 0.0))
+    print(f"robot.obj, target.obj: {len(vertices)} vertices, {len(triangles)} triangles; tip at ({tip[0]:.1f}, {tip[1]:.1f}, {tip[2]:.1f}) mm")
+
+
+if __name__ == "__main__":
+    main()
