@@ -31,6 +31,9 @@ class Simulation {
 public:
   /// Throws std::invalid_argument for a fixed region that holds no node or a body held nowhere.
   Simulation(const TetMesh& mesh, SimulationOptions options);
+
+  /// The Newton settings of every later solve.
+  NewtonOptions& newton_options() { return options_.newton; }
   ~Simulation();
 
   const TetMesh& mesh() const { return mesh_; }
