@@ -110,14 +110,6 @@ PartCheck check_part(const SurfaceMesh& part, double min_wall, const Eigen::Vect
   const SurfaceMesh written = as_written(part);
   out.volume = signed_volume(written);
   out.size = written.vertices.colwise().maxCoeff() - written.vertices.colwise().minCoeff();
-  if (!surface.ok()) return out;  // the rest needs a valid solid
-  if (const int shells = count_shells(part); shells != 1)
-    out.problems.push_back(fmt::format("is {} separate pieces or has a closed void, not one solid", shells));
-  Eigen::Vector3d where = Eigen::Vector3d::Zero();
-  out.min_thickness = thinnest_wall(written, min_wall, where);
-  if (out.min_thickness < min_wall * (1 - 1e-6))
-    out.problems.push_back(fmt::format("has a wall of {:.2f} mm near ({:.1f}, {:.1f}, {:.1f}) mm, thinner than [export] min_wall = {:.2f} mm",
-                                       out.min_thickness * 1e3, where.x() * 1e3, where.y() * 1e3, where.z() * 1e3, min_wall * 1e3));
   // The 6 axis-aligned orientations: which part axis goes along the printer's x, y, z; the lowest
   // build height among those that fit.
   std::array<int, 3> axes{0, 1, 2};
@@ -132,6 +124,14 @@ PartCheck check_part(const SurfaceMesh& part, double min_wall, const Eigen::Vect
   } while (std::next_permutation(axes.begin(), axes.end()));
   if (!out.fits)
     out.problems.push_back(fmt::format("is {} and does not fit the printer's {} in any of the 6 orientations", mm3(out.size), mm3(printer)));
+  if (!surface.ok()) return out;  // the rest needs a valid solid
+  if (const int shells = count_shells(part); shells != 1)
+    out.problems.push_back(fmt::format("is {} separate pieces or has a closed void, not one solid", shells));
+  Eigen::Vector3d where = Eigen::Vector3d::Zero();
+  out.min_thickness = thinnest_wall(written, min_wall, where);
+  if (out.min_thickness < min_wall * (1 - 1e-6))
+    out.problems.push_back(fmt::format("has a wall of {:.2f} mm near ({:.1f}, {:.1f}, {:.1f}) mm, thinner than [export] min_wall = {:.2f} mm",
+                                       out.min_thickness * 1e3, where.x() * 1e3, where.y() * 1e3, where.z() * 1e3, min_wall * 1e3));
   return out;
 }
 

@@ -125,6 +125,8 @@ NewtonSummary NewtonSolver::solve(Eigen::VectorXd& x, const NewtonOptions& optio
   double last_alpha = 0, shift = 0;
   bool fresh = false;  // the factorization is of the Hessian at x
   bool stale = true;   // the factorization must be redone before the next step
+  int full_steps = 0;  // steps on a fresh factorization: what max_iterations bounds (a reused step
+                       // must halve |∇E|, so at most about log2(|∇E₀| / goal) of them come in a row)
   for (;;) {
     s.residual = g.norm();
     s.energy = E;
@@ -137,7 +139,7 @@ NewtonSummary NewtonSolver::solve(Eigen::VectorXd& x, const NewtonOptions& optio
       s.message = "gradient below tolerance";
       break;
     }
-    if (s.iterations == options.max_iterations) {
+    if (full_steps == options.max_iterations) {
       s.message = fmt::format("no convergence in {} iterations", options.max_iterations);
       break;
     }
@@ -179,6 +181,7 @@ NewtonSummary NewtonSolver::solve(Eigen::VectorXd& x, const NewtonOptions& optio
     last_alpha = alpha;
     g = gradient(x);
     ++s.iterations;
+    if (fresh) ++full_steps;
     // The factorization is kept for the next step while the gradient keeps shrinking fast: a step
     // then costs a gradient and a solve instead of an assembly and a factorization.
     stale = !(alpha == 1 && g.norm() <= options.reuse_contraction * s.residual);

@@ -51,8 +51,10 @@ TEST(Demonstrators, CantileverMlsAgreesWithFemP2AtTheTip)
 {
   // The field-wide comparison is tests/sim/cantilever_test.cpp; here the example as a user runs it.
   test::TempDir dir;
-  copy_example("cantilever", dir.path(), "design.toml", {{"edge_length = 4.0", "edge_length = 6.0"}});
-  copy_example("cantilever", dir / "p2", "fem-p2.toml", {{"edge_length = 4.0", "edge_length = 6.0"}});
+  ASSERT_NO_FATAL_FAILURE(
+      copy_example("cantilever", dir.path(), "design.toml", {{"edge_length = 4.0", "edge_length = 6.0"}}));
+  ASSERT_NO_FATAL_FAILURE(
+      copy_example("cantilever", dir / "p2", "fem-p2.toml", {{"edge_length = 4.0", "edge_length = 6.0"}}));
   const auto largest = [](const std::string& out) {
     const auto at = out.find("max displacement ");
     return at == std::string::npos ? -1.0 : std::stod(out.substr(at + 17));
@@ -61,16 +63,19 @@ TEST(Demonstrators, CantileverMlsAgreesWithFemP2AtTheTip)
   ASSERT_EQ(mls.exit_code, 0) << mls.err;
   const auto fem = test::run_fibermold("simulate fem-p2.toml --build-dir build", dir / "p2");
   ASSERT_EQ(fem.exit_code, 0) << fem.err;
-  std::printf("cantilever tip: MLS-linear %.2f mm, fem-p2 %.2f mm\n", largest(mls.out + mls.err), largest(fem.out + fem.err));
-  EXPECT_GT(largest(fem.out + fem.err), 40.0);  // a large, non-linear sag
+  std::printf("cantilever tip: MLS-linear %.2f mm, fem-p2 %.2f mm\n", largest(mls.out + mls.err),
+              largest(fem.out + fem.err));
+  EXPECT_GT(largest(fem.out + fem.err), 40.0); // a large, non-linear sag
   EXPECT_NEAR(largest(mls.out + mls.err), largest(fem.out + fem.err), 0.04 * largest(fem.out + fem.err));
 }
 
 TEST(Demonstrators, ContinuumRobotBendsInSpaceMakesMoldsAndRerunsOnlyMoldsAfterAMoldEdit)
 {
   test::TempDir dir;
-  copy_example("continuum-robot", dir.path(), "design.toml",
-               {{"edge_length = 8.0", "edge_length = 10.0"}, {"max_iterations = 200", "max_iterations = 40"}, {"voxel = 0.25", "voxel = 0.3"}});
+  ASSERT_NO_FATAL_FAILURE(copy_example("continuum-robot", dir.path(), "design.toml",
+                                       {{"edge_length = 8.0", "edge_length = 10.0"},
+                                        {"max_iterations = 200", "max_iterations = 40"},
+                                        {"voxel = 0.25", "voxel = 0.3"}}));
   const auto r = test::run_fibermold("make design.toml --build-dir build", dir.path());
   ASSERT_EQ(r.exit_code, 0) << r.err;
   expect_parts_pass(dir / "build");
@@ -84,11 +89,11 @@ TEST(Demonstrators, ContinuumRobotBendsInSpaceMakesMoldsAndRerunsOnlyMoldsAfterA
   EXPECT_LT(t["rmse_mm"].get<double>(), 8.0);
   EXPECT_LT(t["max_error_mm"].get<double>(), 13.0);
 
-  copy_example("continuum-robot", dir / "edit", "design.toml",
-               {{"edge_length = 8.0", "edge_length = 10.0"},
-                {"max_iterations = 200", "max_iterations = 40"},
-                {"voxel = 0.25", "voxel = 0.3"},
-                {"wall = 4.0", "wall = 5.0"}});
+  ASSERT_NO_FATAL_FAILURE(copy_example("continuum-robot", dir / "edit", "design.toml",
+                                       {{"edge_length = 8.0", "edge_length = 10.0"},
+                                        {"max_iterations = 200", "max_iterations = 40"},
+                                        {"voxel = 0.25", "voxel = 0.3"},
+                                        {"wall = 4.0", "wall = 5.0"}}));
   fs::copy_file(dir / "edit" / "design.toml", dir / "design.toml", fs::copy_options::overwrite_existing);
   const auto again = test::run_fibermold("make design.toml --build-dir build", dir.path());
   ASSERT_EQ(again.exit_code, 0) << again.err;
@@ -106,16 +111,16 @@ TEST(Demonstrators, TentacleErrorsWithinThePapersAndTipOnlyMatchesLessOfTheBody)
   // 24.0, 39.6. Molds are not made yet (the 6 mm tip leaves walls under 0.5 mm): up to collide.
   test::TempDir dir;
   const Edits coarse{{"edge_length = 8.0", "edge_length = 12.0"}, {"max_iterations = 300", "max_iterations = 30"}};
-  copy_example("tentacle", dir.path(), "full.toml", coarse);
-  copy_example("tentacle", dir / "tip", "tip.toml", coarse);
+  ASSERT_NO_FATAL_FAILURE(copy_example("tentacle", dir.path(), "full.toml", coarse));
+  ASSERT_NO_FATAL_FAILURE(copy_example("tentacle", dir / "tip", "tip.toml", coarse));
   std::map<std::string, nlohmann::json> result;
   for (const auto& [condition, cwd] : {std::pair{"full", dir.path()}, std::pair{"tip", dir / "tip"}}) {
     const auto r = test::run_fibermold(std::string("make ") + condition + ".toml collide --build-dir build", cwd);
     ASSERT_EQ(r.exit_code, 0) << r.err;
     result[condition] = read_json(cwd / "build" / "optimize" / "report.json")["targets"]["curl"];
     std::printf("tentacle %s: surface RMSE %.2f mm, max %.2f mm; tracking RMSE %.2f mm\n", condition,
-                result[condition]["surface_rmse_mm"].get<double>(), result[condition]["surface_max_error_mm"].get<double>(),
-                result[condition]["rmse_mm"].get<double>());
+                result[condition]["surface_rmse_mm"].get<double>(),
+                result[condition]["surface_max_error_mm"].get<double>(), result[condition]["rmse_mm"].get<double>());
   }
   EXPECT_LT(result["full"]["surface_rmse_mm"].get<double>(), 1.5 * 20.3);
   EXPECT_LT(result["full"]["surface_max_error_mm"].get<double>(), 1.5 * 29.5);
