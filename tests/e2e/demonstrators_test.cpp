@@ -130,5 +130,34 @@ TEST(Demonstrators, TentacleErrorsWithinThePapersAndTipOnlyMatchesLessOfTheBody)
   EXPECT_GT(result["tip"]["surface_rmse_mm"].get<double>(), result["full"]["surface_rmse_mm"].get<double>());
 }
 
+TEST(Demonstrators, WalkingRobotMusclesAreOptimizedMovedApartAndMolded)
+{
+  // Paper, section VIII-F: no errors given. Both poses are optimized together, the crossing
+  // muscles are moved apart and optimized again, and both shots of molds pass their checks.
+  test::TempDir dir;
+  ASSERT_NO_FATAL_FAILURE(copy_example("walking-robot", dir.path(), "design.toml",
+                                       {{"edge_length = 4.0", "edge_length = 6.0"},
+                                        {"max_iterations = 150", "max_iterations = 30"},
+                                        {"voxel = 0.2 ", "voxel = 0.3 "}}));
+  const auto r = test::run_fibermold("make design.toml --build-dir build", dir.path());
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  expect_parts_pass(dir / "build");
+  const auto optimized = read_json(dir / "build" / "optimize" / "report.json")["targets"];
+  const auto collide = read_json(dir / "build" / "collide" / "report.json");
+  for (const char* target : {"bend", "twist"}) {
+    const auto& t = optimized[target];
+    const auto& c = collide["targets"][target];
+    std::printf("walking robot %s: tracking RMSE %.2f → %.2f mm optimized, %.2f mm after collide\n", target,
+                t["start"]["rmse_mm"].get<double>(), c["before"]["rmse_mm"].get<double>(),
+                c["after"]["rmse_mm"].get<double>());
+    // Measured: bend 7.34 → 1.43 → 2.30 mm, twist 4.96 → 1.79 → 4.33 mm. Thirty iterations of
+    // optimizing again do not win the twist back here; the full example's 150 do (docs/collide.md).
+    EXPECT_LT(c["before"]["rmse_mm"].get<double>(), t["start"]["rmse_mm"].get<double>() / 2) << target;
+    EXPECT_LT(c["after"]["rmse_mm"].get<double>(), t["start"]["rmse_mm"].get<double>()) << target;
+  }
+  EXPECT_LT(collide["smallest_clearance_mm"]["before"].get<double>(), 1.0);
+  EXPECT_GE(collide["smallest_clearance_mm"]["after"].get<double>(), 1.0 - 0.05);
+}
+
 } // namespace
 } // namespace fibermold
