@@ -2,6 +2,7 @@
 of right triangles at about a given spacing, so that the tetrahedral mesh keeps good elements at
 the skin. Standard library only."""
 
+import argparse
 import struct
 
 
@@ -46,3 +47,13 @@ def write_box(path, lo, hi, spacing, name):
     tris = box_triangles(lo, hi, counts)
     write_binary_stl(path, tris, name)
     return len(tris), counts
+
+
+def box_script(doc, lo, hi, spacing, name):
+    """The command line of a make_bar.py: [--spacing MM] [--out FILE], then writes the box."""
+    parser = argparse.ArgumentParser(description=doc)
+    parser.add_argument("--spacing", type=float, default=spacing, help="target grid spacing, mm")
+    parser.add_argument("--out", default="bar.stl")
+    args = parser.parse_args()
+    count, grid = write_box(args.out, lo, hi, args.spacing, name)
+    print(f"{args.out}: {count} triangles, grid {grid}")
