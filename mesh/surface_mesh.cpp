@@ -1,5 +1,7 @@
 #include "mesh/surface_mesh.hpp"
 
+#include <numeric>
+
 #include <Eigen/Geometry>
 
 namespace fibermold {
@@ -16,6 +18,27 @@ double signed_volume(const SurfaceMesh& surface)
     six_v += a.dot(b.cross(d));
   }
   return six_v / 6.0;
+}
+
+std::vector<int> face_shells(const SurfaceMesh& s)
+{
+  // Union-find over the vertices, joined along every face.
+  std::vector<int> parent(static_cast<std::size_t>(s.num_vertices()));
+  std::iota(parent.begin(), parent.end(), 0);
+  const auto find = [&](int v) {
+    while (parent[v] != v) v = parent[v] = parent[parent[v]];
+    return v;
+  };
+  for (Eigen::Index f = 0; f < s.num_faces(); ++f)
+    for (int c = 1; c < 3; ++c) parent[find(s.faces(f, c))] = find(s.faces(f, 0));
+  std::vector<int> shell_of_root(parent.size(), -1), shells(static_cast<std::size_t>(s.num_faces()));
+  int count = 0;
+  for (Eigen::Index f = 0; f < s.num_faces(); ++f) {
+    int& shell = shell_of_root[find(s.faces(f, 0))];
+    if (shell < 0) shell = count++;
+    shells[f] = shell;
+  }
+  return shells;
 }
 
 } // namespace fibermold

@@ -2,6 +2,7 @@
 // A triangle surface: the body's skin as the user gave it, in metres.
 
 #include <filesystem>
+#include <vector>
 
 #include <Eigen/Core>
 
@@ -19,5 +20,9 @@ struct SurfaceMesh {
 /// Volume enclosed by a closed, consistently oriented surface (divergence theorem); negative when
 /// the faces point inward.
 double signed_volume(const SurfaceMesh& surface);
+
+/// The connected component ("shell") of each face, numbered 0, 1, ... in the order of their first
+/// face: faces sharing a vertex are in the same shell.
+std::vector<int> face_shells(const SurfaceMesh& surface);
 
 } // namespace fibermold

@@ -3,7 +3,7 @@
 #include <array>
 #include <cmath>
 #include <map>
-#include <numeric>
+#include <algorithm>
 #include <stdexcept>
 #include <string>
 
@@ -83,22 +83,15 @@ Eigen::MatrixX3i boundary_faces(const TetMesh& mesh)
 /// so a point just off its largest face along the normal lies in the cavity.
 std::vector<Eigen::Vector3d> cavity_points(const SurfaceMesh& s)
 {
-  std::vector<int> parent(static_cast<std::size_t>(s.num_vertices()));
-  std::iota(parent.begin(), parent.end(), 0);
-  const auto find = [&](int i) {
-    while (parent[i] != i) i = parent[i] = parent[parent[i]];
-    return i;
-  };
-  for (Eigen::Index f = 0; f < s.num_faces(); ++f)
-    for (int k = 1; k < 3; ++k) parent[find(s.faces(f, k))] = find(s.faces(f, 0));
+  const std::vector<int> shell_of = face_shells(s);
   struct Shell {
     double six_volume = 0, largest_area = 0;
     Eigen::Vector3d point = Eigen::Vector3d::Zero();
   };
-  std::map<int, Shell> shells;
+  std::vector<Shell> shells(shell_of.empty() ? 0 : static_cast<std::size_t>(*std::max_element(shell_of.begin(), shell_of.end())) + 1);
   for (Eigen::Index f = 0; f < s.num_faces(); ++f) {
     const Eigen::Vector3d a = s.vertices.row(s.faces(f, 0)), b = s.vertices.row(s.faces(f, 1)), c = s.vertices.row(s.faces(f, 2));
-    Shell& shell = shells[find(s.faces(f, 0))];
+    Shell& shell = shells[shell_of[f]];
     shell.six_volume += a.dot(b.cross(c));
     const Eigen::Vector3d n = (b - a).cross(c - a);
     const double area = n.norm() / 2;
@@ -108,7 +101,7 @@ std::vector<Eigen::Vector3d> cavity_points(const SurfaceMesh& s)
     }
   }
   std::vector<Eigen::Vector3d> points;
-  for (const auto& [root, shell] : shells)
+  for (const Shell& shell : shells)
     if (shell.six_volume < 0) points.push_back(shell.point);
   return points;
 }

@@ -1,6 +1,5 @@
 #include "molds/mesh_boolean.hpp"
 
-#include <numeric>
 #include <stdexcept>
 #include <vector>
 
@@ -98,22 +97,13 @@ std::pair<SurfaceMesh, SurfaceMesh> split_by_plane(const SurfaceMesh& m, const E
 
 std::vector<SurfaceMesh> split_shells(const SurfaceMesh& s)
 {
-  // Union-find over the vertices, joined along every face.
-  std::vector<int> parent(static_cast<std::size_t>(s.num_vertices()));
-  std::iota(parent.begin(), parent.end(), 0);
-  const auto find = [&](int v) {
-    while (parent[v] != v) v = parent[v] = parent[parent[v]];
-    return v;
-  };
-  for (Eigen::Index f = 0; f < s.num_faces(); ++f)
-    for (int c = 1; c < 3; ++c) parent[find(s.faces(f, c))] = find(s.faces(f, 0));
-  std::vector<int> shell_of(parent.size(), -1), index(parent.size(), -1);
+  const std::vector<int> shell_of = face_shells(s);
+  std::vector<int> index(static_cast<std::size_t>(s.num_vertices()), -1);
   std::vector<std::vector<Eigen::Index>> faces;
   std::vector<std::vector<int>> vertices;
   for (Eigen::Index f = 0; f < s.num_faces(); ++f) {
-    int& shell = shell_of[find(s.faces(f, 0))];
-    if (shell < 0) {
-      shell = static_cast<int>(faces.size());
+    const int shell = shell_of[f];
+    if (shell == static_cast<int>(faces.size())) {
       faces.emplace_back();
       vertices.emplace_back();
     }
