@@ -94,3 +94,12 @@ def write_obj(path, vertices, triangles, comment):
             f.write("v {:.6f} {:.6f} {:.6f}\n".format(*v))
         for a, b, c in triangles:
             f.write(f"f {a + 1} {b + 1} {c + 1}\n")
+
+
+def write_body_and_target(body_path, body_comment, target_comment, vertices, triangles, bend, length):
+    """Writes the straight body and its copy moved by `bend` (target.obj), and says where the tip went."""
+    write_obj(body_path, vertices, triangles, body_comment)
+    write_obj("target.obj", [bend(v) for v in vertices], triangles, target_comment)
+    tip = bend((length, 0.0, 0.0))
+    print(f"{body_path}, target.obj: {len(vertices)} vertices, {len(triangles)} triangles; "
+          f"tip at ({tip[0]:.1f}, {tip[1]:.1f}, {tip[2]:.1f}) mm")

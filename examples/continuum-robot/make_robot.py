@@ -16,7 +16,7 @@ import os
 import sys
 
 sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "common"))
-from tube import BentCentreline, tube, write_obj  # noqa: E402
+from tube import BentCentreline, tube, write_body_and_target  # noqa: E402
 
 LENGTH, RADIUS = 300.0, 8.0
 
@@ -28,10 +28,7 @@ def main():
     k = args.curvature
     vertices, triangles = tube(LENGTH, lambda x: RADIUS, 8.0, 12)
     bend = BentCentreline(LENGTH, lambda s: k * (1 - s / LENGTH), lambda s: k * math.sin(math.pi * s / LENGTH))
-    write_obj("robot.obj", vertices, triangles, "fibermold continuum robot: 16 mm x 300 mm cylinder")
-    write_obj("target.obj", [bend(v) for v in vertices], triangles, f"continuum robot bent about two axes, curvature up to {k}/mm")
-    tip = bend((LENGTH, 0.0, 0.0))
-    print(f"robot.obj, target.obj: {len(vertices)} vertices, {len(triangles)} triangles; tip at ({tip[0]:.1f}, {tip[1]:.1f}, {tip[2]:.1f}) mm")
+    write_body_and_target("robot.obj", "fibermold continuum robot: 16 mm x 300 mm cylinder", f"continuum robot bent about two axes, curvature up to {k}/mm", vertices, triangles, bend, LENGTH)
 
 
 if __name__ == "__main__":

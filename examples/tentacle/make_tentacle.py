@@ -17,7 +17,7 @@ import os
 import sys
 
 sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "common"))
-from tube import BentCentreline, tube, write_obj  # noqa: E402
+from tube import BentCentreline, tube, write_body_and_target  # noqa: E402
 
 LENGTH, BASE_RADIUS, TIP_RADIUS = 298.0, 14.0, 3.0
 
@@ -29,10 +29,7 @@ def main():
     k = args.curvature
     vertices, triangles = tube(LENGTH, lambda x: BASE_RADIUS + (TIP_RADIUS - BASE_RADIUS) * x / LENGTH, 8.0, 12)
     curl = BentCentreline(LENGTH, lambda s: k * s / LENGTH, lambda s: k / 2 * math.sin(2 * math.pi * s / LENGTH))
-    write_obj("tentacle.obj", vertices, triangles, "fibermold tentacle: 298 mm, 28 mm to 6 mm across")
-    write_obj("target.obj", [curl(v) for v in vertices], triangles, f"tentacle curled, curvature up to {k}/mm")
-    tip = curl((LENGTH, 0.0, 0.0))
-    print(f"tentacle.obj, target.obj: {len(vertices)} vertices, {len(triangles)} triangles; tip at ({tip[0]:.1f}, {tip[1]:.1f}, {tip[2]:.1f}) mm")
+    write_body_and_target("tentacle.obj", "fibermold tentacle: 298 mm, 28 mm to 6 mm across", f"tentacle curled, curvature up to {k}/mm", vertices, triangles, curl, LENGTH)
 
 
 if __name__ == "__main__":
