@@ -17,6 +17,7 @@ namespace fibermold {
 namespace {
 
 using RowMatrix = Eigen::SparseMatrix<double, Eigen::RowMajor>;
+using SparseMatrix = Eigen::SparseMatrix<double>;
 using Triplets = std::vector<Eigen::Triplet<double>>;
 
 std::string where_mm(const Eigen::Vector3d& p)
@@ -32,6 +33,7 @@ public:
   RouteVariables(const FiberClearance& measure, const std::vector<Route>& routes)
   {
     for (int f = 0; f < measure.num_fibers(); ++f) {
+      first_.push_back(size_);
       const Route& r = routes[f];
       const int n = static_cast<int>(r.points.size());
       std::vector<int> index(2 * n, -1);
@@ -55,6 +57,7 @@ public:
       }
       weights_.push_back(std::move(weights));
     }
+    first_.push_back(size_);
   }
 
   int size() const { return size_; }
@@ -88,10 +91,11 @@ public:
   }
 
   /// W of the header: Σ_k h_k |Δp_k|² + ℓ⁴ Σ_k h_k |Δp''_k|² over the samples of each fiber, with
-  /// h_k the arc length a sample stands for and Δp'' the three-point second difference (mm).
-  Eigen::MatrixXd smoothness(const FiberClearance::Lines& lines, double length) const
+  /// h_k the arc length a sample stands for and Δp'' the three-point second difference (mm); and
+  /// its inverse. Both are block diagonal: one block per fiber, whose variables are consecutive.
+  void smoothness(const FiberClearance::Lines& lines, double length, SparseMatrix& W, SparseMatrix& inverse) const
   {
-    Eigen::MatrixXd W = Eigen::MatrixXd::Zero(size_, size_);
+    Triplets w, w_inverse;
     const double l4 = std::pow(length / units::mm, 4);
     for (std::size_t f = 0; f < slot_index_.size(); ++f) {
       const auto& phi = weights_[f];
@@ -108,14 +112,28 @@ public:
             2 * ((phi[k + 1] - phi[k]) / h[k] - (phi[k] - phi[k - 1]) / h[k - 1]) / (h[k] + h[k - 1]);
         M += l4 * hk * second * second.transpose();
       }
+      const int first = first_[f], size = first_[f + 1] - first;
+      Eigen::MatrixXd block = Eigen::MatrixXd::Zero(size, size);
       for (Eigen::Index p = 0; p < slots; ++p)
         for (Eigen::Index q = 0; q < slots; ++q) {
           const int i = slot_index_[f][p], j = slot_index_[f][q];
-          if (i < 0 || j < 0 || M(p, q) == 0) continue;
-          for (int c = 0; c < 3; ++c) W(i + c, j + c) += M(p, q);
+          if (i < 0 || j < 0) continue;
+          for (int c = 0; c < 3; ++c) block(i - first + c, j - first + c) += M(p, q);
+        }
+      const Eigen::LLT<Eigen::MatrixXd> llt(block);
+      if (llt.info() != Eigen::Success)
+        throw std::runtime_error("collision resolution: the smoothness of a fiber is not positive definite");
+      const Eigen::MatrixXd block_inverse = llt.solve(Eigen::MatrixXd::Identity(size, size));
+      for (int i = 0; i < size; ++i)
+        for (int j = 0; j < size; ++j) {
+          if (block(i, j) != 0) w.emplace_back(first + i, first + j, block(i, j));
+          w_inverse.emplace_back(first + i, first + j, block_inverse(i, j));
         }
     }
-    return W;
+    W.resize(size_, size_);
+    W.setFromTriplets(w.begin(), w.end());
+    inverse.resize(size_, size_);
+    inverse.setFromTriplets(w_inverse.begin(), w_inverse.end());
   }
 
 private:
@@ -126,6 +144,7 @@ private:
   }
 
   int size_ = 0;
+  std::vector<int> first_;                            ///< [fiber] → its first variable; then the count
   std::vector<std::vector<int>> slot_index_;          ///< [fiber][slot] → first variable, or −1 (fixed)
   std::vector<std::vector<Eigen::VectorXd>> weights_; ///< [fiber][sample] → weight per slot
 };
@@ -158,14 +177,20 @@ void linearize(const RouteVariables& v, const std::vector<Contact>& contacts, do
 
 /// min ½ (y − y0)ᵀ W (y − y0) s.t. A (y − z) ≥ b, by an augmented Lagrangian; each inner problem
 ///   min φ(y) = ½ (y − y0)ᵀ W (y − y0) + μ/2 Σ_i max(0, λ_i/μ − r_i(y))²,  r = A (y − z) − b,
-/// convex and piecewise quadratic, by Newton on its active set with a backtracking line search
-/// (which keeps the active set from cycling). Returns the last y (the constraints may be
+/// convex and piecewise quadratic, by Newton on the set P of constraints that pull, with an exact
+/// line search where the full step does not descend. Returns the last y (the constraints may be
 /// inconsistent: the caller measures).
+///
+/// The Newton matrix W + μ A_Pᵀ A_P couples every pair of fibers in contact; W is block diagonal
+/// (one block per fiber), so the step goes through the contacts instead (Woodbury):
+///   (W + μ A_Pᵀ A_P)⁻¹ = W⁻¹ − W⁻¹ A_Pᵀ S⁻¹ A_P W⁻¹,  S = I/μ + A_P W⁻¹ A_Pᵀ,
+/// one dense Cholesky of the size of P, which is far smaller than the variables.
 class QuadraticProblem {
 public:
-  QuadraticProblem(const Eigen::MatrixXd& W, const RowMatrix& A, const Eigen::VectorXd& b, const Eigen::VectorXd& y0,
-                   const Eigen::VectorXd& z)
-      : W_(W), A_(A), y0_(y0), Az_b_(A * z + b), mu_(1e4 * std::max(1.0, W.diagonal().maxCoeff()))
+  QuadraticProblem(const SparseMatrix& W, const SparseMatrix& W_inverse, const RowMatrix& A, const Eigen::VectorXd& b,
+                   const Eigen::VectorXd& y0, const Eigen::VectorXd& z)
+      : W_(W), W_inverse_(W_inverse), A_(A), B_(W_inverse * SparseMatrix(A.transpose())), Q_(SparseMatrix(A) * B_),
+        y0_(y0), Az_b_(A * z + b), mu_(1e4 * std::max(1.0, max_diagonal(W)))
   {
   }
 
@@ -186,6 +211,8 @@ public:
   }
 
 private:
+  static double max_diagonal(const SparseMatrix& W) { return W.rows() ? W.diagonal().maxCoeff() : 0.0; }
+
   /// max(0, λ_i − μ r_i): the multiplier each constraint would take at y.
   Eigen::VectorXd pull(const Eigen::VectorXd& y) const { return (lambda_ - mu_ * (A_ * y - Az_b_)).cwiseMax(0.0); }
 
@@ -195,34 +222,82 @@ private:
     return 0.5 * d.dot(W_ * d) + pull(y).squaredNorm() / (2 * mu_);
   }
 
+  /// The minimizer α of φ(y + α d) over α > 0: φ is piecewise quadratic along the line, so its
+  /// derivative φ'(α) = C + K α is piecewise linear and non-decreasing, with breakpoints where a
+  /// constraint enters or leaves the pull; walked in order until φ' changes sign.
+  double exact_step(const Eigen::VectorXd& y, const Eigen::VectorXd& d) const
+  {
+    const Eigen::VectorXd s = A_ * d, c = lambda_ - mu_ * (A_ * y - Az_b_), Wd = W_ * d;
+    double C = Wd.dot(y - y0_), K = Wd.dot(d);
+    std::vector<std::pair<double, Eigen::Index>> breaks;
+    for (Eigen::Index i = 0; i < s.size(); ++i) {
+      if (s[i] == 0) continue;
+      if (c[i] > 0) { // pulling at α = 0
+        C -= s[i] * c[i];
+        K += mu_ * s[i] * s[i];
+      }
+      if (const double at = c[i] / (mu_ * s[i]); at > 0) breaks.emplace_back(at, i);
+    }
+    std::sort(breaks.begin(), breaks.end());
+    for (const auto& [at, i] : breaks) {
+      if (K > 0 && -C / K <= at) return std::max(0.0, -C / K);
+      const double sign = c[i] > 0 ? 1.0 : -1.0; // leaves the pull, or enters it
+      C += sign * s[i] * c[i];
+      K -= sign * mu_ * s[i] * s[i];
+    }
+    return K > 0 ? std::max(0.0, -C / K) : 1.0;
+  }
+
+  /// −(W + μ A_Pᵀ A_P)⁻¹ g through the Woodbury identity of the class comment; false when S is not
+  /// positive definite (a non-finite value).
+  bool newton_step(const Eigen::VectorXd& g, const Eigen::VectorXd& q, Eigen::VectorXd& step)
+  {
+    std::vector<Eigen::Index> P;
+    std::vector<Eigen::Index> position(static_cast<std::size_t>(q.size()), -1);
+    for (Eigen::Index i = 0; i < q.size(); ++i)
+      if (q[i] > 0) {
+        position[static_cast<std::size_t>(i)] = static_cast<Eigen::Index>(P.size());
+        P.push_back(i);
+      }
+    const auto n = static_cast<Eigen::Index>(P.size());
+    Eigen::MatrixXd S = Eigen::MatrixXd::Identity(n, n) / mu_;
+    for (Eigen::Index k = 0; k < n; ++k)
+      for (SparseMatrix::InnerIterator e(Q_, P[static_cast<std::size_t>(k)]); e; ++e)
+        if (const Eigen::Index row = position[static_cast<std::size_t>(e.row())]; row >= 0) S(row, k) += e.value();
+    const Eigen::VectorXd u = W_inverse_ * g;
+    const Eigen::VectorXd Au = A_ * u;
+    Eigen::VectorXd v(n);
+    for (Eigen::Index k = 0; k < n; ++k) v[k] = Au[P[static_cast<std::size_t>(k)]];
+    llt_.compute(S);
+    if (llt_.info() != Eigen::Success) return false;
+    const Eigen::VectorXd w = llt_.solve(v);
+    step = -u;
+    for (Eigen::Index k = 0; k < n; ++k)
+      for (SparseMatrix::InnerIterator e(B_, P[static_cast<std::size_t>(k)]); e; ++e) step[e.row()] += e.value() * w[k];
+    return step.allFinite();
+  }
+
   bool minimize(Eigen::VectorXd& y)
   {
     for (int iteration = 0; iteration < 100; ++iteration) {
       const Eigen::VectorXd q = pull(y);
       const Eigen::VectorXd g = W_ * (y - y0_) - A_.transpose() * q;
       if (g.lpNorm<Eigen::Infinity>() < 1e-12 * (1 + q.lpNorm<Eigen::Infinity>())) return true;
-      // H = W + μ Σ_{q_i > 0} a_i a_iᵀ: dense, since contacts couple the fibers that cross (a
-      // design has tens to hundreds of variables)
-      Eigen::MatrixXd H = W_;
-      for (Eigen::Index i = 0; i < A_.rows(); ++i) {
-        if (q[i] <= 0) continue;
-        for (RowMatrix::InnerIterator p(A_, i); p; ++p)
-          for (RowMatrix::InnerIterator r(A_, i); r; ++r) H(p.col(), r.col()) += mu_ * p.value() * r.value();
-      }
-      llt_.compute(H);
-      if (llt_.info() != Eigen::Success) return false;
-      const Eigen::VectorXd step = -llt_.solve(g);
-      const double f = phi(y), slope = g.dot(step);
-      double alpha = 1;
-      while (alpha > 1e-10 && phi(y + alpha * step) > f + 1e-4 * alpha * slope) alpha /= 2;
+      Eigen::VectorXd step;
+      if (!newton_step(g, q, step)) return false;
+      // The pull may change along the step: the full step is taken when it descends (which lets
+      // many constraints change at once), the exact minimizer along it otherwise.
+      const double alpha = phi(y + step) < phi(y) ? 1.0 : exact_step(y, step);
       y += alpha * step;
-      if (alpha == 1 && (pull(y).array() > 0).matrix() == (q.array() > 0).matrix()) return true; // the active set held
+      const bool same_pull = (pull(y).array() > 0).matrix() == (q.array() > 0).matrix();
+      if (std::abs(alpha - 1) < 1e-9 && same_pull) return true;
     }
     return true;
   }
 
-  const Eigen::MatrixXd& W_;
+  const SparseMatrix &W_, &W_inverse_;
   const RowMatrix& A_;
+  const SparseMatrix B_, Q_; ///< W⁻¹ Aᵀ and A W⁻¹ Aᵀ
   const Eigen::VectorXd& y0_;
   Eigen::VectorXd Az_b_, lambda_;
   double mu_;
@@ -252,6 +327,22 @@ void check_end_points(const std::vector<Route>& routes, double radius, const Res
 using Key = std::tuple<int, int, int>; // (a, segment or sample of a, b or −1)
 Key key_of(const Contact& c) { return {c.a, c.segment_a, c.b}; }
 
+/// The contacts whose clearance no contact of the same pair within two segments undercuts.
+std::vector<Contact> local_minima(const std::vector<Contact>& contacts)
+{
+  std::map<Key, double> clearance;
+  for (const Contact& c : contacts) clearance[key_of(c)] = c.clearance;
+  std::vector<Contact> out;
+  for (const Contact& c : contacts) {
+    bool minimum = true;
+    for (int k : {-2, -1, 1, 2})
+      if (auto it = clearance.find({c.a, c.segment_a + k, c.b}); it != clearance.end() && it->second < c.clearance)
+        minimum = false;
+    if (minimum) out.push_back(c);
+  }
+  return out;
+}
+
 } // namespace
 
 std::vector<Contact> worst_per_pair(const std::vector<Contact>& contacts)
@@ -274,14 +365,15 @@ class Resolver {
 public:
   Resolver(const FiberClearance& measure, const std::vector<Route>& routes, const ResolutionSettings& s)
       : measure_(measure), routes_(routes), s_(s), v_(measure, routes), lines_(measure.lines(routes)),
-        W_(v_.smoothness(lines_, s.smoothness)), y0_(v_.values(routes)), y_(y0_)
+        near_(measure.contacts(lines_, aim() + measure.radius())), y0_(v_.values(routes)), y_(y0_)
   {
+    v_.smoothness(lines_, s.smoothness, W_, W_inverse_);
   }
 
   /// One round: measure, linearize, solve. Returns the largest parameter change (mm).
   double round()
   {
-    std::vector<Contact> contacts = measure_.contacts(lines_, aim() + measure_.radius());
+    std::vector<Contact> contacts = local_minima(near_);
     std::set<Key> fresh;
     for (const Contact& c : contacts) fresh.insert(key_of(c));
     for (const Key& k : seen_)
@@ -300,18 +392,19 @@ public:
       const auto it = multipliers_.find(key_of(contacts[i]));
       lambda[static_cast<Eigen::Index>(i)] = it == multipliers_.end() ? 0.0 : it->second;
     }
-    if (!QuadraticProblem(W_, A, b, y0_, y_).solve(next, lambda))
+    if (!QuadraticProblem(W_, W_inverse_, A, b, y0_, y_).solve(next, lambda))
       throw std::runtime_error("collision resolution: a factorization failed (non-finite values in the routes?)");
     for (std::size_t i = 0; i < contacts.size(); ++i)
       multipliers_[key_of(contacts[i])] = lambda[static_cast<Eigen::Index>(i)];
     const double step = (next - y_).lpNorm<Eigen::Infinity>();
     y_ = next;
     lines_ = measure_.lines(current());
+    near_ = measure_.contacts(lines_, aim() + measure_.radius());
     return step;
   }
 
   /// The smallest clearance now, among contacts within reach of the aim.
-  double smallest() const { return smallest_clearance(measure_.contacts(lines_, aim() + measure_.radius())); }
+  double smallest() const { return smallest_clearance(near_); }
   double aim() const { return s_.clearance + s_.room; }
 
   /// The routes now; fibers that no contact involved are the originals, bit for bit.
@@ -329,7 +422,8 @@ private:
   const ResolutionSettings& s_;
   RouteVariables v_;
   FiberClearance::Lines lines_;
-  Eigen::MatrixXd W_;
+  std::vector<Contact> near_; ///< measured at lines_, within reach of the aim
+  SparseMatrix W_, W_inverse_;
   Eigen::VectorXd y0_, y_;
   std::set<Key> seen_;
   std::map<Key, double> multipliers_;

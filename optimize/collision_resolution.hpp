@@ -9,8 +9,11 @@
 //
 // Sequential linearization: the contacts are measured, each linearized as c_i + n_iᵀ(Δp_a − Δp_b),
 // and the quadratic problem solved exactly by an augmented Lagrangian whose inner problem is
-// minimized by Newton on its active set (dense Cholesky); then measured again, until every
-// clearance holds and the routes stop moving. A routing that is already clear is returned unchanged, bit for bit.
+// minimized by Newton on its active set (through the contacts: W is block diagonal per fiber);
+// then measured again, until every clearance holds and the routes stop moving. Of the contacts
+// measured each round only the local minima of clearance along each fiber pair enter (their
+// neighbours are near copies of one constraint); a contact once entered stays, measured again
+// every round. A routing that is already clear is returned unchanged, bit for bit.
 
 #include <stdexcept>
 #include <string>

@@ -3,9 +3,11 @@
 #include <algorithm>
 #include <cmath>
 #include <map>
+#include <optional>
 
 #include <Eigen/Geometry>
 #include <nanoflann.hpp>
+#include <tbb/parallel_for.h>
 
 #include "optimize/skin_barrier.hpp"
 
@@ -146,11 +148,20 @@ Contact pair_contact(const std::vector<Eigen::Vector3d>& la, int a, int i, const
 std::vector<Contact> FiberClearance::contacts(const Lines& lines, double below, bool skin) const
 {
   const int F = num_fibers();
-  std::vector<Contact> out;
+  // Every sample (skin) and every segment (pairs) is measured on its own, in parallel, into its
+  // own slot; the slots are joined in order, so that the result does not depend on the threads.
+  std::vector<std::pair<int, int>> samples; // (fiber, sample) tested against the skin
   for (int a = 0; a < F && skin; ++a)
     for (int k = 0; k < static_cast<int>(lines[a].size()); ++k)
-      if (skin_tested_[a][k])
-        if (Contact c = skin_contact(lines[a], a, k); c.clearance < below) out.push_back(c);
+      if (skin_tested_[a][k]) samples.emplace_back(a, k);
+  std::vector<std::optional<Contact>> on_skin(samples.size());
+  tbb::parallel_for(std::size_t{0}, samples.size(), [&](std::size_t n) {
+    const auto [a, k] = samples[n];
+    if (Contact c = skin_contact(lines[a], a, k); c.clearance < below) on_skin[n] = c;
+  });
+  std::vector<Contact> out;
+  for (const auto& c : on_skin)
+    if (c) out.push_back(*c);
   if (F < 2) return out;
 
   // Broad phase: segments by their midpoints.
@@ -165,12 +176,12 @@ std::vector<Contact> FiberClearance::contacts(const Lines& lines, double below, 
     longest = std::max(longest, (lines[f][k + 1] - lines[f][k]).norm());
   }
   const nanoflann::KDTreeEigenMatrixAdaptor<Eigen::MatrixX3d> tree(3, std::cref(mids), 16);
-  std::vector<std::pair<Eigen::Index, double>> found;
-  for (std::size_t n = 0; n < owner.size(); ++n) {
+  const double reach = std::max(0.0, below) + 2 * radius_ + longest;
+  std::vector<std::vector<Contact>> between(owner.size());
+  tbb::parallel_for(std::size_t{0}, owner.size(), [&](std::size_t n) {
     const auto [a, i] = owner[n];
-    const double reach = std::max(0.0, below) + 2 * radius_ + longest;
     const Eigen::Vector3d m = mids.row(static_cast<Eigen::Index>(n)).transpose();
-    found.clear();
+    std::vector<std::pair<Eigen::Index, double>> found;
     tree.index->radiusSearch(m.data(), reach * reach, found, nanoflann::SearchParams(32, 0, false));
     std::map<int, Contact> closest; // per other fiber
     for (const auto& [index, squared] : found) {
@@ -180,8 +191,9 @@ std::vector<Contact> FiberClearance::contacts(const Lines& lines, double below, 
       if (auto it = closest.find(b); it == closest.end() || c.clearance < it->second.clearance) closest[b] = c;
     }
     for (const auto& [b, c] : closest)
-      if (c.clearance < below) out.push_back(c);
-  }
+      if (c.clearance < below) between[n].push_back(c);
+  });
+  for (const auto& contacts : between) out.insert(out.end(), contacts.begin(), contacts.end());
   return out;
 }
 
