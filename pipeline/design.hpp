@@ -105,6 +105,7 @@ struct OptimizeOptions {
   bool enabled = true;
   std::string strategy = "simultaneous";   ///< simultaneous | sequential
   int max_iterations = 400;
+  int route_only_iterations = 0;  ///< first, the routes alone at their starting pressures
   double gradient_tolerance = 1e-6;
   double relative_tolerance = 1e-3;   ///< over the last 10 iterations
   double weight_curvature = 1e-4;

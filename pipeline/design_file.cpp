@@ -723,6 +723,7 @@ OptimizeOptions read_optimize(Section s)
   o.enabled = s.boolean("enabled", o.enabled);
   o.strategy = s.choice("strategy", o.strategy, {"simultaneous", "sequential"});
   o.max_iterations = s.integer("max_iterations", o.max_iterations, 0, 1000000);
+  o.route_only_iterations = s.integer("route_only_iterations", o.route_only_iterations, 0, 1000000);
   o.gradient_tolerance = s.number("gradient_tolerance", o.gradient_tolerance, positive());
   o.relative_tolerance = s.number("relative_tolerance", o.relative_tolerance, positive());
   o.weight_curvature = s.number("weight_curvature", o.weight_curvature, non_negative());

@@ -105,6 +105,27 @@ private:
   std::string text_;
 };
 
+/// The routes and pressures optimized; first, with `route_only_iterations`, the routes alone at
+/// their starting pressures. At zero pressure a route has no effect, so an optimizer that turns a
+/// muscle down before its route does the job can stop there (the twisting bar: a straight muscle
+/// bends the bar, so the pressure falls to zero before a helix forms).
+RoutingResult optimize(const Design& d, RoutingProblem& problem, const BfgsOptions& o, const RoutingCallback& on_iteration,
+                       Progress& progress)
+{
+  const int route_only = d.optimize.route_only_iterations;
+  if (route_only == 0) return optimize_routing(problem, d.optimize.strategy, o, on_iteration, progress, actuator_mask(d));
+  BfgsOptions first = o;
+  first.max_iterations = route_only;
+  const ActuatorMask none = ActuatorMask::Constant(problem.num_targets(), problem.num_fibers(), false);
+  const RoutingResult routes = optimize_routing(problem, "simultaneous", first, on_iteration, progress, none);
+  if (routes.interrupted) return routes;
+  problem.set_base(routes.routing);
+  RoutingResult both = optimize_routing(problem, d.optimize.strategy, o, on_iteration, progress, actuator_mask(d));
+  both.iterations += routes.iterations;
+  both.evaluations += routes.evaluations;
+  return both;
+}
+
 } // namespace
 
 void OptimizeStage::run(StageContext& ctx) const
@@ -155,7 +176,7 @@ void OptimizeStage::run(StageContext& ctx) const
     ctx.progress.update((stage + static_cast<double>(it.iteration) / std::max(1, o.max_iterations)) / stages, what);
     ctx.log.info("{}", what);
   };
-  const RoutingResult result = optimize_routing(problem, d.optimize.strategy, o, on_iteration, ctx.progress, actuator_mask(d));
+  const RoutingResult result = optimize(d, problem, o, on_iteration, ctx.progress);
   const FibersFile fibers{result.routing, names, true};
 
   if (result.interrupted) {

@@ -61,8 +61,10 @@ TEST_F(DesignFileTest, DemoParsesIntoSIUnits)
   EXPECT_DOUBLE_EQ(d.fibers[0].points[3].x(), 0.129);
   ASSERT_EQ(d.targets.size(), 1u);
   ASSERT_EQ(d.targets[0].loads.size(), 1u);
-  EXPECT_DOUBLE_EQ(d.targets[0].loads[0].torque->x(), 0.0035);
+  EXPECT_DOUBLE_EQ(d.targets[0].loads[0].torque->x(), 0.00452);
   EXPECT_DOUBLE_EQ((*d.targets[0].loads[0].region.box)[0].x(), 0.127);
+  EXPECT_EQ(d.optimize.max_iterations, 400);
+  EXPECT_EQ(d.optimize.route_only_iterations, 30);
   EXPECT_DOUBLE_EQ(d.mold.wall, 4e-3);
   EXPECT_DOUBLE_EQ(d.mold.voxel, 0.2e-3);
   EXPECT_DOUBLE_EQ(d.export_.printer_volume.x(), 0.25);
