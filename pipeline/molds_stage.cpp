@@ -192,6 +192,8 @@ void MoldsStage::run(StageContext& ctx) const
     const SurfaceMesh cavity = grow != 1 ? scaled_about(shot_cavity, centre, grow) : shot_cavity;
     parting.point = centre + (parting.point - centre) * grow;
     parting.undercut_area = undercut_area(cavity, parting.point, parting.normal);
+    ctx.log.info("{}: parting plane through {} normal to pull, {:.1f} mm² of undercut", name, format_mm(parting.point),
+                 parting.undercut_area / 1e-6);
     if (parting.undercut_area > kUndercutWarning)
       ctx.log.warn("{}: {:.1f} mm² of the cavity is an undercut for the parting plane: demolding relies on the silicone bending",
                    name, parting.undercut_area / 1e-6);

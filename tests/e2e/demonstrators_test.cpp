@@ -1,7 +1,8 @@
 // The paper's demonstrators (examples/, section VIII) as a user runs them, on coarser meshes and
 // shorter optimizations than the examples so that CI can afford them: each runs `fibermold make`
-// as far as fibermold goes today, every mold part passes its checks, and the target errors are
-// held to the paper's where it gives them and ours where our target differs from its unpublished one.
+// to the end (the cantilever, which has no muscle, `simulate`), every mold part passes its checks,
+// and the target errors are held to the paper's where it gives them and ours where our target
+// differs from its unpublished one.
 #include <cstdio>
 #include <filesystem>
 #include <map>
@@ -144,18 +145,24 @@ TEST(Demonstrators, ContinuumRobotBendsInSpaceMakesMoldsAndRerunsOnlyMoldsAfterA
   expect_parts_pass(dir / "build");
 }
 
-TEST(Demonstrators, TentacleErrorsWithinThePapersAndTipOnlyMatchesLessOfTheBody)
+TEST(Demonstrators, TentacleErrorsWithinThePapersTipOnlyMatchesLessOfTheBodyAndFullLengthMakesMolds)
 {
   // Paper, Fig. 13, errors over the whole surface: full length RMSE 20.3 mm, max 29.5; tip only
-  // 24.0, 39.6. Molds are not made yet (the 6 mm tip leaves walls under 0.5 mm): up to collide.
+  // 24.0, 39.6. Full length to printable molds; tip only up to collide: on this coarse mesh its
+  // optimized groove reaches lower, shot 1's parting plane follows it, and the 6 mm tip is left
+  // a 0.32 mm mold wall (the example's own mesh passes; docs/molds.md).
   test::TempDir dir;
   const Edits coarse{{"edge_length = 8.0", "edge_length = 12.0"}, {"max_iterations = 300", "max_iterations = 30"}};
   ASSERT_NO_FATAL_FAILURE(copy_example("tentacle", dir.path(), "full.toml", coarse));
   ASSERT_NO_FATAL_FAILURE(copy_example("tentacle", dir / "tip", "tip.toml", coarse));
   std::map<std::string, nlohmann::json> result;
   for (const auto& [condition, cwd] : {std::pair{"full", dir.path()}, std::pair{"tip", dir / "tip"}}) {
-    const auto r = test::run_fibermold(std::string("make ") + condition + ".toml collide --build-dir build", cwd);
+    const bool molds = condition == std::string("full");
+    const auto r = test::run_fibermold(std::string("make ") + condition + ".toml" + (molds ? "" : " collide") +
+                                           " --build-dir build",
+                                       cwd);
     ASSERT_EQ(r.exit_code, 0) << r.err;
+    if (molds) expect_parts_pass(cwd / "build");
     result[condition] = read_json(cwd / "build" / "optimize" / "report.json")["targets"]["curl"];
     std::printf("tentacle %s: surface RMSE %.2f mm, max %.2f mm; tracking RMSE %.2f mm\n", condition,
                 result[condition]["surface_rmse_mm"].get<double>(),
