@@ -232,7 +232,7 @@ private:
     std::vector<std::pair<double, Eigen::Index>> breaks;
     for (Eigen::Index i = 0; i < s.size(); ++i) {
       if (s[i] == 0) continue;
-      if (c[i] > 0) { // pulling at α = 0
+      if (c[i] > 0 || (c[i] == 0 && s[i] < 0)) { // pulling just after α = 0
         C -= s[i] * c[i];
         K += mu_ * s[i] * s[i];
       }
@@ -288,6 +288,7 @@ private:
       // The pull may change along the step: the full step is taken when it descends (which lets
       // many constraints change at once), the exact minimizer along it otherwise.
       const double alpha = phi(y + step) < phi(y) ? 1.0 : exact_step(y, step);
+      if (alpha <= 0) return true; // no descent left along the Newton step (rounding)
       y += alpha * step;
       const bool same_pull = (pull(y).array() > 0).matrix() == (q.array() > 0).matrix();
       if (std::abs(alpha - 1) < 1e-9 && same_pull) return true;
