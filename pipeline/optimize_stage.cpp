@@ -106,7 +106,7 @@ private:
 };
 
 /// The routes and pressures optimized; first, with `route_only_iterations`, the routes alone at
-/// their starting pressures. At zero pressure a route has no effect, so an optimizer that turns a
+/// their starting pressures (reported as stage −1). At zero pressure a route has no effect, so an optimizer that turns a
 /// muscle down before its route does the job can stop there (the twisting bar: a straight muscle
 /// bends the bar, so the pressure falls to zero before a helix forms).
 RoutingResult optimize(const Design& d, RoutingProblem& problem, const BfgsOptions& o, const RoutingCallback& on_iteration,
@@ -117,7 +117,10 @@ RoutingResult optimize(const Design& d, RoutingProblem& problem, const BfgsOptio
   BfgsOptions first = o;
   first.max_iterations = route_only;
   const ActuatorMask none = ActuatorMask::Constant(problem.num_targets(), problem.num_fibers(), false);
-  const RoutingResult routes = optimize_routing(problem, "simultaneous", first, on_iteration, progress, none);
+  const RoutingCallback routes_only = [&](int, const BfgsIteration& it, const RoutingTerms& terms) {
+    on_iteration(-1, it, terms);
+  };
+  const RoutingResult routes = optimize_routing(problem, "simultaneous", first, routes_only, progress, none);
   if (routes.interrupted) return routes;
   problem.set_base(routes.routing);
   RoutingResult both = optimize_routing(problem, d.optimize.strategy, o, on_iteration, progress, actuator_mask(d));
@@ -167,13 +170,19 @@ void OptimizeStage::run(StageContext& ctx) const
   History history(names);
   int iterations = 0;
   const int stages = d.optimize.strategy == "sequential" ? static_cast<int>(d.fibers.size()) : 1;
+  // Progress over the iteration budget: the route-only ones, then max_iterations per stage.
+  const double budget = d.optimize.route_only_iterations + stages * std::max(1, o.max_iterations);
+  int route_only_done = 0;
   const RoutingCallback on_iteration = [&](int stage, const BfgsIteration& it, const RoutingTerms& terms) {
     ++iterations;
     history.add(iterations, stage, it, terms, since(started));
-    const std::string what = fmt::format("{}iteration {}: objective {:.4g} (distance {:.4g}), |∇| {:.2g}",
-                                         stages > 1 ? fmt::format("fiber {}/{}, ", stage + 1, stages) : "", it.iteration,
-                                         terms.total, terms.distance, it.gradient_norm);
-    ctx.progress.update((stage + static_cast<double>(it.iteration) / std::max(1, o.max_iterations)) / stages, what);
+    if (stage < 0) ++route_only_done;
+    const std::string what =
+        fmt::format("{}iteration {}: objective {:.4g} (distance {:.4g}), |∇| {:.2g}",
+                    stage < 0 ? "routes only, " : stages > 1 ? fmt::format("fiber {}/{}, ", stage + 1, stages) : "",
+                    it.iteration, terms.total, terms.distance, it.gradient_norm);
+    const double done = stage < 0 ? route_only_done : route_only_done + stage * std::max(1, o.max_iterations) + it.iteration;
+    ctx.progress.update(done / budget, what);
     ctx.log.info("{}", what);
   };
   const RoutingResult result = optimize(d, problem, o, on_iteration, ctx.progress);
