@@ -32,10 +32,10 @@ RoutingProblem::RoutingProblem(Simulation& sim, const MuscleModel& model, const 
     throw std::invalid_argument(fmt::format("the pressures are {}×{}, expected targets × fibers = {}×{}",
                                             base_.pressures.rows(), base_.pressures.cols(), T, F));
   for (const Eigen::VectorXd& x : targets_) distances_.emplace_back(sim_.basis(), curves, x);
-  // Every state the optimizer scores ends on a full Newton step: its last step lands far below the
-  // tolerance, where a reused factorization stops just under it, and BFGS's line search would
-  // compare objective values that differ by that noise.
-  sim_.newton_options().reuse_contraction = 0;
+  // Every state the optimizer scores ends on a step with a fresh factorization: it lands far below
+  // the tolerance, where a reused factorization stops just under it, and BFGS's line search would
+  // compare objective values that differ by that noise. The adjoint solve reuses that factorization.
+  sim_.newton_options().finish_on_fresh_step = true;
   warm_.assign(targets_.size(), sim_.rest());
   for (const Route& r : base_.routes) {
     const HermiteSpline s(r.points, r.tangents);

@@ -20,6 +20,10 @@ struct NewtonOptions {
   /// A full step that shrank |∇E| by at least this factor lets the next step reuse its
   /// factorization; 0 refactorizes at every step (plain Newton).
   double reuse_contraction = 0.5;
+  /// A state that reaches the tolerance on a reused factorization takes one more step on a fresh
+  /// one: it lands far below the tolerance (so that objective values compared by a line search do
+  /// not carry the tolerance's noise), and solve_with_hessian at that state uses its factorization.
+  bool finish_on_fresh_step = false;
 };
 
 /// What a solve did. Non-convergence is a status with the residual, never a result to use.
@@ -58,18 +62,28 @@ public:
   NewtonSummary solve(Eigen::VectorXd& x, const NewtonOptions& options, Progress& progress);
 
   /// Solves H(x) λ = b with the exact Hessian at x (an equilibrium, where it is positive definite):
-  /// the adjoint solve of eq. 9. Returns false when H(x) is not positive definite.
+  /// the adjoint solve of eq. 9. Returns false when H(x) is not positive definite. At the state the
+  /// last solve ended on, when its last step was taken on a fresh factorization of the exact
+  /// Hessian (with finish_on_fresh_step, from below the tolerance), that factorization serves,
+  /// refined by one step with H(x)λ from differences of ∇E: no assembly.
   bool solve_with_hessian(const Eigen::VectorXd& x, const Eigen::VectorXd& b, Eigen::VectorXd& lambda);
 
 private:
-  /// Assembles and factorizes the Hessian at x (projected and shifted when it is not positive
-  /// definite); false with s.message set when it cannot.
+  /// Assembles and factorizes the Hessian at x (shifted, or projected and shifted, when it is not
+  /// positive definite); false with s.message set when it cannot.
   bool factorize_at(const Eigen::VectorXd& x, NewtonSummary& s, double& shift);
+  /// Factorizes the assembled exact Hessian shifted by the smallest τI tried that is positive
+  /// definite (τ in shift); false when none up to a limit is.
+  bool factorize_shifted(NewtonSummary& s, double& shift);
 
   std::vector<const Energy*> energies_;
   std::size_t fixed_energies_;
   SparseHessian hessian_;
   CholmodSolver cholmod_;
+  double last_shift_ = 0;  ///< the τ of the last shifted exact Hessian, where the next search starts
+  bool exact_ = false;     ///< the factorization is of the exact Hessian, unshifted
+  bool adjoint_ready_ = false;  ///< solve_with_hessian(adjoint_x_) may use the factorization
+  Eigen::VectorXd adjoint_x_;
 };
 
 } // namespace fibermold

@@ -1,0 +1,115 @@
+// Newton's method through a region where the exact Hessian is indefinite only because two stiff
+// terms nearly cancel (as a compressed element and its neighbours do near a snap): the shifted
+// exact Hessian follows the soft mode, where each term's own projection would make it stiff and
+// the steps crawl.
+#include <cstdio>
+
+#include <gtest/gtest.h>
+
+#include "sim/external_forces.hpp"
+#include "sim/muscle_energy.hpp"
+#include "sim/newton_solver.hpp"
+#include "sim/simulation.hpp"
+#include "sim_fixtures.hpp"
+
+namespace fibermold {
+namespace {
+
+/// One node; the energy of its first coordinate is `quadratic`/2 x² + `quartic`/4 x⁴, the other
+/// two are held by springs of stiffness `hold`.
+class Polynomial final : public Energy {
+public:
+  Polynomial(double quadratic, double quartic, double hold) : k2_(quadratic), k4_(quartic), hold_(hold) {}
+  std::string name() const override { return "polynomial"; }
+  double value(const Eigen::VectorXd& x) const override
+  {
+    return k2_ / 2 * x[0] * x[0] + k4_ / 4 * std::pow(x[0], 4) + hold_ / 2 * (x[1] * x[1] + x[2] * x[2]);
+  }
+  void add_gradient(const Eigen::VectorXd& x, Eigen::VectorXd& g) const override
+  {
+    g[0] += k2_ * x[0] + k4_ * std::pow(x[0], 3);
+    g[1] += hold_ * x[1];
+    g[2] += hold_ * x[2];
+  }
+  void add_hessian(const Eigen::VectorXd& x, SparseHessian& H, bool project) const override
+  {
+    const double along = k2_ + 3 * k4_ * x[0] * x[0];
+    H.add_block(0, 0, Eigen::Vector3d(project ? std::max(along, 0.0) : along, hold_, hold_).asDiagonal());
+  }
+  void stencils(std::vector<std::vector<int>>& out) const override { out.push_back({0}); }
+
+private:
+  double k2_, k4_, hold_;
+};
+
+TEST(NewtonSolver, FollowsASoftModeOfNegativeCurvatureToTheMinimum)
+{
+  // E = −x²/2 + x⁴/4 from two terms of stiffness ±100: minima at x = ±1, the exact Hessian
+  // −1 + 3x² indefinite for |x| < 0.577. Each term projected alone gives 100 there, and steps of
+  // (x − x³)/100: from x = 0.05 about 300 of them.
+  const Polynomial stiff(100, 0, 1000), cancelling(-101, 1, 0);
+  NewtonSolver solver({&stiff, &cancelling}, 1);
+  Eigen::VectorXd x = Eigen::Vector3d(0.05, 0.01, -0.01);
+  NullProgress progress;
+  NewtonOptions options;
+  options.tolerance = 1e-12;
+  options.reuse_contraction = 0;  // one assembly per step
+  const NewtonSummary s = solver.solve(x, options, progress);
+  ASSERT_TRUE(s.converged) << s.brief();
+  EXPECT_NEAR(x[0], 1.0, 1e-10);
+  EXPECT_NEAR(x[1], 0.0, 1e-12);
+  EXPECT_LE(s.iterations, 15) << s.brief();
+  EXPECT_EQ(s.assemblies, s.iterations) << "the projected Hessian was assembled too";
+}
+
+TEST(NewtonSolver, FarFromDefiniteFallsBackToTheProjectedHessian)
+{
+  // Curvature −1000 against a largest diagonal entry of 1: no small shift makes it definite, so
+  // the projection (and its own shift) must take over, and the minimum is still found.
+  const Polynomial well(-1000, 1000, 1);
+  NewtonSolver solver({&well}, 1);
+  Eigen::VectorXd x = Eigen::Vector3d(-0.02, 0, 0);
+  NullProgress progress;
+  const NewtonSummary s = solver.solve(x, {}, progress);
+  ASSERT_TRUE(s.converged) << s.brief();
+  EXPECT_NEAR(x[0], -1.0, 1e-9);
+}
+
+TEST(NewtonSolver, FinishingOnAFreshStepLandsFarBelowTheToleranceAndServesTheAdjointSolve)
+{
+  // A bar bent by a muscle, solved from rest with reused factorizations (the optimizer's setting):
+  // the last step is taken on a fresh one, and the adjoint solve with that factorization (the
+  // Hessian one step before the equilibrium) equals the one with the Hessian at the equilibrium.
+  const TetMesh mesh = test::box_mesh({0, -0.006, -0.006}, {0.04, 0.006, 0.006}, 0.004);
+  SimulationOptions o;
+  o.fixed_nodes = {nodes_in_box(mesh.nodes, {-1, -1, -1}, {1e-9, 1, 1})};
+  o.newton.finish_on_fresh_step = true;
+  Simulation sim(mesh, o);
+  const MuscleModel model;
+  const HermiteSpline route({{0, 0.003, 0}, {0.02, 0.004, -0.002}, {0.04, 0.003, 0}});
+  std::vector<std::unique_ptr<Energy>> m;
+  m.push_back(std::make_unique<MuscleEnergy>(sim.basis(), model, route, segment_parameters(route, 20), 250e3));
+  sim.set_variable_energies(std::move(m));
+  Eigen::VectorXd x = sim.rest();
+  NullProgress progress;
+  const NewtonSummary s = sim.solve(x, progress);
+  ASSERT_TRUE(s.converged) << s.brief();
+  EXPECT_LT(s.factorizations, s.iterations) << "some steps should reuse a factorization";
+  const double goal = o.newton.tolerance * (sim.solver().gradient(sim.rest()).norm() + o.youngs_modulus * std::pow(sim.mean_edge_length(), 2));
+  EXPECT_LT(s.residual, 1e-2 * goal) << s.brief();
+
+  const Eigen::VectorXd b = Eigen::VectorXd::Random(x.size());
+  Eigen::VectorXd reused, assembled;
+  ASSERT_TRUE(sim.solver().solve_with_hessian(x, b, reused));
+  std::vector<std::unique_ptr<Energy>> again;  // the same muscle again: the factorization is forgotten
+  again.push_back(std::make_unique<MuscleEnergy>(sim.basis(), model, route, segment_parameters(route, 20), 250e3));
+  sim.set_variable_energies(std::move(again));
+  ASSERT_TRUE(sim.solver().solve_with_hessian(x, b, assembled));
+  std::printf("adjoint solve with the last step's factorization: relative difference %.1e\n",
+              (reused - assembled).norm() / assembled.norm());
+  EXPECT_LT((reused - assembled).norm(), 1e-9 * assembled.norm());
+  EXPECT_GT((reused - assembled).norm(), 0.0) << "the reused factorization is one step away from x";
+}
+
+} // namespace
+} // namespace fibermold
