@@ -70,44 +70,55 @@ bool NewtonSolver::is_valid(const Eigen::VectorXd& x) const
 
 bool NewtonSolver::solve_with_hessian(const Eigen::VectorXd& x, const Eigen::VectorXd& b, Eigen::VectorXd& lambda)
 {
-  if (!(adjoint_ready_ && x.size() == adjoint_x_.size() && x == adjoint_x_)) {
-    hessian(x, false);
-    adjoint_ready_ = exact_ = cholmod_.factorize(hessian_.matrix(), 0);
-    if (!adjoint_ready_) return false;
-    adjoint_x_ = x;
-    lambda = cholmod_.solve(b);
-    return lambda.allFinite();
-  }
-  // The factorization is of the Hessian one Newton step before x (K): one step of iterative
-  // refinement, with H(x)λ from central differences of ∇E over a displacement of 1e-6 of the
-  // body's size, takes λ from K⁻¹b (relative error 3e-7 on the test's bar) to H(x)⁻¹b (8e-10).
+  if (adjoint_ready_ && x.size() == adjoint_x_.size() && x == adjoint_x_ && refined_solve(x, b, lambda)) return true;
+  adjoint_ready_ = false;
+  hessian(x, false);
+  kind_ = cholmod_.factorize(hessian_.matrix(), 0) ? Factorization::exact : Factorization::none;
+  if (kind_ != Factorization::exact) return false;
   lambda = cholmod_.solve(b);
-  const double largest = lambda.cwiseAbs().maxCoeff();
-  if (!(largest > 0 && std::isfinite(largest))) return lambda.allFinite();
-  const double h = 1e-6 * x.cwiseAbs().maxCoeff() / largest;
-  const Eigen::VectorXd Hlambda = (gradient(x + h * lambda) - gradient(x - h * lambda)) / (2 * h);
-  lambda += cholmod_.solve(b - Hlambda);
   return lambda.allFinite();
 }
 
-bool NewtonSolver::factorize_at(const Eigen::VectorXd& x, NewtonSummary& s, double& shift)
+bool NewtonSolver::refined_solve(const Eigen::VectorXd& x, const Eigen::VectorXd& b, Eigen::VectorXd& lambda) const
+{
+  // The factorization K is of the exact Hessian one full Newton step before x, a step that began
+  // near the tolerance. One step of iterative refinement, with H(x)λ from central differences of
+  // ∇E over a displacement of 1e-6 of the body's extent, takes λ from K⁻¹b (relative error 3e-7
+  // on the test's bar) to H(x)⁻¹b (8e-10). A correction above 1e-4 of λ means K is too far from
+  // H(x) (or H(x) is not definite): the caller then factorizes H(x) itself.
+  lambda = cholmod_.solve(b);
+  const auto nodes = x.reshaped(3, x.size() / 3);
+  const double extent = (nodes.rowwise().maxCoeff() - nodes.rowwise().minCoeff()).maxCoeff();
+  const double largest = lambda.cwiseAbs().maxCoeff();
+  const double h = 1e-6 * extent / largest;
+  if (!(std::isfinite(h) && h > 0)) return false;
+  const Eigen::VectorXd Hlambda = (gradient(x + h * lambda) - gradient(x - h * lambda)) / (2 * h);
+  const Eigen::VectorXd correction = cholmod_.solve(b - Hlambda);
+  if (!(correction.norm() <= 1e-4 * lambda.norm()) || !(lambda.dot(Hlambda) > 0)) return false;
+  lambda += correction;
+  return lambda.allFinite();
+}
+
+NewtonSolver::Factorization NewtonSolver::factorize_at(const Eigen::VectorXd& x, NewtonSummary& s, double& shift, bool exact_first)
 {
   // The exact Hessian where it is positive definite (quadratic convergence near a stable
   // equilibrium); shifted by τI where it is indefinite but only softly (a state passing a snap or
   // a buckling mode); the per-point PSD projection where it is far from definite.
-  auto t = Clock::now();
-  hessian(x, false);
-  s.seconds_assembly += since(t);
-  ++s.assemblies;
-  t = Clock::now();
   shift = 0;
-  bool factorized = cholmod_.factorize(hessian_.matrix(), 0);
-  ++s.factorizations;
-  exact_ = factorized;
-  if (!factorized) factorized = factorize_shifted(s, shift);
-  s.seconds_factorization += since(t);
-  if (factorized) return true;
-  t = Clock::now();
+  if (exact_first) {
+    auto t = Clock::now();
+    hessian(x, false);
+    s.seconds_assembly += since(t);
+    ++s.assemblies;
+    t = Clock::now();
+    ++s.factorizations;
+    Factorization kind = cholmod_.factorize(hessian_.matrix(), 0) ? Factorization::exact
+                         : factorize_shifted(s, shift)               ? Factorization::shifted
+                                                                     : Factorization::none;
+    s.seconds_factorization += since(t);
+    if (kind != Factorization::none) return kind;
+  }
+  auto t = Clock::now();
   hessian(x, true);
   s.seconds_assembly += since(t);
   ++s.assemblies;
@@ -116,8 +127,9 @@ bool NewtonSolver::factorize_at(const Eigen::VectorXd& x, NewtonSummary& s, doub
   const double diagonal = hessian_.matrix().diagonal().cwiseAbs().maxCoeff();
   if (!(diagonal > 0 && std::isfinite(diagonal))) {
     s.message = "the Hessian is zero or not finite";
-    return false;
+    return Factorization::none;
   }
+  bool factorized = false;
   shift = 0;
   while (!factorized && shift <= diagonal) {  // at most 11 attempts
     factorized = cholmod_.factorize(hessian_.matrix(), shift);
@@ -126,13 +138,14 @@ bool NewtonSolver::factorize_at(const Eigen::VectorXd& x, NewtonSummary& s, doub
   }
   s.seconds_factorization += since(t);
   if (!factorized) s.message = "the Hessian is singular: is the body held (a [[fixed]] region)?";
-  return factorized;
+  return factorized ? Factorization::projected : Factorization::none;
 }
 
 bool NewtonSolver::factorize_shifted(NewtonSummary& s, double& shift)
 {
-  // H + τI with τ growing by 4× from a small fraction of the largest diagonal entry, or from a
-  // quarter of the last τ that worked (Nocedal & Wright, Numerical Optimization, Algorithm 3.3).
+  // H + τI for the first τ of τ₀·4ᵏ that is positive definite, τ₀ a small fraction of the largest
+  // diagonal entry or a quarter of the last τ of this solve (a multiple of the identity added until
+  // Cholesky succeeds: Nocedal & Wright, Numerical Optimization, Algorithm 3.3, with 4× steps).
   // Along a soft mode of slightly negative curvature (stiff terms that nearly cancel) the step
   // then follows the mode; the per-point projection drops the negative part, makes the mode as
   // stiff as the elements, and Newton crawls: on the walking robot 40 to 100 full steps, each
@@ -155,6 +168,8 @@ NewtonSummary NewtonSolver::solve(Eigen::VectorXd& x, const NewtonOptions& optio
 {
   const auto start = Clock::now();
   NewtonSummary s;
+  adjoint_ready_ = false;
+  last_shift_ = 0;
   if (!is_valid(x)) {
     s.message = "the starting state is invalid (an inverted element)";
     return s;
@@ -164,13 +179,20 @@ NewtonSummary NewtonSolver::solve(Eigen::VectorXd& x, const NewtonOptions& optio
   s.initial_residual = g.norm();
   const double goal = options.tolerance * options.force_scale;
   double last_alpha = 0, shift = 0;
-  bool fresh = false;  // the factorization is of the Hessian at x
-  bool stale = true;   // the factorization must be redone before the next step
+  bool fresh = false;          // the factorization is of the Hessian at x
+  bool stale = true;           // the factorization must be redone before the next step
+  bool exact_first = true;     // false: the next factorization is the projected Hessian
   bool stepped_fresh = false;  // the last step was taken on a fresh factorization
+  bool near_step = false;      // ... of the exact Hessian, full, and begun within 1e3 × the tolerance
   bool finishing = false;      // below the tolerance, taking the step that finish_on_fresh_step asks for
-  adjoint_ready_ = false;
   int full_steps = 0;  // steps on a fresh factorization: what max_iterations bounds (a reused step
                        // must halve |∇E|, so at most about log2(|∇E₀| / goal) of them come in a row)
+  const auto converge = [&](bool factorization_serves_adjoint) {
+    s.converged = true;
+    s.message = "gradient below tolerance";
+    adjoint_ready_ = factorization_serves_adjoint;
+    if (adjoint_ready_) adjoint_x_ = x;
+  };
   for (;;) {
     s.residual = g.norm();
     s.energy = E;
@@ -180,29 +202,25 @@ NewtonSummary NewtonSolver::solve(Eigen::VectorXd& x, const NewtonOptions& optio
     }
     if (s.residual <= goal) {
       if (!options.finish_on_fresh_step || stepped_fresh) {
-        s.converged = true;
-        s.message = "gradient below tolerance";
-        adjoint_ready_ = stepped_fresh && exact_;
-        if (adjoint_ready_) adjoint_x_ = x;
+        converge(near_step);
         break;
       }
       finishing = true;
       stale = true;
     }
-    if (full_steps == options.max_iterations && !finishing) {
+    if (full_steps >= options.max_iterations && !finishing) {
       s.message = fmt::format("no convergence in {} iterations", options.max_iterations);
       break;
     }
     if (stale) {
-      if (!factorize_at(x, s, shift)) {
-        if (finishing) {  // x is below the tolerance all the same
-          s.converged = true;
-          s.message = "gradient below tolerance";
-        }
+      kind_ = factorize_at(x, s, shift, exact_first);
+      if (kind_ == Factorization::none) {
+        if (finishing) converge(false);  // x is below the tolerance all the same
         break;
       }
       stale = false;
       fresh = true;
+      exact_first = true;
     }
     progress.checkpoint(-1, fmt::format("Newton iteration {}: |∇E| = {:.3e} N, last step {:.3g}, shift {:.3g}{}", s.iterations,
                                         s.residual, last_alpha, shift, fresh ? "" : ", Hessian reused"));
@@ -225,24 +243,28 @@ NewtonSummary NewtonSolver::solve(Eigen::VectorXd& x, const NewtonOptions& optio
       if (std::abs(trial_E - E) <= 1e-12 * std::abs(E) && gradient(trial).norm() < s.residual) break;
     }
     if (!(slope < 0) || halvings > options.max_halvings) {
-      if (!fresh) {  // an old Hessian's direction: refactorize here and try again
-        stale = true;
+      if (!fresh || kind_ == Factorization::shifted) {  // an old Hessian's direction: refactorize
+        stale = true;                                    // and try again; a shifted one's: project
+        exact_first = !fresh;
         continue;
       }
-      if (finishing) {  // already below the tolerance, and the factorization is the Hessian at x
-        s.converged = true;
-        s.message = "gradient below tolerance";
-        adjoint_ready_ = exact_;
-        if (adjoint_ready_) adjoint_x_ = x;
+      if (finishing) {  // the factorization is of the Hessian at x, which is below the tolerance
+        converge(kind_ == Factorization::exact);
         break;
       }
       s.message = "the line search found no decrease";
       break;
     }
-    x = trial;
+    Eigen::VectorXd trial_g = gradient(trial);
+    if (finishing && !(trial_g.norm() <= goal)) {  // the extra step must not undo convergence
+      converge(false);
+      break;
+    }
+    near_step = fresh && kind_ == Factorization::exact && alpha == 1 && s.residual <= 1e3 * goal;
+    x = std::move(trial);
     E = trial_E;
+    g = std::move(trial_g);
     last_alpha = alpha;
-    g = gradient(x);
     ++s.iterations;
     if (fresh) ++full_steps;
     stepped_fresh = fresh;

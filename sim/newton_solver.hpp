@@ -63,25 +63,31 @@ public:
 
   /// Solves H(x) λ = b with the exact Hessian at x (an equilibrium, where it is positive definite):
   /// the adjoint solve of eq. 9. Returns false when H(x) is not positive definite. At the state the
-  /// last solve ended on, when its last step was taken on a fresh factorization of the exact
-  /// Hessian (with finish_on_fresh_step, from below the tolerance), that factorization serves,
-  /// refined by one step with H(x)λ from differences of ∇E: no assembly.
+  /// last solve ended on, when its last step was a full one on a fresh factorization of the exact
+  /// Hessian begun near the tolerance (always so with finish_on_fresh_step), that factorization
+  /// serves, refined by one step with H(x)λ from differences of ∇E: no assembly.
   bool solve_with_hessian(const Eigen::VectorXd& x, const Eigen::VectorXd& b, Eigen::VectorXd& lambda);
 
 private:
-  /// Assembles and factorizes the Hessian at x (shifted, or projected and shifted, when it is not
-  /// positive definite); false with s.message set when it cannot.
-  bool factorize_at(const Eigen::VectorXd& x, NewtonSummary& s, double& shift);
-  /// Factorizes the assembled exact Hessian shifted by the smallest τI tried that is positive
-  /// definite (τ in shift); false when none up to a limit is.
+  enum class Factorization { none, exact, shifted, projected };
+
+  /// Assembles and factorizes the Hessian at x: exact, else exact + τI, else projected (and
+  /// shifted until it factorizes); only projected when !exact_first. none with s.message set
+  /// when it cannot.
+  Factorization factorize_at(const Eigen::VectorXd& x, NewtonSummary& s, double& shift, bool exact_first);
+  /// Factorizes the assembled exact Hessian + τI for the first τ tried that makes it positive
+  /// definite (τ in shift); false when none up to a limit does.
   bool factorize_shifted(NewtonSummary& s, double& shift);
+  /// The adjoint solve with the factorization the last solve ended on; false when it does not
+  /// serve (the refinement's correction is too large).
+  bool refined_solve(const Eigen::VectorXd& x, const Eigen::VectorXd& b, Eigen::VectorXd& lambda) const;
 
   std::vector<const Energy*> energies_;
   std::size_t fixed_energies_;
   SparseHessian hessian_;
   CholmodSolver cholmod_;
-  double last_shift_ = 0;  ///< the τ of the last shifted exact Hessian, where the next search starts
-  bool exact_ = false;     ///< the factorization is of the exact Hessian, unshifted
+  Factorization kind_ = Factorization::none;  ///< what cholmod_ holds
+  double last_shift_ = 0;       ///< the τ of this solve's last shifted Hessian, where the next search starts
   bool adjoint_ready_ = false;  ///< solve_with_hessian(adjoint_x_) may use the factorization
   Eigen::VectorXd adjoint_x_;
 };

@@ -64,15 +64,18 @@ TEST(NewtonSolver, FollowsASoftModeOfNegativeCurvatureToTheMinimum)
 
 TEST(NewtonSolver, FarFromDefiniteFallsBackToTheProjectedHessian)
 {
-  // Curvature −1000 against a largest diagonal entry of 1: no small shift makes it definite, so
+  // Curvature −1000 + 3000x² (−998.8 at the start), so τ ≤ 0.01 × 998.8 cannot make it definite:
   // the projection (and its own shift) must take over, and the minimum is still found.
   const Polynomial well(-1000, 1000, 1);
   NewtonSolver solver({&well}, 1);
   Eigen::VectorXd x = Eigen::Vector3d(-0.02, 0, 0);
   NullProgress progress;
-  const NewtonSummary s = solver.solve(x, {}, progress);
+  NewtonOptions options;
+  options.reuse_contraction = 0;  // one exact assembly per step, and one more where it is projected
+  const NewtonSummary s = solver.solve(x, options, progress);
   ASSERT_TRUE(s.converged) << s.brief();
   EXPECT_NEAR(x[0], -1.0, 1e-9);
+  EXPECT_GT(s.assemblies, s.iterations) << "the projected Hessian should have been assembled";
 }
 
 TEST(NewtonSolver, FinishingOnAFreshStepLandsFarBelowTheToleranceAndServesTheAdjointSolve)
@@ -109,6 +112,14 @@ TEST(NewtonSolver, FinishingOnAFreshStepLandsFarBelowTheToleranceAndServesTheAdj
               (reused - assembled).norm() / assembled.norm());
   EXPECT_LT((reused - assembled).norm(), 1e-9 * assembled.norm());
   EXPECT_GT((reused - assembled).norm(), 0.0) << "the reused factorization is one step away from x";
+
+  // Anywhere else the Hessian is assembled there: a second call, which assembles, agrees exactly.
+  const Eigen::VectorXd y = x + 1e-6 * Eigen::VectorXd::Random(x.size());
+  ASSERT_TRUE(sim.solve(x, progress).converged);
+  Eigen::VectorXd first, second;
+  ASSERT_TRUE(sim.solver().solve_with_hessian(y, b, first));
+  ASSERT_TRUE(sim.solver().solve_with_hessian(y, b, second));
+  EXPECT_EQ(first, second);
 }
 
 } // namespace
