@@ -149,7 +149,7 @@ bool NewtonSolver::factorize_shifted(NewtonSummary& s, double& shift)
   // Along a soft mode of slightly negative curvature (stiff terms that nearly cancel) the step
   // then follows the mode; the per-point projection drops the negative part, makes the mode as
   // stiff as the elements, and Newton crawls: on the walking robot 40 to 100 full steps, each
-  // lowering |∇E| by 2–4 %. Beyond kLargestShift the projection is the better model.
+  // lowering |∇E| by at most 4 %. Beyond kLargestShift the projection is the better model.
   constexpr double kSmallestShift = 1e-8, kLargestShift = 1e-2;
   const double diagonal = hessian_.matrix().diagonal().cwiseAbs().maxCoeff();
   if (!(diagonal > 0 && std::isfinite(diagonal))) return false;
