@@ -158,11 +158,11 @@ bool RoutingProblem::solve(int t, Eigen::VectorXd& x)
   const auto start = Clock::now();
   x = warm_[t];
   NewtonSummary s = sim_.solve(x, progress);
-  newton_iterations_ += s.iterations;
+  newton_ += s;
   if (!s.converged) {  // a warm start far from the answer can fail where the rest state does not
     x = sim_.rest();
     s = sim_.solve(x, progress);
-    newton_iterations_ += s.iterations;
+    newton_ += s;
   }
   seconds_simulation_ += since(start);
   if (s.converged) warm_[t] = x;

@@ -110,8 +110,8 @@ public:
   Simulation& simulation() { return sim_; }
   /// The muscles of target t under routing r, as the simulation used them.
   std::vector<std::unique_ptr<MuscleEnergy>> muscles(const Routing& r, int t) const;
-  /// Newton iterations and seconds spent in simulation and in adjoint solves so far.
-  int newton_iterations() const { return newton_iterations_; }
+  /// The Newton solves so far, and the seconds spent in simulation and in adjoint solves.
+  const NewtonTotals& newton() const { return newton_; }
   double seconds_simulation() const { return seconds_simulation_; }
   double seconds_adjoint() const { return seconds_adjoint_; }
 
@@ -144,7 +144,7 @@ private:
   std::vector<Eigen::VectorXd> best_warm_;  ///< equilibria at the best evaluation since set_free
   const ClearanceBarrier* clearance_barrier_ = nullptr;
   double weight_clearance_ = 0;
-  int newton_iterations_ = 0;
+  NewtonTotals newton_;
   double seconds_simulation_ = 0, seconds_adjoint_ = 0;
 };
 

@@ -210,7 +210,7 @@ void OptimizeStage::run(StageContext& ctx) const
     // A robot starts from rest: where that leads elsewhere, the body has more than one equilibrium.
     // Its time is the paper's "sim (s)" of Table II.
     const auto rest_started = Clock::now();
-    const int rest_newton = problem.newton_iterations();
+    const int rest_newton = problem.newton().iterations;
     const Eigen::VectorXd at_rest = problem.equilibrium(result.routing, t);
     const double rest_seconds = since(rest_started);
     const TargetErrors from_rest = target_errors(problem, dr.mesh, t, at_rest);
@@ -226,7 +226,7 @@ void OptimizeStage::run(StageContext& ctx) const
     entry["start"] = errors_json(before[t]);
     entry["from_rest"] = errors_json(from_rest);
     entry["from_rest"]["seconds"] = rest_seconds;
-    entry["from_rest"]["newton_iterations"] = problem.newton_iterations() - rest_newton;
+    entry["from_rest"]["newton_iterations"] = problem.newton().iterations - rest_newton;
     per_target[names[t]] = entry;
     ctx.log.info("target {}: RMSE {:.3f} mm (from {:.3f}), max {:.3f} mm (from {:.3f}) on the tracking curves; surface RMSE {:.3f} mm, max {:.3f} mm",
                  names[t], after.rmse / units::mm, before[t].rmse / units::mm, after.max / units::mm,
@@ -241,7 +241,13 @@ void OptimizeStage::run(StageContext& ctx) const
       {"iterations", result.iterations},
       {"evaluations", result.evaluations},
       {"objective", result.value},
-      {"newton_iterations", problem.newton_iterations()},
+      {"newton_iterations", problem.newton().iterations},
+      {"newton",
+       {{"solves", problem.newton().solves},
+        {"assemblies", problem.newton().assemblies},
+        {"factorizations", problem.newton().factorizations},
+        {"seconds_assembly", problem.newton().seconds_assembly},
+        {"seconds_factorization", problem.newton().seconds_factorization}}},
       {"seconds", {{"total", since(started)}, {"simulation", problem.seconds_simulation()}, {"adjoint", problem.seconds_adjoint()}}},
       {"targets", per_target}};
   write_file_atomic(ctx.output_dir / "fibers.json", fibers_json(fibers));

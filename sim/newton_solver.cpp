@@ -1,5 +1,6 @@
 #include "sim/newton_solver.hpp"
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 
@@ -23,6 +24,18 @@ std::string NewtonSummary::brief() const
 {
   return fmt::format("{} after {} iterations: |∇E| = {:.3e} N (from {:.3e}), {:.3f} s", converged ? "converged" : "NOT converged",
                      iterations, residual, initial_residual, seconds_total);
+}
+
+NewtonTotals& NewtonTotals::operator+=(const NewtonSummary& s)
+{
+  ++solves;
+  iterations += s.iterations;
+  assemblies += s.assemblies;
+  factorizations += s.factorizations;
+  seconds_assembly += s.seconds_assembly;
+  seconds_factorization += s.seconds_factorization;
+  seconds_total += s.seconds_total;
+  return *this;
 }
 
 NewtonSolver::NewtonSolver(std::vector<const Energy*> energies, Eigen::Index num_nodes)
@@ -74,7 +87,10 @@ bool NewtonSolver::solve_with_hessian(const Eigen::VectorXd& x, const Eigen::Vec
   adjoint_ready_ = false;
   hessian(x, false);
   kind_ = cholmod_.factorize(hessian_.matrix(), 0) ? Factorization::exact : Factorization::none;
-  if (kind_ != Factorization::exact) return false;
+  if (kind_ != Factorization::exact) {
+    restart_ready_ = false;
+    return false;
+  }
   lambda = cholmod_.solve(b);
   return lambda.allFinite();
 }
@@ -179,8 +195,12 @@ NewtonSummary NewtonSolver::solve(Eigen::VectorXd& x, const NewtonOptions& optio
   s.initial_residual = g.norm();
   const double goal = options.tolerance * options.force_scale;
   double last_alpha = 0, shift = 0;
+  // A solve that starts where the last one ended (the optimizer's warm start, with the muscles
+  // moved a little) takes its first step on that solve's factorization of the exact Hessian: a
+  // design step that changes little then costs no assembly before the finishing one.
   bool fresh = false;          // the factorization is of the Hessian at x
-  bool stale = true;           // the factorization must be redone before the next step
+  bool stale = !(restart_ready_ && x.size() == restart_x_.size() && x == restart_x_);
+  restart_ready_ = false;
   bool exact_first = true;     // false: the next factorization is the projected Hessian
   bool stepped_fresh = false;  // the last step was taken on a fresh factorization
   bool near_step = false;      // ... of the exact Hessian, full, and begun within 1e3 × the tolerance
@@ -192,6 +212,8 @@ NewtonSummary NewtonSolver::solve(Eigen::VectorXd& x, const NewtonOptions& optio
     s.message = "gradient below tolerance";
     adjoint_ready_ = factorization_serves_adjoint;
     if (adjoint_ready_) adjoint_x_ = x;
+    restart_ready_ = kind_ == Factorization::exact;
+    restart_x_ = x;
   };
   for (;;) {
     s.residual = g.norm();
@@ -234,7 +256,9 @@ NewtonSummary NewtonSolver::solve(Eigen::VectorXd& x, const NewtonOptions& optio
     Eigen::VectorXd trial;
     double trial_E = HUGE_VAL;
     int halvings = 0;
-    for (; slope < 0 && halvings <= options.max_halvings; ++halvings, alpha /= 2) {
+    // A kept factorization whose step needs more than a few halvings is refactorized instead.
+    const int max_halvings = fresh ? options.max_halvings : std::min(options.max_halvings, 4);
+    for (; slope < 0 && halvings <= max_halvings; ++halvings, alpha /= 2) {
       trial = x + alpha * dx;
       if (!is_valid(trial)) continue;
       trial_E = energy(trial);
@@ -242,7 +266,7 @@ NewtonSummary NewtonSolver::solve(Eigen::VectorXd& x, const NewtonOptions& optio
       // Near the minimum the energy difference drowns in round-off: accept a step that lowers |∇E|.
       if (std::abs(trial_E - E) <= 1e-12 * std::abs(E) && gradient(trial).norm() < s.residual) break;
     }
-    if (!(slope < 0) || halvings > options.max_halvings) {
+    if (!(slope < 0) || halvings > max_halvings) {
       if (!fresh || kind_ == Factorization::shifted) {  // an old Hessian's direction: refactorize
         stale = true;                                    // and try again; a shifted one's: project
         exact_first = !fresh;

@@ -40,6 +40,14 @@ struct NewtonSummary {
   std::string brief() const;
 };
 
+/// What many solves did together (the optimizer's cost account).
+struct NewtonTotals {
+  int solves = 0, iterations = 0, assemblies = 0, factorizations = 0;
+  double seconds_assembly = 0, seconds_factorization = 0, seconds_total = 0;
+
+  NewtonTotals& operator+=(const NewtonSummary& s);
+};
+
 class NewtonSolver {
 public:
   /// The energies must outlive the solver. Builds the Hessian pattern from their stencils.
@@ -90,6 +98,8 @@ private:
   double last_shift_ = 0;       ///< the τ of this solve's last shifted Hessian, where the next search starts
   bool adjoint_ready_ = false;  ///< solve_with_hessian(adjoint_x_) may use the factorization
   Eigen::VectorXd adjoint_x_;
+  bool restart_ready_ = false;  ///< a solve from restart_x_ may begin on the factorization
+  Eigen::VectorXd restart_x_;
 };
 
 } // namespace fibermold

@@ -122,5 +122,45 @@ TEST(NewtonSolver, FinishingOnAFreshStepLandsFarBelowTheToleranceAndServesTheAdj
   EXPECT_EQ(first, second);
 }
 
+TEST(NewtonSolver, ASolveFromWhereTheLastEndedBeginsOnItsFactorization)
+{
+  // The optimizer's warm start: the muscle's pressure changes a little and the solve starts at the
+  // last equilibrium. The factorization of its finishing step serves the first steps, so that only
+  // the finishing step assembles; from anywhere else the first step assembles too.
+  const TetMesh mesh = test::box_mesh({0, -0.006, -0.006}, {0.04, 0.006, 0.006}, 0.004);
+  SimulationOptions o;
+  o.fixed_nodes = {nodes_in_box(mesh.nodes, {-1, -1, -1}, {1e-9, 1, 1})};
+  o.newton.finish_on_fresh_step = true;
+  Simulation sim(mesh, o);
+  const MuscleModel model;
+  const HermiteSpline route({{0, 0.003, 0}, {0.02, 0.004, -0.002}, {0.04, 0.003, 0}});
+  const auto set_pressure = [&](double p) {
+    std::vector<std::unique_ptr<Energy>> m;
+    m.push_back(std::make_unique<MuscleEnergy>(sim.basis(), model, route, segment_parameters(route, 20), p));
+    sim.set_variable_energies(std::move(m));
+  };
+  set_pressure(250e3);
+  Eigen::VectorXd x = sim.rest();
+  NullProgress progress;
+  ASSERT_TRUE(sim.solve(x, progress).converged);
+  const Eigen::VectorXd first = x;
+
+  set_pressure(252e3);
+  const NewtonSummary warm = sim.solve(x, progress);
+  ASSERT_TRUE(warm.converged) << warm.brief();
+  EXPECT_EQ(warm.assemblies, 1) << warm.brief();
+  EXPECT_GT(warm.iterations, 1);
+
+  Eigen::VectorXd elsewhere = first + 1e-9 * Eigen::VectorXd::Ones(first.size());
+  const NewtonSummary cold = sim.solve(elsewhere, progress);
+  ASSERT_TRUE(cold.converged) << cold.brief();
+  EXPECT_EQ(cold.assemblies, 2) << cold.brief();
+  const double moved = (x - first).cwiseAbs().maxCoeff();
+  std::printf("2 kPa more moves a node by up to %.3e m; the two solves differ by %.1e m\n", moved,
+              (x - elsewhere).cwiseAbs().maxCoeff());
+  EXPECT_GT(moved, 1e-6);
+  EXPECT_LT((x - elsewhere).cwiseAbs().maxCoeff(), 1e-3 * moved);
+}
+
 } // namespace
 } // namespace fibermold
