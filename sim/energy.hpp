@@ -2,6 +2,7 @@
 // One interface for every term of the total potential energy (after polyfem's Form): value,
 // gradient, Hessian, and a line-search hook that rejects invalid states.
 
+#include <cmath>
 #include <string>
 #include <vector>
 
@@ -25,6 +26,14 @@ public:
   virtual void stencils(std::vector<std::vector<int>>& out) const = 0;
   /// False for a state the energy is not defined at (e.g. an inverted element).
   virtual bool is_step_valid(const Eigen::VectorXd&) const { return true; }
+  /// E(x) with g += ∂E/∂x, or +∞ (g then partly updated) where !is_step_valid(x): what a line
+  /// search asks of each trial state, in one pass where the terms share their work.
+  virtual double value_and_gradient(const Eigen::VectorXd& x, Eigen::VectorXd& g) const
+  {
+    if (!is_step_valid(x)) return HUGE_VAL;
+    add_gradient(x, g);
+    return value(x);
+  }
 };
 
 /// Projects a symmetric matrix onto the positive semi-definite cone (negative eigenvalues → 0).

@@ -76,11 +76,37 @@ bool NeoHookean::is_step_valid(const Eigen::VectorXd& x) const
 
 void NeoHookean::add_gradient(const Eigen::VectorXd& x, Eigen::VectorXd& g) const
 {
-  // Per point, V_q P_q; then per node i, ∂E/∂x_i = Σ_q V_q P_q ∇N_i(X_q), gathered without races.
+  // Per point, V_q P_q; then per node i, ∂E/∂x_i = Σ_q V_q P_q ∇N_i(X_q).
   std::vector<Eigen::Matrix3d> VP(static_cast<std::size_t>(qp_.size()));
   tbb::parallel_for(Eigen::Index{0}, qp_.size(), [&](Eigen::Index q) {
     VP[q] = qp_.volume[q] * neo_hookean_stress(deformation_gradient(x, q), lame_);
   });
+  gather(VP, g);
+}
+
+double NeoHookean::value_and_gradient(const Eigen::VectorXd& x, Eigen::VectorXd& g) const
+{
+  // F once per point for the validity, Ψ and P (three passes over the stencils otherwise).
+  std::vector<Eigen::Matrix3d> VP(static_cast<std::size_t>(qp_.size()));
+  const double E = tbb::parallel_reduce(
+      tbb::blocked_range<Eigen::Index>(0, qp_.size()), 0.0,
+      [&](const tbb::blocked_range<Eigen::Index>& range, double sum) {
+        for (Eigen::Index q = range.begin(); q < range.end() && sum < HUGE_VAL; ++q) {
+          const Eigen::Matrix3d F = deformation_gradient(x, q);
+          if (!(F.determinant() > 0)) return HUGE_VAL;
+          sum += qp_.volume[q] * neo_hookean_density(F, lame_);
+          VP[q] = qp_.volume[q] * neo_hookean_stress(F, lame_);
+        }
+        return sum;
+      },
+      std::plus<>());
+  if (!(E < HUGE_VAL)) return HUGE_VAL;
+  gather(VP, g);
+  return E;
+}
+
+void NeoHookean::gather(const std::vector<Eigen::Matrix3d>& VP, Eigen::VectorXd& g) const
+{
   const auto n = static_cast<Eigen::Index>(incidence_.offset.size()) - 1;
   tbb::parallel_for(Eigen::Index{0}, n, [&](Eigen::Index i) {
     Eigen::Vector3d f = Eigen::Vector3d::Zero();

@@ -30,11 +30,15 @@ public:
   void add_hessian(const Eigen::VectorXd& x, SparseHessian& H, bool project) const override;
   void stencils(std::vector<std::vector<int>>& out) const override;
   bool is_step_valid(const Eigen::VectorXd& x) const override;
+  double value_and_gradient(const Eigen::VectorXd& x, Eigen::VectorXd& g) const override;
 
   /// F at quadrature point q.
   Eigen::Matrix3d deformation_gradient(const Eigen::VectorXd& x, Eigen::Index q) const;
 
 private:
+  /// g += Σ_q V_q P_q ∇N_i(X_q) per node i, gathered without races.
+  void gather(const std::vector<Eigen::Matrix3d>& VP, Eigen::VectorXd& g) const;
+
   const QuadraturePoints& qp_;
   NodeIncidence incidence_;
   LameParameters lame_;

@@ -74,6 +74,15 @@ const SparseHessian& NewtonSolver::hessian(const Eigen::VectorXd& x, bool projec
   return hessian_;
 }
 
+double NewtonSolver::value_and_gradient(const Eigen::VectorXd& x, Eigen::VectorXd& g) const
+{
+  g.setZero(x.size());
+  double e = 0;
+  for (const Energy* term : energies_)
+    if (!((e += term->value_and_gradient(x, g)) < HUGE_VAL)) return HUGE_VAL;
+  return e;
+}
+
 bool NewtonSolver::is_valid(const Eigen::VectorXd& x) const
 {
   for (const Energy* term : energies_)
@@ -186,12 +195,12 @@ NewtonSummary NewtonSolver::solve(Eigen::VectorXd& x, const NewtonOptions& optio
   NewtonSummary s;
   adjoint_ready_ = false;
   last_shift_ = 0;
-  if (!is_valid(x)) {
+  Eigen::VectorXd g;
+  double E = value_and_gradient(x, g);
+  if (!(E < HUGE_VAL)) {
     s.message = "the starting state is invalid (an inverted element)";
     return s;
   }
-  double E = energy(x);
-  Eigen::VectorXd g = gradient(x);
   s.initial_residual = g.norm();
   const double goal = options.tolerance * options.force_scale;
   double last_alpha = 0, shift = 0;
@@ -253,18 +262,18 @@ NewtonSummary NewtonSolver::solve(Eigen::VectorXd& x, const NewtonOptions& optio
     // Backtracking (Armijo) that rejects any invalid state.
     const double slope = g.dot(dx);
     double alpha = 1;
-    Eigen::VectorXd trial;
+    Eigen::VectorXd trial, trial_g;
     double trial_E = HUGE_VAL;
     int halvings = 0;
     // A kept factorization whose step needs more than a few halvings is refactorized instead.
     const int max_halvings = fresh ? options.max_halvings : std::min(options.max_halvings, 4);
     for (; slope < 0 && halvings <= max_halvings; ++halvings, alpha /= 2) {
       trial = x + alpha * dx;
-      if (!is_valid(trial)) continue;
-      trial_E = energy(trial);
+      trial_E = value_and_gradient(trial, trial_g);
+      if (!(trial_E < HUGE_VAL)) continue;
       if (trial_E <= E + 1e-4 * alpha * slope) break;
       // Near the minimum the energy difference drowns in round-off: accept a step that lowers |∇E|.
-      if (std::abs(trial_E - E) <= 1e-12 * std::abs(E) && gradient(trial).norm() < s.residual) break;
+      if (std::abs(trial_E - E) <= 1e-12 * std::abs(E) && trial_g.norm() < s.residual) break;
     }
     if (!(slope < 0) || halvings > max_halvings) {
       if (!fresh || kind_ == Factorization::shifted) {  // an old Hessian's direction: refactorize
@@ -279,7 +288,6 @@ NewtonSummary NewtonSolver::solve(Eigen::VectorXd& x, const NewtonOptions& optio
       s.message = "the line search found no decrease";
       break;
     }
-    Eigen::VectorXd trial_g = gradient(trial);
     if (finishing && !(trial_g.norm() <= goal)) {  // the extra step must not undo convergence
       converge(false);
       break;

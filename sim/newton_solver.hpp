@@ -62,6 +62,8 @@ public:
 
   double energy(const Eigen::VectorXd& x) const;
   Eigen::VectorXd gradient(const Eigen::VectorXd& x) const;
+  /// E(x) with g = ∇E(x) in one pass, or +∞ where x is invalid.
+  double value_and_gradient(const Eigen::VectorXd& x, Eigen::VectorXd& g) const;
   /// Assembles the (projected) Hessian at x.
   const SparseHessian& hessian(const Eigen::VectorXd& x, bool project = true);
   bool is_valid(const Eigen::VectorXd& x) const;
