@@ -1,8 +1,30 @@
 #include "sim/cholmod_solver.hpp"
 
+#include <cstdlib>
+
+#include <dlfcn.h>
+
 #include <Eigen/CholmodSupport>
 
 namespace fibermold {
+
+namespace {
+/// OpenBLAS (Debian's default BLAS under CHOLMOD) keeps its worker threads spinning on
+/// sched_yield for about 0.1 s after each call, and on 2 cores they take that time from the
+/// assembly's oneTBB threads. One BLAS thread is faster throughout (bench/sim: twisting bar
+/// 4.2 → 3.6–4.0 s, assembly 0.160 → 0.125 s; even the fem-p2 cantilever, whose time is CHOLMOD's,
+/// 5.45 → 4.87 s). A user's OPENBLAS_NUM_THREADS is left alone; another BLAS is not touched.
+void use_one_blas_thread()
+{
+  static const bool done = [] {
+    if (std::getenv("OPENBLAS_NUM_THREADS")) return false;
+    using SetThreads = void (*)(int);
+    if (auto set = reinterpret_cast<SetThreads>(dlsym(RTLD_DEFAULT, "openblas_set_num_threads"))) set(1);
+    return true;
+  }();
+  (void)done;
+}
+} // namespace
 
 struct CholmodSolver::Impl {
   Eigen::CholmodSupernodalLLT<Eigen::SparseMatrix<double>, Eigen::Lower> llt;
@@ -11,6 +33,7 @@ struct CholmodSolver::Impl {
 
 CholmodSolver::CholmodSolver() : impl_(std::make_unique<Impl>())
 {
+  use_one_blas_thread();
   impl_->llt.cholmod().print = 0;  // "not positive definite" is an answer here, not an error to print
 }
 CholmodSolver::~CholmodSolver() = default;
