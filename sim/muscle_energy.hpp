@@ -32,7 +32,6 @@ public:
   void add_hessian(const Eigen::VectorXd& x, SparseHessian& H, bool project) const override;
   void stencils(std::vector<std::vector<int>>& out) const override;
 
-  void set_pressure(double p) { pressure_ = p; }
   double pressure() const { return pressure_; }
   const HermiteSpline& spline() const { return spline_; }
   const FiberSegments& segments() const { return segments_; }

@@ -97,7 +97,7 @@ private:
   SparseHessian hessian_;
   CholmodSolver cholmod_;
   Factorization kind_ = Factorization::none;  ///< what cholmod_ holds
-  double last_shift_ = 0;       ///< the τ of this solve's last shifted Hessian, where the next search starts
+  double last_shift_ = 0;       ///< the last τ that served (in any solve): a search starts at a quarter of it
   bool adjoint_ready_ = false;  ///< solve_with_hessian(adjoint_x_) may use the factorization
   Eigen::VectorXd adjoint_x_;
   bool restart_ready_ = false;  ///< a solve from restart_x_ may begin on the factorization
