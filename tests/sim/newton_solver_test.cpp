@@ -78,21 +78,38 @@ TEST(NewtonSolver, FarFromDefiniteFallsBackToTheProjectedHessian)
   EXPECT_GT(s.assemblies, s.iterations) << "the projected Hessian should have been assembled";
 }
 
-TEST(NewtonSolver, FinishingOnAFreshStepLandsFarBelowTheToleranceAndServesTheAdjointSolve)
+/// A 40 mm bar clamped at x = 0 with one muscle along it, under the optimizer's Newton settings
+/// (kept factorizations, a finishing step on a fresh one).
+class MuscleBar : public ::testing::Test {
+protected:
+  static SimulationOptions options(const TetMesh& mesh)
+  {
+    SimulationOptions o;
+    o.fixed_nodes = {nodes_in_box(mesh.nodes, {-1, -1, -1}, {1e-9, 1, 1})};
+    o.newton.finish_on_fresh_step = true;
+    return o;
+  }
+  /// Replaces the muscle by one at pressure p (Pa).
+  void set_muscle(double p)
+  {
+    std::vector<std::unique_ptr<Energy>> m;
+    m.push_back(std::make_unique<MuscleEnergy>(sim.basis(), model, route, segment_parameters(route, 20), p));
+    sim.set_variable_energies(std::move(m));
+  }
+
+  const TetMesh mesh = test::box_mesh({0, -0.006, -0.006}, {0.04, 0.006, 0.006}, 0.004);
+  const SimulationOptions o = options(mesh);
+  Simulation sim{mesh, o};
+  const MuscleModel model;
+  const HermiteSpline route{{{0, 0.003, 0}, {0.02, 0.004, -0.002}, {0.04, 0.003, 0}}};
+};
+
+TEST_F(MuscleBar, FinishingOnAFreshStepLandsFarBelowTheToleranceAndServesTheAdjointSolve)
 {
   // A bar bent by a muscle, solved from rest with reused factorizations (the optimizer's setting):
   // the last step is taken on a fresh one, and the adjoint solve with that factorization (the
   // Hessian one step before the equilibrium) equals the one with the Hessian at the equilibrium.
-  const TetMesh mesh = test::box_mesh({0, -0.006, -0.006}, {0.04, 0.006, 0.006}, 0.004);
-  SimulationOptions o;
-  o.fixed_nodes = {nodes_in_box(mesh.nodes, {-1, -1, -1}, {1e-9, 1, 1})};
-  o.newton.finish_on_fresh_step = true;
-  Simulation sim(mesh, o);
-  const MuscleModel model;
-  const HermiteSpline route({{0, 0.003, 0}, {0.02, 0.004, -0.002}, {0.04, 0.003, 0}});
-  std::vector<std::unique_ptr<Energy>> m;
-  m.push_back(std::make_unique<MuscleEnergy>(sim.basis(), model, route, segment_parameters(route, 20), 250e3));
-  sim.set_variable_energies(std::move(m));
+  set_muscle(250e3);
   Eigen::VectorXd x = sim.rest();
   NullProgress progress;
   const NewtonSummary s = sim.solve(x, progress);
@@ -104,9 +121,7 @@ TEST(NewtonSolver, FinishingOnAFreshStepLandsFarBelowTheToleranceAndServesTheAdj
   const Eigen::VectorXd b = Eigen::VectorXd::Random(x.size());
   Eigen::VectorXd reused, assembled;
   ASSERT_TRUE(sim.solver().solve_with_hessian(x, b, reused));
-  std::vector<std::unique_ptr<Energy>> again;  // the same muscle again: the factorization is forgotten
-  again.push_back(std::make_unique<MuscleEnergy>(sim.basis(), model, route, segment_parameters(route, 20), 250e3));
-  sim.set_variable_energies(std::move(again));
+  set_muscle(250e3);  // the same muscle again: the factorization is forgotten
   ASSERT_TRUE(sim.solver().solve_with_hessian(x, b, assembled));
   std::printf("adjoint solve with the last step's factorization: relative difference %.1e\n",
               (reused - assembled).norm() / assembled.norm());
@@ -122,30 +137,18 @@ TEST(NewtonSolver, FinishingOnAFreshStepLandsFarBelowTheToleranceAndServesTheAdj
   EXPECT_EQ(first, second);
 }
 
-TEST(NewtonSolver, ASolveFromWhereTheLastEndedBeginsOnItsFactorization)
+TEST_F(MuscleBar, ASolveFromWhereTheLastEndedBeginsOnItsFactorization)
 {
   // The optimizer's warm start: the muscle's pressure changes a little and the solve starts at the
   // last equilibrium. The factorization of its finishing step serves the first steps, so that only
   // the finishing step assembles; from anywhere else the first step assembles too.
-  const TetMesh mesh = test::box_mesh({0, -0.006, -0.006}, {0.04, 0.006, 0.006}, 0.004);
-  SimulationOptions o;
-  o.fixed_nodes = {nodes_in_box(mesh.nodes, {-1, -1, -1}, {1e-9, 1, 1})};
-  o.newton.finish_on_fresh_step = true;
-  Simulation sim(mesh, o);
-  const MuscleModel model;
-  const HermiteSpline route({{0, 0.003, 0}, {0.02, 0.004, -0.002}, {0.04, 0.003, 0}});
-  const auto set_pressure = [&](double p) {
-    std::vector<std::unique_ptr<Energy>> m;
-    m.push_back(std::make_unique<MuscleEnergy>(sim.basis(), model, route, segment_parameters(route, 20), p));
-    sim.set_variable_energies(std::move(m));
-  };
-  set_pressure(250e3);
+  set_muscle(250e3);
   Eigen::VectorXd x = sim.rest();
   NullProgress progress;
   ASSERT_TRUE(sim.solve(x, progress).converged);
   const Eigen::VectorXd first = x;
 
-  set_pressure(252e3);
+  set_muscle(252e3);
   const NewtonSummary warm = sim.solve(x, progress);
   ASSERT_TRUE(warm.converged) << warm.brief();
   EXPECT_EQ(warm.assemblies, 1) << warm.brief();
