@@ -34,7 +34,6 @@ NewtonTotals& NewtonTotals::operator+=(const NewtonSummary& s)
   factorizations += s.factorizations;
   seconds_assembly += s.seconds_assembly;
   seconds_factorization += s.seconds_factorization;
-  seconds_total += s.seconds_total;
   return *this;
 }
 
@@ -51,13 +50,6 @@ void NewtonSolver::set_variable_energies(const std::vector<const Energy*>& energ
   std::vector<std::vector<int>> stencils;
   for (const Energy* e : energies) e->stencils(stencils);
   if (!hessian_.contains(stencils)) hessian_ = SparseHessian(hessian_, stencils);
-}
-
-double NewtonSolver::energy(const Eigen::VectorXd& x) const
-{
-  double e = 0;
-  for (const Energy* term : energies_) e += term->value(x);
-  return e;
 }
 
 Eigen::VectorXd NewtonSolver::gradient(const Eigen::VectorXd& x) const
@@ -81,13 +73,6 @@ double NewtonSolver::value_and_gradient(const Eigen::VectorXd& x, Eigen::VectorX
   for (const Energy* term : energies_)
     if (!((e += term->value_and_gradient(x, g)) < HUGE_VAL)) return HUGE_VAL;
   return e;
-}
-
-bool NewtonSolver::is_valid(const Eigen::VectorXd& x) const
-{
-  for (const Energy* term : energies_)
-    if (!term->is_step_valid(x)) return false;
-  return true;
 }
 
 bool NewtonSolver::solve_with_hessian(const Eigen::VectorXd& x, const Eigen::VectorXd& b, Eigen::VectorXd& lambda)

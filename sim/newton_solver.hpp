@@ -43,7 +43,7 @@ struct NewtonSummary {
 /// What many solves did together (the optimizer's cost account).
 struct NewtonTotals {
   int solves = 0, iterations = 0, assemblies = 0, factorizations = 0;
-  double seconds_assembly = 0, seconds_factorization = 0, seconds_total = 0;
+  double seconds_assembly = 0, seconds_factorization = 0;
 
   NewtonTotals& operator+=(const NewtonSummary& s);
 };
@@ -60,13 +60,11 @@ public:
   /// Symbolic analyses so far (one per pattern).
   int analyses() const { return cholmod_.analyses(); }
 
-  double energy(const Eigen::VectorXd& x) const;
   Eigen::VectorXd gradient(const Eigen::VectorXd& x) const;
   /// E(x) with g = ∇E(x) in one pass, or +∞ where x is invalid.
   double value_and_gradient(const Eigen::VectorXd& x, Eigen::VectorXd& g) const;
   /// Assembles the (projected) Hessian at x.
   const SparseHessian& hessian(const Eigen::VectorXd& x, bool project = true);
-  bool is_valid(const Eigen::VectorXd& x) const;
 
   /// Minimizes from x (updated in place).
   NewtonSummary solve(Eigen::VectorXd& x, const NewtonOptions& options, Progress& progress);
