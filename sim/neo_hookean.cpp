@@ -1,13 +1,17 @@
 #include "sim/neo_hookean.hpp"
 
+#include <algorithm>
 #include <cmath>
+#include <numeric>
 
+#include <Eigen/Eigenvalues>
 #include <Eigen/LU>
 #include <tbb/enumerable_thread_specific.h>
 #include <tbb/parallel_for.h>
 #include <tbb/parallel_reduce.h>
 
 namespace fibermold {
+
 
 double neo_hookean_density(const Eigen::Matrix3d& F, const LameParameters& l)
 {
@@ -39,6 +43,38 @@ Eigen::Matrix<double, 9, 9> neo_hookean_stress_derivative(const Eigen::Matrix3d&
   return D;
 }
 
+Eigen::Matrix<double, 9, 9> neo_hookean_stress_derivative_psd(const Eigen::Matrix3d& F, const LameParameters& l)
+{
+  // With F = U Σ Vᵀ, G = F⁻ᵀ = U D Vᵀ (D = Σ⁻¹) and δF = U δF̂ Vᵀ, the second variation is
+  //   δF : ∂P/∂F : δF = μ |δF̂|² + λ (Σ d_i δF̂_ii)² + (μ − λ ln J) Σ_ik d_i d_k δF̂_ik δF̂_ki,
+  // so its eigenvectors are U E Vᵀ for E = (e_i e_kᵀ ± e_k e_iᵀ)/√2 (eigenvalues μ ± c d_i d_k, i < k)
+  // and E = diag(w) for the eigenvectors w of μ I + λ d dᵀ + c diag(d²): the analytic eigensystem
+  // of Smith, de Goes and Kim (2019) for this energy. The projection adds back the negative part.
+  Eigen::Matrix<double, 9, 9> C = neo_hookean_stress_derivative(F, l);
+  // The SVD from FᵀF = V Σ² Vᵀ and U = F V Σ⁻¹ (F is invertible).
+  const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> right(F.transpose() * F);
+  const Eigen::Matrix3d& V = right.eigenvectors();
+  const Eigen::Vector3d d = right.eigenvalues().cwiseSqrt().cwiseInverse();
+  const Eigen::Matrix3d U = F * V * d.asDiagonal();
+  const double c = l.mu - l.lambda * std::log(F.determinant());
+  const auto subtract = [&](double eigenvalue, const Eigen::Matrix3d& mode) {
+    const Eigen::Matrix<double, 3, 3, Eigen::RowMajor> row_major = mode;
+    const Eigen::Map<const Eigen::Matrix<double, 9, 1>> e(row_major.data());
+    C.noalias() -= eigenvalue * e * e.transpose();
+  };
+  for (int i = 0; i < 3; ++i)
+    for (int k = i + 1; k < 3; ++k)
+      for (const double sign : {1.0, -1.0}) {
+        const double eigenvalue = l.mu + sign * c * d[i] * d[k];
+        if (eigenvalue < 0) subtract(eigenvalue, (U.col(i) * V.col(k).transpose() + sign * U.col(k) * V.col(i).transpose()) / std::sqrt(2.0));
+      }
+  const Eigen::Matrix3d scaling = l.mu * Eigen::Matrix3d::Identity() + l.lambda * d * d.transpose() + c * d.cwiseAbs2().asDiagonal().toDenseMatrix();
+  const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eig(scaling);
+  for (int m = 0; m < 3; ++m)
+    if (eig.eigenvalues()[m] < 0) subtract(eig.eigenvalues()[m], U * eig.eigenvectors().col(m).asDiagonal() * V.transpose());
+  return C;
+}
+
 NeoHookean::NeoHookean(const QuadraturePoints& qp, Eigen::Index num_nodes, LameParameters lame)
     : qp_(qp), incidence_(node_incidence(qp, num_nodes)), lame_(lame)
 {
@@ -53,8 +89,8 @@ Eigen::Matrix3d NeoHookean::deformation_gradient(const Eigen::VectorXd& x, Eigen
 
 double NeoHookean::value(const Eigen::VectorXd& x) const
 {
-  return tbb::parallel_reduce(
-      tbb::blocked_range<Eigen::Index>(0, qp_.size()), 0.0,
+  return tbb::parallel_deterministic_reduce(
+      tbb::blocked_range<Eigen::Index>(0, qp_.size(), chunk_size()), 0.0,
       [&](const tbb::blocked_range<Eigen::Index>& range, double sum) {
         for (Eigen::Index q = range.begin(); q < range.end(); ++q)
           sum += qp_.volume[q] * neo_hookean_density(deformation_gradient(x, q), lame_);
@@ -76,55 +112,53 @@ bool NeoHookean::is_step_valid(const Eigen::VectorXd& x) const
 
 void NeoHookean::add_gradient(const Eigen::VectorXd& x, Eigen::VectorXd& g) const
 {
-  // Per point, V_q P_q; then per node i, ∂E/∂x_i = Σ_q V_q P_q ∇N_i(X_q).
-  std::vector<Eigen::Matrix3d> VP(static_cast<std::size_t>(qp_.size()));
-  tbb::parallel_for(Eigen::Index{0}, qp_.size(), [&](Eigen::Index q) {
-    VP[q] = qp_.volume[q] * neo_hookean_stress(deformation_gradient(x, q), lame_);
-  });
-  gather(VP, g);
+  value_and_gradient(x, g);
 }
 
 double NeoHookean::value_and_gradient(const Eigen::VectorXd& x, Eigen::VectorXd& g) const
 {
-  // F once per point for the validity, Ψ and P (three passes over the stencils otherwise).
-  std::vector<Eigen::Matrix3d> VP(static_cast<std::size_t>(qp_.size()));
-  const double E = tbb::parallel_reduce(
-      tbb::blocked_range<Eigen::Index>(0, qp_.size()), 0.0,
-      [&](const tbb::blocked_range<Eigen::Index>& range, double sum) {
-        for (Eigen::Index q = range.begin(); q < range.end() && sum < HUGE_VAL; ++q) {
+  // One pass over the points: F once for the validity, Ψ and P; each point's forces
+  //   ∂E/∂x_i += V_q P_q ∇N_i(X_q)
+  // go into the gradient of its chunk of points (the points stream through memory in order; a
+  // per-node gather would revisit each point once per node). Fixed chunks summed in a fixed tree:
+  // the same bits whatever the number of threads, so that runs reproduce.
+  struct Partial {
+    double E = 0;
+    Eigen::VectorXd g;
+  };
+  const Partial total = tbb::parallel_deterministic_reduce(
+      tbb::blocked_range<Eigen::Index>(0, qp_.size(), chunk_size()), Partial{},
+      [&](const tbb::blocked_range<Eigen::Index>& range, Partial p) {
+        if (p.g.size() == 0) p.g = Eigen::VectorXd::Zero(g.size());
+        for (Eigen::Index q = range.begin(); q < range.end() && p.E < HUGE_VAL; ++q) {
           const Eigen::Matrix3d F = deformation_gradient(x, q);
-          if (!(F.determinant() > 0)) return HUGE_VAL;
-          sum += qp_.volume[q] * neo_hookean_density(F, lame_);
-          VP[q] = qp_.volume[q] * neo_hookean_stress(F, lame_);
+          if (!(F.determinant() > 0)) p.E = HUGE_VAL;
+          if (!(p.E < HUGE_VAL)) break;
+          p.E += qp_.volume[q] * neo_hookean_density(F, lame_);
+          const Eigen::Matrix3d VP = qp_.volume[q] * neo_hookean_stress(F, lame_);
+          for (int k = qp_.offset[q]; k < qp_.offset[q + 1]; ++k) p.g.segment<3>(3 * qp_.node[k]) += VP * qp_.dN[k];
         }
-        return sum;
+        return p;
       },
-      std::plus<>());
-  if (!(E < HUGE_VAL)) return HUGE_VAL;
-  gather(VP, g);
-  return E;
+      [](Partial a, const Partial& b) {
+        a.E += b.E;
+        if (a.g.size() == 0) a.g = b.g;
+        else if (b.g.size() != 0) a.g += b.g;
+        return a;
+      });
+  if (!(total.E < HUGE_VAL)) return HUGE_VAL;
+  g += total.g;
+  return total.E;
 }
 
-void NeoHookean::gather(const std::vector<Eigen::Matrix3d>& VP, Eigen::VectorXd& g) const
-{
-  const auto n = static_cast<Eigen::Index>(incidence_.offset.size()) - 1;
-  tbb::parallel_for(Eigen::Index{0}, n, [&](Eigen::Index i) {
-    Eigen::Vector3d f = Eigen::Vector3d::Zero();
-    for (int e = incidence_.offset[i]; e < incidence_.offset[i + 1]; ++e) {
-      const auto [q, k] = incidence_.entry[e];
-      f += VP[q] * qp_.dN[k];
-    }
-    g.segment<3>(3 * i) += f;
-  });
-}
+Eigen::Index NeoHookean::chunk_size() const { return std::max<Eigen::Index>(1024, qp_.size() / 16); }
 
 void NeoHookean::add_hessian(const Eigen::VectorXd& x, SparseHessian& H, bool project) const
 {
   std::vector<Eigen::Matrix<double, 9, 9>> VC(static_cast<std::size_t>(qp_.size()));
   tbb::parallel_for(Eigen::Index{0}, qp_.size(), [&](Eigen::Index q) {
-    Eigen::Matrix<double, 9, 9> C = neo_hookean_stress_derivative(deformation_gradient(x, q), lame_);
-    if (project) C = project_psd(C);
-    VC[q] = qp_.volume[q] * C;
+    const Eigen::Matrix3d F = deformation_gradient(x, q);
+    VC[q] = qp_.volume[q] * (project ? neo_hookean_stress_derivative_psd(F, lame_) : neo_hookean_stress_derivative(F, lame_));
   });
   // Column j of the Hessian: for each point q touching j and each node i ≥ j of q,
   //   H_ij[a][b] += Σ_{c,d} V C[3a+c][3b+d] ∇N_i,c ∇N_j,d.

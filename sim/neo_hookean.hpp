@@ -19,6 +19,9 @@ struct LameParameters {
 double neo_hookean_density(const Eigen::Matrix3d& F, const LameParameters& lame);
 Eigen::Matrix3d neo_hookean_stress(const Eigen::Matrix3d& F, const LameParameters& lame);
 Eigen::Matrix<double, 9, 9> neo_hookean_stress_derivative(const Eigen::Matrix3d& F, const LameParameters& lame);
+/// ∂P/∂F projected onto the positive semi-definite matrices (negative eigenvalues set to zero), from
+/// its closed-form eigensystem; J > 0.
+Eigen::Matrix<double, 9, 9> neo_hookean_stress_derivative_psd(const Eigen::Matrix3d& F, const LameParameters& lame);
 
 class NeoHookean final : public Energy {
 public:
@@ -36,8 +39,8 @@ public:
   Eigen::Matrix3d deformation_gradient(const Eigen::VectorXd& x, Eigen::Index q) const;
 
 private:
-  /// g += Σ_q V_q P_q ∇N_i(X_q) per node i, gathered without races.
-  void gather(const std::vector<Eigen::Matrix3d>& VP, Eigen::VectorXd& g) const;
+  /// Points per chunk of the deterministic reductions (value, gradient).
+  Eigen::Index chunk_size() const;
 
   const QuadraturePoints& qp_;
   NodeIncidence incidence_;

@@ -132,6 +132,29 @@ TEST(NeoHookean, StressIsTheDerivativeOfTheDensity)
   EXPECT_EQ(neo_hookean_density(-Eigen::Matrix3d::Identity(), l), HUGE_VAL);  // inverted: no energy defined
 }
 
+TEST(NeoHookean, ClosedFormProjectionEqualsTheEigendecomposition)
+{
+  // Stretched, sheared, compressed beyond ln J = μ/λ (where c < 0), near rest (equal singular values).
+  const LameParameters l = LameParameters::from_young_poisson(86.4e3, 0.47);
+  std::mt19937 random(7);
+  std::uniform_real_distribution<double> entry(-0.6, 0.6);
+  std::vector<Eigen::Matrix3d> states = {Eigen::Matrix3d::Identity(), 1.3 * Eigen::Matrix3d::Identity(),
+                                         Eigen::Vector3d(0.5, 0.5, 2.0).asDiagonal().toDenseMatrix()};
+  for (int trial = 0; trial < 40; ++trial) {
+    Eigen::Matrix3d F = Eigen::Matrix3d::Identity();
+    for (int k = 0; k < 9; ++k) F(k / 3, k % 3) += (trial < 20 ? 1e-3 : 1.0) * entry(random);
+    if (F.determinant() > 0.05) states.push_back(F);
+  }
+  int projected = 0;
+  for (const Eigen::Matrix3d& F : states) {
+    const Eigen::Matrix<double, 9, 9> reference = project_psd(neo_hookean_stress_derivative(F, l));
+    const Eigen::Matrix<double, 9, 9> closed_form = neo_hookean_stress_derivative_psd(F, l);
+    EXPECT_LE((closed_form - reference).norm(), 1e-10 * reference.norm()) << F;
+    projected += (reference - neo_hookean_stress_derivative(F, l)).norm() > 1e-6 * reference.norm();
+  }
+  EXPECT_GE(projected, 20);  // most states have a negative mode to remove
+}
+
 TEST(NeoHookean, RigidMotionHasZeroEnergyAndForce)
 {
   const Body body;
