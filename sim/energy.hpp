@@ -36,8 +36,4 @@ public:
   }
 };
 
-/// Projects a symmetric matrix onto the positive semi-definite cone (negative eigenvalues → 0).
-Eigen::MatrixXd project_psd(const Eigen::MatrixXd& A);
-Eigen::Matrix<double, 9, 9> project_psd(const Eigen::Matrix<double, 9, 9>& A);
-
 } // namespace fibermold

@@ -2,7 +2,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <numeric>
 
 #include <Eigen/Eigenvalues>
 #include <Eigen/LU>
@@ -11,7 +10,6 @@
 #include <tbb/parallel_reduce.h>
 
 namespace fibermold {
-
 
 double neo_hookean_density(const Eigen::Matrix3d& F, const LameParameters& l)
 {

@@ -1,6 +1,7 @@
 #pragma once
 // The body's quadrature points with their shape functions, precomputed once: they do not depend
-// on the deformed state (paper, end of section IV-A).
+// on the deformed state (paper, end of section IV-A). Stored in Morton order of their positions,
+// not tet by tet, so that the points a node's column of the Hessian reads lie close in memory.
 
 #include <vector>
 

@@ -3,6 +3,7 @@
 #include <functional>
 #include <random>
 
+#include <Eigen/Eigenvalues>
 #include <Eigen/Geometry>
 #include <gtest/gtest.h>
 
@@ -134,6 +135,10 @@ TEST(NeoHookean, StressIsTheDerivativeOfTheDensity)
 
 TEST(NeoHookean, ClosedFormProjectionEqualsTheEigendecomposition)
 {
+  const auto project_psd = [](const Eigen::Matrix<double, 9, 9>& A) -> Eigen::Matrix<double, 9, 9> {
+    const Eigen::SelfAdjointEigenSolver<Eigen::Matrix<double, 9, 9>> eig(A);
+    return eig.eigenvectors() * eig.eigenvalues().cwiseMax(0).asDiagonal() * eig.eigenvectors().transpose();
+  };
   // Stretched, sheared, compressed beyond ln J = μ/λ (where c < 0), near rest (equal singular values).
   const LameParameters l = LameParameters::from_young_poisson(86.4e3, 0.47);
   std::mt19937 random(7);
