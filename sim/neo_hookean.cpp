@@ -130,8 +130,10 @@ double NeoHookean::value_and_gradient(const Eigen::VectorXd& x, Eigen::VectorXd&
         if (p.g.size() == 0) p.g = Eigen::VectorXd::Zero(g.size());
         for (Eigen::Index q = range.begin(); q < range.end() && p.E < HUGE_VAL; ++q) {
           const Eigen::Matrix3d F = deformation_gradient(x, q);
-          if (!(F.determinant() > 0)) p.E = HUGE_VAL;
-          if (!(p.E < HUGE_VAL)) break;
+          if (!(F.determinant() > 0)) {
+            p.E = HUGE_VAL;
+            break;
+          }
           p.E += qp_.volume[q] * neo_hookean_density(F, lame_);
           const Eigen::Matrix3d VP = qp_.volume[q] * neo_hookean_stress(F, lame_);
           for (int k = qp_.offset[q]; k < qp_.offset[q + 1]; ++k) p.g.segment<3>(3 * qp_.node[k]) += VP * qp_.dN[k];
