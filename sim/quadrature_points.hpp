@@ -27,7 +27,7 @@ struct QuadraturePoints {
 QuadraturePoints build_quadrature_points(const TetMesh& mesh, const Basis& basis, int points_per_tet);
 
 /// For each node, the (quadrature point, entry) pairs that touch it: the transpose of the above,
-/// so that forces and stiffness are gathered per node without write conflicts.
+/// so that the stiffness is assembled per node column without write conflicts.
 struct NodeIncidence {
   std::vector<int> offset;                 ///< size n + 1
   std::vector<std::pair<int, int>> entry;  ///< (q, index into node/N/dN)
