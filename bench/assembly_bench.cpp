@@ -1,11 +1,12 @@
 // The elastic energy's kernels on the twisting bar (≈3,900 tets, linear MLS, 8 points per tet), the
-// inner loop of every Newton step: Hessian assembly (with the PSD projection) and one-pass value and
-// gradient, at a twisted state.   build/bench/assembly_bench [--benchmark_repetitions=5]
+// inner loop of every Newton step: Hessian assembly (with the PSD projection), one-pass value and
+// gradient, and CHOLMOD's factorization of the Hessian, at a twisted state.   build/bench/assembly_bench [--benchmark_repetitions=5]
 #include <benchmark/benchmark.h>
 
 #include "mesh/mesh_quality.hpp"
 #include "mesh/surface_import.hpp"
 #include "mesh/tetrahedralize.hpp"
+#include "sim/cholmod_solver.hpp"
 #include "sim/mls_basis.hpp"
 #include "sim/neo_hookean.hpp"
 #include "sim/sparse_hessian.hpp"
@@ -70,6 +71,28 @@ void ElasticValueAndGradient(benchmark::State& state)
   }
 }
 BENCHMARK(ElasticValueAndGradient)->Unit(benchmark::kMillisecond)->UseRealTime();
+
+// CHOLMOD's numeric factorization of the projected Hessian (held by a small shift: the bar is free
+// here), alone and right after an assembly, as Newton does it.
+void Factorization(benchmark::State& state)
+{
+  Bar& b = bar();
+  b.H->set_zero();
+  b.energy->add_hessian(b.x, *b.H, true);
+  const double shift = 1e-6 * b.H->matrix().diagonal().maxCoeff();
+  CholmodSolver solver;
+  solver.factorize(b.H->matrix(), shift);
+  for (auto _ : state) {
+    if (state.range(0)) {
+      state.PauseTiming();
+      b.H->set_zero();
+      b.energy->add_hessian(b.x, *b.H, true);
+      state.ResumeTiming();
+    }
+    benchmark::DoNotOptimize(solver.factorize(b.H->matrix(), shift));
+  }
+}
+BENCHMARK(Factorization)->ArgName("after_assembly")->Arg(0)->Arg(1)->Unit(benchmark::kMillisecond)->UseRealTime();
 
 } // namespace
 } // namespace fibermold

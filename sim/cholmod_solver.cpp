@@ -24,6 +24,22 @@ void use_one_blas_thread()
   }();
   (void)done;
 }
+
+/// Debian's CHOLMOD is built with OpenMP and asks for 4 threads (CHOLMOD_OMP_NUM_THREADS, fixed
+/// when the library was built) in the loops that copy A and the updates into each supernode: many
+/// short parallel regions per factorization. On 2 cores the extra threads take turns through futex
+/// waits; one thread does the copies faster. assembly_bench, the bar's Hessian (lnz 1.77 M,
+/// 1.2 GFlop): 105–118 ms → 60–69 ms per factorization. Called on the thread that factorizes, as
+/// the setting may be per thread; a user's OMP_THREAD_LIMIT or OMP_MAX_ACTIVE_LEVELS is left alone.
+void no_openmp_regions()
+{
+  using SetLevels = void (*)(int);
+  static const SetLevels set = []() -> SetLevels {
+    if (std::getenv("OMP_THREAD_LIMIT") || std::getenv("OMP_MAX_ACTIVE_LEVELS")) return nullptr;
+    return reinterpret_cast<SetLevels>(dlsym(RTLD_DEFAULT, "omp_set_max_active_levels"));
+  }();
+  if (set) set(0);
+}
 } // namespace
 
 struct CholmodSolver::Impl {
@@ -40,6 +56,7 @@ CholmodSolver::~CholmodSolver() = default;
 
 bool CholmodSolver::factorize(const Eigen::SparseMatrix<double>& A, double shift)
 {
+  no_openmp_regions();
   const auto n = A.outerSize();
   const bool same = static_cast<Eigen::Index>(impl_->outer.size()) == n + 1 &&
                     std::equal(impl_->outer.begin(), impl_->outer.end(), A.outerIndexPtr()) &&
