@@ -12,6 +12,11 @@ namespace {
 using Clock = std::chrono::steady_clock;
 double since(Clock::time_point t) { return std::chrono::duration<double>(Clock::now() - t).count(); }
 
+/// |∇E| within this factor of the tolerance: steps on the exact Hessian there converge.
+constexpr double kNearTolerance = 1e3;
+/// Where a solve that finishes on a fresh factorization ends, relative to the tolerance.
+constexpr double kFarBelow = 1e-2;
+
 SparseHessian make_pattern(const std::vector<const Energy*>& energies, Eigen::Index n)
 {
   std::vector<std::vector<int>> stencils;
@@ -91,22 +96,31 @@ bool NewtonSolver::solve_with_hessian(const Eigen::VectorXd& x, const Eigen::Vec
 
 bool NewtonSolver::refined_solve(const Eigen::VectorXd& x, const Eigen::VectorXd& b, Eigen::VectorXd& lambda) const
 {
-  // The factorization K is of the exact Hessian one full Newton step before x, a step that began
-  // near the tolerance. One step of iterative refinement, with H(x)λ from central differences of
-  // ∇E over a displacement of 1e-6 of the body's extent, takes λ from K⁻¹b (relative error 3e-7
-  // on the test's bar) to H(x)⁻¹b (8e-10). A correction above 1e-4 of λ means K is too far from
-  // H(x) (or H(x) is not definite): the caller then factorizes H(x) itself.
+  // The factorization K is of the exact Hessian a few steps before x, at a state within
+  // kNearTolerance of the tolerance. Iterative refinement, with H(x)λ from central
+  // differences of ∇E over a displacement of 1e-6 of the body's extent, takes λ from K⁻¹b
+  // (relative error 3e-7 on the test's bar) to H(x)⁻¹b (8e-10 after one step). The corrections
+  // shrink by the rate ρ = |I − K⁻¹H(x)| (the first one's size estimates it), so what remains after
+  // one of size s is about ρ s: done below 1e-8. A rate above 0.1 means K is too far from H(x) (or
+  // H(x) is not definite): the caller then factorizes H(x) itself.
   lambda = cholmod_.solve(b);
   const auto nodes = x.reshaped(3, x.size() / 3);
   const double extent = (nodes.rowwise().maxCoeff() - nodes.rowwise().minCoeff()).maxCoeff();
-  const double largest = lambda.cwiseAbs().maxCoeff();
-  const double h = 1e-6 * extent / largest;
-  if (!(std::isfinite(h) && h > 0)) return false;
-  const Eigen::VectorXd Hlambda = (gradient(x + h * lambda) - gradient(x - h * lambda)) / (2 * h);
-  const Eigen::VectorXd correction = cholmod_.solve(b - Hlambda);
-  if (!(correction.norm() <= 1e-4 * lambda.norm()) || !(lambda.dot(Hlambda) > 0)) return false;
-  lambda += correction;
-  return lambda.allFinite();
+  double last = 0;
+  for (int step = 0; step < 4; ++step) {
+    const double h = 1e-6 * extent / lambda.cwiseAbs().maxCoeff();
+    if (!(std::isfinite(h) && h > 0)) return false;
+    const Eigen::VectorXd Hlambda = (gradient(x + h * lambda) - gradient(x - h * lambda)) / (2 * h);
+    if (!(lambda.dot(Hlambda) > 0)) return false;
+    const Eigen::VectorXd correction = cholmod_.solve(b - Hlambda);
+    const double size = correction.norm() / lambda.norm();
+    const double rate = step == 0 ? size : size / last;
+    if (!(rate <= 0.1)) return false;
+    lambda += correction;
+    if (rate * size <= 1e-8) return lambda.allFinite();
+    last = size;
+  }
+  return false;
 }
 
 NewtonSolver::Factorization NewtonSolver::factorize_at(const Eigen::VectorXd& x, NewtonSummary& s, double& shift, bool exact_first)
@@ -198,8 +212,7 @@ NewtonSummary NewtonSolver::solve(Eigen::VectorXd& x, const NewtonOptions& optio
   bool stale = !(restart_ready_ && x.size() == restart_x_.size() && x == restart_x_);
   restart_ready_ = false;
   bool exact_first = true;     // false: the next factorization is the projected Hessian
-  bool stepped_fresh = false;  // the last step was taken on a fresh factorization
-  bool near_step = false;      // ... of the exact Hessian, full, and begun within 1e3 × the tolerance
+  bool near = false;           // the factorization is of the exact Hessian at a state within kNearTolerance
   bool finishing = false;      // below the tolerance, taking the step that finish_on_fresh_step asks for
   int full_steps = 0;  // steps on a fresh factorization: what max_iterations bounds (a reused step
                        // must halve |∇E|, so at most about log2(|∇E₀| / goal) of them come in a row)
@@ -218,16 +231,23 @@ NewtonSummary NewtonSolver::solve(Eigen::VectorXd& x, const NewtonOptions& optio
       s.message = "the gradient is not finite";
       break;
     }
+    // A solve that must end on a fresh factorization takes it near the tolerance, where steps on it
+    // contract by 1e-2 or more, and ends far below the tolerance (or where its steps stop shrinking
+    // |∇E|: round-off); reused ones from farther only approach it.
     if (s.residual <= goal) {
-      if (!options.finish_on_fresh_step || stepped_fresh) {
-        converge(near_step);
+      if (!options.finish_on_fresh_step || (near && (s.residual <= kFarBelow * goal || stale))) {
+        converge(near);
         break;
       }
-      finishing = true;
-      stale = true;
+      if (!near) {
+        finishing = true;
+        stale = true;
+      }
     }
+    if (options.finish_on_fresh_step && !fresh && !near && s.residual <= kNearTolerance * goal) stale = true;
     if (full_steps >= options.max_iterations && !finishing) {
-      s.message = fmt::format("no convergence in {} iterations", options.max_iterations);
+      if (s.residual <= goal) converge(near);
+      else s.message = fmt::format("no convergence in {} iterations", options.max_iterations);
       break;
     }
     if (stale) {
@@ -239,6 +259,7 @@ NewtonSummary NewtonSolver::solve(Eigen::VectorXd& x, const NewtonOptions& optio
       stale = false;
       fresh = true;
       exact_first = true;
+      near = kind_ == Factorization::exact && s.residual <= kNearTolerance * goal;
     }
     progress.checkpoint(-1, fmt::format("Newton iteration {}: |∇E| = {:.3e} N, last step {:.3g}, shift {:.3g}{}", s.iterations,
                                         s.residual, last_alpha, shift, fresh ? "" : ", Hessian reused"));
@@ -268,7 +289,7 @@ NewtonSummary NewtonSolver::solve(Eigen::VectorXd& x, const NewtonOptions& optio
         exact_first = !fresh;
         continue;
       }
-      if (finishing) {  // the factorization is of the Hessian at x, which is below the tolerance
+      if (s.residual <= goal) {  // the factorization is of the Hessian at x, which is below the tolerance
         converge(kind_ == Factorization::exact);
         break;
       }
@@ -279,14 +300,12 @@ NewtonSummary NewtonSolver::solve(Eigen::VectorXd& x, const NewtonOptions& optio
       converge(false);
       break;
     }
-    near_step = fresh && kind_ == Factorization::exact && alpha == 1 && s.residual <= 1e3 * goal;
     x = std::move(trial);
     E = trial_E;
     g = std::move(trial_g);
     last_alpha = alpha;
     ++s.iterations;
     if (fresh) ++full_steps;
-    stepped_fresh = fresh;
     finishing = false;
     // The factorization is kept for the next step while the gradient keeps shrinking fast: a step
     // then costs a gradient and a solve instead of an assembly and a factorization.

@@ -20,9 +20,10 @@ struct NewtonOptions {
   /// A full step that shrank |∇E| by at least this factor lets the next step reuse its
   /// factorization; 0 refactorizes at every step (plain Newton).
   double reuse_contraction = 0.5;
-  /// A state that reaches the tolerance on a reused factorization takes one more step on a fresh
-  /// one: it lands far below the tolerance (so that objective values compared by a line search do
-  /// not carry the tolerance's noise), and solve_with_hessian at that state uses its factorization.
+  /// The solve ends on a fresh factorization of the exact Hessian, taken within 1e3 × the
+  /// tolerance (at once when |∇E| gets there, or when a reused factorization reaches the
+  /// tolerance), and 100× below the tolerance: objective values compared by a line search then do
+  /// not carry the tolerance's noise, and solve_with_hessian at that state uses the factorization.
   bool finish_on_fresh_step = false;
 };
 
@@ -71,9 +72,9 @@ public:
 
   /// Solves H(x) λ = b with the exact Hessian at x (an equilibrium, where it is positive definite):
   /// the adjoint solve of eq. 9. Returns false when H(x) is not positive definite. At the state the
-  /// last solve ended on, when its last step was a full one on a fresh factorization of the exact
-  /// Hessian begun near the tolerance (always so with finish_on_fresh_step), that factorization
-  /// serves, refined by one step with H(x)λ from differences of ∇E: no assembly.
+  /// last solve ended on, when its factorization is of the exact Hessian at a state near the
+  /// tolerance (always so with finish_on_fresh_step), that factorization serves, refined by a few
+  /// steps with H(x)λ from differences of ∇E: no assembly.
   bool solve_with_hessian(const Eigen::VectorXd& x, const Eigen::VectorXd& b, Eigen::VectorXd& lambda);
 
 private:
