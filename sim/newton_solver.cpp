@@ -212,7 +212,7 @@ NewtonSummary NewtonSolver::solve(Eigen::VectorXd& x, const NewtonOptions& optio
   bool stale = !(restart_ready_ && x.size() == restart_x_.size() && x == restart_x_);
   restart_ready_ = false;
   bool exact_first = true;     // false: the next factorization is the projected Hessian
-  bool near = false;           // the factorization is of the exact Hessian at a state within kNearTolerance
+  bool near = false;           // the factorization is of the Hessian at a state within kNearTolerance
   bool finishing = false;      // below the tolerance, taking the step that finish_on_fresh_step asks for
   int full_steps = 0;  // steps on a fresh factorization: what max_iterations bounds (a reused step
                        // must halve |∇E|, so at most about log2(|∇E₀| / goal) of them come in a row)
@@ -236,7 +236,7 @@ NewtonSummary NewtonSolver::solve(Eigen::VectorXd& x, const NewtonOptions& optio
     // |∇E|: round-off); reused ones from farther only approach it.
     if (s.residual <= goal) {
       if (!options.finish_on_fresh_step || (near && (s.residual <= kFarBelow * goal || stale))) {
-        converge(near);
+        converge(near && kind_ == Factorization::exact);
         break;
       }
       if (!near) {
@@ -246,7 +246,7 @@ NewtonSummary NewtonSolver::solve(Eigen::VectorXd& x, const NewtonOptions& optio
     }
     if (options.finish_on_fresh_step && !fresh && !near && s.residual <= kNearTolerance * goal) stale = true;
     if (full_steps >= options.max_iterations && !finishing) {
-      if (s.residual <= goal) converge(near);
+      if (s.residual <= goal) converge(near && kind_ == Factorization::exact);
       else s.message = fmt::format("no convergence in {} iterations", options.max_iterations);
       break;
     }
@@ -259,7 +259,7 @@ NewtonSummary NewtonSolver::solve(Eigen::VectorXd& x, const NewtonOptions& optio
       stale = false;
       fresh = true;
       exact_first = true;
-      near = kind_ == Factorization::exact && s.residual <= kNearTolerance * goal;
+      near = s.residual <= kNearTolerance * goal;
     }
     progress.checkpoint(-1, fmt::format("Newton iteration {}: |∇E| = {:.3e} N, last step {:.3g}, shift {:.3g}{}", s.iterations,
                                         s.residual, last_alpha, shift, fresh ? "" : ", Hessian reused"));
