@@ -29,7 +29,7 @@ void use_one_blas_thread()
 /// when the library was built) in the loops that copy A and the updates into each supernode: many
 /// short parallel regions per factorization. On 2 cores the extra threads take turns through futex
 /// waits; one thread does the copies faster. assembly_bench, the bar's Hessian (lnz 1.77 M,
-/// 1.2 GFlop): 105–118 ms → 60–69 ms per factorization. Called on the thread that factorizes, as
+/// 1.2 GFlop): 105–118 ms → 53–69 ms per factorization. Called on the thread that factorizes, as
 /// the setting may be per thread; a user's OMP_THREAD_LIMIT or OMP_MAX_ACTIVE_LEVELS is left alone.
 void no_openmp_regions()
 {

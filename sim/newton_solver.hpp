@@ -20,10 +20,11 @@ struct NewtonOptions {
   /// A full step that shrank |∇E| by at least this factor lets the next step reuse its
   /// factorization; 0 refactorizes at every step (plain Newton).
   double reuse_contraction = 0.5;
-  /// The solve ends on a fresh factorization of the exact Hessian, taken within 1e3 × the
-  /// tolerance (at once when |∇E| gets there, or when a reused factorization reaches the
-  /// tolerance), and 100× below the tolerance: objective values compared by a line search then do
-  /// not carry the tolerance's noise, and solve_with_hessian at that state uses the factorization.
+  /// The solve ends on a fresh factorization taken within 1e3 × the tolerance (at once when |∇E|
+  /// gets there, or when a reused factorization reaches the tolerance), 100× below the tolerance
+  /// or where steps on it stop shrinking |∇E| (round-off): objective values compared by a line
+  /// search then do not carry the tolerance's noise, and where that factorization is of the exact
+  /// Hessian, solve_with_hessian at that state uses it.
   bool finish_on_fresh_step = false;
 };
 
@@ -73,8 +74,8 @@ public:
   /// Solves H(x) λ = b with the exact Hessian at x (an equilibrium, where it is positive definite):
   /// the adjoint solve of eq. 9. Returns false when H(x) is not positive definite. At the state the
   /// last solve ended on, when its factorization is of the exact Hessian at a state near the
-  /// tolerance (always so with finish_on_fresh_step), that factorization serves, refined by a few
-  /// steps with H(x)λ from differences of ∇E: no assembly.
+  /// tolerance (so with finish_on_fresh_step where the Hessian there is definite), that
+  /// factorization serves, refined by a few steps with H(x)λ from differences of ∇E: no assembly.
   bool solve_with_hessian(const Eigen::VectorXd& x, const Eigen::VectorXd& b, Eigen::VectorXd& lambda);
 
 private:
