@@ -1,4 +1,5 @@
 #include "sim/neo_hookean.hpp"
+#include "sim/stiffness_column.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -80,8 +81,17 @@ NeoHookean::NeoHookean(const QuadraturePoints& qp, Eigen::Index num_nodes, LameP
 
 Eigen::Matrix3d NeoHookean::deformation_gradient(const Eigen::VectorXd& x, Eigen::Index q) const
 {
-  Eigen::Matrix3d F = Eigen::Matrix3d::Zero();
-  for (int k = qp_.offset[q]; k < qp_.offset[q + 1]; ++k) F += x.segment<3>(3 * qp_.node[k]) * qp_.dN[k].transpose();
+  // Nine scalar sums: Eigen's outer-product update went through the stack at every node.
+  double f[3][3] = {};
+  for (int k = qp_.offset[q]; k < qp_.offset[q + 1]; ++k) {
+    const double* xi = x.data() + 3 * qp_.node[k];
+    const double* g = qp_.dN[k].data();
+    for (int a = 0; a < 3; ++a)
+      for (int c = 0; c < 3; ++c) f[a][c] += xi[a] * g[c];
+  }
+  Eigen::Matrix3d F;
+  for (int a = 0; a < 3; ++a)
+    for (int c = 0; c < 3; ++c) F(a, c) = f[a][c];
   return F;
 }
 
@@ -155,36 +165,32 @@ Eigen::Index NeoHookean::chunk_size() const { return std::max<Eigen::Index>(1024
 
 void NeoHookean::add_hessian(const Eigen::VectorXd& x, SparseHessian& H, bool project) const
 {
-  std::vector<Eigen::Matrix<double, 9, 9>> VC(static_cast<std::size_t>(qp_.size()));
+  std::vector<StiffnessLayout> W(static_cast<std::size_t>(qp_.size()));
   tbb::parallel_for(Eigen::Index{0}, qp_.size(), [&](Eigen::Index q) {
     const Eigen::Matrix3d F = deformation_gradient(x, q);
-    VC[q] = qp_.volume[q] * (project ? neo_hookean_stress_derivative_psd(F, lame_) : neo_hookean_stress_derivative(F, lame_));
+    W[q] = stiffness_layout(qp_.volume[q] * (project ? neo_hookean_stress_derivative_psd(F, lame_) : neo_hookean_stress_derivative(F, lame_)));
   });
-  // Column j of the Hessian: for each point q touching j and each node i ≥ j of q,
-  //   H_ij[a][b] += Σ_{c,d} V C[3a+c][3b+d] ∇N_i,c ∇N_j,d.
+  // Column j of the Hessian gathers every point q touching j, for q's nodes i ≥ j.
   tbb::enumerable_thread_specific<std::vector<int>> positions(std::vector<int>(static_cast<std::size_t>(H.num_nodes()), -1));
   const auto n = static_cast<Eigen::Index>(incidence_.offset.size()) - 1;
   tbb::parallel_for(Eigen::Index{0}, n, [&](Eigen::Index j) {
     std::vector<int>& pos = positions.local();
     const auto& nb = H.neighbours(j);
     for (std::size_t k = 0; k < nb.size(); ++k) pos[nb[k]] = 3 * static_cast<int>(k);
-    const auto stride = 3 * static_cast<std::ptrdiff_t>(nb.size());
-    double* column = H.column_values(j);
+    const StiffnessColumn column{H.column_values(j), 3 * static_cast<std::ptrdiff_t>(nb.size()), pos.data()};
     for (int e = incidence_.offset[j]; e < incidence_.offset[j + 1]; ++e) {
       const auto [q, kj] = incidence_.entry[e];
-      const Eigen::Vector3d& gj = qp_.dN[kj];
-      // T[b][a][c] = Σ_d C[3a+c][3b+d] g_j,d
-      double T[3][3][3];
-      for (int a = 0; a < 3; ++a)
-        for (int c = 0; c < 3; ++c)
-          for (int b = 0; b < 3; ++b) T[b][a][c] = VC[q].row(3 * a + c).segment<3>(3 * b).dot(gj);
-      // A point's nodes ascend, so those ≥ j are the entries from j's onward.
-      for (int ki = kj; ki < qp_.offset[q + 1]; ++ki) {
-        const double* gi = qp_.dN[ki].data();
-        double* block = column + pos[qp_.node[ki]];
-        for (int b = 0; b < 3; ++b)
-          for (int a = 0; a < 3; ++a) block[b * stride + a] += gi[0] * T[b][a][0] + gi[1] * T[b][a][1] + gi[2] * T[b][a][2];
+      if (e + 2 < incidence_.offset[j + 1]) {
+        const auto [q2, k2] = incidence_.entry[e + 2];
+        const char* next = reinterpret_cast<const char*>(W[q2].data());
+        for (int line = 0; line < 11; ++line) __builtin_prefetch(next + 64 * line);
+        const char* gradients = reinterpret_cast<const char*>(qp_.dN[k2].data());
+        const char* end = reinterpret_cast<const char*>(qp_.dN[qp_.offset[q2 + 1] - 1].data());
+        for (; gradients <= end; gradients += 64) __builtin_prefetch(gradients);
+        __builtin_prefetch(&qp_.node[k2]);
       }
+      // A point's nodes ascend, so those ≥ j are the entries from j's onward.
+      add_point_to_column(W[q].data(), qp_.dN[kj], &qp_.dN[kj], &qp_.node[kj], qp_.offset[q + 1] - kj, column);
     }
     for (int i : nb) pos[i] = -1;
   });
