@@ -12,19 +12,21 @@ namespace {
 int layout_index(int b, int d, int c, int a) { return ((3 * b + d) * 3 + c) * 3 + a; }
 
 // T[b][a][c] = Σ_d V C[3a+c][3b+d] ∇N_j,d, then H_ij[a][b] += Σ_c ∇N_i,c T[b][a][c].
-void add_point_portable(const double* W, const Eigen::Vector3d& gj, const Eigen::Vector3d* gi, const int* nodes, int count,
-                        const StiffnessColumn& column)
+void add_point_portable(const double* W, const Eigen::Vector3d& gj, const Eigen::Vector3d* gi, const int* nodes,
+                        int count, const StiffnessColumn& column)
 {
   double T[3][3][3];
   for (int b = 0; b < 3; ++b)
     for (int c = 0; c < 3; ++c)
       for (int a = 0; a < 3; ++a)
-        T[b][a][c] = W[layout_index(b, 0, c, a)] * gj[0] + W[layout_index(b, 1, c, a)] * gj[1] + W[layout_index(b, 2, c, a)] * gj[2];
+        T[b][a][c] = W[layout_index(b, 0, c, a)] * gj[0] + W[layout_index(b, 1, c, a)] * gj[1] +
+                     W[layout_index(b, 2, c, a)] * gj[2];
   for (int n = 0; n < count; ++n) {
     const double* g = gi[n].data();
     double* block = column.values + column.position[nodes[n]];
     for (int b = 0; b < 3; ++b)
-      for (int a = 0; a < 3; ++a) block[b * column.stride + a] += g[0] * T[b][a][0] + g[1] * T[b][a][1] + g[2] * T[b][a][2];
+      for (int a = 0; a < 3; ++a)
+        block[b * column.stride + a] += g[0] * T[b][a][0] + g[1] * T[b][a][1] + g[2] * T[b][a][2];
   }
 }
 
@@ -33,8 +35,9 @@ void add_point_portable(const double* W, const Eigen::Vector3d& gj, const Eigen:
 // is zero: the loads of W are masked). A block column is read and written as exactly its three
 // entries: 4-wide stores that overlapped the next node's entries measured slower (a partly
 // overlapping load cannot be forwarded from the store buffer) and would write outside the column.
-__attribute__((target("avx2,fma"))) void add_point_avx2(const double* W, const Eigen::Vector3d& gj, const Eigen::Vector3d* gi,
-                                                        const int* nodes, int count, const StiffnessColumn& column)
+__attribute__((target("avx2,fma"))) void add_point_avx2(const double* W, const Eigen::Vector3d& gj,
+                                                        const Eigen::Vector3d* gi, const int* nodes, int count,
+                                                        const StiffnessColumn& column)
 {
   const __m256d gx = _mm256_set1_pd(gj[0]), gy = _mm256_set1_pd(gj[1]), gz = _mm256_set1_pd(gj[2]);
   const __m256i three = _mm256_set_epi64x(0, -1, -1, -1);
@@ -89,8 +92,8 @@ bool stiffness_simd_available()
 #endif
 }
 
-void add_point_to_column(const double* W, const Eigen::Vector3d& gj, const Eigen::Vector3d* gi, const int* nodes, int count,
-                         const StiffnessColumn& column, bool simd)
+void add_point_to_column(const double* W, const Eigen::Vector3d& gj, const Eigen::Vector3d* gi, const int* nodes,
+                         int count, const StiffnessColumn& column, bool simd)
 {
 #ifdef FIBERMOLD_STIFFNESS_AVX2
   if (simd && stiffness_simd_available()) return add_point_avx2(W, gj, gi, nodes, count, column);

@@ -18,15 +18,15 @@ using StiffnessLayout = Eigen::Matrix<double, 81, 1>;
 StiffnessLayout stiffness_layout(const Eigen::Matrix<double, 9, 9>& VC);
 
 struct StiffnessColumn {
-  double* values;            ///< SparseHessian::column_values(j)
-  std::ptrdiff_t stride;     ///< 3 · |neighbours(j)|
-  const int* position;       ///< node → 3 · (its index among j's neighbours)
+  double* values;        ///< SparseHessian::column_values(j)
+  std::ptrdiff_t stride; ///< 3 · |neighbours(j)|
+  const int* position;   ///< node → 3 · (its index among j's neighbours)
 };
 
 /// Adds the point with layout `W` to `column` for the `count` nodes `nodes` (gradients `gi`),
 /// coupled to node j (gradient `gj`). `simd` selects the AVX2 kernel when the processor has it.
-void add_point_to_column(const double* W, const Eigen::Vector3d& gj, const Eigen::Vector3d* gi, const int* nodes, int count,
-                         const StiffnessColumn& column, bool simd = true);
+void add_point_to_column(const double* W, const Eigen::Vector3d& gj, const Eigen::Vector3d* gi, const int* nodes,
+                         int count, const StiffnessColumn& column, bool simd = true);
 
 /// Whether `add_point_to_column(..., simd = true)` runs the AVX2 kernel on this processor.
 bool stiffness_simd_available();

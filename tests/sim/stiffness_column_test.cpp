@@ -37,7 +37,7 @@ TEST(StiffnessColumn, BothKernelsAddTheContractionOfTheStressDerivativeAndStayIn
     if (simd && !stiffness_simd_available()) GTEST_SKIP() << "no AVX2 and FMA on this processor";
     Column column;
     add_point_to_column(W.data(), gj, gi.data(), nodes.data(), 3, column.view(), simd);
-    add_point_to_column(W.data(), gj, gi.data(), nodes.data(), 3, column.view(), simd);  // accumulates
+    add_point_to_column(W.data(), gj, gi.data(), nodes.data(), 3, column.view(), simd); // accumulates
     for (int n = 0; n < 3; ++n)
       for (int a = 0; a < 3; ++a)
         for (int b = 0; b < 3; ++b) {
