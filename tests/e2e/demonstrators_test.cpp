@@ -101,21 +101,18 @@ TEST(Demonstrators, RecoveryFindsTheSShapedMuscleAgainAndMakesMolds)
 
 TEST(Demonstrators, TwistingBarTwistsItsFreeEndAndMakesMolds)
 {
-  // Paper, section VIII-C: errors over the whole surface RMSE 1.9 mm, max 4.8 mm.
+  // Paper, section VIII-C: errors over the whole surface RMSE 1.9 mm, max 4.8 mm. The example runs
+  // as a user runs it (its mesh is the paper's size), only the molds' voxels are coarser.
   test::TempDir dir;
   nlohmann::json report;
-  ASSERT_NO_FATAL_FAILURE(make_example("twisting-bar", dir.path(),
-                                       {{"edge_length = 6.0", "edge_length = 8.0"},
-                                        {"max_iterations = 400", "max_iterations = 100"},
-                                        {"voxel = 0.2 ", "voxel = 0.3 "}},
-                                       report));
+  ASSERT_NO_FATAL_FAILURE(make_example("twisting-bar", dir.path(), {{"voxel = 0.2 ", "voxel = 0.3 "}}, report));
   const auto t = report["targets"]["twist"];
   std::printf("twisting bar: surface RMSE %.2f → %.2f mm, max %.2f → %.2f mm (paper 1.9, 4.8)\n",
               t["start"]["surface_rmse_mm"].get<double>(), t["surface_rmse_mm"].get<double>(),
               t["start"]["surface_max_error_mm"].get<double>(), t["surface_max_error_mm"].get<double>());
   EXPECT_GT(t["start"]["surface_rmse_mm"].get<double>(), 5.0);
-  EXPECT_LT(t["surface_rmse_mm"].get<double>(), 1.5 * 1.9);
-  EXPECT_LT(t["surface_max_error_mm"].get<double>(), 1.5 * 4.8);
+  EXPECT_LT(t["surface_rmse_mm"].get<double>(), 1.9);
+  EXPECT_LT(t["surface_max_error_mm"].get<double>(), 4.8);
   // The muscle stays on: without the route-only start BFGS turned it down to 0 kPa (docs/optimize.md).
   EXPECT_GT(t["pressure_kPa"]["m1"].get<double>(), 20.0);
 }

@@ -53,12 +53,12 @@ TEST_F(DesignFileTest, DemoParsesIntoSIUnits)
   EXPECT_EQ(d.design.surface, fs::path(FIBERMOLD_SOURCE_DIR) / "examples/twisting-bar/bar.stl");
   EXPECT_DOUBLE_EQ(d.design.surface_scale, 1e-3);
   EXPECT_DOUBLE_EQ(d.material.youngs_modulus, 86.4e3);
-  EXPECT_DOUBLE_EQ(*d.mesh.edge_length, 6.0e-3);
+  EXPECT_DOUBLE_EQ(*d.mesh.edge_length, 10.0e-3);
   EXPECT_DOUBLE_EQ(d.muscle.model.diameter, 3.0e-3);
   EXPECT_DOUBLE_EQ(d.muscle.max_pressure, 425e3);
   ASSERT_EQ(d.fibers.size(), 1u);
-  ASSERT_EQ(d.fibers[0].points.size(), 4u);
-  EXPECT_DOUBLE_EQ(d.fibers[0].points[3].x(), 0.129);
+  ASSERT_EQ(d.fibers[0].points.size(), 6u);
+  EXPECT_DOUBLE_EQ(d.fibers[0].points[5].x(), 0.129);
   ASSERT_EQ(d.targets.size(), 1u);
   ASSERT_EQ(d.targets[0].loads.size(), 1u);
   EXPECT_DOUBLE_EQ(d.targets[0].loads[0].torque->x(), 0.00452);
