@@ -1,7 +1,7 @@
 #!/usr/bin/env python3
 """Writes the walking robot of the paper (section VIII-F, Fig. 15-16) and its two target poses:
   robot.obj  the body, 42 x 20 x 14 mm along +x from the origin (centred on the x axis), with four
-             legs 6 x 6 x 8 mm under it, as one closed surface gridded at about 4 mm;
+             legs 6 x 6 x 8 mm under it, as one closed surface gridded at about 4.5 mm;
   bend.obj   the same surface bent about the y axis with constant curvature, the rear end (x = 0)
              held and the front end turned 20 degrees downward: the robot steps forward;
   twist.obj  the same surface twisted about the x axis, the front end turned 15 degrees: the robot
@@ -16,7 +16,7 @@ LENGTH = 42.0
 # The body x [0, 42] y [-10, 10] z [-7, 7] mm; legs 6 x 6 x 8 mm under its corners. The surface is
 # cut on a rectilinear grid through every edge of the shape, each interval split to at most SPACING.
 BREAKS = ([0, 4, 10, 32, 38, 42], [-10, -4, 4, 10], [-15, -7, 7])
-SPACING = 4.2  # mm
+SPACING = 4.5  # mm
 
 
 def grid_lines(breaks):
