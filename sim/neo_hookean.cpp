@@ -185,8 +185,8 @@ void NeoHookean::add_hessian(const Eigen::VectorXd& x, SparseHessian& H, bool pr
         const char* next = reinterpret_cast<const char*>(W[q2].data());
         for (int line = 0; line < 11; ++line) __builtin_prefetch(next + 64 * line);
         const char* gradients = reinterpret_cast<const char*>(qp_.dN[k2].data());
-        const char* end = reinterpret_cast<const char*>(qp_.dN[qp_.offset[q2 + 1] - 1].data());
-        for (; gradients <= end; gradients += 64) __builtin_prefetch(gradients);
+        const auto bytes = static_cast<std::size_t>(qp_.offset[q2 + 1] - k2) * sizeof(Eigen::Vector3d);
+        for (std::size_t at = 0; at < bytes; at += 64) __builtin_prefetch(gradients + at);
         __builtin_prefetch(&qp_.node[k2]);
       }
       // A point's nodes ascend, so those ≥ j are the entries from j's onward.
