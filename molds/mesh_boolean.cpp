@@ -77,6 +77,16 @@ SurfaceMesh mesh_union(const SurfaceMesh& a, const SurfaceMesh& b)
   return boolean(a, b, "union", [](Mesh& A, Mesh& B, Mesh& out) { return PMP::corefine_and_compute_union(A, B, out); });
 }
 
+SurfaceMesh mesh_union_touching(const SurfaceMesh& a, SurfaceMesh b, const Eigen::Vector3d& nudge)
+{
+  try {
+    return mesh_union(a, b);
+  } catch (const std::runtime_error&) {
+    b.vertices.rowwise() += nudge.transpose();
+    return mesh_union(a, b);
+  }
+}
+
 SurfaceMesh mesh_intersection(const SurfaceMesh& a, const SurfaceMesh& b)
 {
   return boolean(a, b, "intersection", [](Mesh& A, Mesh& B, Mesh& out) { return PMP::corefine_and_compute_intersection(A, B, out); });

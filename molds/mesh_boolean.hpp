@@ -16,6 +16,10 @@ namespace fibermold {
 SurfaceMesh mesh_difference(const SurfaceMesh& a, const SurfaceMesh& b);
 SurfaceMesh mesh_union(const SurfaceMesh& a, const SurfaceMesh& b);
 SurfaceMesh mesh_intersection(const SurfaceMesh& a, const SurfaceMesh& b);
+/// a ∪ b for solids that touch. Where they share only an edge the exact union is not manifold and
+/// corefinement fails; b is then moved by `nudge` (a few µm, into a) so that they overlap in a thin
+/// slab instead, and the union is taken again.
+SurfaceMesh mesh_union_touching(const SurfaceMesh& a, SurfaceMesh b, const Eigen::Vector3d& nudge);
 
 /// The parts of a closed mesh below and above the plane through `point` with `normal` (below: on the
 /// side −normal), each closed by the cut.

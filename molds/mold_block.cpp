@@ -134,8 +134,8 @@ void reattach_loose_pieces(SurfaceMesh& from, SurfaceMesh& to, double base, bool
   kept.faces.resize(0, 3);
   for (const SurfaceMesh& shell : shells) {
     const double reach = below ? shell.vertices.col(2).minCoeff() - base : base - shell.vertices.col(2).maxCoeff();
-    if (signed_volume(shell) > 0 && reach > 1e-6)
-      to = mesh_union(to, shell);
+    if (signed_volume(shell) > 0 && reach > 1e-6)  // 10 µm toward `to` where they share only an edge
+      to = mesh_union_touching(to, shell, Eigen::Vector3d(0, 0, below ? 10e-6 : -10e-6));
     else
       append(kept, shell);  // the block's piece, or a void inside it
   }

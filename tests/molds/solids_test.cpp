@@ -58,6 +58,23 @@ TEST(MeshBoolean, DifferenceAndSplitConserveVolume)
   EXPECT_EQ(count_shells(mesh_union(box_solid({0, 0, 0}, {1, 1, 1}), box_solid({2, 0, 0}, {3, 1, 1}))), 2);
 }
 
+TEST(MeshBoolean, UnionOfSolidsSharingOnlyAnEdgeNudgesTheSecond)
+{
+  // A rib's loose end below the parting plane can touch the upper half along an edge only (a
+  // coarse tentacle's shot 1): the exact union is not manifold there.
+  const SurfaceMesh upper = box_solid({0, 0, 0}, {10 * mm, 10 * mm, 10 * mm});
+  const SurfaceMesh rib_end = box_solid({10 * mm, 0, -2 * mm}, {14 * mm, 10 * mm, 0});
+  EXPECT_THROW(mesh_union(upper, rib_end), std::runtime_error);
+  const SurfaceMesh joined = mesh_union_touching(upper, rib_end, {0, 0, 10e-6});
+  expect_valid_solid(joined, "joined");
+  EXPECT_EQ(count_shells(joined), 1);
+  EXPECT_NEAR(signed_volume(joined), signed_volume(upper) + signed_volume(rib_end), 1e-12);
+  // Solids that meet over a face are joined exactly, without the nudge.
+  const SurfaceMesh under = box_solid({2 * mm, 2 * mm, -2 * mm}, {8 * mm, 8 * mm, 0});
+  const SurfaceMesh exact = mesh_union_touching(upper, under, {0, 0, 10e-6});
+  EXPECT_NEAR(exact.vertices.col(2).minCoeff(), -2 * mm, 1e-15);
+}
+
 TEST(LevelSet, GrooveVolumeMatchesTheAnalyticValue)
 {
   // A 100 × 20 × 20 mm box, a straight fiber along its axis, a groove of radius 1.8 mm swept to +z:
