@@ -4,8 +4,7 @@
 #include <benchmark/benchmark.h>
 
 #include "mesh/mesh_quality.hpp"
-#include "mesh/tetrahedralize.hpp"
-#include "primitives.hpp"
+#include "sim/sim_fixtures.hpp"
 #include "sim/cholmod_solver.hpp"
 #include "sim/mls_basis.hpp"
 #include "sim/neo_hookean.hpp"
@@ -24,10 +23,7 @@ struct Bar {
 
   Bar()
   {
-    NullProgress progress;
-    // The twisting bar at 4× the example's DoFs (its skin a 4.3 mm grid, 6 mm edges): the size
-    // the figures in docs/sim.md were measured at before session 12.
-    mesh = tetrahedralize(test::box({0, -0.01, -0.01}, {0.129, 0.01, 0.01}, Eigen::Vector3i(30, 5, 5)), {0.006, 1.5, 10, false}, progress);
+    mesh = test::fine_twisting_bar();
     basis = std::make_unique<MlsBasis>(mesh.nodes, MlsOptions{false, 1.7 * mesh_quality(mesh).mean_edge_length});
     qp = build_quadrature_points(mesh, *basis, 8);
     energy = std::make_unique<NeoHookean>(qp, mesh.nodes.rows(), LameParameters::from_young_poisson(86.4e3, 0.47));

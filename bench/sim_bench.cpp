@@ -49,14 +49,14 @@ struct NewtonLog final : Progress {
 };
 
 /// The example's bar (its bar.stl, 10 mm edges: 843 DoFs, the paper had 702), or, `fine`, the bar
-/// at 4× those DoFs (a 4.3 mm skin grid, 6 mm edges) that the example used before session 12.
+/// at 4× those DoFs (test::fine_twisting_bar).
 Row twisting_bar(bool fine, bool verbose)
 {
   NewtonLog progress;
   progress.on = verbose;
-  const SurfaceMesh surface = fine ? test::box({0, -0.01, -0.01}, {0.129, 0.01, 0.01}, Eigen::Vector3i(30, 5, 5))
-                                   : import_surface(FIBERMOLD_SOURCE_DIR "/examples/twisting-bar/bar.stl", 1e-3);
-  const TetMesh mesh = tetrahedralize(surface, {fine ? 0.006 : 0.010, 1.5, 10, false}, progress);
+  const TetMesh mesh = fine ? test::fine_twisting_bar()
+                            : tetrahedralize(import_surface(FIBERMOLD_SOURCE_DIR "/examples/twisting-bar/bar.stl", 1e-3),
+                                             {0.010, 1.5, 10, false}, progress);
   const auto start = std::chrono::steady_clock::now();
   SimulationOptions o;
   o.gravity = {9.81, 0, 0};
