@@ -31,7 +31,9 @@ SurfaceMesh transformed(SurfaceMesh m, const Eigen::Matrix3d& R)
 /// Up to `count` points of the cavity's top (within `band` of its highest point) where a hole of
 /// `radius` lands wholly on the top: every point of a circle of radius + `margin` around it sees the
 /// top straight below. Wanted positions spread along the top region's longest horizontal
-/// direction; each takes the nearest supported point of a grid over the region.
+/// direction; each takes the nearest supported point of a grid over the region, grown by twice the
+/// circle's radius: the top's vertices may all lie on its rim (a face sloping out of the band, as the
+/// underside of a tapered arm whose next ring of vertices is already higher than the band).
 std::vector<Eigen::Vector3d> top_points(const SurfaceMesh& m, int count, double band, double radius, double margin)
 {
   const double top = m.vertices.col(2).maxCoeff();
@@ -63,9 +65,10 @@ std::vector<Eigen::Vector3d> top_points(const SurfaceMesh& m, int count, double 
     return true;
   };
   const double step = std::max(radius, 0.25e-3);
+  const double grow = std::ceil(2 * (radius + margin) / step) * step;  // whole steps: the region's own grid points stay
   std::vector<Eigen::Vector2d> grid;
-  for (double s = -reach; s <= reach; s += step)
-    for (double t = -width; t <= width; t += step) grid.push_back(centre + s * axis + t * across);
+  for (double s = -reach - grow; s <= reach + grow; s += step)
+    for (double t = -width - grow; t <= width + grow; t += step) grid.push_back(centre + s * axis + t * across);
   std::vector<Eigen::Vector3d> out;
   for (int k = 0; k < count; ++k) {
     const double t = count == 1 ? 0 : -0.5 + static_cast<double>(k) / (count - 1);  // over the middle half

@@ -190,6 +190,25 @@ TEST(Molds, EndChannelIsASocketThenAHoleForTheTube)
   EXPECT_NEAR(plain - stepped, expected, 0.002 * expected);
 }
 
+TEST(Molds, SprueFindsTheFlatOfABottomWhoseLowestVerticesAreOnItsRim)
+{
+  // A 40 × 10 × 10 mm block whose bottom rises 2 mm from x = 0 to x = 40: within the 0.5 mm band
+  // of its lowest point lie only the two vertices of the edge x = 0, but the face itself is flat
+  // enough there (x ≤ 10 mm) for the sprue's 6 mm circle (4 mm hole + 2 × 1 mm wall). The
+  // underside of a tapered tentacle between two rings of vertices is such a face.
+  SurfaceMesh body = box_solid({0, -5 * mm, 0}, {40 * mm, 5 * mm, 10 * mm});
+  for (Eigen::Index i = 0; i < body.num_vertices(); ++i)
+    if (body.vertices(i, 2) == 0 && body.vertices(i, 0) > 0) body.vertices(i, 2) = 2 * mm;
+  const Parting parting = choose_parting(body, {0, 0, 1});
+  const Mold mold = make_mold(body, parting, {}, {}, "shot2");
+  expect_parts_ok(mold);
+  std::printf("sprue at (%.2f, %.2f, %.2f) mm\n", mold.sprue.x() / mm, mold.sprue.y() / mm, mold.sprue.z() / mm);
+  EXPECT_GE(mold.sprue.x(), 3 * mm);  // the whole circle on the bottom
+  EXPECT_LE(mold.sprue.x(), 10 * mm - 3 * mm);
+  EXPECT_LE(std::abs(mold.sprue.y()), 2 * mm);
+  EXPECT_NEAR(mold.sprue.z(), mold.sprue.x() * 2 / 40, 1.1 * mm);  // on the bottom face (the hole dips 1 mm in)
+}
+
 TEST(Molds, ScrewHolesGoThroughBothHalvesInTheRim)
 {
   // Four M3 clearance holes (3.4 mm) besides the four corner keys: at the edge midpoints, through
