@@ -17,8 +17,12 @@ struct NewtonOptions {
   double tolerance = 1e-8;   ///< converged when |∇E| ≤ tolerance × force_scale
   double force_scale = 1.0;  ///< N
   int max_halvings = 40;
-  /// A full step that shrank |∇E| by at least this factor lets the next step reuse its
-  /// factorization; 0 refactorizes at every step (plain Newton).
+  /// Steps on a kept factorization K are L-BFGS steps from the pairs of this many of the last
+  /// steps, with K⁻¹ as the initial inverse Hessian (lbfgs_correction.hpp). K is then kept while
+  /// each step is taken with at most one halving. 0: plain steps on K, kept by reuse_contraction.
+  int quasi_newton_pairs = 8;
+  /// Without quasi-Newton pairs, a full step that shrank |∇E| by at least this factor lets the next
+  /// step reuse its factorization; 0 refactorizes at every step (plain Newton).
   double reuse_contraction = 0.5;
   /// The solve ends on a fresh factorization taken within 1e3 × the tolerance (at once when |∇E|
   /// gets there, or when a reused factorization reaches the tolerance), 100× below the tolerance

@@ -53,6 +53,7 @@ TEST(NewtonSolver, FollowsASoftModeOfNegativeCurvatureToTheMinimum)
   NullProgress progress;
   NewtonOptions options;
   options.tolerance = 1e-12;
+  options.quasi_newton_pairs = 0;
   options.reuse_contraction = 0;  // one assembly per step
   const NewtonSummary s = solver.solve(x, options, progress);
   ASSERT_TRUE(s.converged) << s.brief();
@@ -71,6 +72,7 @@ TEST(NewtonSolver, FarFromDefiniteFallsBackToTheProjectedHessian)
   Eigen::VectorXd x = Eigen::Vector3d(-0.02, 0, 0);
   NullProgress progress;
   NewtonOptions options;
+  options.quasi_newton_pairs = 0;
   options.reuse_contraction = 0;  // one exact assembly per step, and one more where it is projected
   const NewtonSummary s = solver.solve(x, options, progress);
   ASSERT_TRUE(s.converged) << s.brief();
