@@ -72,7 +72,13 @@ Parting choose_parting(const SurfaceMesh& cavity, const Eigen::Vector3d& pull_in
     (faces[k].up ? up_below : down_above) += faces[k].up ? faces[k].area : -faces[k].area;
     start = end;
   }
-  const double h = (std::max(best_lo, lo) + std::min(best_hi, hi)) / 2;
+  double h = (std::max(best_lo, lo) + std::min(best_hi, hi)) / 2;
+  // A plane through vertices of the cavity (a polygonal body's ridge on its plane of symmetry) gives
+  // the booleans coplanar edges, and the keys' unions then came out crossing themselves (an arm with
+  // 10 vertices per ring); move it 2 µm off them, toward the wider side of the best range.
+  constexpr double kOnPlane = 0.1e-6, kNudge = 2e-6;
+  const double side = best_hi - h >= h - best_lo ? 1 : -1;
+  for (int k = 0; k < 8 && ((heights.array() - h).abs() < kOnPlane).any(); ++k) h += side * kNudge;
   const Eigen::Vector3d centre = cavity.vertices.colwise().mean().transpose();
   return {centre + (h - centre.dot(pull)) * pull, pull, best};
 }

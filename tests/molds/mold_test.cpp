@@ -10,6 +10,7 @@
 #include "molds/mesh_boolean.hpp"
 #include "molds/mold_block.hpp"
 #include "molds/part_checks.hpp"
+#include "molds/parting.hpp"
 #include "molds/solids.hpp"
 
 namespace fibermold {
@@ -233,6 +234,52 @@ TEST(Molds, ScrewHolesGoThroughBothHalvesInTheRim)
     const double outside = std::max({-s.x(), s.x() - 100 * mm, std::abs(s.y()) - 10 * mm});
     EXPECT_GE(outside, r + 1 * mm);
   }
+}
+
+/// A tapered prism along x, `length` long, whose cross-section is a regular polygon of `sides`
+/// corners on a circle of radius `r0` at x = 0 to `r1` at x = length, with rings of corners at
+/// `rings` + 1 equal steps, at angles (k + ½)·360°/sides from +y toward +z (a flat face at the
+/// bottom, as examples/common/tube.py makes its arms); with 10 sides, corners lie at y = 0.
+SurfaceMesh polygonal_arm(double length, double r0, double r1, int sides, int rings)
+{
+  SurfaceMesh m;
+  const int n = (rings + 1) * sides;
+  m.vertices.resize(n + 2, 3);
+  m.faces.resize(2 * sides * (rings + 1), 3);
+  m.vertices.row(n) << 0, 0, 0;
+  m.vertices.row(n + 1) << length, 0, 0;
+  for (int i = 0; i <= rings; ++i) {
+    const double t = static_cast<double>(i) / rings, r = r0 + t * (r1 - r0);
+    for (int k = 0; k < sides; ++k) {
+      const double a = 2 * M_PI * (k + 0.5) / sides;
+      m.vertices.row(i * sides + k) << t * length, r * std::cos(a), r * std::sin(a);
+    }
+  }
+  int f = 0;
+  for (int k = 0; k < sides; ++k) {
+    const int k1 = (k + 1) % sides;
+    m.faces.row(f++) << n, k1, k;  // the end at x = 0 faces −x
+    m.faces.row(f++) << n + 1, rings * sides + k, rings * sides + k1;
+    for (int i = 0; i < rings; ++i) {
+      const int a = i * sides, b = a + sides;
+      m.faces.row(f++) << a + k, a + k1, b + k1;
+      m.faces.row(f++) << a + k, b + k1, b + k;
+    }
+  }
+  return m;
+}
+
+TEST(Molds, APartingPlaneThroughCavityVerticesMovesOffThem)
+{
+  // A 10-sided arm pulled along +y has corners on its plane of symmetry, where the least undercut
+  // puts the parting plane. The plane moves 2 µm off them; through them, the corner keys' unions
+  // came out crossing themselves on a 10-sided tentacle.
+  const SurfaceMesh body = polygonal_arm(200 * mm, 14 * mm, 3 * mm, 10, 13);
+  const Parting parting = choose_parting(body, {0, 1, 0});
+  const double off = (body.vertices.col(1).array() - parting.point.y()).abs().minCoeff();
+  EXPECT_NEAR(off, 2e-6, 1e-9);
+  EXPECT_NEAR(parting.undercut_area, 0, 1e-12);
+  expect_parts_ok(make_mold(body, parting, {}, {}, "shot2"));
 }
 
 TEST(Molds, KeysFitTheirSocketsWithTheClearance)
