@@ -31,9 +31,10 @@ SurfaceMesh transformed(SurfaceMesh m, const Eigen::Matrix3d& R)
 /// Up to `count` points of the cavity's top (within `band` of its highest point) where a hole of
 /// `radius` lands wholly on the top: every point of a circle of radius + `margin` around it sees the
 /// top straight below. Wanted positions spread along the top region's longest horizontal
-/// direction; each takes the nearest supported point of a grid over the region, grown by twice the
-/// circle's radius: the top's vertices may all lie on its rim (a face sloping out of the band, as the
-/// underside of a tapered arm whose next ring of vertices is already higher than the band).
+/// direction; each takes the nearest supported point of a grid over the region, else of a ring
+/// around it twice the circle's radius wide: the top's vertices may all lie on its rim (a face
+/// sloping out of the band, as the underside of a tapered arm whose next ring of vertices is
+/// already higher than the band).
 std::vector<Eigen::Vector3d> top_points(const SurfaceMesh& m, int count, double band, double radius, double margin)
 {
   const double top = m.vertices.col(2).maxCoeff();
@@ -65,19 +66,29 @@ std::vector<Eigen::Vector3d> top_points(const SurfaceMesh& m, int count, double 
     return true;
   };
   const double step = std::max(radius, 0.25e-3);
-  const double grow = std::ceil(2 * (radius + margin) / step) * step;  // whole steps: the region's own grid points stay
-  std::vector<Eigen::Vector2d> grid;
-  for (double s = -reach - grow; s <= reach + grow; s += step)
-    for (double t = -width - grow; t <= width + grow; t += step) grid.push_back(centre + s * axis + t * across);
+  // The grid over the region first; its ring grown by 2 (radius + margin) only where the region's
+  // own grid has no supported point.
+  std::vector<Eigen::Vector2d> inner, ring;
+  for (double s = -reach; s <= reach; s += step)
+    for (double t = -width; t <= width; t += step) inner.push_back(centre + s * axis + t * across);
+  const int grow = static_cast<int>(std::ceil(2 * (radius + margin) / step));
+  for (int i = -grow; i <= grow + static_cast<int>(std::floor(2 * reach / step)); ++i)
+    for (int j = -grow; j <= grow + static_cast<int>(std::floor(2 * width / step)); ++j) {
+      const double s = -reach + i * step, t = -width + j * step;
+      if (s < -reach || s > reach || t < -width || t > width) ring.push_back(centre + s * axis + t * across);
+    }
   std::vector<Eigen::Vector3d> out;
   for (int k = 0; k < count; ++k) {
     const double t = count == 1 ? 0 : -0.5 + static_cast<double>(k) / (count - 1);  // over the middle half
     const Eigen::Vector2d wanted = centre + t * reach * axis;
-    std::sort(grid.begin(), grid.end(), [&](const auto& a, const auto& b) { return (a - wanted).norm() < (b - wanted).norm(); });
-    for (const Eigen::Vector2d& xy : grid) {
-      const bool apart = std::all_of(out.begin(), out.end(), [&](const Eigen::Vector3d& q) { return (q.head<2>() - xy).norm() >= 2 * (radius + margin); });
-      if (apart && supported(xy)) {
-        out.emplace_back(xy.x(), xy.y(), top - surface.ray_distance({xy.x(), xy.y(), top + 1e-3}, -Eigen::Vector3d::UnitZ()) + 1e-3);
+    for (std::vector<Eigen::Vector2d>* grid : {&inner, &ring}) {
+      std::sort(grid->begin(), grid->end(), [&](const auto& a, const auto& b) { return (a - wanted).norm() < (b - wanted).norm(); });
+      const auto found = std::find_if(grid->begin(), grid->end(), [&](const Eigen::Vector2d& xy) {
+        const bool apart = std::all_of(out.begin(), out.end(), [&](const Eigen::Vector3d& q) { return (q.head<2>() - xy).norm() >= 2 * (radius + margin); });
+        return apart && supported(xy);
+      });
+      if (found != grid->end()) {
+        out.emplace_back(found->x(), found->y(), top - surface.ray_distance({found->x(), found->y(), top + 1e-3}, -Eigen::Vector3d::UnitZ()) + 1e-3);
         break;
       }
     }

@@ -72,13 +72,17 @@ Parting choose_parting(const SurfaceMesh& cavity, const Eigen::Vector3d& pull_in
     (faces[k].up ? up_below : down_above) += faces[k].up ? faces[k].area : -faces[k].area;
     start = end;
   }
-  double h = (std::max(best_lo, lo) + std::min(best_hi, hi)) / 2;
+  const double range_lo = std::max(best_lo, lo), range_hi = std::min(best_hi, hi);
+  const double middle = (range_lo + range_hi) / 2;
   // A plane through vertices of the cavity (a polygonal body's ridge on its plane of symmetry) gives
   // the booleans coplanar edges, and the keys' unions then came out crossing themselves (an arm with
-  // 10 vertices per ring); move it 2 µm off them, toward the wider side of the best range.
+  // 10 vertices per ring): move it off them by 2 µm (up, then down, then twice that, …), within
+  // the range of least undercut.
   constexpr double kOnPlane = 0.1e-6, kNudge = 2e-6;
-  const double side = best_hi - h >= h - best_lo ? 1 : -1;
-  for (int k = 0; k < 8 && ((heights.array() - h).abs() < kOnPlane).any(); ++k) h += side * kNudge;
+  const double nudge = std::min(kNudge, (range_hi - range_lo) / 8);
+  const auto on_vertices = [&](double h) { return ((heights.array() - h).abs() < kOnPlane).any(); };
+  double h = middle;
+  for (int k = 1; k <= 8 && nudge > 0 && on_vertices(h); ++k) h = middle + ((k + 1) / 2) * (k % 2 ? nudge : -nudge);
   const Eigen::Vector3d centre = cavity.vertices.colwise().mean().transpose();
   return {centre + (h - centre.dot(pull)) * pull, pull, best};
 }

@@ -4,6 +4,7 @@
 // initial inverse H₀⁻¹. The pairs (s, y) of the steps taken since that factorization correct it
 // toward the curvature along the path, so that Newton refactorizes less often.
 
+#include <algorithm>
 #include <cstddef>
 #include <deque>
 #include <functional>
@@ -14,7 +15,8 @@ namespace fibermold {
 
 class LbfgsCorrection {
 public:
-  explicit LbfgsCorrection(int pairs) : capacity_(static_cast<std::size_t>(pairs)) {}
+  /// Keeps the last `pairs` pairs (none when it is 0 or less).
+  explicit LbfgsCorrection(int pairs) : capacity_(static_cast<std::size_t>(std::max(pairs, 0))) {}
 
   /// Forgets every pair (a new factorization).
   void clear();

@@ -18,8 +18,11 @@ double since(Clock::time_point t) { return std::chrono::duration<double>(Clock::
 constexpr double kNearTolerance = 1e3;
 /// Where a solve that finishes on a fresh factorization ends, relative to the tolerance.
 constexpr double kFarBelow = 1e-2;
-/// Steps on one factorization at most: bounds a solve's steps by max_iterations × (1 + this).
+/// Steps on one factorization at most.
 constexpr int kLongestReuse = 50;
+/// A solve takes at most max_iterations steps on fresh factorizations and this many times
+/// max_iterations steps in all (from rest the examples take at most 155).
+constexpr int kStepsPerIteration = 10;
 
 SparseHessian make_pattern(const std::vector<const Energy*>& energies, Eigen::Index n)
 {
@@ -218,8 +221,7 @@ NewtonSummary NewtonSolver::solve(Eigen::VectorXd& x, const NewtonOptions& optio
   bool exact_first = true;     // false: the next factorization is the projected Hessian
   bool near = false;           // the factorization is of the Hessian at a state within kNearTolerance
   bool finishing = false;      // below the tolerance, taking the step that finish_on_fresh_step asks for
-  int full_steps = 0;  // steps on a fresh factorization: what max_iterations bounds (reused steps
-                       // come at most kLongestReuse in a row)
+  int full_steps = 0;  // steps on a fresh factorization: what max_iterations bounds
   int reused_run = 0;
   LbfgsCorrection secant(options.quasi_newton_pairs);  // the steps since the last factorization
   const auto converge = [&](bool factorization_serves_adjoint) {
@@ -251,9 +253,9 @@ NewtonSummary NewtonSolver::solve(Eigen::VectorXd& x, const NewtonOptions& optio
       }
     }
     if (options.finish_on_fresh_step && !fresh && !near && s.residual <= kNearTolerance * goal) stale = true;
-    if (full_steps >= options.max_iterations && !finishing) {
+    if ((full_steps >= options.max_iterations || s.iterations >= kStepsPerIteration * options.max_iterations) && !finishing) {
       if (s.residual <= goal) converge(near && kind_ == Factorization::exact);
-      else s.message = fmt::format("no convergence in {} iterations", options.max_iterations);
+      else s.message = fmt::format("no convergence in {} iterations ({} steps)", options.max_iterations, s.iterations);
       break;
     }
     if (stale) {
@@ -263,6 +265,7 @@ NewtonSummary NewtonSolver::solve(Eigen::VectorXd& x, const NewtonOptions& optio
         break;
       }
       stale = false;
+      reused_run = 0;
       fresh = true;
       exact_first = true;
       near = s.residual <= kNearTolerance * goal;
@@ -318,12 +321,16 @@ NewtonSummary NewtonSolver::solve(Eigen::VectorXd& x, const NewtonOptions& optio
     // The factorization is kept for the next step while its steps go well: a step then costs a
     // gradient and a solve instead of an assembly and a factorization. Quasi-Newton: while a step
     // needs at most one halving, unless the factorization is of a shifted Hessian (a poor model:
-    // kept, a bent muscle bar crawled 21 steps at α = 0.5 on one). Plain: while full steps shrink
-    // the gradient fast. From rest, sim_bench's twisting bar at 2,433 DoFs took 16 factorizations
+    // kept, a bent muscle bar crawled 21 steps at α = 0.5 on one; a projected one is kept, and
+    // its steps are corrected by the pairs like any other). Plain: while full steps halve |∇E|. From rest, sim_bench's twisting bar at 2,433 DoFs took 16 factorizations
     // in 29 steps with plain reuse, 10 in 39 when only full quasi-Newton steps kept it, 5 in 57
     // with this rule.
-    stale = options.quasi_newton_pairs > 0 ? !(alpha >= 0.5 && kind_ != Factorization::shifted)
-                                           : !(alpha == 1 && g.norm() <= options.reuse_contraction * s.residual);
+    // Below the tolerance a kept factorization must still halve |∇E|: where it stops doing so
+    // (round-off), a solve that finishes on a fresh factorization ends there.
+    const bool contracted = g.norm() <= options.reuse_contraction * s.residual;
+    stale = options.quasi_newton_pairs > 0
+                ? !(alpha >= 0.5 && kind_ != Factorization::shifted && (s.residual > goal || contracted))
+                : !(alpha == 1 && contracted);
     reused_run = stale ? 0 : reused_run + 1;
     if (reused_run > kLongestReuse) stale = true;
     fresh = false;

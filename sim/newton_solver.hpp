@@ -22,7 +22,8 @@ struct NewtonOptions {
   /// each step is taken with at most one halving. 0: plain steps on K, kept by reuse_contraction.
   int quasi_newton_pairs = 8;
   /// Without quasi-Newton pairs, a full step that shrank |∇E| by at least this factor lets the next
-  /// step reuse its factorization; 0 refactorizes at every step (plain Newton).
+  /// step reuse its factorization; 0 (with quasi_newton_pairs = 0) refactorizes at every step
+  /// (plain Newton). With pairs, it applies below the tolerance only.
   double reuse_contraction = 0.5;
   /// The solve ends on a fresh factorization taken within 1e3 × the tolerance (at once when |∇E|
   /// gets there, or when a reused factorization reaches the tolerance), 100× below the tolerance
