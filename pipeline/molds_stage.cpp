@@ -133,13 +133,28 @@ void MoldsStage::run(StageContext& ctx) const
     check_fiber(d, r, lines.back(), skin, radius, pull);
     muscle_volume += HermiteSpline(r.points, r.tangents).length() * M_PI * std::pow(d.muscle.model.diameter / 2, 2);
     // An end on the skin gets a channel out through the mold, square to the skin there (a channel
-    // meeting the skin at an angle would leave a knife edge of mold).
+    // meeting the skin at an angle would leave a knife edge of mold): from a point 1 mm inside, back
+    // along the fiber, to its nearest skin point. Where the fiber leaves the skin almost along it
+    // (that point is not inside: the walking robot's bend fiber once left its end face 81° off
+    // the face's normal, and its channel, laid along the fiber, cut the body diagonally and left a
+    // 0.08 mm wall), the deepest of the points 1 mm in along ±x, ±y, ±z serves instead.
     const auto add_channel = [&](const Eigen::Vector3d& end, const Eigen::Vector3d& along) {
       if (skin.closest(end).distance >= radius) return;  // the fiber ends inside the body
-      const Eigen::Vector3d inside = end - 1e-3 * along.normalized();
-      const auto at = skin.closest(inside);
-      const Eigen::Vector3d out = at.inside && at.distance > 1e-6 ? Eigen::Vector3d((at.point - inside).normalized()) : along.normalized();
-      channels.push_back({end - 1e-3 * out, out, m.end_channel_diameter, 1e-3 + m.end_channel_length, d.muscle.model.diameter});
+      const auto square_out = [&](const Eigen::Vector3d& in, double& depth) -> std::optional<Eigen::Vector3d> {
+        const Eigen::Vector3d inside = end + 1e-3 * in;
+        const auto at = skin.closest(inside);
+        depth = at.distance;
+        if (!(at.inside && at.distance > 1e-6)) return std::nullopt;
+        return Eigen::Vector3d((at.point - inside).normalized());
+      };
+      double depth = 0, deepest = 0;
+      std::optional<Eigen::Vector3d> out = square_out(-along.normalized(), depth), best;
+      for (int axis = 0; !out && axis < 6; ++axis) {
+        const Eigen::Vector3d in = (axis % 2 ? -1.0 : 1.0) * Eigen::Vector3d::Unit(axis / 2);
+        if (const auto o = square_out(in, depth); o && depth > deepest) best = o, deepest = depth;
+      }
+      const Eigen::Vector3d dir = out ? *out : best.value_or(along.normalized());
+      channels.push_back({end - 1e-3 * dir, dir, m.end_channel_diameter, 1e-3 + m.end_channel_length, d.muscle.model.diameter});
     };
     add_channel(r.points.front(), -r.tangents.front());
     add_channel(r.points.back(), r.tangents.back());

@@ -82,6 +82,24 @@ TEST_F(MoldsE2E, HandRoutedBarBecomesFourCheckedParts)
   }
 }
 
+TEST_F(MoldsE2E, AFiberLeavingItsEndFaceAlmostAlongItGetsAChannelSquareToTheFace)
+{
+  // The fiber leaves its start on the end face x = 0 heading down and sideways, 9° outward (an
+  // optimizer left the walking robot's bend fiber like that). Its channel must still run square to
+  // the face, along −x: laid along the fiber and then onto the parting plane, it ran diagonally
+  // through the body and out of its side, leaving a 0.04 mm wall at (10.1, 8.0, 0) mm.
+  design("", "[[fiber]]\nname = \"m1\"\npoints = [[0, 0, 0], [30, 0, -3], [60, 0, 0]]\n"
+             "tangents = [[-3, -3, -19], [60, 0, 0], [60, 0, 0]]\n");
+  const auto r = make();
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const auto manifest = nlohmann::json::parse(test::read_text(out("manifest.json")));
+  ASSERT_EQ(manifest["parts"].size(), 4u);
+  for (const auto& p : manifest["parts"]) {
+    EXPECT_TRUE(p["checks_passed"].get<bool>()) << p["name"];
+    EXPECT_GE(p["min_wall_mm"].get<double>(), 1.0) << p["name"];
+  }
+}
+
 using test::run_command;
 
 /// The heights of the layers of a PrusaSlicer G-code file (its ";Z:" comments), in mm.
