@@ -322,9 +322,9 @@ NewtonSummary NewtonSolver::solve(Eigen::VectorXd& x, const NewtonOptions& optio
     // gradient and a solve instead of an assembly and a factorization. Quasi-Newton: while a step
     // needs at most one halving, unless the factorization is of a shifted Hessian (a poor model:
     // kept, a bent muscle bar crawled 21 steps at α = 0.5 on one; a projected one is kept, and
-    // its steps are corrected by the pairs like any other). Plain: while full steps halve |∇E|. From rest, sim_bench's twisting bar at 2,433 DoFs took 16 factorizations
-    // in 29 steps with plain reuse, 10 in 39 when only full quasi-Newton steps kept it, 5 in 57
-    // with this rule.
+    // its steps are corrected by the pairs like any other). Plain: while full steps halve |∇E|.
+    // From rest, sim_bench's twisting bar at 2,433 DoFs took 16 factorizations in 29 steps with
+    // plain reuse, 10 in 39 when only full quasi-Newton steps kept it, 5 in 57 with this rule.
     // Below the tolerance a kept factorization must still halve |∇E|: where it stops doing so
     // (round-off), a solve that finishes on a fresh factorization ends there.
     const bool contracted = g.norm() <= options.reuse_contraction * s.residual;
