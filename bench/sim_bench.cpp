@@ -58,11 +58,9 @@ Row twisting_bar(BarMesh which, bool verbose)
 {
   NewtonLog progress;
   progress.on = verbose;
-  const auto skin = [] { return test::box({0, -0.01, -0.01}, {0.129, 0.01, 0.01}, Eigen::Vector3i(30, 5, 5)); };
-  const TetMesh mesh = which == BarMesh::fine ? test::fine_twisting_bar()
-                       : which == BarMesh::tets
-                           ? tetrahedralize(skin(), {0.008, 1.5, 10, false}, progress)
-                           : tetrahedralize(import_surface(FIBERMOLD_SOURCE_DIR "/examples/twisting-bar/bar.stl", 1e-3),
+  const TetMesh mesh = which == BarMesh::fine   ? test::fine_twisting_bar()
+                       : which == BarMesh::tets ? test::skin_grid_twisting_bar(0.008)
+                                                : tetrahedralize(import_surface(FIBERMOLD_SOURCE_DIR "/examples/twisting-bar/bar.stl", 1e-3),
                                             {0.010, 1.5, 10, false}, progress);
   const auto start = std::chrono::steady_clock::now();
   SimulationOptions o;
