@@ -1,5 +1,6 @@
 // Forward simulation speed: the twisting bar on three meshes (paper Table II: 63 s on a 4-core i7) and the
-// cantilever at three mesh sizes. Prints a Markdown table.   build/bench/sim_bench [--verbose]
+// cantilever at three mesh sizes. Prints a Markdown table.
+//   build/bench/sim_bench [--verbose] [--only example|tets|fine|cantilever]
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -102,12 +103,24 @@ Row cantilever(const std::string& basis, double edge)
 
 int main(int argc, char** argv)
 {
-  const bool verbose = argc > 1 && std::string(argv[1]) == "--verbose";
+  bool verbose = false;
+  std::string only;
+  for (int i = 1; i < argc; ++i) {
+    const std::string a = argv[i];
+    if (a == "--verbose") verbose = true;
+    else if (a == "--only" && i + 1 < argc) only = argv[++i];
+    else {
+      std::fprintf(stderr, "usage: %s [--verbose] [--only example|tets|fine|cantilever]\n", argv[0]);
+      return 2;
+    }
+  }
+  const auto runs = [&](const char* row) { return only.empty() || only == row; };
   std::printf("| case | tets | DoFs | Newton it. | factorizations | s/assembly | s/factorization | s/solve | setup s | total s | vs paper |\n");
   std::printf("|---|---|---|---|---|---|---|---|---|---|---|\n");
-  print(twisting_bar(BarMesh::example, verbose), 63.0);
-  print(twisting_bar(BarMesh::tets, false), 63.0);
-  print(twisting_bar(BarMesh::fine, false), 63.0);
+  if (runs("example")) print(twisting_bar(BarMesh::example, verbose), 63.0);
+  if (runs("tets")) print(twisting_bar(BarMesh::tets, verbose && !only.empty()), 63.0);
+  if (runs("fine")) print(twisting_bar(BarMesh::fine, verbose && !only.empty()), 63.0);
+  if (!runs("cantilever")) return 0;
   for (double edge : {0.006, 0.004, 0.003}) print(cantilever("mls-linear", edge), 0);
   print(cantilever("fem-p2", 0.004), 0);
   return 0;

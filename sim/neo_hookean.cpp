@@ -1,4 +1,5 @@
 #include "sim/neo_hookean.hpp"
+#include "sim/point_forces.hpp"
 #include "sim/stiffness_column.hpp"
 
 #include <algorithm>
@@ -12,20 +13,32 @@
 
 namespace fibermold {
 
+namespace {
+
+// Ψ = μ/2 (tr(FᵀF) − 3) − μ ln J + λ/2 ln² J
+double density(const Eigen::Matrix3d& F, double lnJ, const LameParameters& l)
+{
+  return l.mu / 2 * (F.squaredNorm() - 3) - l.mu * lnJ + l.lambda / 2 * lnJ * lnJ;
+}
+
+// P = μ (F − F⁻ᵀ) + λ ln J F⁻ᵀ
+Eigen::Matrix3d stress(const Eigen::Matrix3d& F, const Eigen::Matrix3d& FinvT, double lnJ, const LameParameters& l)
+{
+  return l.mu * (F - FinvT) + l.lambda * lnJ * FinvT;
+}
+
+} // namespace
+
 double neo_hookean_density(const Eigen::Matrix3d& F, const LameParameters& l)
 {
   const double J = F.determinant();
   if (!(J > 0)) return HUGE_VAL;
-  const double lnJ = std::log(J);
-  // Ψ = μ/2 (tr(FᵀF) − 3) − μ ln J + λ/2 ln² J
-  return l.mu / 2 * (F.squaredNorm() - 3) - l.mu * lnJ + l.lambda / 2 * lnJ * lnJ;
+  return density(F, std::log(J), l);
 }
 
 Eigen::Matrix3d neo_hookean_stress(const Eigen::Matrix3d& F, const LameParameters& l)
 {
-  // P = μ (F − F⁻ᵀ) + λ ln J F⁻ᵀ
-  const Eigen::Matrix3d FinvT = F.inverse().transpose();
-  return l.mu * (F - FinvT) + l.lambda * std::log(F.determinant()) * FinvT;
+  return stress(F, F.inverse().transpose(), std::log(F.determinant()), l);
 }
 
 Eigen::Matrix<double, 9, 9> neo_hookean_stress_derivative(const Eigen::Matrix3d& F, const LameParameters& l)
@@ -81,18 +94,8 @@ NeoHookean::NeoHookean(const QuadraturePoints& qp, Eigen::Index num_nodes, LameP
 
 Eigen::Matrix3d NeoHookean::deformation_gradient(const Eigen::VectorXd& x, Eigen::Index q) const
 {
-  // Nine scalar sums: Eigen's outer-product update went through the stack at every node.
-  double f[3][3] = {};
-  for (int k = qp_.offset[q]; k < qp_.offset[q + 1]; ++k) {
-    const double* xi = x.data() + 3 * qp_.node[k];
-    const double* g = qp_.dN[k].data();
-    for (int a = 0; a < 3; ++a)
-      for (int c = 0; c < 3; ++c) f[a][c] += xi[a] * g[c];
-  }
-  Eigen::Matrix3d F;
-  for (int a = 0; a < 3; ++a)
-    for (int c = 0; c < 3; ++c) F(a, c) = f[a][c];
-  return F;
+  const int k = qp_.offset[q];
+  return gather_deformation_gradient(x.data(), &qp_.node[k], &qp_.dN[k], qp_.offset[q + 1] - k);
 }
 
 double NeoHookean::value(const Eigen::VectorXd& x) const
@@ -140,13 +143,16 @@ double NeoHookean::value_and_gradient(const Eigen::VectorXd& x, Eigen::VectorXd&
         if (p.g.size() == 0) p.g = Eigen::VectorXd::Zero(g.size());
         for (Eigen::Index q = range.begin(); q < range.end() && p.E < HUGE_VAL; ++q) {
           const Eigen::Matrix3d F = deformation_gradient(x, q);
-          if (!(F.determinant() > 0)) {
+          const double J = F.determinant();
+          if (!(J > 0)) {
             p.E = HUGE_VAL;
             break;
           }
-          p.E += qp_.volume[q] * neo_hookean_density(F, lame_);
-          const Eigen::Matrix3d VP = qp_.volume[q] * neo_hookean_stress(F, lame_);
-          for (int k = qp_.offset[q]; k < qp_.offset[q + 1]; ++k) p.g.segment<3>(3 * qp_.node[k]) += VP * qp_.dN[k];
+          const double lnJ = std::log(J);
+          p.E += qp_.volume[q] * density(F, lnJ, lame_);
+          const int k = qp_.offset[q];
+          scatter_point_forces(qp_.volume[q] * stress(F, F.inverse().transpose(), lnJ, lame_), &qp_.node[k], &qp_.dN[k],
+                               qp_.offset[q + 1] - k, p.g.data());
         }
         return p;
       },
