@@ -43,7 +43,7 @@ void no_openmp_regions()
 } // namespace
 
 struct CholmodSolver::Impl {
-  Eigen::CholmodSupernodalLLT<Eigen::SparseMatrix<double>, Eigen::Lower> llt;
+  Eigen::CholmodSupernodalLLT<Eigen::SparseMatrix<double>, Eigen::Upper> llt;
   std::vector<int> outer, inner;  ///< the pattern last analyzed
 };
 

@@ -171,32 +171,56 @@ Eigen::Index NeoHookean::chunk_size() const { return std::max<Eigen::Index>(1024
 
 void NeoHookean::add_hessian(const Eigen::VectorXd& x, SparseHessian& H, bool project) const
 {
-  std::vector<StiffnessLayout> W(static_cast<std::size_t>(qp_.size()));
+  // The exact stress derivative goes to the assembly as the five numbers it is made of, the
+  // projected one as its 81 entries.
+  std::vector<NeoHookeanPoint> exact(project ? 0 : static_cast<std::size_t>(qp_.size()));
+  std::vector<StiffnessLayout> W(project ? static_cast<std::size_t>(qp_.size()) : 0);
   tbb::parallel_for(Eigen::Index{0}, qp_.size(), [&](Eigen::Index q) {
     const Eigen::Matrix3d F = deformation_gradient(x, q);
-    W[q] = stiffness_layout(qp_.volume[q] * (project ? neo_hookean_stress_derivative_psd(F, lame_) : neo_hookean_stress_derivative(F, lame_)));
+    const double V = qp_.volume[q];
+    if (project) W[q] = stiffness_layout(V * neo_hookean_stress_derivative_psd(F, lame_));
+    else exact[q] = {F.inverse().transpose(), V * lame_.mu, V * lame_.lambda, V * (lame_.mu - lame_.lambda * std::log(F.determinant()))};
   });
-  // Column j of the Hessian gathers every point q touching j, for q's nodes i ≥ j.
-  tbb::enumerable_thread_specific<std::vector<int>> positions(std::vector<int>(static_cast<std::size_t>(H.num_nodes()), -1));
+  // Column j of the Hessian gathers every point q touching j, for q's nodes i ≤ j: into a padded
+  // copy (4 entries per block column) when the AVX2 kernels run, added to the matrix at the end.
+  struct Scratch {
+    std::vector<int> position;
+    std::vector<double> values;
+  };
+  const bool padded = stiffness_simd_available();
+  tbb::enumerable_thread_specific<Scratch> scratch(Scratch{std::vector<int>(static_cast<std::size_t>(H.num_nodes()), -1), {}});
   const auto n = static_cast<Eigen::Index>(incidence_.offset.size()) - 1;
   tbb::parallel_for(Eigen::Index{0}, n, [&](Eigen::Index j) {
-    std::vector<int>& pos = positions.local();
+    Scratch& local = scratch.local();
+    std::vector<int>& pos = local.position;
     const auto& nb = H.neighbours(j);
-    for (std::size_t k = 0; k < nb.size(); ++k) pos[nb[k]] = 3 * static_cast<int>(k);
-    const StiffnessColumn column{H.column_values(j), 3 * static_cast<std::ptrdiff_t>(nb.size()), pos.data()};
+    const auto L = static_cast<std::ptrdiff_t>(nb.size());
+    const int lanes = padded ? 4 : 3;
+    for (std::size_t k = 0; k < nb.size(); ++k) pos[nb[k]] = lanes * static_cast<int>(k);
+    if (padded) local.values.assign(static_cast<std::size_t>(12 * L), 0.0);
+    const StiffnessColumn column{padded ? local.values.data() : H.column_values(j), lanes * L, pos.data(), padded};
     for (int e = incidence_.offset[j]; e < incidence_.offset[j + 1]; ++e) {
       const auto [q, kj] = incidence_.entry[e];
       if (e + 2 < incidence_.offset[j + 1]) {
         const auto [q2, k2] = incidence_.entry[e + 2];
-        const char* next = reinterpret_cast<const char*>(W[q2].data());
-        for (int line = 0; line < 11; ++line) __builtin_prefetch(next + 64 * line);
-        const char* gradients = reinterpret_cast<const char*>(qp_.dN[k2].data());
-        const auto bytes = static_cast<std::size_t>(qp_.offset[q2 + 1] - k2) * sizeof(Eigen::Vector3d);
+        const char* next = project ? reinterpret_cast<const char*>(W[q2].data()) : reinterpret_cast<const char*>(&exact[q2]);
+        const int lines = project ? 11 : 2;
+        for (int line = 0; line < lines; ++line) __builtin_prefetch(next + 64 * line);
+        const char* gradients = reinterpret_cast<const char*>(qp_.dN[qp_.offset[q2]].data());
+        const auto bytes = static_cast<std::size_t>(k2 + 1 - qp_.offset[q2]) * sizeof(Eigen::Vector3d);
         for (std::size_t at = 0; at < bytes; at += 64) __builtin_prefetch(gradients + at);
-        __builtin_prefetch(&qp_.node[k2]);
+        __builtin_prefetch(&qp_.node[qp_.offset[q2]]);
       }
-      // A point's nodes ascend, so those ≥ j are the entries from j's onward.
-      add_point_to_column(W[q].data(), qp_.dN[kj], &qp_.dN[kj], &qp_.node[kj], qp_.offset[q + 1] - kj, column);
+      // A point's nodes ascend, so those ≤ j are its entries up to j's.
+      const int first = qp_.offset[q];
+      if (project) add_point_to_column(W[q].data(), qp_.dN[kj], &qp_.dN[first], &qp_.node[first], kj + 1 - first, column);
+      else add_neo_hookean_point_to_column(exact[q], qp_.dN[kj], &qp_.dN[first], &qp_.node[first], kj + 1 - first, column);
+    }
+    if (padded) {
+      double* values = H.column_values(j);
+      for (std::ptrdiff_t b = 0; b < 3; ++b)
+        for (std::ptrdiff_t k = 0; k < L; ++k)
+          for (int a = 0; a < 3; ++a) values[3 * L * b + 3 * k + a] += local.values[4 * L * b + 4 * k + a];
     }
     for (int i : nb) pos[i] = -1;
   });

@@ -82,8 +82,8 @@ QuadraturePoints build_quadrature_points(const TetMesh& mesh, const Basis& basis
   qp.node.resize(qp.offset.back());
   qp.N.resize(qp.offset.back());
   qp.dN.resize(qp.offset.back());
-  // Each point's entries in ascending node order: the nodes ≥ j follow node j, which the
-  // lower-triangle Hessian assembly relies on.
+  // Each point's entries in ascending node order: the nodes ≤ j precede node j, which the
+  // upper-triangle Hessian assembly relies on.
   tbb::parallel_for(Eigen::Index{0}, nq, [&](Eigen::Index q) {
     const ShapeEval& e = evals[q];
     std::vector<int> order(static_cast<std::size_t>(e.size()));

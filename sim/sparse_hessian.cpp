@@ -25,7 +25,7 @@ SparseHessian::SparseHessian(Eigen::Index num_nodes, const std::vector<std::vect
     mark[j] = static_cast<int>(j);
     for (int k = offset[j]; k < offset[j + 1]; ++k)
       for (int i : stencils[containing[k]])
-        if (i > j && mark[i] != j) {
+        if (i < j && mark[i] != j) {
           mark[i] = static_cast<int>(j);
           nb.push_back(i);
         }
@@ -40,7 +40,7 @@ SparseHessian::SparseHessian(const SparseHessian& base, const std::vector<std::v
   for (const auto& s : stencils)
     for (int a : s)
       for (int b : s)
-        if (a > b) neighbours_[b].push_back(a);
+        if (a < b) neighbours_[b].push_back(a);
   for (auto& nb : neighbours_) {
     std::sort(nb.begin(), nb.end());
     nb.erase(std::unique(nb.begin(), nb.end()), nb.end());
@@ -53,7 +53,7 @@ bool SparseHessian::contains(const std::vector<std::vector<int>>& stencils) cons
   for (const auto& s : stencils)
     for (int a : s)
       for (int b : s)
-        if (a >= b && position(a, b) < 0) return false;
+        if (a <= b && position(a, b) < 0) return false;
   return true;
 }
 
@@ -101,13 +101,13 @@ void SparseHessian::add_block_at(int k, int j, const Eigen::Matrix3d& block)
 
 Eigen::SparseMatrix<double> SparseHessian::full() const
 {
-  Eigen::SparseMatrix<double> lower = matrix_.triangularView<Eigen::Lower>();
-  return lower.selfadjointView<Eigen::Lower>();
+  Eigen::SparseMatrix<double> upper = matrix_.triangularView<Eigen::Upper>();
+  return upper.selfadjointView<Eigen::Upper>();
 }
 
 void SparseHessian::add_block(int i, int j, const Eigen::Matrix3d& block)
 {
-  if (i < j) return;  // the upper block triangle is not stored
+  if (i > j) return;  // the lower block triangle is not stored
   const int k = position(i, j);
   if (k < 0) throw std::logic_error("SparseHessian: block outside the pattern");
   add_block_at(k, j, block);
