@@ -1,6 +1,8 @@
 #include "sim/cholmod_solver.hpp"
 
+#include <algorithm>
 #include <cstdlib>
+#include <thread>
 
 #include <dlfcn.h>
 
@@ -10,20 +12,45 @@ namespace fibermold {
 
 namespace {
 /// OpenBLAS (Debian's default BLAS under CHOLMOD) keeps its worker threads spinning on
-/// sched_yield for about 0.1 s after each call, and on 2 cores they take that time from the
-/// assembly's oneTBB threads. One BLAS thread is faster throughout (bench/sim: twisting bar
-/// 4.2 → 3.6–4.0 s, assembly 0.160 → 0.125 s; even the fem-p2 cantilever, whose time is CHOLMOD's,
-/// 5.45 → 4.87 s). A user's OPENBLAS_NUM_THREADS is left alone; another BLAS is not touched.
-void use_one_blas_thread()
-{
-  static const bool done = [] {
-    if (std::getenv("OPENBLAS_NUM_THREADS")) return false;
-    using SetThreads = void (*)(int);
-    if (auto set = reinterpret_cast<SetThreads>(dlsym(RTLD_DEFAULT, "openblas_set_num_threads"))) set(1);
-    return true;
-  }();
-  (void)done;
-}
+/// sched_yield for about 0.1 s after each call, and on 2 cores they took that time from the
+/// assembly's oneTBB threads when every BLAS call had 2 threads (session 9: bench/sim's twisting
+/// bar 4.2 → 3.6–4.0 s with one). So BLAS runs on one thread, except inside a factorization: there
+/// all cores serve it, as nothing else runs meanwhile (session 14, bench/sim, three runs each way:
+/// per factorization the bar at the paper's tet count 0.035–0.050 → 0.029–0.043 s, the 4 mm
+/// cantilever 0.090–0.098 → 0.070–0.073 s, the fem-p2 cantilever 0.178–0.181 → 0.146–0.176 s; the
+/// assemblies after them no slower). A user's OPENBLAS_NUM_THREADS is left alone; another BLAS is
+/// not touched.
+class BlasThreads {
+public:
+  static const BlasThreads& get()
+  {
+    static const BlasThreads threads;
+    return threads;
+  }
+  /// All cores for BLAS while it lives.
+  struct Factorizing {
+    Factorizing() { get().use(get().cores_); }
+    ~Factorizing() { get().use(1); }
+    Factorizing(const Factorizing&) = delete;
+    Factorizing& operator=(const Factorizing&) = delete;
+  };
+
+private:
+  using SetThreads = void (*)(int);
+  BlasThreads()
+  {
+    if (std::getenv("OPENBLAS_NUM_THREADS")) return;
+    set_ = reinterpret_cast<SetThreads>(dlsym(RTLD_DEFAULT, "openblas_set_num_threads"));
+    cores_ = static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
+    if (set_) set_(1);
+  }
+  void use(int threads) const
+  {
+    if (set_) set_(threads);
+  }
+  SetThreads set_ = nullptr;
+  int cores_ = 1;
+};
 
 /// Debian's CHOLMOD is built with OpenMP and asks for 4 threads (CHOLMOD_OMP_NUM_THREADS, fixed
 /// when the library was built) in the loops that copy A and the updates into each supernode: many
@@ -49,7 +76,7 @@ struct CholmodSolver::Impl {
 
 CholmodSolver::CholmodSolver() : impl_(std::make_unique<Impl>())
 {
-  use_one_blas_thread();
+  BlasThreads::get();
   impl_->llt.cholmod().print = 0;  // "not positive definite" is an answer here, not an error to print
 }
 CholmodSolver::~CholmodSolver() = default;
@@ -68,7 +95,10 @@ bool CholmodSolver::factorize(const Eigen::SparseMatrix<double>& A, double shift
     ++analyses_;
   }
   impl_->llt.setShift(shift);
-  impl_->llt.factorize(A);
+  {
+    const BlasThreads::Factorizing all_cores;
+    impl_->llt.factorize(A);
+  }
   return impl_->llt.info() == Eigen::Success;
 }
 
