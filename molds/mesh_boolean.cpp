@@ -92,6 +92,8 @@ SurfaceMesh mesh_intersection(const SurfaceMesh& a, const SurfaceMesh& b)
   return boolean(a, b, "intersection", [](Mesh& A, Mesh& B, Mesh& out) { return PMP::corefine_and_compute_intersection(A, B, out); });
 }
 
+SurfaceMesh without_degenerate_faces(const SurfaceMesh& m) { return from_cgal(to_cgal(m)); }
+
 std::pair<SurfaceMesh, SurfaceMesh> split_by_plane(const SurfaceMesh& m, const Eigen::Vector3d& p, const Eigen::Vector3d& n)
 {
   const auto half = [&](double sign) {

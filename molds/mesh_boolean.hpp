@@ -26,6 +26,10 @@ SurfaceMesh mesh_union_touching(const SurfaceMesh& a, SurfaceMesh b, const Eigen
 std::pair<SurfaceMesh, SurfaceMesh> split_by_plane(const SurfaceMesh& m, const Eigen::Vector3d& point,
                                                    const Eigen::Vector3d& normal);
 
+/// m without its zero-area faces (CGAL's remove_degenerate_faces, which keeps the surface closed).
+/// Rotating a boolean's result can round a sliver's three corners onto one line.
+SurfaceMesh without_degenerate_faces(const SurfaceMesh& m);
+
 /// Connected surface components: a solid with an internal void has two.
 int count_shells(const SurfaceMesh& m);
 /// The connected surface components, each a mesh of its own, in the order of their first face.

@@ -258,8 +258,14 @@ Mold make_mold(const SurfaceMesh& cavity_world, const Parting& parting, const st
     upper = mesh_difference(upper, key_solid(base, radius + o.key_clearance, o.key_shape, sink));  // clearance all round
     mold.keys.push_back(R.transpose() * base);
   }
-  mold.parts.push_back({shot + "-lower", transformed(std::move(lower), R.transpose())});
-  mold.parts.push_back({shot + "-upper", transformed(std::move(upper), R.transpose())});
+  // Back to the body's frame. Unless R is the identity, the rotation rounds every vertex, and a
+  // corefinement's sliver can come out with its three corners on one line (a 10-sided arm parted
+  // across y: two such faces in shot 1's upper half).
+  const auto back = [&](SurfaceMesh part) {
+    return R.isIdentity(0) ? part : without_degenerate_faces(transformed(std::move(part), R.transpose()));
+  };
+  mold.parts.push_back({shot + "-lower", back(std::move(lower))});
+  mold.parts.push_back({shot + "-upper", back(std::move(upper))});
   return mold;
 }
 

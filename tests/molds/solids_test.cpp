@@ -75,6 +75,30 @@ TEST(MeshBoolean, UnionOfSolidsSharingOnlyAnEdgeNudgesTheSecond)
   EXPECT_NEAR(exact.vertices.col(2).minCoeff(), -2 * mm, 1e-15);
 }
 
+TEST(MeshBoolean, DegenerateFacesAreRemovedAndTheSolidStaysClosed)
+{
+  // A box whose edge AB gets its midpoint M in one of its two faces: A-M-C and M-B-C replace A-B-C,
+  // and the face A-B-M, its corners on one line, closes the surface (as a rotation can round a
+  // corefinement's sliver).
+  SurfaceMesh m = box_solid({0, 0, 0}, {0.02, 0.01, 0.01});
+  const int f = 0, a = m.faces(f, 0), b = m.faces(f, 1), c = m.faces(f, 2);
+  const Eigen::Index mid = m.num_vertices();
+  m.vertices.conservativeResize(mid + 1, 3);
+  m.vertices.row(mid) = (m.vertices.row(a) + m.vertices.row(b)) / 2;
+  m.faces.row(f) << a, static_cast<int>(mid), c;
+  m.faces.conservativeResize(m.num_faces() + 2, 3);
+  m.faces.row(m.num_faces() - 2) << static_cast<int>(mid), b, c;
+  m.faces.row(m.num_faces() - 1) << a, b, static_cast<int>(mid);
+  const SurfaceCheck before = check_surface(m);
+  ASSERT_EQ(before.problems.size(), 1u);
+  EXPECT_EQ(before.problems.front().message, "has 1 degenerate (zero-area) faces");
+
+  const SurfaceMesh cleaned = without_degenerate_faces(m);
+  expect_valid_solid(cleaned, "cleaned");
+  EXPECT_NEAR(signed_volume(cleaned), 0.02 * 0.01 * 0.01, 1e-18);
+  EXPECT_EQ(count_shells(cleaned), 1);
+}
+
 TEST(LevelSet, GrooveVolumeMatchesTheAnalyticValue)
 {
   // A 100 × 20 × 20 mm box, a straight fiber along its axis, a groove of radius 1.8 mm swept to +z:
