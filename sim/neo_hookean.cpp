@@ -171,7 +171,7 @@ Eigen::Index NeoHookean::chunk_size() const { return std::max<Eigen::Index>(1024
 
 void NeoHookean::add_hessian(const Eigen::VectorXd& x, SparseHessian& H, bool project) const
 {
-  // The exact stress derivative goes to the assembly as the five numbers it is made of, the
+  // The exact stress derivative goes to the assembly as the 12 numbers it is made of, the
   // projected one as its 81 entries.
   std::vector<NeoHookeanPoint> exact(project ? 0 : static_cast<std::size_t>(qp_.size()));
   std::vector<StiffnessLayout> W(project ? static_cast<std::size_t>(qp_.size()) : 0);

@@ -32,7 +32,7 @@ struct StiffnessColumn {
 void add_point_to_column(const double* W, const Eigen::Vector3d& gj, const Eigen::Vector3d* gi, const int* nodes,
                          int count, const StiffnessColumn& column, bool simd = true);
 
-/// The exact Neo-Hookean stress derivative at a point in the five numbers it is made of:
+/// The exact Neo-Hookean stress derivative at a point in the 12 numbers it is made of:
 ///   V ∂P_ac/∂F_bd = Vμ δ_ab δ_cd + Vλ G_ac G_bd + Vc G_ad G_bc,  G = F⁻ᵀ, c = μ − λ ln J
 /// (neo_hookean.hpp). 12 doubles instead of the layout's 81: the assembly reads each point once per
 /// node column it touches, and at 30 nodes per point those reads are most of its memory traffic.
@@ -43,7 +43,7 @@ struct NeoHookeanPoint {
 
 /// The same sum as add_point_to_column with W = stiffness_layout(V ∂P/∂F) of that point, with
 /// T[b][a][c] = Σ_d V ∂P_ac/∂F_bd ∇N_j,d = Vμ δ_ab ∇N_j,c + Vλ G_ac (G∇N_j)_b + Vc G_bc (G∇N_j)_a
-/// formed from the five numbers.
+/// formed from those 12 numbers.
 void add_neo_hookean_point_to_column(const NeoHookeanPoint& p, const Eigen::Vector3d& gj, const Eigen::Vector3d* gi,
                                      const int* nodes, int count, const StiffnessColumn& column, bool simd = true);
 
