@@ -46,6 +46,20 @@ struct Column {
   }
 };
 
+/// The point couples node j (gradient gj) to nodes 1, 2 and 4 (gradients gi).
+struct Coupling {
+  Eigen::Vector3d gj;
+  std::vector<Eigen::Vector3d> gi;
+  std::vector<int> nodes;
+};
+
+Coupling random_coupling(std::mt19937& rng)
+{
+  std::uniform_real_distribution<double> u(-1, 1);
+  const auto random = [&] { return Eigen::Vector3d(u(rng), u(rng), u(rng)); };
+  return {random(), {random(), random(), random()}, {1, 2, 4}};
+}
+
 TEST(StiffnessColumn, BothKernelsAddTheContractionOfTheStressDerivativeAndStayInTheColumn)
 {
   std::mt19937 rng(7);
@@ -54,9 +68,7 @@ TEST(StiffnessColumn, BothKernelsAddTheContractionOfTheStressDerivativeAndStayIn
   for (int r = 0; r < 9; ++r)
     for (int s = 0; s < 9; ++s) VC(r, s) = u(rng);
   const StiffnessLayout W = stiffness_layout(VC);
-  const Eigen::Vector3d gj(u(rng), u(rng), u(rng));
-  const std::vector<Eigen::Vector3d> gi{{u(rng), u(rng), u(rng)}, {u(rng), u(rng), u(rng)}, {u(rng), u(rng), u(rng)}};
-  const std::vector<int> nodes{1, 2, 4};
+  const auto [gj, gi, nodes] = random_coupling(rng);
 
   for (const bool simd : {false, true})
     for (const bool padded : {false, true}) {
@@ -101,9 +113,7 @@ TEST(StiffnessColumn, TheNeoHookeanKernelAddsWhatTheGeneralOneAddsForItsStressDe
   const Eigen::Matrix3d G = F.inverse().transpose();
   const NeoHookeanPoint point{G, V * lame.mu, V * lame.lambda, V * (lame.mu - lame.lambda * std::log(F.determinant()))};
   const StiffnessLayout W = stiffness_layout(V * neo_hookean_stress_derivative(F, lame));
-  const Eigen::Vector3d gj(u(rng), u(rng), u(rng));
-  const std::vector<Eigen::Vector3d> gi{{u(rng), u(rng), u(rng)}, {u(rng), u(rng), u(rng)}, {u(rng), u(rng), u(rng)}};
-  const std::vector<int> nodes{1, 2, 4};
+  const auto [gj, gi, nodes] = random_coupling(rng);
   for (const bool simd : {false, true})
     for (const bool padded : {false, true}) {
       SCOPED_TRACE(simd ? "AVX2" : "portable");
