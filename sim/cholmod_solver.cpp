@@ -15,10 +15,10 @@ namespace {
 /// sched_yield for about 0.1 s after each call, and on 2 cores they took that time from the
 /// assembly's oneTBB threads when every BLAS call had 2 threads (session 9: bench/sim's twisting
 /// bar 4.2 → 3.6–4.0 s with one). So BLAS runs on one thread, except inside a factorization: there
-/// all cores serve it, as nothing else runs meanwhile (session 14, bench/sim, three runs each way:
-/// per factorization the bar at the paper's tet count 0.035–0.050 → 0.029–0.043 s, the 4 mm
-/// cantilever 0.090–0.098 → 0.070–0.073 s, the fem-p2 cantilever 0.178–0.181 → 0.146–0.176 s; the
-/// assemblies after them no slower). A user's OPENBLAS_NUM_THREADS is left alone; another BLAS is
+/// all cores serve it, as nothing else runs meanwhile (session 14, bench/sim, per factorization:
+/// the bar at the paper's tet count 0.035–0.050 → 0.029–0.043 s in six runs each way, the 4 mm
+/// cantilever 0.090–0.098 → 0.070–0.073 s and the fem-p2 cantilever 0.178–0.181 → 0.146–0.176 s
+/// in three; the assemblies after them no slower). A user's OPENBLAS_NUM_THREADS is left alone; another BLAS is
 /// not touched.
 class BlasThreads {
 public:
