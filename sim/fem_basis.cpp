@@ -1,5 +1,8 @@
 #include "sim/fem_basis.hpp"
 
+#include <algorithm>
+#include <cmath>
+
 #include <Eigen/LU>
 #include <nanoflann.hpp>
 
@@ -7,6 +10,7 @@ namespace fibermold {
 
 struct FemBasis::Locator {
   Eigen::MatrixX3d centroids;
+  double reach = 0;  ///< the largest distance from a tet's centroid to one of its corners
   std::unique_ptr<nanoflann::KDTreeEigenMatrixAdaptor<Eigen::MatrixX3d>> tree;
 };
 
@@ -17,6 +21,8 @@ FemBasis::FemBasis(const TetMesh& mesh) : mesh_(mesh), quadratic_(mesh.nodes_per
     Eigen::RowVector3d c = Eigen::RowVector3d::Zero();
     for (int k = 0; k < 4; ++k) c += mesh.nodes.row(mesh.tets(t, k));
     locator_->centroids.row(t) = c / 4;
+    for (int k = 0; k < 4; ++k)
+      locator_->reach = std::max(locator_->reach, (mesh.nodes.row(mesh.tets(t, k)) - c / 4).norm());
   }
   locator_->tree = std::make_unique<nanoflann::KDTreeEigenMatrixAdaptor<Eigen::MatrixX3d>>(3, std::cref(locator_->centroids), 16);
 }
@@ -39,20 +45,30 @@ Eigen::Vector4d FemBasis::barycentric(Eigen::Index t, const Eigen::Vector3d& X, 
 
 Eigen::Index FemBasis::locate(const Eigen::Vector3d& X) const
 {
-  const std::size_t k = std::min<std::size_t>(32, static_cast<std::size_t>(mesh_.num_tets()));
-  std::vector<Eigen::Index> index(k);
-  std::vector<double> distance(k);
-  if (k > 0) locator_->tree->index->knnSearch(X.data(), k, index.data(), distance.data());
-  Eigen::Index best = index.empty() ? 0 : index[0];
+  // The tet holding X is most often among the 32 with the nearest centroids; where tets of very
+  // different sizes meet, it can be further down that list (on a 16 mm cylinder meshed at 8 mm, the
+  // 34th). Any tet holding X has its centroid within `reach` of X: those are searched next.
+  Eigen::Index best = 0;
   double best_inside = -HUGE_VAL;
-  for (Eigen::Index t : index) {
+  const auto consider = [&](Eigen::Index t) {
     const double inside = barycentric(t, X).minCoeff();
-    if (inside >= 0) return t;
     if (inside > best_inside) {
       best_inside = inside;
       best = t;
     }
-  }
+    return inside >= 0;
+  };
+  const std::size_t k = std::min<std::size_t>(32, static_cast<std::size_t>(mesh_.num_tets()));
+  std::vector<Eigen::Index> index(k);
+  std::vector<double> distance(k);
+  if (k > 0) locator_->tree->index->knnSearch(X.data(), k, index.data(), distance.data());
+  for (Eigen::Index t : index)
+    if (consider(t)) return t;
+  std::vector<std::pair<Eigen::Index, double>> found;
+  const double r = locator_->reach * (1 + 1e-9);
+  locator_->tree->index->radiusSearch(X.data(), r * r, found, nanoflann::SearchParams(32, 0, false));
+  for (const auto& [t, squared] : found)
+    if (consider(t)) return t;
   return best;
 }
 

@@ -102,6 +102,34 @@ TEST_P(ShapeFunctions, DerivativesMatchFiniteDifferences)
 
 INSTANTIATE_TEST_SUITE_P(Bases, ShapeFunctions, ::testing::Values("mls-linear", "mls-quadratic", "fem-p1", "fem-p2"));
 
+TEST(FemBasis, LocatesAPointInALargeTetBesideManySmallOnes)
+{
+  // A large tet with X near one corner, and 40 small tets just outside it whose centroids lie
+  // nearer X than the large tet's (found on a cylinder's mesh: the tet holding a point of the axis
+  // was the 34th by centroid distance).
+  TetMesh mesh;
+  std::vector<Eigen::Vector3d> nodes{{0, 0, 0}, {0.1, 0, 0}, {0, 0.1, 0}, {0, 0, 0.1}};
+  std::vector<Eigen::Vector4i> tets{{0, 1, 2, 3}};
+  for (int k = 0; k < 40; ++k) {
+    const Eigen::Vector3d o(-0.004, 0.001 * (k % 8), 0.001 * (k / 8));
+    const int n = static_cast<int>(nodes.size());
+    for (const Eigen::Vector3d& e : {Eigen::Vector3d(0, 0, 0), Eigen::Vector3d(0.001, 0, 0),
+                                     Eigen::Vector3d(0, 0.001, 0), Eigen::Vector3d(0, 0, 0.001)})
+      nodes.push_back(o + e);
+    tets.emplace_back(n, n + 1, n + 2, n + 3);
+  }
+  mesh.nodes.resize(static_cast<Eigen::Index>(nodes.size()), 3);
+  for (std::size_t i = 0; i < nodes.size(); ++i) mesh.nodes.row(static_cast<Eigen::Index>(i)) = nodes[i];
+  mesh.tets.resize(static_cast<Eigen::Index>(tets.size()), 4);
+  for (std::size_t t = 0; t < tets.size(); ++t) mesh.tets.row(static_cast<Eigen::Index>(t)) = tets[t];
+  const FemBasis basis(mesh);
+  const Eigen::Vector3d X(0.001, 0.002, 0.002);
+  EXPECT_EQ(basis.locate(X), 0);
+  EXPECT_GE(basis.barycentric(basis.locate(X), X).minCoeff(), 0.0);
+  const Eigen::Vector3d outside(-0.01, 0.002, 0.002);  // outside every tet: the least-outside one
+  EXPECT_LT(basis.barycentric(basis.locate(outside), outside).minCoeff(), 0.0);
+}
+
 TEST(MlsBasis, SmoothAcrossTheSupportBoundary)
 {
   // Walk a node out of the support: its N, ∇N and ∇∇N go to zero continuously (C³ weight).
