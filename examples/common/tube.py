@@ -56,17 +56,20 @@ def rotate(v, axis, angle):
 class BentCentreline:
     """The x axis, from x = 0 (held: position and frame unchanged) to `length`, bent with the
     curvatures ky(s) toward +y and kz(s) toward +z (1/mm) of a rotation-minimizing frame, s the arc
-    length. The centreline does not stretch: a point (x, y, z) of the straight body goes to
-    c(x) + y U(x) + z V(x)."""
+    length. The centreline shortens uniformly by the fraction `contraction` (0: it does not stretch):
+    a point (x, y, z) of the straight body goes to c(s) + y U(s) + z V(s), s = (1 − contraction) x,
+    where the curvatures are ky(x) and kz(x). The cross-sections keep their shape."""
 
-    def __init__(self, length, ky, kz, step=0.05):
+    def __init__(self, length, ky, kz, step=0.05, contraction=0.0):
         self.step = step
+        self.scale = 1.0 - contraction
+        length *= self.scale
         T, U, V, c = (1.0, 0.0, 0.0), (0.0, 1.0, 0.0), (0.0, 0.0, 1.0), (0.0, 0.0, 0.0)
         self.frames = [(c, T, U, V)]
         for i in range(math.ceil(length / step)):
-            s = (i + 0.5) * step
+            x = (i + 0.5) * step / self.scale
             # dT/ds = ky U + kz V: an angular velocity ky V − kz U, applied to the whole frame.
-            w = tuple(ky(s) * V[j] - kz(s) * U[j] for j in range(3))
+            w = tuple(ky(x) * V[j] - kz(x) * U[j] for j in range(3))
             angle = math.sqrt(sum(a * a for a in w)) * step
             T1, U1, V1 = T, U, V
             if angle > 0:
@@ -83,7 +86,7 @@ class BentCentreline:
         return [tuple((1 - t) * p + t * q for p, q in zip(u, v)) for u, v in zip(a, b)]
 
     def __call__(self, p):
-        c, _, U, V = self.frame(p[0])
+        c, _, U, V = self.frame(self.scale * p[0])
         return tuple(c[j] + p[1] * U[j] + p[2] * V[j] for j in range(3))
 
 

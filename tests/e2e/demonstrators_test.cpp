@@ -1,8 +1,8 @@
 // The paper's demonstrators (examples/, section VIII) as a user runs them, on coarser meshes and
 // shorter optimizations than the examples so that CI can afford them: each runs `fibermold make`
 // to the end (the cantilever, which has no muscle, `simulate`; the tip-only tentacle to collide),
-// every mold part passes its checks, and the target errors are held to the paper's where it
-// gives them and ours where our target differs from its unpublished one.
+// every mold part passes its checks, and the target errors are held to 1.5× the paper's where it
+// gives them and to ours where it does not (the walking robot).
 #include <cstdio>
 #include <filesystem>
 #include <map>
@@ -119,21 +119,22 @@ TEST(Demonstrators, TwistingBarTwistsItsFreeEndAndMakesMolds)
 
 TEST(Demonstrators, ContinuumRobotBendsInSpaceMakesMoldsAndRerunsOnlyMoldsAfterAMoldEdit)
 {
+  // Paper, section VIII-D: errors on the tracking curve RMSE 1.7 mm, max 3.2 mm (on its own target;
+  // ours is made by make_robot.py). The full example reaches 0.59 and 1.24 mm in 178 iterations;
+  // this coarse one 1.62 and 2.66 mm after its 100.
   test::TempDir dir;
   const Edits coarse{{"edge_length = 8.0", "edge_length = 10.0"},
-                     {"max_iterations = 200", "max_iterations = 40"},
+                     {"max_iterations = 200", "max_iterations = 100"},
                      {"voxel = 0.25", "voxel = 0.3"}};
   nlohmann::json report;
   ASSERT_NO_FATAL_FAILURE(make_example("continuum-robot", dir.path(), coarse, report));
   const auto t = report["targets"]["spatial-bend"];
-  std::printf("continuum robot: tracking RMSE %.2f → %.2f mm, max %.2f → %.2f mm (paper 1.7, 3.2 on its own target)\n",
+  std::printf("continuum robot: tracking RMSE %.2f → %.2f mm, max %.2f → %.2f mm (paper 1.7, 3.2)\n",
               t["start"]["rmse_mm"].get<double>(), t["rmse_mm"].get<double>(), t["start"]["max_error_mm"].get<double>(),
               t["max_error_mm"].get<double>());
-  // Our target moves the tip 232 mm; the full example reaches 4.3 mm RMSE and 7.4 mm max, this
-  // coarse one 6.7 and 11.3 after its 40 iterations.
-  EXPECT_GT(t["start"]["rmse_mm"].get<double>(), 80.0);
-  EXPECT_LT(t["rmse_mm"].get<double>(), 8.0);
-  EXPECT_LT(t["max_error_mm"].get<double>(), 13.0);
+  EXPECT_GT(t["start"]["rmse_mm"].get<double>(), 80.0);  // the target moves the tip 221 mm
+  EXPECT_LT(t["rmse_mm"].get<double>(), 1.5 * 1.7);
+  EXPECT_LT(t["max_error_mm"].get<double>(), 1.5 * 3.2);
 
   Edits thicker = coarse;
   thicker.emplace_back("wall = 4.0", "wall = 5.0");
