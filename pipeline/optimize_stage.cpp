@@ -246,7 +246,7 @@ void OptimizeStage::run(StageContext& ctx) const
        {{"solves", problem.newton().solves},
         {"assemblies", problem.newton().assemblies},
         {"factorizations", problem.newton().factorizations},
-        {"symbolic_analyses", problem.simulation().solver().analyses()},
+        {"symbolic_analyses", problem.simulation().symbolic_analyses()},
         {"seconds_assembly", problem.newton().seconds_assembly},
         {"seconds_factorization", problem.newton().seconds_factorization}}},
       {"seconds", {{"total", since(started)}, {"simulation", problem.seconds_simulation()}, {"adjoint", problem.seconds_adjoint()}}},

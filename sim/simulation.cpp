@@ -77,7 +77,7 @@ Eigen::VectorXd Simulation::load_weights() const { return nodal_volumes(qp_, mes
 
 void Simulation::add_energy(std::unique_ptr<Energy> energy)
 {
-  if (solver_) throw std::logic_error("Simulation::add_energy after the first solve");
+  if (!solvers_.empty()) throw std::logic_error("Simulation::add_energy after the first solve");
   energies_.push_back(std::move(energy));
 }
 
@@ -86,17 +86,35 @@ void Simulation::set_variable_energies(std::vector<std::unique_ptr<Energy>> ener
   std::vector<const Energy*> terms;
   for (const auto& e : energies) terms.push_back(e.get());
   solver().set_variable_energies(terms);  // before the old terms it points to are freed
-  variable_energies_ = std::move(energies);
+  variable_energies_[slot_] = std::move(energies);
+}
+
+void Simulation::use_solver(int slot)
+{
+  if (slot < 0) throw std::invalid_argument("Simulation::use_solver: a negative slot");
+  slot_ = static_cast<std::size_t>(slot);
 }
 
 NewtonSolver& Simulation::solver()
 {
-  if (!solver_) {
+  if (solvers_.size() <= slot_) {
+    solvers_.resize(slot_ + 1);
+    variable_energies_.resize(slot_ + 1);
+  }
+  if (!solvers_[slot_]) {
     std::vector<const Energy*> terms;
     for (const auto& e : energies_) terms.push_back(e.get());
-    solver_ = std::make_unique<NewtonSolver>(std::move(terms), mesh_.nodes.rows());
+    solvers_[slot_] = std::make_unique<NewtonSolver>(std::move(terms), mesh_.nodes.rows());
   }
-  return *solver_;
+  return *solvers_[slot_];
+}
+
+int Simulation::symbolic_analyses() const
+{
+  int n = 0;
+  for (const auto& s : solvers_)
+    if (s) n += s->analyses();
+  return n;
 }
 
 NewtonSummary Simulation::solve(Eigen::VectorXd& x, Progress& progress)

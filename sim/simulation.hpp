@@ -51,9 +51,15 @@ public:
   /// or pressures change between solves, as in optimization.
   void set_variable_energies(std::vector<std::unique_ptr<Energy>> energies);
 
+  /// Later calls use Newton solver `slot` (0, 1, …; made on first use). Each keeps its own
+  /// variable terms and factorization, so that solves alternating between loads (the optimizer's
+  /// targets) each start on the factorization their own last solve ended with.
+  void use_solver(int slot);
   /// Equilibrium from x (warm start), in place.
   NewtonSummary solve(Eigen::VectorXd& x, Progress& progress);
   NewtonSolver& solver();
+  /// Symbolic analyses of all the solvers so far.
+  int symbolic_analyses() const;
 
   /// Deformed position of each node's rest position: x(X_i) = Σ_j N_j(X_i) x_j (MLS approximates).
   Eigen::MatrixX3d deformed_nodes(const Eigen::VectorXd& x) const;
@@ -65,8 +71,10 @@ private:
   std::unique_ptr<Basis> basis_;
   QuadraturePoints qp_;
   Eigen::VectorXd masses_;
-  std::vector<std::unique_ptr<Energy>> energies_, variable_energies_;
-  std::unique_ptr<NewtonSolver> solver_;
+  std::vector<std::unique_ptr<Energy>> energies_;
+  std::vector<std::vector<std::unique_ptr<Energy>>> variable_energies_;  ///< per solver
+  std::vector<std::unique_ptr<NewtonSolver>> solvers_;
+  std::size_t slot_ = 0;
   std::vector<ShapeEval> at_nodes_;
 };
 
