@@ -1,5 +1,6 @@
 #include "optimize/bfgs.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <vector>
 #include <stdexcept>
@@ -11,6 +12,9 @@
 namespace fibermold {
 
 namespace {
+
+/// Line-search trials beyond which the next search starts shorter.
+constexpr int kManyTrials = 4;
 
 /// The objective as the line search calls it, remembering the best point it saw.
 struct Tracked {
@@ -70,6 +74,10 @@ BfgsResult minimize_bfgs(const Objective& f, Eigen::VectorXd x, const BfgsOption
   std::vector<double> values{fx};  // f after each iteration
   Eigen::MatrixXd H = Eigen::MatrixXd::Identity(n, n);
   bool scaled = false;  // H is the identity, not yet scaled by eq. 6.20
+  // The first trial of a BFGS line search, as a fraction of the full step: 1, or 4× the last
+  // search's step where that one needed many trials (near a design where f jumps up, the walking
+  // robot's last line searches each spent their 20 evaluations halving from 1).
+  double first_trial = 1;
   auto finish = [&](bool converged, std::string message) {
     result.x = tracked.best_x;
     result.value = tracked.best;
@@ -95,9 +103,12 @@ BfgsResult minimize_bfgs(const Objective& f, Eigen::VectorXd x, const BfgsOption
       }
       const double largest = d.cwiseAbs().maxCoeff();
       param.max_step = options.max_step / largest;
-      double step = scaled ? std::min(1.0, param.max_step) : std::min(1.0, 1.0 / largest);
+      double step = scaled ? std::min({1.0, param.max_step, first_trial}) : std::min(1.0, 1.0 / largest);
       const Eigen::VectorXd xp = x, gp = g;
       const double fp = fx;
+      const bool along_bfgs = scaled;
+      const int evaluations_before = tracked.evaluations;
+      bool exhausted = false;  // the line search used all its evaluations
       try {
         LBFGSpp::LineSearchBacktracking<double>::LineSearch(tracked, fx, x, g, step, d, xp, param);
       } catch (const Interrupted&) {
@@ -115,7 +126,9 @@ BfgsResult minimize_bfgs(const Objective& f, Eigen::VectorXd x, const BfgsOption
           continue;
         }
         step = (x - xp).norm() / d.norm();
+        exhausted = true;
       }
+      first_trial = along_bfgs && tracked.evaluations - evaluations_before > kManyTrials ? 4 * step : 1;
       ++result.iterations;
       const Eigen::VectorXd s = x - xp, y = g - gp;
       if (y.dot(s) > 1e-12 * s.norm() * y.norm()) {
@@ -127,6 +140,17 @@ BfgsResult minimize_bfgs(const Objective& f, Eigen::VectorXd x, const BfgsOption
       }
       if (on_iteration) on_iteration({result.iterations, fx, g.norm(), step * d.norm(), tracked.evaluations}, x);
       values.push_back(fx);
+      // All its evaluations for less than a window's tolerance spread over its iterations: where f
+      // jumps up within a short step (a body that snaps to another equilibrium just past this
+      // design), every later line search does the same; the walking robot spent its last 45 s
+      // there. Steepest descent gets one try, then the run stops.
+      if (exhausted && fp - fx <= options.relative_tolerance / options.window * std::abs(fp)) {
+        if (!along_bfgs)
+          return finish(true, fmt::format("the line search used all {} evaluations and f fell by only {:.3g} of its value",
+                                          options.max_line_search, (fp - fx) / std::abs(fp)));
+        H.setIdentity();
+        scaled = false;
+      }
       if (static_cast<int>(values.size()) > options.window) {
         const double before = values[values.size() - 1 - options.window];
         if (before - fx <= options.relative_tolerance * std::abs(fx))

@@ -1,6 +1,7 @@
-// BFGS with LBFGSpp's line search: the Rosenbrock valley to 1e-6, and a wall of +∞ (a failed
-// simulation) that the line search backs away from.
+// BFGS with LBFGSpp's line search: the Rosenbrock valley to 1e-6, a wall of +∞ (a failed
+// simulation) that the line search backs away from, and a jump up (a snap) it stops at.
 #include <cmath>
+#include <cstdio>
 
 #include <gtest/gtest.h>
 
@@ -57,6 +58,29 @@ TEST(Bfgs, BacksAwayFromInfiniteValues)
   EXPECT_TRUE(r.converged) << r.message;
   EXPECT_GT(infinite, 0) << "the test should reach the undefined region";
   EXPECT_LT((r.x - Eigen::Vector2d(1.5, 0)).norm(), 1e-5);
+}
+
+TEST(Bfgs, StopsWhereTheObjectiveJumpsUpJustAhead)
+{
+  // A slope down to x = 1, where f jumps up by 10 (a body that snaps to another equilibrium
+  // there): the best design sits at the jump. Each line search finds a little less short of it
+  // and spends all its 20 evaluations (Wolfe's extensions cross the jump); the run stops at the
+  // first that gains almost nothing: 101 evaluations, where it took 161 before that rule.
+  int evaluations = 0;
+  const Objective f = [&](const Eigen::VectorXd& x, Eigen::VectorXd& g) {
+    ++evaluations;
+    g = Eigen::Vector2d(-1, 2 * x[1]);
+    return 10 - x[0] + x[1] * x[1] + (x[0] > 1 ? 10.0 : 0.0);
+  };
+  NullProgress progress;
+  BfgsOptions o;
+  o.max_iterations = 1000;
+  const BfgsResult r = minimize_bfgs(f, Eigen::Vector2d(-1, 0), o, nullptr, progress);
+  EXPECT_TRUE(r.converged) << r.message;
+  EXPECT_NE(r.message.find("used all 20 evaluations"), std::string::npos) << r.message;
+  EXPECT_NEAR(r.x[0], 1.0, 1e-3);
+  std::printf("%d evaluations: %s\n", evaluations, r.message.c_str());
+  EXPECT_LE(evaluations, 121);
 }
 
 TEST(Bfgs, RefusesAnInfiniteStart)
