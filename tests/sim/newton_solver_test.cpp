@@ -168,4 +168,29 @@ TEST_F(MuscleBar, ASolveFromWhereTheLastEndedBeginsOnItsFactorization)
 }
 
 } // namespace
+TEST_F(MuscleBar, SolvesAlternatingBetweenTwoLoadsEachBeginOnTheirOwnSolversFactorization)
+{
+  // The optimizer's two targets: 150 and 250 kPa, each warm-started from its own last equilibrium.
+  // On solvers of their own each solve after the first assembles only for its finishing step; on
+  // one shared solver each starts on the other load's factorization and assembles at its start too.
+  NullProgress progress;
+  const auto alternate = [&](bool own_solvers) {
+    std::vector<Eigen::VectorXd> x(2, sim.rest());
+    int assemblies = 0;
+    for (int round = 0; round < 3; ++round)
+      for (int load = 0; load < 2; ++load) {
+        sim.use_solver(own_solvers ? 2 + load : 1);
+        set_muscle((load == 0 ? 150e3 : 250e3) + 1e3 * round);
+        const NewtonSummary s = sim.solve(x[load], progress);
+        EXPECT_TRUE(s.converged) << s.brief();
+        if (round > 0) assemblies += s.assemblies;
+      }
+    return assemblies;
+  };
+  const int shared = alternate(false), own = alternate(true);
+  std::printf("rounds 2 and 3, 4 solves: %d assemblies on one solver, %d on one per load\n", shared, own);
+  EXPECT_EQ(own, 4);
+  EXPECT_EQ(shared, 8);
+}
+
 } // namespace fibermold
