@@ -159,11 +159,17 @@ std::vector<std::unique_ptr<MuscleEnergy>> RoutingProblem::muscles(const Routing
   return out;
 }
 
-bool RoutingProblem::solve(int t, Eigen::VectorXd& x)
+bool RoutingProblem::solve(int t, std::vector<std::unique_ptr<Energy>> energies, Eigen::VectorXd& x)
 {
+  sim_.use_solver(solver_slot(t));
+  sim_.set_variable_energies(std::move(energies));
   NullProgress progress;  // still honours Ctrl-C
   const auto start = Clock::now();
-  x = warm_[t];
+  // From the best design's equilibrium, not the last trial's: a body with more than one
+  // equilibrium (the walking robot's legs) can settle on another branch at a long trial step,
+  // and the trials after it would start on that branch and score the base design higher than
+  // it was (by 0.096 of 2.13 at the stall of session 14, where the line search then failed).
+  x = best_warm_.empty() ? warm_[t] : best_warm_[t];
   NewtonSummary s = sim_.solve(x, progress);
   newton_ += s;
   if (!s.converged) {  // a warm start far from the answer can fail where the rest state does not
@@ -180,11 +186,8 @@ Eigen::VectorXd RoutingProblem::equilibrium(const Routing& r, int t)
 {
   std::vector<std::unique_ptr<Energy>> energies;
   for (auto& m : muscles(r, t)) energies.push_back(std::move(m));
-  sim_.use_solver(solver_slot(t));
-  sim_.set_variable_energies(std::move(energies));
-  if (!best_warm_.empty()) warm_[t] = best_warm_[t];
   Eigen::VectorXd x;
-  if (!solve(t, x)) throw std::runtime_error(fmt::format("no equilibrium for target {}", t + 1));
+  if (!solve(t, std::move(energies), x)) throw std::runtime_error(fmt::format("no equilibrium for target {}", t + 1));
   return x;
 }
 
@@ -242,15 +245,8 @@ double RoutingProblem::evaluate(const Eigen::VectorXd& z, Eigen::VectorXd* gradi
       m.push_back(e.get());
       energies.push_back(std::move(e));
     }
-    sim_.use_solver(solver_slot(t));
-    sim_.set_variable_energies(std::move(energies));
-    // From the best design's equilibrium, not the last trial's: a body with more than one
-    // equilibrium (the walking robot's legs) can settle on another branch at a long trial step,
-    // and the trials after it would start on that branch and score the base design higher than
-    // it was (by 0.096 of 2.13 at the stall of session 14, where the line search then failed).
-    if (!best_warm_.empty()) warm_[t] = best_warm_[t];
     Eigen::VectorXd x;
-    if (!solve(t, x)) return HUGE_VAL;
+    if (!solve(t, std::move(energies), x)) return HUGE_VAL;
     terms.per_target[t] = distances_[t].value(x);
     terms.distance += terms.per_target[t];
     if (!gradient) continue;

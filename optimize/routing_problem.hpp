@@ -121,7 +121,8 @@ private:
     int fiber, index, component;  ///< index: the point, or the target for a pressure
   };
   double scale(const Entry& e) const;
-  bool solve(int t, Eigen::VectorXd& x);
+  /// Equilibrium x of target t with its muscles' `energies`, warm-started; whether Newton converged.
+  bool solve(int t, std::vector<std::unique_ptr<Energy>> energies, Eigen::VectorXd& x);
   double regularizers(const Routing& r, Eigen::VectorXd* gradient, RoutingTerms& terms) const;
   void add_fiber_gradient(int f, const FiberParameterGradient& g, double weight, int target, Eigen::VectorXd& out) const;
   bool fibers_inside(const Routing& r) const;
