@@ -120,7 +120,7 @@ TEST(Demonstrators, TwistingBarTwistsItsFreeEndAndMakesMolds)
 TEST(Demonstrators, ContinuumRobotBendsInSpaceMakesMoldsAndRerunsOnlyMoldsAfterAMoldEdit)
 {
   // Paper, section VIII-D: errors on the tracking curve RMSE 1.7 mm, max 3.2 mm (on its own target;
-  // ours is made by make_robot.py). The full example reaches 0.59 and 1.24 mm in 178 iterations;
+  // ours is made by make_robot.py). The full example reaches 0.59 and 1.23 mm in 183 iterations;
   // this coarse one 1.62 and 2.66 mm after its 100.
   test::TempDir dir;
   const Edits coarse{{"edge_length = 8.0", "edge_length = 10.0"},
