@@ -43,13 +43,16 @@ Placement lay_flat(const SurfaceMesh& part, const Eigen::Vector3d& printer)
   const Eigen::Vector3d n = largest_flat(part, p.flat_area);
   const Eigen::Matrix3d down = Eigen::Quaterniond::FromTwoVectors(n, -Eigen::Vector3d::UnitZ()).toRotationMatrix();
   Eigen::MatrixX3d v = part.vertices * down.transpose();
+  p.rotation = down;
   // Turn about z so that the longer side lies along the printer's longer bed axis.
   const Eigen::Vector3d extent = v.colwise().maxCoeff() - v.colwise().minCoeff();
   if ((extent.x() < extent.y()) != (printer.x() < printer.y())) {
     const Eigen::Matrix3d quarter = Eigen::AngleAxisd(M_PI / 2, Eigen::Vector3d::UnitZ()).toRotationMatrix();
     v = (v * quarter.transpose()).eval();
+    p.rotation = quarter * down;
   }
-  v = (v.rowwise() - v.colwise().minCoeff()).eval();
+  p.translation = -v.colwise().minCoeff().transpose();
+  v = (v.rowwise() + p.translation.transpose()).eval();
   p.part = part;
   p.part.vertices = v;
   p.size = v.colwise().maxCoeff();

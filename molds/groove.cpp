@@ -73,4 +73,31 @@ GrooveBody groove_body(const SurfaceMesh& body, const std::vector<std::vector<Ei
   return meshed(solid, adaptivity);
 }
 
+FillRegions fill_regions(const SurfaceMesh& cavity, const std::vector<std::vector<Eigen::Vector3d>>& fibers, double radius,
+                         double muscle_radius, const Eigen::Vector3d& pull_in, double voxel, double taper)
+{
+  const Eigen::Vector3d pull = pull_in.normalized();
+  const Eigen::VectorXd heights = cavity.vertices * pull;
+  const double through = heights.maxCoeff() - heights.minCoeff() + 2 * radius;
+  LevelSet body = LevelSet::from_mesh(cavity, voxel, pull);
+  LevelSet grooves(voxel, pull), muscles(voxel, pull);
+  for (const auto& fiber : fibers) {
+    grooves.add_swept_tube(simplified(fiber, voxel / 10), radius, through, taper);
+    std::vector<Eigen::Vector3d> laid = fiber;
+    for (Eigen::Vector3d& p : laid) p -= (radius - muscle_radius) * pull;
+    muscles.add_swept_tube(simplified(laid, voxel / 10), muscle_radius, 0);
+  }
+  FillRegions out;
+  LevelSet grooved = body.copy(), cut = grooves.copy();
+  grooved.subtract(cut);
+  out.shot1 = grooved.voxels();
+  LevelSet space = body.copy();
+  space.intersect(grooves);
+  space.subtract(muscles);
+  out.shot2 = space.voxels(&body);  // the rest of the body is cured silicone and muscle
+  return out;
+}
+
+double fill_voxel(double voxel, double radius) { return std::max(voxel, radius / 4); }
+
 } // namespace fibermold

@@ -10,6 +10,7 @@
 
 #include "mesh/surface_mesh.hpp"
 #include "molds/draft.hpp"
+#include "molds/voxel_region.hpp"
 
 namespace fibermold {
 
@@ -31,5 +32,20 @@ constexpr double kGrooveAdaptivity = 0.01;
 GrooveBody groove_body(const SurfaceMesh& body, const std::vector<std::vector<Eigen::Vector3d>>& fibers, double radius,
                        const Eigen::Vector3d& pull, double voxel, double adaptivity = kGrooveAdaptivity,
                        const Draft* draft = nullptr, GrooveBody* solid_body = nullptr);
+
+/// What each shot fills, on a grid of `voxel` along pull, from `cavity` (the body, or the drafted
+/// body with `taper` = tan(draft)): shot 1 the cavity less the grooves; shot 2 the grooves' space
+/// inside the cavity less the muscles laid in them, each resting on its groove's bottom (its axis
+/// groove radius − muscle radius below the fiber's).
+struct FillRegions {
+  VoxelRegion shot1, shot2;
+};
+FillRegions fill_regions(const SurfaceMesh& cavity, const std::vector<std::vector<Eigen::Vector3d>>& fibers, double radius,
+                         double muscle_radius, const Eigen::Vector3d& pull, double voxel, double taper = 0);
+
+/// The fill simulation's voxel: the mold's, or a quarter of the groove's radius when that is
+/// coarser (a groove is then still eight voxels across, and the simulation costs a few percent of
+/// the mold's making).
+double fill_voxel(double voxel, double radius);
 
 } // namespace fibermold

@@ -13,6 +13,7 @@
 #include <openvdb/tools/Composite.h>
 #include <openvdb/tools/Interpolation.h>
 #include <openvdb/tools/LevelSetRebuild.h>
+#include <openvdb/tools/LevelSetUtil.h>
 #include <openvdb/tools/LevelSetMeasure.h>
 #include <openvdb/tools/MeshToVolume.h>
 #include <openvdb/tools/Prune.h>
@@ -282,8 +283,38 @@ void LevelSet::grow(const std::function<double(double)>& by_height, double most)
 
 void LevelSet::unite(LevelSet& other) { openvdb::tools::csgUnion(*impl_->grid, *other.impl_->grid); }
 void LevelSet::subtract(LevelSet& other) { openvdb::tools::csgDifference(*impl_->grid, *other.impl_->grid); }
+void LevelSet::intersect(LevelSet& other) { openvdb::tools::csgIntersection(*impl_->grid, *other.impl_->grid); }
 
 double LevelSet::volume() const { return openvdb::tools::levelSetVolume(*impl_->grid) * kUnit * kUnit * kUnit; }
+
+VoxelRegion LevelSet::voxels(const LevelSet* taken) const
+{
+  VoxelRegion out;
+  out.voxel = impl_->voxel;
+  const openvdb::math::Mat4d m = impl_->grid->transform().baseMap()->getAffineMap()->getMat4();
+  for (int i = 0; i < 3; ++i)
+    for (int j = 0; j < 3; ++j) out.axes(j, i) = m(i, j) / (impl_->voxel / kUnit);  // world = index · m
+  const openvdb::BoolGrid::Ptr fill = openvdb::tools::sdfInteriorMask(*impl_->grid, 0.0f);
+  const openvdb::BoolGrid::Ptr solid = taken ? openvdb::tools::sdfInteriorMask(*taken->impl_->grid, 0.0f) : nullptr;
+  openvdb::CoordBBox box = fill->evalActiveVoxelBoundingBox();
+  if (solid) box.expand(solid->evalActiveVoxelBoundingBox());
+  if (box.empty()) return out;
+  out.first = Eigen::Vector3i(box.min().x(), box.min().y(), box.min().z());
+  out.size = Eigen::Vector3i(box.dim().x(), box.dim().y(), box.dim().z());
+  out.cells.assign(static_cast<std::size_t>(out.size.cast<std::int64_t>().prod()), VoxelRegion::mold);
+  const auto mark = [&](const openvdb::BoolGrid& mask, VoxelRegion::Cell cell) {
+    for (auto it = mask.cbeginValueOn(); it; ++it) {
+      const openvdb::CoordBBox cells = it.getBoundingBox();  // one voxel, or a tile of them
+      for (int k = cells.min().z(); k <= cells.max().z(); ++k)
+        for (int j = cells.min().y(); j <= cells.max().y(); ++j)
+          for (int i = cells.min().x(); i <= cells.max().x(); ++i)
+            out.cells[static_cast<std::size_t>(out.index(i - out.first.x(), j - out.first.y(), k - out.first.z()))] = cell;
+    }
+  };
+  if (solid) mark(*solid, VoxelRegion::solid);
+  mark(*fill, VoxelRegion::fill);
+  return out;
+}
 
 namespace {
 

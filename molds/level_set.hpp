@@ -10,6 +10,7 @@
 #include <Eigen/Core>
 
 #include "mesh/surface_mesh.hpp"
+#include "molds/voxel_region.hpp"
 
 namespace fibermold {
 
@@ -42,6 +43,11 @@ public:
 
   void unite(LevelSet& other);     ///< this ∪ other; empties other
   void subtract(LevelSet& other);  ///< this − other; empties other
+  void intersect(LevelSet& other); ///< this ∩ other; empties other
+
+  /// The voxels whose centres lie inside (fill), on this level set's grid (its third axis along
+  /// up), and those inside `taken` but not this one (solid); the grid holds both.
+  VoxelRegion voxels(const LevelSet* taken = nullptr) const;
 
   /// A closed triangle mesh of the zero level, outward oriented; adaptivity in [0, 1] merges flat
   /// regions into fewer, larger triangles. `used` (optional) receives the adaptivity the mesh was

@@ -3,11 +3,8 @@
 #include <algorithm>
 #include <cmath>
 
-#include <Eigen/Eigenvalues>
 #include <Eigen/Geometry>
 #include <fmt/format.h>
-
-#include "mesh/surface_distance.hpp"
 
 #include "molds/mesh_boolean.hpp"
 #include "molds/solids.hpp"
@@ -25,81 +22,6 @@ Eigen::Matrix3d to_local(const Eigen::Vector3d& pull)
 SurfaceMesh transformed(SurfaceMesh m, const Eigen::Matrix3d& R)
 {
   m.vertices = (m.vertices * R.transpose()).eval();
-  return m;
-}
-
-/// Up to `count` points of the cavity's top (within `band` of its highest point) where a hole of
-/// `radius` lands wholly on the top: every point of a circle of radius + `margin` around it sees the
-/// top straight below. Wanted positions spread along the top region's longest horizontal
-/// direction; each takes the nearest supported point of a grid over the region, else of a ring
-/// around it twice the circle's radius wide: the top's vertices may all lie on its rim (a face
-/// sloping out of the band, as the underside of a tapered arm whose next ring of vertices is
-/// already higher than the band).
-std::vector<Eigen::Vector3d> top_points(const SurfaceMesh& m, int count, double band, double radius, double margin)
-{
-  const double top = m.vertices.col(2).maxCoeff();
-  std::vector<Eigen::Vector2d> region;
-  for (Eigen::Index i = 0; i < m.num_vertices(); ++i)
-    if (m.vertices(i, 2) >= top - band) region.push_back(m.vertices.row(i).head<2>().transpose());
-  Eigen::Vector2d centre = Eigen::Vector2d::Zero();
-  for (const auto& p : region) centre += p / static_cast<double>(region.size());
-  Eigen::Matrix2d cov = Eigen::Matrix2d::Zero();
-  for (const auto& p : region) cov += (p - centre) * (p - centre).transpose();
-  const Eigen::SelfAdjointEigenSolver<Eigen::Matrix2d> eig(cov);
-  const Eigen::Vector2d axis = eig.eigenvectors().col(1), across = eig.eigenvectors().col(0);
-  double reach = 0, width = 0;
-  for (const auto& p : region) {
-    reach = std::max(reach, std::abs((p - centre).dot(axis)));
-    width = std::max(width, std::abs((p - centre).dot(across)));
-  }
-  const SurfaceDistance surface(m.vertices, m.faces);
-  const auto on_top = [&](const Eigen::Vector2d& xy) {
-    const double d = surface.ray_distance({xy.x(), xy.y(), top + 1e-3}, -Eigen::Vector3d::UnitZ());
-    return d <= 1e-3 + band;
-  };
-  const auto supported = [&](const Eigen::Vector2d& xy) {
-    if (!on_top(xy)) return false;
-    for (int k = 0; k < 12; ++k) {
-      const double a = 2 * M_PI * k / 12;
-      if (!on_top(xy + (radius + margin) * Eigen::Vector2d(std::cos(a), std::sin(a)))) return false;
-    }
-    return true;
-  };
-  const double step = std::max(radius, 0.25e-3);
-  // The grid over the region first; its ring grown by 2 (radius + margin) only where the region's
-  // own grid has no supported point.
-  std::vector<Eigen::Vector2d> inner, ring;
-  for (double s = -reach; s <= reach; s += step)
-    for (double t = -width; t <= width; t += step) inner.push_back(centre + s * axis + t * across);
-  const int grow = static_cast<int>(std::ceil(2 * (radius + margin) / step));
-  for (int i = -grow; i <= grow + static_cast<int>(std::floor(2 * reach / step)); ++i)
-    for (int j = -grow; j <= grow + static_cast<int>(std::floor(2 * width / step)); ++j) {
-      const double s = -reach + i * step, t = -width + j * step;
-      if (s < -reach || s > reach || t < -width || t > width) ring.push_back(centre + s * axis + t * across);
-    }
-  std::vector<Eigen::Vector3d> out;
-  for (int k = 0; k < count; ++k) {
-    const double t = count == 1 ? 0 : -0.5 + static_cast<double>(k) / (count - 1);  // over the middle half
-    const Eigen::Vector2d wanted = centre + t * reach * axis;
-    for (std::vector<Eigen::Vector2d>* grid : {&inner, &ring}) {
-      std::sort(grid->begin(), grid->end(), [&](const auto& a, const auto& b) { return (a - wanted).norm() < (b - wanted).norm(); });
-      const auto found = std::find_if(grid->begin(), grid->end(), [&](const Eigen::Vector2d& xy) {
-        const bool apart = std::all_of(out.begin(), out.end(), [&](const Eigen::Vector3d& q) { return (q.head<2>() - xy).norm() >= 2 * (radius + margin); });
-        return apart && supported(xy);
-      });
-      if (found != grid->end()) {
-        out.emplace_back(found->x(), found->y(), top - surface.ray_distance({found->x(), found->y(), top + 1e-3}, -Eigen::Vector3d::UnitZ()) + 1e-3);
-        break;
-      }
-    }
-  }
-  return out;
-}
-
-SurfaceMesh flipped_z(SurfaceMesh m)
-{
-  m.vertices.col(2) *= -1;
-  m.faces.col(1).swap(m.faces.col(2));
   return m;
 }
 
@@ -165,7 +87,7 @@ SurfaceMesh key_solid(const Eigen::Vector3d& base, double radius, const std::str
 } // namespace
 
 Mold make_mold(const SurfaceMesh& cavity_world, const Parting& parting, const std::vector<Channel>& channels,
-               const MoldBlockOptions& o, const std::string& shot)
+               const MoldBlockOptions& o, const std::string& shot, const Ports* ports)
 {
   const Eigen::Matrix3d R = to_local(parting.normal);
   const SurfaceMesh cavity = transformed(cavity_world, R);
@@ -179,28 +101,18 @@ Mold make_mold(const SurfaceMesh& cavity_world, const Parting& parting, const st
   SurfaceMesh block = mesh_difference(box_solid(box_lo, box_hi), cavity);
 
   Mold mold;
-  // The sprue enters from below at the cavity's lowest point; vents leave at its highest ones. Each
-  // starts a little inside the cavity so that the booleans meet no tangent faces.
-  const double band = 0.5e-3;
-  const std::vector<Eigen::Vector3d> lowest = top_points(flipped_z(cavity), 1, band, o.sprue_diameter / 2, o.min_wall);
-  if (lowest.empty())
-    throw std::runtime_error(fmt::format(
-        "{}: no flat spot at the cavity's bottom (within {:.1f} mm of its lowest point, seen along the pull direction) "
-        "takes the sprue: it needs a circle of {:.1f} mm across ([mold] sprue_diameter + 2 × [export] min_wall); make "
-        "sprue_diameter smaller or give the body a wider flat bottom",
-        shot, band / 1e-3, (o.sprue_diameter + 2 * o.min_wall) / 1e-3));
-  Eigen::Vector3d sprue = lowest.front();
-  sprue.z() *= -1;
-  const double dip = std::min(0.5e-3, o.sprue_diameter / 2);
-  block = mesh_difference(block, cylinder_solid(sprue + Eigen::Vector3d(0, 0, dip), {sprue.x(), sprue.y(), box_lo.z() - 1e-3},
-                                                o.sprue_diameter / 2, 24));
-  mold.sprue = R.transpose() * sprue;
-  if (o.vents > 0)
-    for (const Eigen::Vector3d& v : top_points(cavity, o.vents, band, o.vent_diameter / 2, o.min_wall)) {
-      block = mesh_difference(block, cylinder_solid(v - Eigen::Vector3d(0, 0, std::min(0.5e-3, o.vent_diameter / 2)),
-                                                    {v.x(), v.y(), box_hi.z() + 1e-3}, o.vent_diameter / 2, 16));
-      mold.vents.push_back(R.transpose() * v);
-    }
+  // Each hole starts a little inside the cavity (its dip) so that the booleans meet no tangent
+  // faces, and runs out through the block's bottom (a sprue from below) or top.
+  const Ports own = ports ? Ports{} : cavity_ports(cavity_world, parting.normal, o.sprue_diameter, o.vents, o.vent_diameter, o.min_wall, shot);
+  const Ports& holes = ports ? *ports : own;
+  const auto cut = [&](const Port& p, int segments) {
+    const Eigen::Vector3d mouth = R * p.mouth, out = Eigen::Vector3d::UnitZ() * (p.upward ? 1 : -1);
+    const double end = p.upward ? box_hi.z() + 1e-3 : box_lo.z() - 1e-3;
+    block = mesh_difference(block, cylinder_solid(mouth - p.dip() * out, {mouth.x(), mouth.y(), end}, p.diameter / 2, segments));
+    return p.mouth;
+  };
+  for (const Port& p : holes.sprues) mold.sprues.push_back(cut(p, 24));
+  for (const Port& p : holes.vents) mold.vents.push_back(cut(p, 16));
   const double reach = (box_hi - box_lo).norm();
   struct Passage {
     Eigen::Vector2d a, b;  ///< the channel's axis seen along pull

@@ -1,9 +1,8 @@
 #pragma once
 // A two-part mold around a cavity (paper Fig. 7): the cavity's bounding box, grown by the wall
-// (and wide enough in the parting plane for the keys), minus the cavity; an injection sprue from
-// below to the cavity's lowest point, vents from its highest points up through the top, channels
-// for the fibers' ends and supply tubes, split by the parting plane into a lower and an upper part
-// with registration keys: pins on the lower part, matching sockets (grown by the fit clearance) in
+// (and wide enough in the parting plane for the keys), minus the cavity; injection sprues and
+// vents along pull (ports.hpp), channels for the fibers' ends and supply tubes, split by the
+// parting plane into a lower and an upper part with registration keys: pins on the lower part, matching sockets (grown by the fit clearance) in
 // the upper one. Built in a frame where the pull direction is +z, returned in the body's frame.
 
 #include <string>
@@ -13,6 +12,7 @@
 
 #include "mesh/surface_mesh.hpp"
 #include "molds/parting.hpp"
+#include "molds/ports.hpp"
 
 namespace fibermold {
 
@@ -47,14 +47,16 @@ struct MoldPart {
 
 struct Mold {
   std::vector<MoldPart> parts;
-  Eigen::Vector3d sprue;               ///< the cavity point the sprue reaches
-  std::vector<Eigen::Vector3d> vents;  ///< the cavity points the vents reach
+  std::vector<Eigen::Vector3d> sprues;  ///< where each sprue meets the cavity
+  std::vector<Eigen::Vector3d> vents;   ///< where each vent meets the cavity
   std::vector<Eigen::Vector3d> keys;   ///< key centres on the parting plane; sites on a channel's way are left out
   std::vector<Eigen::Vector3d> screws; ///< screw hole axes' points on the parting plane (fewer than asked when channels and keys leave no room)
 };
 
-/// Throws std::runtime_error when a boolean fails.
+/// The sprues and vents are `ports`, or without them the cavity's own (cavity_ports: a sprue from
+/// below at the lowest flat spot, `options.vents` vents along the top). Throws std::runtime_error
+/// when a boolean fails or the cavity has no spot for its sprue.
 Mold make_mold(const SurfaceMesh& cavity, const Parting& parting, const std::vector<Channel>& channels,
-               const MoldBlockOptions& options, const std::string& shot);
+               const MoldBlockOptions& options, const std::string& shot, const Ports* ports = nullptr);
 
 } // namespace fibermold

@@ -26,30 +26,61 @@ namespace {
 
 using Json = nlohmann::ordered_json;
 
+/// "the sprue hole", "the 2 sprue holes (one per groove system, one after the other)".
+std::string sprue_holes(const Json& sprues)
+{
+  return sprues.size() == 1 ? "the sprue hole" : fmt::format("the {} sprue holes (one for each part that the others do not reach, one after the other)", sprues.size());
+}
+/// "the vent", "every one of the 3 vents".
+std::string vent_holes(const Json& vents)
+{
+  return vents.size() == 1 ? "the vent" : fmt::format("every one of the {} vents", vents.size());
+}
+
 std::string casting_guide(const std::string& design, const Json& shots, const std::string& format)
 {
   const std::string ext = "." + format, FORMAT = format == "3mf" ? "3MF file" : "STL";
   const auto ml = [&](const char* shot) { return shots[shot]["silicone_volume_mL"].get<double>(); };
   const auto g = [&](const char* shot) { return shots[shot]["silicone_mass_g"].get<double>(); };
+  const auto fill = [&](const char* shot) -> const Json& { return shots[shot]["fill"]; };
   return fmt::format(R"(fibermold mold parts for "{}"
 
 Print every {} as it lies (each stands on its largest flat face; units mm).
 
 Shot 1, the grooved body: shot1-lower{} and shot1-upper{}.
-  Close the two halves on their keys, clamp them, inject about {:.1f} mL ({:.1f} g) of silicone
-  through the sprue hole at the bottom until it rises out of the vents, and let it cure.
-  Demold: the body has an open groove for each muscle.
+  1. Close the two halves on their keys and clamp them. Stand the mold upright: lower half down,
+     the sprue hole underneath, the vents on top.
+  2. Inject about {:.1f} mL ({:.1f} g) of silicone through {} from below, slowly,
+     until silicone comes out of {}; then plug the sprue.
+  3. Let it cure, and demold: the body has an open groove for each muscle.
+  4. Trim the cast's sprue and vent stubs flush with its skin: shot 2's cavity is the body's
+     own shape and has no room for them.
 
-Lay each muscle into its groove, its ends and supply tubes along the grooves' ends.
+Lay each muscle into its groove, resting on the groove's bottom, its ends and supply tubes along
+the grooves' ends.
 
 Shot 2, the overmold: shot2-lower{} and shot2-upper{}.
-  Put the grooved body with its muscles into the lower half, route the supply tubes out through
-  the channels at the fibers' ends, close, clamp, inject about {:.1f} mL ({:.1f} g) of silicone
-  through the sprue until it rises out of the vents, and let it cure.
+  5. Put the grooved body with its muscles into the lower half, grooves up, and route the supply
+     tubes out through the channels at the fibers' ends. Close on the keys and clamp.
+  6. Stand the mold upright as in shot 1. In this shot the sprue comes in from the TOP of the
+     upper half, straight over the lowest point of the grooves: the cured body lies below them,
+     so they cannot be filled from below. Inject about {:.1f} mL ({:.1f} g) of silicone slowly
+     through {}; it runs down into the grooves and rises around the muscles;
+     go on until silicone comes out of {}.
+  7. Let it cure, demold and trim the stubs as in step 4.
 
-manifest.json lists each part's size, volume and checks.
+The fill of both shots was simulated (silicone rising level by level from the sprue): shot 1
+reaches {:.1f} % of its cavity and traps {:.2f} mm³ of air, shot 2 reaches {:.1f} % of the
+grooves (the rest: crevices along the muscles thinner than the simulation's voxel) and traps
+{:.2f} mm³ (allowed: {:.1f} mm³ per shot). manifest.json lists where each sprue
+and vent meets the cavity, each part's size, volume, checks and how its printed pose maps back to
+the body.
 )",
-                     design, FORMAT, ext, ext, ml("shot1"), g("shot1"), ext, ext, ml("shot2"), g("shot2"));
+                     design, FORMAT, ext, ext, ml("shot1"), g("shot1"), sprue_holes(fill("shot1")["sprues"]),
+                     vent_holes(fill("shot1")["vents"]), ext, ext, ml("shot2"), g("shot2"), sprue_holes(fill("shot2")["sprues"]),
+                     vent_holes(fill("shot2")["vents"]), fill("shot1")["reachable_percent"].get<double>(),
+                     fill("shot1")["trapped_air_mm3"].get<double>(), fill("shot2")["reachable_percent"].get<double>(),
+                     fill("shot2")["trapped_air_mm3"].get<double>(), fill("shot1")["trapped_air_tolerance_mm3"].get<double>());
 }
 
 /// Each fiber's centre line, 10 points per mm.
@@ -67,6 +98,15 @@ std::vector<ReportLine> fiber_lines(const FibersFile& fibers)
 }
 
 std::string fixed(double value, int digits) { return fmt::format("{:.{}f}", value, digits); }
+
+/// How a part's printed pose maps back to the body's frame, in mm: printed = rotation · p + translation.
+Json placement_json(const Placement& placed)
+{
+  Json rotation = Json::array();
+  for (int i = 0; i < 3; ++i) rotation.push_back({placed.rotation(i, 0), placed.rotation(i, 1), placed.rotation(i, 2)});
+  const Eigen::Vector3d t = placed.translation / units::mm;
+  return {{"rotation", rotation}, {"translation_mm", {t.x(), t.y(), t.z()}}, {"maps", "printed = rotation · body + translation"}};
+}
 
 std::optional<Json> json_if_any(const std::filesystem::path& file)
 {
@@ -212,9 +252,15 @@ std::string report(const StageContext& ctx, const Json& molds, const Json& parts
     checks.rows.push_back({p["name"], files, std::to_string(p["triangles"].get<long>()), fixed(p["volume_mL"], 2), fixed(p["min_wall_mm"], 2),
                            p["fits_printer_as_placed"].get<bool>() ? "lying flat" : "turned", p["checks_passed"].get<bool>() ? "passed" : "FAILED"});
   }
-  ReportTable silicone{"Silicone", {"shot", "volume (mL)", "mass (g)"}, {}};
-  for (const auto& [shot, info] : shots.items())
-    silicone.rows.push_back({shot, fixed(info["silicone_volume_mL"], 2), fixed(info["silicone_mass_g"], 2)});
+  ReportTable silicone{"Silicone and its fill (simulated: rising level by level from the sprues)",
+                       {"shot", "volume (mL)", "mass (g)", "sprues", "vents", "fill reached", "air trapped (mm³)"},
+                       {}};
+  for (const auto& [shot, info] : shots.items()) {
+    const Json& f = info["fill"];
+    silicone.rows.push_back({shot, fixed(info["silicone_volume_mL"], 2), fixed(info["silicone_mass_g"], 2),
+                             fmt::format("{} from {}", f["sprues"].size(), f["sprues"].empty() ? "" : f["sprues"][0]["from"].get<std::string>()),
+                             std::to_string(f["vents"].size()), fixed(f["reachable_percent"], 1) + " %", fixed(f["trapped_air_mm3"], 2)});
+  }
   ReportTable timings{"Stage timings", {"stage", "seconds"}, {}};
   for (const char* stage : {"mesh", "targets", "optimize", "collide", "molds"}) {
     const auto stamp = ctx.build_dir / ".stamps" / (std::string(stage) + ".json");
@@ -257,13 +303,14 @@ void ExportStage::run(StageContext& ctx) const
                      {"volume_mL", info["volume_mL"]},
                      {"triangles", placed.part.num_faces()},
                      {"min_wall_mm", info["min_wall_mm"]},
-                     {"checks_passed", info["checks_passed"]}});
+                     {"checks_passed", info["checks_passed"]},
+                     {"from_body_frame", placement_json(placed)}});
     if (!placed.fits)
       ctx.log.warn("part {} does not fit the printer lying flat; its best fit turns it: axes {}", name, info["print_axes"].dump());
   }
   Json shots = Json::object();
   for (const auto& [shot, info] : molds["shots"].items())
-    shots[shot] = {{"silicone_volume_mL", info["silicone_volume_mL"]}, {"silicone_mass_g", info["silicone_mass_g"]}};
+    shots[shot] = {{"silicone_volume_mL", info["silicone_volume_mL"]}, {"silicone_mass_g", info["silicone_mass_g"]}, {"fill", info["fill"]}};
   const Json manifest{{"design", d.design.name}, {"units", "mm"}, {"voxel_mm", molds["voxel_mm"]}, {"parts", parts}, {"shots", shots}};
   write_file_atomic(ctx.output_dir / "manifest.json", manifest.dump(2) + "\n");
   write_file_atomic(ctx.output_dir / "README.txt", casting_guide(d.design.name, molds["shots"], d.export_.formats.front()));

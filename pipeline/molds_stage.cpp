@@ -2,6 +2,7 @@
 
 #include <chrono>
 #include <cmath>
+#include <functional>
 #include <optional>
 
 #include <Eigen/Geometry>
@@ -109,6 +110,54 @@ double six_places(double v) { return std::round(v * 1e6) / 1e6; }
 
 Json vec_mm(const Eigen::Vector3d& v) { return {v.x() / units::mm, v.y() / units::mm, v.z() / units::mm}; }
 
+/// A fill simulation's findings for the report, and its failures: a part no sprue reaches, or
+/// trapped air beyond the tolerance, each named by where it is. `scale` maps a point to the
+/// shrink-scaled cavity, `g3` a volume.
+Json fill_report(const FillPlan& plan, double voxel, const std::function<Eigen::Vector3d(const Eigen::Vector3d&)>& scale, double g3,
+                 double seconds, const std::string& shot, std::vector<std::string>& problems)
+{
+  const FillResult& f = plan.fill;
+  const double mm3 = 1e-9;
+  Json pockets = Json::array(), sprues = Json::array(), vents = Json::array();
+  for (std::size_t k = 0; k < f.pockets.size() && k < 10; ++k)
+    pockets.push_back({{"volume_mm3", six_places(g3 * f.pockets[k].volume / mm3)},
+                       {"top_mm", vec_mm(scale(f.pockets[k].at))},
+                       {"ventable", f.pockets[k].ventable}});
+  for (std::size_t k = 0; k < plan.ports.sprues.size(); ++k)
+    sprues.push_back({{"mouth_mm", vec_mm(scale(plan.ports.sprues[k].mouth))},
+                      {"from", plan.ports.sprues[k].upward ? "above" : "below"},
+                      {"opens_on_fill_region", static_cast<bool>(f.sprue_open[k])}});
+  for (std::size_t k = 0; k < plan.ports.vents.size(); ++k)
+    vents.push_back({{"mouth_mm", vec_mm(scale(plan.ports.vents[k].mouth))}, {"opens_on_fill_region", static_cast<bool>(f.vent_open[k])}});
+  const double unreached = f.fill_volume - f.reachable_volume - f.crevice_volume;
+  if (unreached > kTrappedAirTolerance)
+    problems.push_back(fmt::format("{}: {:.1f} mm³ of the {:.1f} mm³ that the shot fills is reached by no sprue (the largest part, "
+                                   "{:.1f} mm³, lowest at {}): {} sprues are the most placed",
+                                   shot, g3 * unreached / mm3, g3 * f.fill_volume / mm3, g3 * f.unreachable.front().volume / mm3,
+                                   format_mm(scale(f.unreachable.front().at)), kMaxSprues));
+  if (f.trapped_volume > kTrappedAirTolerance) {
+    const AirPocket& worst = f.pockets.front();
+    problems.push_back(fmt::format("{}: the rising silicone traps {:.1f} mm³ of air, allowed {:.1f} mm³: the largest pocket, {:.1f} mm³, "
+                                   "tops out at {} {}",
+                                   shot, g3 * f.trapped_volume / mm3, kTrappedAirTolerance / mm3, g3 * worst.volume / mm3,
+                                   format_mm(scale(worst.at)),
+                                   worst.ventable ? fmt::format("with {} vents, the most placed", plan.ports.vents.size())
+                                                  : std::string("under cured silicone or a muscle, where no vent can reach it; "
+                                                                "another [mold] pull may open it upward")));
+  }
+  return {{"voxel_mm", voxel / units::mm},
+          {"fill_volume_mL", six_places(g3 * f.fill_volume / 1e-6)},
+          {"reachable_percent", f.fill_volume > 0 ? six_places(100 * f.reachable_volume / f.fill_volume) : 0.0},
+          {"crevices_unfilled_mm3", six_places(g3 * f.crevice_volume / mm3)},
+          {"crevices_air_mm3", six_places(g3 * f.crevice_air_volume / mm3)},
+          {"trapped_air_mm3", six_places(g3 * f.trapped_volume / mm3)},
+          {"trapped_air_tolerance_mm3", kTrappedAirTolerance / mm3},
+          {"seconds", seconds},
+          {"pockets", pockets},
+          {"sprues", sprues},
+          {"vents", vents}};
+}
+
 } // namespace
 
 void MoldsStage::run(StageContext& ctx) const
@@ -200,10 +249,32 @@ void MoldsStage::run(StageContext& ctx) const
   // One shot's mold: its parts checked; the problems found, one line each. Parts too big for the
   // printer are also listed apart: meshing the cavity again cannot help them.
   std::vector<std::string> too_big;
+  std::optional<Draft> draft;
+  // What each shot fills, sampled for the fill simulation (once: both shots' from the body, drafted or not).
+  FillRegions regions;
+  double regions_seconds = 0;
+  const auto scale = [&](const Eigen::Vector3d& p) -> Eigen::Vector3d { return centre + (p - centre) * grow; };
+  // Shot 1 fills the grooved body from below; shot 2 the grooves around the laid muscles, over
+  // cured silicone: its sprues come from above (ports.hpp).
   const auto make_shot = [&](const char* name, const SurfaceMesh& shot_cavity, Parting parting, double silicone,
                              const std::vector<Channel>& shot_channels) {
     std::vector<std::string> problems;
-    ctx.progress.checkpoint(name == std::string("shot1") ? 0.3 : 0.6, fmt::format("{}: mold block", name));
+    const bool first = name == std::string("shot1");
+    ctx.progress.checkpoint(first ? 0.25 : 0.55, fmt::format("{}: fill simulation", name));
+    started = Clock::now();
+    const VoxelRegion& region = first ? regions.shot1 : regions.shot2;
+    FillPlan plan = plan_fill(region,
+                              first ? cavity_ports(shot_cavity, pull, o.sprue_diameter, o.vents, o.vent_diameter, o.min_wall, name) : Ports{},
+                              o.sprue_diameter, o.vent_diameter, !first);
+    const double fill_seconds = since(started);
+    const Json fill = fill_report(plan, region.voxel, scale, g3, fill_seconds, name, problems);
+    ctx.log.info("{}: fill simulation on {} voxels of {:.2f} mm in {:.2f} s: {} sprue(s), {} vent(s), {:.1f} % reached, "
+                 "{:.2f} mm³ of air trapped",
+                 name, region.count(), region.voxel / units::mm, fill_seconds, plan.ports.sprues.size(), plan.ports.vents.size(),
+                 fill["reachable_percent"].get<double>(), fill["trapped_air_mm3"].get<double>());
+    for (Port& p : plan.ports.sprues) p.mouth = scale(p.mouth);
+    for (Port& p : plan.ports.vents) p.mouth = scale(p.mouth);
+    ctx.progress.checkpoint(first ? 0.3 : 0.6, fmt::format("{}: mold block", name));
     const SurfaceMesh cavity = grow != 1 ? scaled_about(shot_cavity, centre, grow) : shot_cavity;
     parting.point = centre + (parting.point - centre) * grow;
     parting.undercut_area = undercut_area(cavity, parting.point, parting.normal);
@@ -213,7 +284,7 @@ void MoldsStage::run(StageContext& ctx) const
       ctx.log.warn("{}: {:.1f} mm² of the cavity is an undercut for the parting plane: demolding relies on the silicone bending",
                    name, parting.undercut_area / 1e-6);
     started = Clock::now();
-    const Mold mold = make_mold(cavity, parting, shot_channels, o, name);
+    const Mold mold = make_mold(cavity, parting, shot_channels, o, name, &plan.ports);
     ctx.log.info("{}: mold block and parts in {:.2f} s", name, since(started));
     shots[name] = {{"cavity_volume_mL", six_places(signed_volume(cavity) / 1e-6)},
                    {"silicone_volume_mL", six_places(silicone / 1e-6)},
@@ -221,10 +292,11 @@ void MoldsStage::run(StageContext& ctx) const
                    {"parting_point_mm", vec_mm(parting.point)},
                    {"parting_normal", {parting.normal.x(), parting.normal.y(), parting.normal.z()}},
                    {"undercut_area_mm2", parting.undercut_area / 1e-6},
-                   {"sprue_mm", vec_mm(mold.sprue)},
+                   {"sprues", mold.sprues.size()},
                    {"vents", mold.vents.size()},
                    {"keys", mold.keys.size()},
-                   {"screw_holes", mold.screws.size()}};
+                   {"screw_holes", mold.screws.size()},
+                   {"fill", fill}};
     if (static_cast<int>(mold.screws.size()) < m.screw_holes)
       ctx.log.warn("{}: room for {} of the {} screw holes asked for (channels and keys take the other sites in the rim)", name,
                    mold.screws.size(), m.screw_holes);
@@ -255,7 +327,6 @@ void MoldsStage::run(StageContext& ctx) const
   const Parting parting1 = m.parting ? user_parting() : choose_parting(groove.mesh, pull);
   Parting parting2 = m.parting ? user_parting() : choose_parting(body, pull);
   // With a draft both shots share shot 1's plane (see molds/draft.hpp), and both cavities are made again drafted.
-  std::optional<Draft> draft;
   SurfaceMesh shot2_cavity = body;
   double shot2_volume = body_volume;
   bool shot2_adaptive = false;
@@ -274,6 +345,12 @@ void MoldsStage::run(StageContext& ctx) const
     ctx.log.info("draft {}°: cavities grown by up to {:.2f} mm at the parting plane; the body takes {:.2f} mL more silicone",
                  m.draft_deg, draft->most() / units::mm, (shot2_volume - body_volume) / 1e-6);
   }
+  ctx.progress.checkpoint(0.2, "sampling what each shot fills");
+  started = Clock::now();
+  regions = fill_regions(shot2_cavity, lines, radius, d.muscle.model.diameter / 2, pull, fill_voxel(m.voxel, radius), draft ? draft->slope : 0);
+  regions_seconds = since(started);
+  ctx.log.info("fill regions: {} and {} voxels of {:.2f} mm (shots 1 and 2) in {:.2f} s", regions.shot1.count(), regions.shot2.count(),
+               regions.shot1.voxel / units::mm, regions_seconds);
   failures = make_shot("shot1", groove.mesh, parting1, g3 * groove.volume, {});
   if (!failures.empty() && groove.adaptivity > 0 && too_big.empty()) {
     ctx.log.info("shot 1 from the adaptive groove body mesh failed its checks ({}); meshing the groove body uniformly", failures.front());
@@ -308,6 +385,7 @@ void MoldsStage::run(StageContext& ctx) const
                     {"shrink", m.shrink},
                     {"draft_deg", m.draft_deg},
                     {"draft_offset_mm", draft ? draft->most() / units::mm : 0.0},
+                    {"fill_regions_seconds", regions_seconds},
                     {"shots", shots},
                     {"parts", parts}};
   write_file_atomic(ctx.output_dir / "report.json", report.dump(2) + "\n");

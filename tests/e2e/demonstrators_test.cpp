@@ -14,6 +14,7 @@
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
+#include "fill_checks.hpp"
 #include "test_support.hpp"
 
 namespace fibermold {
@@ -46,6 +47,7 @@ void expect_parts_pass(const fs::path& build)
   const auto manifest = read_json(build / "export" / "manifest.json");
   ASSERT_EQ(manifest["parts"].size(), 4u);
   for (const auto& part : manifest["parts"]) EXPECT_TRUE(part["checks_passed"].get<bool>()) << part["name"];
+  test::expect_fills(manifest);
 }
 
 /// examples/<folder> with `edits` made to `design`, made to the end by `fibermold make` in `dir`:

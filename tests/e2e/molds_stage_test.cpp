@@ -12,6 +12,8 @@
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
+#include "fill_checks.hpp"
+#include "mesh/surface_import.hpp"
 #include "mesh/tet_mesh.hpp"
 #include "test_support.hpp"
 
@@ -33,7 +35,7 @@ protected:
   test::CommandResult make() { return test::run_fibermold("make design.toml --build-dir build", dir_.path()); }
   fs::path out(const std::string& f) { return dir_ / "build" / "export" / f; }
   /// The manifest, after checking that it lists four parts that passed their checks, each with
-  /// walls of at least 1 mm.
+  /// walls of at least 1 mm, and that both shots fill (fill_checks.hpp).
   nlohmann::json checked_manifest()
   {
     const auto manifest = nlohmann::json::parse(test::read_text(out("manifest.json")));
@@ -42,6 +44,7 @@ protected:
       EXPECT_TRUE(p["checks_passed"].get<bool>()) << p["name"];
       EXPECT_GE(p["min_wall_mm"].get<double>(), 1.0) << p["name"];
     }
+    test::expect_fills(manifest);
     return manifest;
   }
 
@@ -78,7 +81,27 @@ TEST_F(MoldsE2E, HandRoutedBarBecomesFourCheckedParts)
   const double shot1 = manifest["shots"]["shot1"]["silicone_volume_mL"], shot2 = manifest["shots"]["shot2"]["silicone_volume_mL"];
   std::printf("bar molds: shot 1 %.2f mL, shot 2 %.2f mL of silicone\n", shot1, shot2);
   EXPECT_NEAR(shot1 + shot2, 60 * 16 * 16 * 1e-3 - 60 * M_PI * 1.5 * 1.5 * 1e-3, 0.3);  // body minus the muscle
-  EXPECT_THAT(test::read_text(out("README.txt")), HasSubstr("Shot 2, the overmold"));
+  const std::string guide = test::read_text(out("README.txt"));
+  EXPECT_THAT(guide, HasSubstr("Shot 2, the overmold"));
+  EXPECT_THAT(guide, HasSubstr("Trim the cast's sprue and vent stubs"));
+  EXPECT_THAT(guide, HasSubstr("the sprue comes in from the TOP of the\n     upper half"));
+
+  // Each part's transform takes its body-frame mesh (molds/) onto the printed one (export/).
+  for (const auto& p : manifest["parts"]) {
+    const std::string name = p["name"];
+    const SurfaceMesh body = import_surface(dir_ / "build" / "molds" / (name + ".stl"), 1e-3);
+    const SurfaceMesh printed = import_surface(out(p["file"].get<std::string>()), 1e-3);
+    Eigen::Matrix3d R;
+    for (int i = 0; i < 3; ++i)
+      for (int j = 0; j < 3; ++j) R(i, j) = p["from_body_frame"]["rotation"][i][j].get<double>();
+    Eigen::Vector3d t;
+    for (int i = 0; i < 3; ++i) t(i) = p["from_body_frame"]["translation_mm"][i].get<double>() * 1e-3;
+    EXPECT_LT((R * R.transpose() - Eigen::Matrix3d::Identity()).norm(), 1e-9) << name;
+    const Eigen::MatrixX3d moved = (body.vertices * R.transpose()).rowwise() + t.transpose();
+    EXPECT_LT((moved.colwise().minCoeff() - printed.vertices.colwise().minCoeff()).norm(), 1e-6) << name;
+    EXPECT_LT((moved.colwise().maxCoeff() - printed.vertices.colwise().maxCoeff()).norm(), 1e-6) << name;
+    EXPECT_NEAR(signed_volume(body), signed_volume(printed), 1e-3 * signed_volume(body)) << name;
+  }
 
   if (std::system("command -v admesh >/dev/null 2>&1") != 0) GTEST_SKIP() << "admesh is not installed (scripts/setup installs it)";
   for (const auto& p : manifest["parts"]) {

@@ -1,0 +1,278 @@
+#include "molds/fill_simulation.hpp"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <cstdint>
+
+namespace fibermold {
+
+namespace {
+
+using Index = std::int64_t;
+
+/// The region's voxels that a port's hole takes in: in each column within its radius (and half a
+/// voxel) of its axis, coming from outside along the hole, the fill voxels it meets first, to its
+/// dip past the mouth.
+std::vector<Index> port_voxels(const VoxelRegion& r, const Port& p)
+{
+  const Eigen::Vector3d g = r.grid(p.mouth);
+  const double radius = p.diameter / 2 / r.voxel + 0.5, dip = p.dip() / r.voxel + 0.5;
+  std::vector<Index> out;
+  const int i0 = std::max(0, static_cast<int>(std::floor(g.x() - radius))), i1 = std::min(r.size.x() - 1, static_cast<int>(std::ceil(g.x() + radius)));
+  const int j0 = std::max(0, static_cast<int>(std::floor(g.y() - radius))), j1 = std::min(r.size.y() - 1, static_cast<int>(std::ceil(g.y() + radius)));
+  const int step = p.upward ? -1 : 1;
+  for (int j = j0; j <= j1; ++j)
+    for (int i = i0; i <= i1; ++i) {
+      if (std::hypot(i - g.x(), j - g.y()) > radius) continue;
+      int k = p.upward ? r.size.z() - 1 : 0;
+      while (k >= 0 && k < r.size.z() && r.cell(i, j, k) == VoxelRegion::mold) k += step;
+      for (; k >= 0 && k < r.size.z() && r.cell(i, j, k) == VoxelRegion::fill && (p.upward ? k >= g.z() - dip : k <= g.z() + dip); k += step)
+        out.push_back(r.index(i, j, k));
+    }
+  return out;
+}
+
+/// A voxel's state during the simulation.
+enum : std::uint8_t {
+  kOutside = 0,  // mold, or solid (below)
+  kInside = 1,   // fill, not reached yet
+  kReached = 2,
+  kVent = 3,     // reached, and a vent takes it in
+  kCounted = 4,  // fill no sprue reaches
+  kSolid = 5,
+};
+bool is_fill(std::uint8_t s) { return s >= kInside && s <= kCounted; }
+
+/// The simulation's own grid: the region with an empty layer of voxels around it, so that every
+/// neighbour of a region voxel is in the grid and no step needs a bounds test.
+struct Padded {
+  Index nx, ny, nz, nxy;
+  explicit Padded(const VoxelRegion& r) : nx(r.size.x() + 2), ny(r.size.y() + 2), nz(r.size.z() + 2), nxy(nx * ny) {}
+  Index at(Index i, Index j, Index k) const { return (i + 1) + nx * ((j + 1) + ny * (k + 1)); }  // region (i, j, k)
+  Eigen::Vector3i region_ijk(Index d) const
+  {
+    return {static_cast<int>(d % nx - 1), static_cast<int>((d % nxy) / nx - 1), static_cast<int>(d / nxy - 1)};
+  }
+  /// Offsets to the 26 neighbours, the first 13 of them those that a sweep from the top down,
+  /// each level in index order, meets first.
+  std::vector<Index> offsets() const
+  {
+    std::vector<Index> before, after;
+    for (int dk = -1; dk <= 1; ++dk)
+      for (int dj = -1; dj <= 1; ++dj)
+        for (int di = -1; di <= 1; ++di) {
+          if (di == 0 && dj == 0 && dk == 0) continue;
+          const bool met = dk == 1 || (dk == 0 && (dj < 0 || (dj == 0 && di < 0)));
+          (met ? before : after).push_back(di + dj * nx + dk * nxy);
+        }
+    before.insert(before.end(), after.begin(), after.end());
+    return before;
+  }
+};
+
+/// The voxel of level k nearest (i, j) for which `member` holds, searched ring by ring (square
+/// rings: the nearest in that measure).
+template <class Member>
+Index nearest_in_level(const VoxelRegion& r, const Padded& g, Index k, Index i, Index j, Member&& member)
+{
+  const Index nx = r.size.x(), ny = r.size.y();
+  for (Index ring = 0; ring <= std::max(nx, ny); ++ring)
+    for (Index b = j - ring; b <= j + ring; ++b)
+      for (Index a = i - ring; a <= i + ring; a += (b == j - ring || b == j + ring) ? 1 : 2 * ring) {
+        if (a >= 0 && b >= 0 && a < nx && b < ny && member(g.at(a, b, k))) return g.at(a, b, k);
+        if (ring == 0) break;
+      }
+  return -1;
+}
+
+/// The highest level of a set of voxels: its height and the sum of its voxels' (i, j).
+struct Top {
+  Index k = 0;
+  double i = 0, j = 0;
+  Index n = 0;
+
+  void join(const Top& o)
+  {
+    if (o.k > k) *this = o;
+    else if (o.k == k) i += o.i, j += o.j, n += o.n;
+  }
+};
+
+/// Union-find over the reached voxels in the order the top-down sweep meets them, with per set:
+/// whether a vent takes it in, its voxels above the level being swept, and its highest level.
+struct AirSets {
+  std::vector<std::int32_t> parent;
+  std::vector<std::uint8_t> rank, vented, thick;  ///< thick: a voxel above the level has its 6 faces in the region
+  std::vector<Index> above;
+  std::vector<Top> top;
+
+  std::int32_t add(bool vent, Index i, Index j, Index k)
+  {
+    const auto c = static_cast<std::int32_t>(parent.size());
+    parent.push_back(c);
+    rank.push_back(0);
+    vented.push_back(vent);
+    thick.push_back(0);
+    above.push_back(0);
+    top.push_back({k, static_cast<double>(i), static_cast<double>(j), 1});
+    return c;
+  }
+  std::int32_t find(std::int32_t c)
+  {
+    while (parent[static_cast<std::size_t>(c)] != c) {
+      auto& p = parent[static_cast<std::size_t>(c)];
+      p = parent[static_cast<std::size_t>(p)];  // path halving
+      c = p;
+    }
+    return c;
+  }
+  /// Joins the sets of a and b; a part without a vent joining one with a vent is sealed off by the
+  /// liquid that reaches this level: `sealed` gets its voxels above the level and its top.
+  template <class Sealed>
+  void unite(std::int32_t a, std::int32_t b, Sealed&& sealed)
+  {
+    auto ra = static_cast<std::size_t>(find(a)), rb = static_cast<std::size_t>(find(b));
+    if (ra == rb) return;
+    if (vented[ra] != vented[rb]) {
+      const std::size_t closed = vented[ra] ? rb : ra;
+      if (above[closed] > 0) sealed(static_cast<std::int32_t>(closed), above[closed], top[closed], thick[closed]);
+    }
+    if (rank[ra] < rank[rb]) std::swap(ra, rb);
+    if (rank[ra] == rank[rb]) ++rank[ra];
+    parent[rb] = static_cast<std::int32_t>(ra);
+    vented[ra] = vented[ra] || vented[rb];
+    thick[ra] = thick[ra] || thick[rb];
+    above[ra] += above[rb];
+    top[ra].join(top[rb]);
+  }
+};
+
+} // namespace
+
+FillResult simulate_fill(const VoxelRegion& r, const std::vector<Port>& sprues, const std::vector<Port>& vents)
+{
+  FillResult out;
+  const double cell = r.voxel * r.voxel * r.voxel;
+  const Padded g(r);
+  const std::vector<Index> offsets = g.offsets();
+  const auto centre = [&](Index d) {
+    const Eigen::Vector3i v = g.region_ijk(d);
+    return r.centre(v.x(), v.y(), v.z());
+  };
+  std::vector<std::uint8_t> state(static_cast<std::size_t>(g.nxy * g.nz), kOutside);
+  for (int k = 0; k < r.size.z(); ++k)
+    for (int j = 0; j < r.size.y(); ++j)
+      for (int i = 0; i < r.size.x(); ++i)
+        if (const auto c = r.cells[static_cast<std::size_t>(r.index(i, j, k))]; c != VoxelRegion::mold)
+          state[static_cast<std::size_t>(g.at(i, j, k))] = c == VoxelRegion::fill ? kInside : kSolid;
+  // Per voxel: its air set in the sweep (≥ 0), or −2 − p for unreachable part p.
+  std::vector<std::int32_t> set(state.size(), -1);
+  out.fill_volume = static_cast<double>(r.count()) * cell;
+  const auto voxels_of = [&](const Port& p) {
+    std::vector<Index> found = port_voxels(r, p);
+    for (Index& d : found) {
+      const Index i = d % r.size.x(), j = (d / r.size.x()) % r.size.y(), k = d / (static_cast<Index>(r.size.x()) * r.size.y());
+      d = g.at(i, j, k);
+    }
+    return found;
+  };
+
+  // What the sprues reach: the region's part connected to a sprue's voxels.
+  std::vector<Index> queue;
+  for (const Port& p : sprues) {
+    const std::vector<Index> mouth = voxels_of(p);
+    out.sprue_open.push_back(!mouth.empty());
+    for (Index d : mouth)
+      if (state[static_cast<std::size_t>(d)] == kInside) state[static_cast<std::size_t>(d)] = kReached, queue.push_back(d);
+  }
+  const auto flood = [&](std::vector<Index>& q, std::uint8_t mark) {
+    for (std::size_t n = 0; n < q.size(); ++n)
+      for (const Index o : offsets)
+        if (const Index e = q[n] + o; state[static_cast<std::size_t>(e)] == kInside) state[static_cast<std::size_t>(e)] = mark, q.push_back(e);
+  };
+  flood(queue, kReached);
+  out.reachable_volume = static_cast<double>(queue.size()) * cell;
+
+  // The parts no sprue reaches, each with its lowest point; crevices apart.
+  const std::array<Index, 6> faces{1, -1, g.nx, -g.nx, g.nxy, -g.nxy};
+  for (Index d = 0; d < static_cast<Index>(state.size()); ++d) {
+    if (state[static_cast<std::size_t>(d)] != kInside) continue;
+    std::vector<Index> part{d};
+    state[static_cast<std::size_t>(d)] = kCounted;
+    flood(part, kCounted);
+    const bool crevice = std::none_of(part.begin(), part.end(), [&](Index e) {
+      return std::all_of(faces.begin(), faces.end(), [&](Index o) { return is_fill(state[static_cast<std::size_t>(e + o)]); });
+    });
+    if (crevice) {
+      out.crevice_volume += static_cast<double>(part.size()) * cell;
+      continue;
+    }
+    // Named by the voxel of its lowest level nearest that level's middle.
+    const Index low = *std::min_element(part.begin(), part.end()) / g.nxy;  // k is the slowest index
+    double i = 0, j = 0, n = 0;
+    for (Index e : part)
+      if (e / g.nxy == low) i += static_cast<double>(e % g.nx - 1), j += static_cast<double>((e % g.nxy) / g.nx - 1), ++n;
+    const auto id = static_cast<std::int32_t>(-2 - static_cast<std::int32_t>(out.unreachable.size()));
+    for (Index e : part) set[static_cast<std::size_t>(e)] = id;
+    const Index at = nearest_in_level(r, g, low - 1, std::lround(i / n), std::lround(j / n),
+                                      [&](Index e) { return set[static_cast<std::size_t>(e)] == id; });
+    out.unreachable.push_back({static_cast<double>(part.size()) * cell, centre(at)});
+  }
+
+  for (const Port& p : vents) {
+    bool open = false;
+    for (Index d : voxels_of(p))
+      if (state[static_cast<std::size_t>(d)] == kReached || state[static_cast<std::size_t>(d)] == kVent)
+        state[static_cast<std::size_t>(d)] = kVent, open = true;
+    out.vent_open.push_back(open);
+  }
+
+  // The air above each level, swept from the top down.
+  AirSets air;
+  std::vector<std::int32_t> level;
+  std::vector<bool> level_thick;
+  // A pocket is named by the voxel of its top level nearest the level's middle; a vent can reach
+  // it when only mold lies above that voxel. One no thicker than two voxels that no vent can
+  // reach is a crevice.
+  const auto seal = [&](std::int32_t root, Index voxels, const Top& top, bool thick) {
+    const Index i = std::lround(top.i / static_cast<double>(top.n)), j = std::lround(top.j / static_cast<double>(top.n));
+    const Index at = nearest_in_level(r, g, top.k, i, j, [&](Index d) {
+      return set[static_cast<std::size_t>(d)] >= 0 && air.find(set[static_cast<std::size_t>(d)]) == root;
+    });
+    bool ventable = true;
+    for (Index e = at + g.nxy; e < static_cast<Index>(state.size()); e += g.nxy) ventable = ventable && state[static_cast<std::size_t>(e)] == kOutside;
+    if (!thick && !ventable) out.crevice_air_volume += static_cast<double>(voxels) * cell;
+    else out.pockets.push_back({static_cast<double>(voxels) * cell, centre(at), ventable});
+  };
+  for (Index k = r.size.z() - 1; k >= 0; --k) {
+    level.clear();
+    level_thick.clear();
+    for (Index j = 0; j < r.size.y(); ++j)
+      for (Index i = 0, d = g.at(0, j, k); i < r.size.x(); ++i, ++d) {
+        const std::uint8_t s = state[static_cast<std::size_t>(d)];
+        if (s != kReached && s != kVent) continue;
+        const std::int32_t c = air.add(s == kVent, i, j, k);
+        set[static_cast<std::size_t>(d)] = c;
+        level.push_back(c);
+        level_thick.push_back(std::all_of(faces.begin(), faces.end(), [&](Index o) { return is_fill(state[static_cast<std::size_t>(d + o)]); }));
+        for (std::size_t n = 0; n < 13; ++n)
+          if (const std::int32_t e = set[static_cast<std::size_t>(d + offsets[n])]; e >= 0) air.unite(c, e, seal);
+      }
+    for (std::size_t n = 0; n < level.size(); ++n) {
+      const auto root = static_cast<std::size_t>(air.find(level[n]));
+      ++air.above[root];
+      air.thick[root] = air.thick[root] || level_thick[n];
+    }
+  }
+  for (std::size_t c = 0; c < air.parent.size(); ++c)
+    if (air.parent[c] == static_cast<std::int32_t>(c) && !air.vented[c]) seal(static_cast<std::int32_t>(c), air.above[c], air.top[c], air.thick[c]);
+
+  const auto largest_first = [](const AirPocket& a, const AirPocket& b) { return a.volume > b.volume; };
+  std::sort(out.pockets.begin(), out.pockets.end(), largest_first);
+  std::sort(out.unreachable.begin(), out.unreachable.end(), largest_first);
+  for (const AirPocket& p : out.pockets) out.trapped_volume += p.volume;
+  return out;
+}
+
+} // namespace fibermold

@@ -1,0 +1,43 @@
+#pragma once
+// Where a shot's sprues and vents go. A shot starts from the holes its cavity's shape suggests (a
+// sprue from below at the lowest flat spot, vents spread along the top: cavity_ports) or from none;
+// the fill simulation then adds a sprue for every part of the fill region that no sprue reaches
+// (from below at its lowest point, or, where cured silicone lies below it as in shot 2, from above
+// straight over its lowest point) and a vent at the top of every pocket of air the rising silicone
+// would close off, until the trapped air is within the tolerance (plan_fill).
+
+#include <string>
+#include <vector>
+
+#include <Eigen/Core>
+
+#include "mesh/surface_mesh.hpp"
+#include "molds/fill_simulation.hpp"
+#include "molds/voxel_region.hpp"
+
+namespace fibermold {
+
+struct Ports {
+  std::vector<Port> sprues, vents;
+};
+
+/// The trapped air a shot may keep: a cubic millimetre (voxel facets of a curved top give pockets
+/// of a few voxels that no vent is needed for).
+constexpr double kTrappedAirTolerance = 1e-9;  // m³
+constexpr int kMaxVents = 16, kMaxSprues = 8;
+
+/// The sprue at the cavity's lowest flat spot, from below (the whole hole, grown by `margin`, lands
+/// on the bottom within 0.5 mm of its lowest point), and up to `vents` vents spread along its top.
+/// Throws std::runtime_error, naming `shot`, when the bottom has no spot for the sprue.
+Ports cavity_ports(const SurfaceMesh& cavity, const Eigen::Vector3d& pull, double sprue_diameter, int vents,
+                   double vent_diameter, double margin, const std::string& shot);
+
+struct FillPlan {
+  Ports ports;
+  FillResult fill;  ///< of the ports as placed
+};
+
+/// `ports` completed by the fill simulation of `region`: sprues from above when `sprue_from_above`.
+FillPlan plan_fill(const VoxelRegion& region, Ports ports, double sprue_diameter, double vent_diameter, bool sprue_from_above);
+
+} // namespace fibermold
