@@ -214,6 +214,23 @@ SurfaceCheck check_surface(const SurfaceMesh& s)
                       wrong.count),
           true);
       if (wrong.count > 0) return check;
+      // Every shell points away from the material: the inward ones bound voids.
+      const std::vector<int> shell = face_shells(s);
+      const int shells = *std::max_element(shell.begin(), shell.end()) + 1;
+      std::vector<SurfaceMesh> parts(static_cast<std::size_t>(shells));
+      for (SurfaceMesh& p : parts) p.vertices = s.vertices, p.faces.resize(0, 3);
+      for (Eigen::Index f = 0; f < s.num_faces(); ++f) {
+        SurfaceMesh& p = parts[static_cast<std::size_t>(shell[static_cast<std::size_t>(f)])];
+        p.faces.conservativeResize(p.faces.rows() + 1, 3);
+        p.faces.row(p.faces.rows() - 1) = s.faces.row(f);
+      }
+      for (const SurfaceMesh& p : parts)
+        if (const double v = signed_volume(p); v < 0) {
+          Eigen::Vector3d centre = Eigen::Vector3d::Zero();
+          for (Eigen::Index f = 0; f < p.num_faces(); ++f)
+            for (int k = 0; k < 3; ++k) centre += p.vertices.row(p.faces(f, k)).transpose() / (3.0 * static_cast<double>(p.num_faces()));
+          check.cavities.push_back({-v, centre});
+        }
     }
     const double size = (check.max - check.min).norm();
     const Eigen::Vector3d centre = (check.min + check.max) / 2;

@@ -19,8 +19,15 @@ struct SurfaceProblem {
   bool repairable = false;  ///< `[mesh] repair = true` can fix it
 };
 
+/// A closed void inside the body: a shell that points inward.
+struct SurfaceCavity {
+  double volume = 0;                              ///< m³
+  Eigen::Vector3d centre = Eigen::Vector3d::Zero();  ///< m, of its vertices
+};
+
 struct SurfaceCheck {
   std::vector<SurfaceProblem> problems;
+  std::vector<SurfaceCavity> cavities;  ///< found when the surface is valid
   std::vector<std::string> warnings;
   double volume = 0;        ///< m³, signed; meaningful when closed and consistently oriented
   int components = 0;

@@ -13,7 +13,7 @@ using Index = std::int64_t;
 
 /// The region's voxels that a port's hole takes in: in each column within its radius (and half a
 /// voxel) of its axis, coming from outside along the hole, the fill voxels it meets first, to its
-/// dip past the mouth.
+/// depth past the mouth.
 std::vector<Index> port_voxels(const VoxelRegion& r, const Port& p)
 {
   const Eigen::Vector3d g = r.grid(p.mouth);
@@ -74,10 +74,10 @@ struct Padded {
 /// The voxel of level k nearest (i, j) for which `member` holds, searched ring by ring (square
 /// rings: the nearest in that measure).
 template <class Member>
-Index nearest_in_level(const VoxelRegion& r, const Padded& g, Index k, Index i, Index j, Member&& member)
+Index nearest_in_level(const VoxelRegion& r, const Padded& g, Index k, Index i, Index j, Member&& member, Index rings)
 {
   const Index nx = r.size.x(), ny = r.size.y();
-  for (Index ring = 0; ring <= std::max(nx, ny); ++ring)
+  for (Index ring = 0; ring <= std::min(rings, std::max(nx, ny)); ++ring)
     for (Index b = j - ring; b <= j + ring; ++b)
       for (Index a = i - ring; a <= i + ring; a += (b == j - ring || b == j + ring) ? 1 : 2 * ring) {
         if (a >= 0 && b >= 0 && a < nx && b < ny && member(g.at(a, b, k))) return g.at(a, b, k);
@@ -91,6 +91,7 @@ struct Top {
   Index k = 0;
   double i = 0, j = 0;
   Index n = 0;
+  Index any = -1;  ///< a voxel of the level (padded grid)
 
   void join(const Top& o)
   {
@@ -107,7 +108,7 @@ struct AirSets {
   std::vector<Index> above;
   std::vector<Top> top;
 
-  std::int32_t add(bool vent, Index i, Index j, Index k)
+  std::int32_t add(bool vent, Index i, Index j, Index k, Index voxel)
   {
     const auto c = static_cast<std::int32_t>(parent.size());
     parent.push_back(c);
@@ -115,7 +116,7 @@ struct AirSets {
     vented.push_back(vent);
     thick.push_back(0);
     above.push_back(0);
-    top.push_back({k, static_cast<double>(i), static_cast<double>(j), 1});
+    top.push_back({k, static_cast<double>(i), static_cast<double>(j), 1, voxel});
     return c;
   }
   std::int32_t find(std::int32_t c)
@@ -129,14 +130,19 @@ struct AirSets {
   }
   /// Joins the sets of a and b; a part without a vent joining one with a vent is sealed off by the
   /// liquid that reaches this level: `sealed` gets its voxels above the level and its top.
-  template <class Sealed>
-  void unite(std::int32_t a, std::int32_t b, Sealed&& sealed)
+  /// Where two parts without a vent join, the smaller would be sealed off once the other has
+  /// one: `nested` gets it, so that both can be vented at once.
+  template <class Sealed, class Nested>
+  void unite(std::int32_t a, std::int32_t b, Sealed&& sealed, Nested&& nested)
   {
     auto ra = static_cast<std::size_t>(find(a)), rb = static_cast<std::size_t>(find(b));
     if (ra == rb) return;
     if (vented[ra] != vented[rb]) {
       const std::size_t closed = vented[ra] ? rb : ra;
       if (above[closed] > 0) sealed(static_cast<std::int32_t>(closed), above[closed], top[closed], thick[closed]);
+    } else if (!vented[ra] && above[ra] > 0 && above[rb] > 0) {
+      const std::size_t smaller = above[ra] < above[rb] ? ra : rb;
+      nested(static_cast<std::int32_t>(smaller), above[smaller], top[smaller], thick[smaller]);
     }
     if (rank[ra] < rank[rb]) std::swap(ra, rb);
     if (rank[ra] == rank[rb]) ++rank[ra];
@@ -216,7 +222,7 @@ FillResult simulate_fill(const VoxelRegion& r, const std::vector<Port>& sprues, 
     const auto id = static_cast<std::int32_t>(-2 - static_cast<std::int32_t>(out.unreachable.size()));
     for (Index e : part) set[static_cast<std::size_t>(e)] = id;
     const Index at = nearest_in_level(r, g, low - 1, std::lround(i / n), std::lround(j / n),
-                                      [&](Index e) { return set[static_cast<std::size_t>(e)] == id; });
+                                      [&](Index e) { return set[static_cast<std::size_t>(e)] == id; }, std::max(r.size.x(), r.size.y()));
     out.unreachable.push_back({static_cast<double>(part.size()) * cell, centre(at)});
   }
 
@@ -232,18 +238,27 @@ FillResult simulate_fill(const VoxelRegion& r, const std::vector<Port>& sprues, 
   AirSets air;
   std::vector<std::int32_t> level;
   std::vector<bool> level_thick;
-  // A pocket is named by the voxel of its top level nearest the level's middle; a vent can reach
+  // A pocket is named by the voxel of its top level nearest the level's middle (within 8 voxels of
+  // it; else any voxel of that level: a long thin pocket's middle may be far from it); a vent can reach
   // it when only mold lies above that voxel. One no thicker than two voxels that no vent can
   // reach is a crevice.
-  const auto seal = [&](std::int32_t root, Index voxels, const Top& top, bool thick) {
+  const auto name = [&](std::int32_t root, Index voxels, const Top& top, bool thick) {
     const Index i = std::lround(top.i / static_cast<double>(top.n)), j = std::lround(top.j / static_cast<double>(top.n));
-    const Index at = nearest_in_level(r, g, top.k, i, j, [&](Index d) {
+    Index at = nearest_in_level(r, g, top.k, i, j, [&](Index d) {
       return set[static_cast<std::size_t>(d)] >= 0 && air.find(set[static_cast<std::size_t>(d)]) == root;
-    });
+    }, 8);
+    if (at < 0) at = top.any;
     bool ventable = true;
     for (Index e = at + g.nxy; e < static_cast<Index>(state.size()); e += g.nxy) ventable = ventable && state[static_cast<std::size_t>(e)] == kOutside;
-    if (!thick && !ventable) out.crevice_air_volume += static_cast<double>(voxels) * cell;
-    else out.pockets.push_back({static_cast<double>(voxels) * cell, centre(at), ventable});
+    return AirPocket{static_cast<double>(voxels) * cell, centre(at), ventable, !thick};
+  };
+  const auto seal = [&](std::int32_t root, Index voxels, const Top& top, bool thick) {
+    const AirPocket p = name(root, voxels, top, thick);
+    if (!thick && !p.ventable) out.crevice_air_volume += p.volume;
+    else out.pockets.push_back(p);
+  };
+  const auto nested = [&](std::int32_t root, Index voxels, const Top& top, bool thick) {
+    if (static_cast<double>(voxels) * cell >= 1e-9) out.nested.push_back(name(root, voxels, top, thick));
   };
   for (Index k = r.size.z() - 1; k >= 0; --k) {
     level.clear();
@@ -252,12 +267,12 @@ FillResult simulate_fill(const VoxelRegion& r, const std::vector<Port>& sprues, 
       for (Index i = 0, d = g.at(0, j, k); i < r.size.x(); ++i, ++d) {
         const std::uint8_t s = state[static_cast<std::size_t>(d)];
         if (s != kReached && s != kVent) continue;
-        const std::int32_t c = air.add(s == kVent, i, j, k);
+        const std::int32_t c = air.add(s == kVent, i, j, k, d);
         set[static_cast<std::size_t>(d)] = c;
         level.push_back(c);
         level_thick.push_back(std::all_of(faces.begin(), faces.end(), [&](Index o) { return is_fill(state[static_cast<std::size_t>(d + o)]); }));
         for (std::size_t n = 0; n < 13; ++n)
-          if (const std::int32_t e = set[static_cast<std::size_t>(d + offsets[n])]; e >= 0) air.unite(c, e, seal);
+          if (const std::int32_t e = set[static_cast<std::size_t>(d + offsets[n])]; e >= 0) air.unite(c, e, seal, nested);
       }
     for (std::size_t n = 0; n < level.size(); ++n) {
       const auto root = static_cast<std::size_t>(air.find(level[n]));
@@ -271,6 +286,7 @@ FillResult simulate_fill(const VoxelRegion& r, const std::vector<Port>& sprues, 
   const auto largest_first = [](const AirPocket& a, const AirPocket& b) { return a.volume > b.volume; };
   std::sort(out.pockets.begin(), out.pockets.end(), largest_first);
   std::sort(out.unreachable.begin(), out.unreachable.end(), largest_first);
+  std::sort(out.nested.begin(), out.nested.end(), largest_first);
   for (const AirPocket& p : out.pockets) out.trapped_volume += p.volume;
   return out;
 }

@@ -24,16 +24,18 @@ struct Port {
   Eigen::Vector3d mouth;  ///< m, body frame: where the hole meets the cavity
   double diameter = 0;    ///< m
   bool upward = true;     ///< leaves along +pull (vents, a sprue from above) or −pull (a sprue from below)
+  /// m: how far past its mouth the mold cuts the hole, so that its whole disc lies in the cavity
+  /// (a sloping skin under it) and the booleans meet no tangent faces; 0: dip()
+  double depth = 0;
 
-  /// How far the mold cuts the hole into the cavity past its mouth, so that the booleans meet no
-  /// tangent faces and the hole surely opens.
-  double dip() const { return diameter / 2 < 0.5e-3 ? diameter / 2 : 0.5e-3; }
+  double dip() const { return depth > 0 ? depth : diameter / 2 < 0.5e-3 ? diameter / 2 : 0.5e-3; }
 };
 
 struct AirPocket {
   double volume = 0;                          ///< m³
   Eigen::Vector3d at = Eigen::Vector3d::Zero();  ///< m: a pocket's highest point, an unfilled part's lowest
   bool ventable = true;  ///< a pocket's top has mold straight above it (not cured silicone or a muscle): a vent can reach it
+  bool thin = false;     ///< no voxel of the pocket has all six face neighbours in the region
 };
 
 struct FillResult {
@@ -42,6 +44,9 @@ struct FillResult {
   double trapped_volume = 0;    ///< m³: air the rising silicone closes off from every vent, crevices left out
   std::vector<AirPocket> pockets;      ///< trapped air, largest first, crevices left out
   std::vector<AirPocket> unreachable;  ///< parts no sprue reaches, largest first, crevices left out
+  /// Air that a pocket holds as a part of its own, of 1 mm³ or more, largest first: where two parts
+  /// without a vent join, the smaller, sealed off once the other has a vent (not counted as trapped)
+  std::vector<AirPocket> nested;
   /// m³: parts no sprue reaches that are crevices thinner than two voxels (no voxel of theirs has
   /// all six face neighbours in the region), such as the wedge along a muscle's line of contact
   /// with its groove's bottom, which the sampling cuts off from the rest
@@ -49,6 +54,10 @@ struct FillResult {
   /// m³: air in such crevices under cured silicone or a muscle (pockets no thicker than two voxels
   /// whose top no vent can reach): sampled as closed off, though the gap goes on below a voxel
   double crevice_air_volume = 0;
+  /// m³: shot 1's air at a groove's mouth (a thin pocket whose top lies beside shot 2's fill
+  /// region, as in the wedge of cast between a groove's wall and a sloping skin): what it leaves
+  /// empty, shot 2's silicone fills (plan_fill)
+  double overmolded_air_volume = 0;
   std::vector<bool> sprue_open;        ///< the sprue opens onto the region
   std::vector<bool> vent_open;         ///< the vent opens onto a part of the region that a sprue reaches
 };

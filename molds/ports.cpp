@@ -1,7 +1,9 @@
 #include "molds/ports.hpp"
 
 #include <algorithm>
+#include <chrono>
 #include <cmath>
+#include <optional>
 #include <stdexcept>
 
 #include <Eigen/Eigenvalues>
@@ -116,40 +118,158 @@ Ports cavity_ports(const SurfaceMesh& cavity, const Eigen::Vector3d& pull, doubl
   return out;
 }
 
-FillPlan plan_fill(const VoxelRegion& region, Ports ports, double sprue_diameter, double vent_diameter, bool sprue_from_above)
+namespace {
+
+/// Where holes can meet the cavity from outside along ±pull.
+class HoleSites {
+public:
+  HoleSites(const VoxelRegion& region, const SurfaceMesh& cavity) : region_(region), surface_(cavity.vertices, cavity.faces)
+  {
+    const Eigen::VectorXd h = cavity.vertices * region.axes.col(2);
+    lowest_ = h.minCoeff();
+    highest_ = h.maxCoeff();
+  }
+
+  /// The site for a hole of `diameter` near `near` (m): the candidate on a grid of the region's
+  /// voxel within 3 mm whose column meets the fill region first and where the skin under the
+  /// hole's rim lies within tan 35° of its radius of the mouth's height (the mold between the
+  /// hole's wall and a skin sloping more steeply would be a knife edge); for a vent the highest
+  /// such site, for a sprue the nearest.
+  std::optional<Port> near(const Eigen::Vector3d& near, double diameter, bool upward, bool highest, const Ports& placed) const
+  {
+    // Within 3 mm first; farther out (on a flat top) where the holes already placed crowd it.
+    for (const double search : {3e-3, 6e-3, 12e-3})
+      if (auto site = within(near, diameter, upward, highest, placed, search)) return site;
+    return std::nullopt;
+  }
+
+private:
+  std::optional<Port> within(const Eigen::Vector3d& near, double diameter, bool upward, bool highest, const Ports& placed, double search) const
+  {
+    const Eigen::Vector3d up = region_.axes.col(2), u = region_.axes.col(0), v = region_.axes.col(1);
+    const double r = diameter / 2, step = region_.voxel;
+    std::optional<Port> best;
+    double best_score = 0;
+    const int n = static_cast<int>(std::ceil(search / step));
+    for (int a = -n; a <= n; ++a)
+      for (int b = -n; b <= n; ++b) {
+        if (std::hypot(a, b) * step > search) continue;
+        const Eigen::Vector3d c = near + step * (a * u + b * v);
+        if (crowded(c, diameter, placed)) continue;
+        const auto h = skin(c, upward);
+        if (!h || !opens_on_fill(c, upward)) continue;
+        double deepest = *h, shallowest = *h;
+        bool ok = true;
+        for (int k = 0; k < 12 && ok; ++k) {
+          const double t = 2 * M_PI * k / 12;
+          const auto hk = skin(c + r * (std::cos(t) * u + std::sin(t) * v), upward);
+          ok = hk && std::abs(*hk - *h) <= std::tan(35 * M_PI / 180) * r;
+          if (ok) deepest = std::min(deepest, *hk), shallowest = std::max(shallowest, *hk);
+        }
+        if (!ok) continue;
+        // A vent as high as it goes (by the voxel), then as near; a sprue as near.
+        const double along = upward ? *h : -*h;  // the hole's mouth, as seen from outside
+        const double score = (highest ? std::round(along / step) * 1e6 : 0.0) - std::hypot(a, b);
+        if (best && score <= best_score) continue;
+        const Eigen::Vector3d at = c - (c.dot(up)) * up + (upward ? *h : -*h) * up;
+        // The cut reaches 0.5 mm past the skin's deepest point under the disc.
+        best = Port{at, diameter, upward, (upward ? *h - deepest : shallowest - *h) + 0.5e-3};
+        best_score = score;
+      }
+    return best;
+  }
+
+  /// A hole at c would come within 1 mm of a hole already placed (seen along pull): overlapping
+  /// cylinders leave the booleans slivers, and a wall between them thinner than a printer holds.
+  bool crowded(const Eigen::Vector3d& c, double diameter, const Ports& placed) const
+  {
+    const Eigen::Vector3d up = region_.axes.col(2);
+    const auto apart = [&](const Port& p) {
+      const Eigen::Vector3d d = p.mouth - c;
+      return (d - d.dot(up) * up).norm() >= (p.diameter + diameter) / 2 + 1e-3;
+    };
+    return !(std::all_of(placed.sprues.begin(), placed.sprues.end(), apart) && std::all_of(placed.vents.begin(), placed.vents.end(), apart));
+  }
+
+  /// The skin's first point along ±pull from outside over `p`: its height as "along" from outside
+  /// (for a hole from below, the negated height), or none.
+  std::optional<double> skin(const Eigen::Vector3d& p, bool upward) const
+  {
+    const Eigen::Vector3d up = region_.axes.col(2);
+    const double from = upward ? highest_ + 1e-3 : lowest_ - 1e-3;
+    const Eigen::Vector3d origin = p - p.dot(up) * up + from * up;
+    const double d = surface_.ray_distance(origin, upward ? -up : up);
+    if (!std::isfinite(d)) return std::nullopt;
+    return upward ? from - d : -(from + d);
+  }
+  /// The first cell that the column over (under) p meets from outside is fill.
+  bool opens_on_fill(const Eigen::Vector3d& p, bool upward) const
+  {
+    const Eigen::Vector3d g = region_.grid(p);
+    const int i = static_cast<int>(std::lround(g.x())), j = static_cast<int>(std::lround(g.y()));
+    for (int k = upward ? region_.size.z() - 1 : 0; k >= 0 && k < region_.size.z(); k += upward ? -1 : 1)
+      if (const auto c = region_.cell(i, j, k); c != VoxelRegion::mold) return c == VoxelRegion::fill;
+    return false;
+  }
+
+  const VoxelRegion& region_;
+  SurfaceDistance surface_;
+  double lowest_ = 0, highest_ = 0;
+};
+
+} // namespace
+
+FillPlan plan_fill(const VoxelRegion& region, const SurfaceMesh& cavity, Ports ports, double sprue_diameter, double vent_diameter,
+                   bool sprue_from_above, const VoxelRegion* overmold)
 {
-  const Eigen::Vector3d up = region.axes.col(2);
-  const auto voxel_of = [&](const Eigen::Vector3d& p) -> Eigen::Vector3i { return region.grid(p).array().round().cast<int>(); };
-  // From above: straight over the part's lowest voxel, where its column's highest voxel meets the mold.
-  const auto sprue_at = [&](const Eigen::Vector3d& lowest) -> Port {
-    if (!sprue_from_above) return {lowest - region.voxel / 2 * up, sprue_diameter, false};
-    const Eigen::Vector3i v = voxel_of(lowest);
-    int top = v.z();
-    for (int k = v.z(); k < region.size.z(); ++k)
-      if (region.contains(v.x(), v.y(), k)) top = k;
-    return {region.centre(v.x(), v.y(), top) + region.voxel / 2 * up, sprue_diameter, true};
+  const HoleSites sites(region, cavity);
+  const auto at_a_groove = [&](const AirPocket& p) {
+    if (!overmold || !p.thin) return false;
+    const Eigen::Vector3i g = overmold->grid(p.at).array().round().cast<int>();
+    for (int k = -2; k <= 2; ++k)
+      for (int j = -2; j <= 2; ++j)
+        for (int i = -2; i <= 2; ++i)
+          if (overmold->contains(g.x() + i, g.y() + j, g.z() + k)) return true;
+    return false;
   };
   FillPlan plan{std::move(ports), {}};
+  double before = HUGE_VAL;
   for (;;) {
+    const auto started = std::chrono::steady_clock::now();
     plan.fill = simulate_fill(region, plan.ports.sprues, plan.ports.vents);
-    const FillResult& f = plan.fill;
+    plan.simulation_seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
+    ++plan.simulations;
+    FillResult& f = plan.fill;
+    for (const AirPocket& p : f.pockets)
+      if (at_a_groove(p)) f.overmolded_air_volume += p.volume;
+    std::erase_if(f.pockets, at_a_groove);
+    f.trapped_volume = 0;
+    for (const AirPocket& p : f.pockets) f.trapped_volume += p.volume;
     bool added = false;
     double left = f.fill_volume - f.reachable_volume - f.crevice_volume;
     for (const AirPocket& part : f.unreachable) {
       if (left <= kTrappedAirTolerance || static_cast<int>(plan.ports.sprues.size()) >= kMaxSprues) break;
-      plan.ports.sprues.push_back(sprue_at(part.at));
+      if (const auto sprue = sites.near(part.at, sprue_diameter, sprue_from_above, false, plan.ports)) plan.ports.sprues.push_back(*sprue), added = true;
       left -= part.volume;
-      added = true;
     }
     if (added) continue;  // the new sprues' air first
+    // Vents while they let out air: each pocket's gets the highest site near its top.
+    if (f.trapped_volume >= before) return plan;
+    before = f.trapped_volume;
     left = f.trapped_volume;
     for (const AirPocket& pocket : f.pockets) {
       if (left <= kTrappedAirTolerance || static_cast<int>(plan.ports.vents.size()) >= kMaxVents) break;
       if (!pocket.ventable) continue;
-      plan.ports.vents.push_back({pocket.at + region.voxel / 2 * up, vent_diameter, true});
+      if (const auto vent = sites.near(pocket.at, vent_diameter, true, true, plan.ports)) plan.ports.vents.push_back(*vent), added = true;
       left -= pocket.volume;
-      added = true;
     }
+    // The parts nested in a pocket that is being vented would be sealed next: vent them now.
+    if (added)
+      for (const AirPocket& part : f.nested) {
+        if (static_cast<int>(plan.ports.vents.size()) >= kMaxVents) break;
+        if (!part.ventable || at_a_groove(part)) continue;
+        if (const auto vent = sites.near(part.at, vent_diameter, true, true, plan.ports)) plan.ports.vents.push_back(*vent);
+      }
     if (!added) return plan;
   }
 }

@@ -35,9 +35,21 @@ Ports cavity_ports(const SurfaceMesh& cavity, const Eigen::Vector3d& pull, doubl
 struct FillPlan {
   Ports ports;
   FillResult fill;  ///< of the ports as placed
+  int simulations = 0;             ///< fill simulations run to place them
+  double simulation_seconds = 0;   ///< their time, apart from the search for the holes' sites
 };
 
-/// `ports` completed by the fill simulation of `region`: sprues from above when `sprue_from_above`.
-FillPlan plan_fill(const VoxelRegion& region, Ports ports, double sprue_diameter, double vent_diameter, bool sprue_from_above);
+/// `ports` completed by the fill simulation of `region`, whose mold is made around `cavity`:
+/// sprues from above when `sprue_from_above`. A hole it adds meets the cavity within 3 mm of the
+/// place it is wanted (6 or 12 mm where the holes already placed crowd it: they keep 1 mm apart),
+/// where it opens on the fill region and the skin under its rim slopes by at
+/// most 35° (a steeper skin leaves a knife edge of mold beside the hole); it is cut 0.5 mm past
+/// the skin's deepest point under its disc.
+///
+/// With `overmold` (shot 2's fill region, for shot 1), a thin pocket whose top lies within two
+/// voxels of it sits at a groove's mouth (the wedge of cast between a groove's wall and a sloping
+/// skin): shot 2 fills what it leaves, so it needs no vent and is not counted as trapped.
+FillPlan plan_fill(const VoxelRegion& region, const SurfaceMesh& cavity, Ports ports, double sprue_diameter, double vent_diameter,
+                   bool sprue_from_above, const VoxelRegion* overmold = nullptr);
 
 } // namespace fibermold

@@ -138,6 +138,7 @@ struct MoldOptions {
   int vents = 2;
   double vent_diameter = 1.5e-3;            ///< m
   double groove_clearance = 0.3e-3;         ///< m
+  double min_silicone = 0.5e-3;             ///< m, the thinnest cast silicone at a groove and over a muscle
   double end_channel_length = 5e-3;         ///< m
   double end_channel_diameter = 4e-3;       ///< m
   int screw_holes = 0;

@@ -777,6 +777,7 @@ MoldOptions read_mold(Section s)
   o.vents = s.integer("vents", o.vents, 0, 16);
   o.vent_diameter = mm("vent_diameter", o.vent_diameter, positive());
   o.groove_clearance = mm("groove_clearance", o.groove_clearance, non_negative());
+  o.min_silicone = mm("min_silicone", o.min_silicone, non_negative());
   o.end_channel_length = mm("end_channel_length", o.end_channel_length, non_negative());
   o.end_channel_diameter = mm("end_channel_diameter", o.end_channel_diameter, positive());
   o.screw_holes = s.integer("screw_holes", o.screw_holes, 0, 16);

@@ -35,7 +35,22 @@ void require_mesh_size(const Design& d, double volume, double edge)
                                             edge / units::mm, volume / 1e-9, expected_tets, d.mesh.max_tets)});
 }
 
-/// Import, check, and repair when asked; throws InputError when the result cannot be meshed.
+/// A closed void inside the body cannot be cast in a two-part mold: nothing would hold it open
+/// (it takes a core, which fibermold does not make).
+void require_castable(const SurfaceCheck& check, const SurfaceMesh& surface)
+{
+  std::vector<Diagnostic> diagnostics;
+  for (const SurfaceCavity& c : check.cavities)
+    diagnostics.push_back({surface.source, 0, 0, "",
+                           fmt::format("surface {} has a closed internal cavity of {:.4g} mm³ around ({:.1f}, {:.1f}, {:.1f}) mm: a "
+                                       "two-part mold cannot cast it (the void would need a core to hold it, which fibermold does "
+                                       "not make); fill it, or open it to the outside through the skin",
+                                       surface.source.filename().string(), c.volume / 1e-9, c.centre.x() / units::mm,
+                                       c.centre.y() / units::mm, c.centre.z() / units::mm)});
+  if (!diagnostics.empty()) throw InputError(std::move(diagnostics));
+}
+
+/// Import, check, and repair when asked; throws InputError when the result cannot be meshed or cast.
 SurfaceMesh prepared_surface(const Design& d, SurfaceCheck& check, RepairReport& repair, nlohmann::json& seconds)
 {
   auto t = Clock::now();
@@ -62,6 +77,7 @@ SurfaceMesh prepared_surface(const Design& d, SurfaceCheck& check, RepairReport&
     seconds["repair"] = since(t);
   }
   require_valid_surface(check, surface, d.mesh.repair);
+  require_castable(check, surface);
   return surface;
 }
 

@@ -146,6 +146,21 @@ TEST_F(MeshStageE2E, DuplicatedVerticesMeshWithRepair)
   EXPECT_NEAR(report["mesh"]["volume_mm3"].get<double>(), 16000.0, 0.01);
 }
 
+TEST_F(MeshStageE2E, AClosedInternalCavityIsRefusedByCheckAndMake)
+{
+  // A 40 × 20 × 20 mm block with a closed 20 × 8 × 8 mm chamber inside (a PneuNet's, sealed): a
+  // valid solid, but a two-part mold cannot cast the void.
+  SurfaceMesh chamber = test::box({0.01, 0.006, 0.006}, {0.03, 0.014, 0.014}, 2);
+  chamber.faces.col(1).swap(chamber.faces.col(2));  // pointing into the void
+  write_stl(dir_ / "hollow.stl", test::combine(box_, chamber));
+  design("hollow.stl");
+  const std::string message = "surface hollow.stl has a closed internal cavity of 1280 mm³ around (20.0, 10.0, 10.0) mm: a two-part mold cannot cast it";
+  const auto checked = test::run_fibermold("check design.toml", dir_.path());
+  EXPECT_EQ(checked.exit_code, 2) << checked.err;
+  EXPECT_THAT(checked.err, HasSubstr(message));
+  expect_rejected(message);
+}
+
 TEST_F(MeshStageE2E, NonManifoldEdge)
 {
   write_stl(dir_ / "edge.stl", test::combine(test::box({0, 0, 0}, {0.01, 0.01, 0.01}, 1),

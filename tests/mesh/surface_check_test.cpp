@@ -132,6 +132,9 @@ TEST(SurfaceCheck, HollowBodyWithInwardCavityIsValid)
   const SurfaceCheck c = check_surface(hollow_sphere(true));
   EXPECT_TRUE(c.ok()) << c.problems.front().message;
   EXPECT_NEAR(c.volume, signed_volume(test::sphere(0.02)) - signed_volume(test::sphere(0.01)), 1e-15);
+  ASSERT_EQ(c.cavities.size(), 1u);
+  EXPECT_NEAR(c.cavities[0].volume, signed_volume(test::sphere(0.01)), 1e-15);
+  EXPECT_LT(c.cavities[0].centre.norm(), 1e-4);
 }
 
 TEST(SurfaceCheck, CavityShellPointingOutwardIsRepairable)

@@ -1,0 +1,112 @@
+#include "molds/silicone_thickness.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <unordered_map>
+
+#include <Eigen/Geometry>
+
+#include "mesh/surface_distance.hpp"
+#include "molds/part_checks.hpp"
+
+namespace fibermold {
+
+namespace {
+
+/// The polylines' points in a horizontal grid (seen along pull) of `cell`-sized buckets.
+class ShadowGrid {
+public:
+  /// `kept[f][k]`: point k of fiber f counts (its pieces count when both ends do).
+  ShadowGrid(const std::vector<std::vector<Eigen::Vector3d>>& fibers, const std::vector<std::vector<bool>>& kept, const Eigen::Matrix3d& frame,
+             double cell)
+      : frame_(frame), cell_(cell)
+  {
+    for (std::size_t f = 0; f < fibers.size(); ++f)
+      for (std::size_t k = 0; k + 1 < fibers[f].size(); ++k) {
+        const std::vector<Eigen::Vector3d>& line = fibers[f];
+        if (!kept[f][k] || !kept[f][k + 1]) continue;
+        // Points every quarter cell along each piece: the shadow's distance to within an eighth.
+        const int n = std::max(1, static_cast<int>(std::ceil((line[k + 1] - line[k]).norm() / (cell / 4))));
+        for (int i = 0; i < n; ++i) {
+          const Eigen::Vector3d p = frame_ * (line[k] + (line[k + 1] - line[k]) * (static_cast<double>(i) / n));
+          buckets_[key(p)].push_back(p);
+        }
+      }
+  }
+  /// The lowest height of a point whose shadow lies within `reach` (≤ cell) of q's, or +∞.
+  double lowest_within(const Eigen::Vector3d& world, double reach) const
+  {
+    const Eigen::Vector3d q = frame_ * world;
+    double lowest = HUGE_VAL;
+    const long i = cell_of(q.x()), j = cell_of(q.y());
+    for (long a = i - 1; a <= i + 1; ++a)
+      for (long b = j - 1; b <= j + 1; ++b)
+        if (const auto it = buckets_.find(pack(a, b)); it != buckets_.end())
+          for (const Eigen::Vector3d& p : it->second)
+            if ((p.head<2>() - q.head<2>()).norm() <= reach) lowest = std::min(lowest, p.z());
+    return lowest;
+  }
+
+private:
+  long cell_of(double v) const { return static_cast<long>(std::floor(v / cell_)); }
+  static long long pack(long a, long b) { return (static_cast<long long>(a) << 32) ^ static_cast<long long>(static_cast<unsigned>(b)); }
+  long long key(const Eigen::Vector3d& p) const { return pack(cell_of(p.x()), cell_of(p.y())); }
+
+  Eigen::Matrix3d frame_;
+  double cell_;
+  std::unordered_map<long long, std::vector<Eigen::Vector3d>> buckets_;
+};
+
+} // namespace
+
+SiliconeThickness silicone_thickness(const SurfaceMesh& groove_body, const SurfaceMesh& body,
+                                     const std::vector<std::vector<Eigen::Vector3d>>& fibers, double radius, double muscle_radius,
+                                     const Eigen::Vector3d& pull_in, double voxel, double exempt)
+{
+  SiliconeThickness out;
+  const Eigen::Vector3d pull = pull_in.normalized();
+  // Rows: two horizontal axes, then pull.
+  Eigen::Matrix3d frame;
+  frame.row(2) = pull.transpose();
+  frame.row(0) = pull.unitOrthogonal().transpose();
+  frame.row(1) = pull.cross(pull.unitOrthogonal()).transpose();
+
+  // The points that count: not within `exempt` of an end on the skin.
+  const SurfaceDistance skin(body.vertices, body.faces);
+  std::vector<std::vector<bool>> kept;
+  for (const auto& line : fibers) {
+    std::vector<double> s(line.size(), 0);
+    for (std::size_t k = 1; k < line.size(); ++k) s[k] = s[k - 1] + (line[k] - line[k - 1]).norm();
+    const bool first_on_skin = skin.closest(line.front()).distance < exempt / 2, last_on_skin = skin.closest(line.back()).distance < exempt / 2;
+    std::vector<bool>& keep = kept.emplace_back(line.size(), true);
+    for (std::size_t k = 0; k < line.size(); ++k) keep[k] = !((first_on_skin && s[k] < exempt) || (last_on_skin && s.back() - s[k] < exempt));
+  }
+
+  // Shot 1: the groove body's faces on a groove's walls (their shadow within a voxel and a half of
+  // a groove's edge, at or above its bottom), and the silicone behind them. Not the lip within a
+  // groove's radius below its mouth: where the groove leaves a sloping skin the cast tapers to an
+  // edge there by design, and shot 2's silicone closes over it.
+  const double reach = radius + 1.5 * voxel;
+  const ShadowGrid shadows(fibers, kept, frame, reach);
+  std::vector<Eigen::Index> walls;
+  for (Eigen::Index f = 0; f < groove_body.num_faces(); ++f) {
+    const Eigen::Vector3d c = (groove_body.vertices.row(groove_body.faces(f, 0)) + groove_body.vertices.row(groove_body.faces(f, 1)) +
+                               groove_body.vertices.row(groove_body.faces(f, 2))).transpose() / 3;
+    if (c.dot(pull) >= shadows.lowest_within(c, reach) - radius - 1.5 * voxel && skin.ray_distance(c, pull) > radius) walls.push_back(f);
+  }
+  if (!walls.empty()) out.groove_web = thinnest_wall(groove_body, 2e-3, out.groove_web_at, walls);
+
+  // Shot 2: over each laid muscle (its axis radius − muscle_radius below the fiber's), up to the skin.
+  for (std::size_t f = 0; f < fibers.size(); ++f) {
+    const std::vector<Eigen::Vector3d>& line = fibers[f];
+    for (std::size_t k = 0; k < line.size(); ++k) {
+      if (!kept[f][k]) continue;
+      const Eigen::Vector3d top = line[k] + (2 * muscle_radius - radius) * pull;
+      const double d = skin.ray_distance(top, pull);
+      if (std::isfinite(d) && d < out.overmold) out.overmold = d, out.overmold_at = top + d * pull;
+    }
+  }
+  return out;
+}
+
+} // namespace fibermold

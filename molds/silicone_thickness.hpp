@@ -1,0 +1,31 @@
+#pragma once
+// How thin the cast silicone gets where the grooves run: shot 1's cast between a groove's walls
+// and the skin (a groove passing a notch or the body's side leaves a web there), and shot 2's
+// overmold over each laid muscle, from the muscle's top up to the skin. A web much thinner than a
+// millimetre tears on demolding or when the muscle inflates.
+
+#include <cmath>
+#include <vector>
+
+#include <Eigen/Core>
+
+#include "mesh/surface_mesh.hpp"
+
+namespace fibermold {
+
+struct SiliconeThickness {
+  double groove_web = HUGE_VAL;  ///< m: the thinnest shot-1 silicone at a groove's walls, more than its radius below its mouth
+  Eigen::Vector3d groove_web_at = Eigen::Vector3d::Zero();
+  double overmold = HUGE_VAL;    ///< m: the thinnest shot-2 silicone over a muscle
+  Eigen::Vector3d overmold_at = Eigen::Vector3d::Zero();
+};
+
+/// `fibers`: each fiber's centre line as a dense polyline (m); groove `radius`, laid muscles of
+/// `muscle_radius` resting on the grooves' bottoms. Within `exempt` (m, along the fiber) of an end on
+/// the skin, where a fiber leaves the body by design, the overmold is not measured. `voxel`: the
+/// groove body's, which blurs its walls by about one.
+SiliconeThickness silicone_thickness(const SurfaceMesh& groove_body, const SurfaceMesh& body,
+                                     const std::vector<std::vector<Eigen::Vector3d>>& fibers, double radius, double muscle_radius,
+                                     const Eigen::Vector3d& pull, double voxel, double exempt);
+
+} // namespace fibermold
