@@ -44,6 +44,24 @@ double undercut_area(const SurfaceMesh& cavity, const Eigen::Vector3d& point, co
   return area;
 }
 
+double upright_share(const SurfaceMesh& cavity, const Eigen::Vector3d& point, const Eigen::Vector3d& pull_in, double degrees)
+{
+  const Eigen::Vector3d pull = pull_in.normalized();
+  const double h = point.dot(pull), sin_tol = std::sin(degrees * M_PI / 180);
+  double above = 0, upright = 0;
+  for (Eigen::Index f = 0; f < cavity.num_faces(); ++f) {
+    const Eigen::Vector3d a = cavity.vertices.row(cavity.faces(f, 0)), b = cavity.vertices.row(cavity.faces(f, 1)),
+                          c = cavity.vertices.row(cavity.faces(f, 2));
+    if ((a + b + c).dot(pull) / 3 <= h) continue;
+    const Eigen::Vector3d n = (b - a).cross(c - a);
+    const double area = n.norm() / 2;
+    if (!(area > 0)) continue;
+    above += area;
+    if (std::abs(n.normalized().dot(pull)) <= sin_tol) upright += area;
+  }
+  return above > 0 ? upright / above : 0;
+}
+
 Parting choose_parting(const SurfaceMesh& cavity, const Eigen::Vector3d& pull_in)
 {
   const Eigen::Vector3d pull = pull_in.normalized();

@@ -21,6 +21,11 @@ struct Parting {
 /// Undercut area of `cavity` for the plane.
 double undercut_area(const SurfaceMesh& cavity, const Eigen::Vector3d& point, const Eigen::Vector3d& pull);
 
+/// The share of the cavity's area above the plane (the upper half's contact) that lies within
+/// `degrees` of parallel to pull: walls that the half slides along as it comes off, which a draft
+/// would lean.
+double upright_share(const SurfaceMesh& cavity, const Eigen::Vector3d& point, const Eigen::Vector3d& pull, double degrees);
+
 /// The plane normal to `pull` with the least undercut area.
 Parting choose_parting(const SurfaceMesh& cavity, const Eigen::Vector3d& pull);
 

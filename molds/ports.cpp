@@ -131,10 +131,11 @@ public:
   }
 
   /// The site for a hole of `diameter` near `near` (m): the candidate on a grid of the region's
-  /// voxel within 3 mm whose column meets the fill region first and where the skin under the
-  /// hole's rim lies within tan 35° of its radius of the mouth's height (the mold between the
-  /// hole's wall and a skin sloping more steeply would be a knife edge); for a vent the highest
-  /// such site, for a sprue the nearest.
+  /// voxel within 3 mm whose column meets the fill region first and where the skin under each
+  /// point of the hole's rim lies within tan 35° of its radius of the mouth's height (the mold
+  /// between the hole's wall and a skin sloping more steeply would be a knife edge) or 2 mm or
+  /// more below it (the hole's edge passes over a groove's rib or the body's side, and its bottom
+  /// stands on thick mold); for a vent the highest such site, for a sprue the nearest.
   std::optional<Port> near(const Eigen::Vector3d& near, double diameter, bool upward, bool highest, const Ports& placed) const
   {
     // Within 3 mm first; farther out (on a flat top) where the holes already placed crowd it.
@@ -158,13 +159,17 @@ private:
         if (crowded(c, diameter, placed)) continue;
         const auto h = skin(c, upward);
         if (!h || !opens_on_fill(c, upward)) continue;
+        // Each point of the rim: on a skin within 35° of level, or over a drop of 2 mm or more
+        // (a groove's rib, the body's side) where the hole's bottom stands on thick mold.
         double deepest = *h, shallowest = *h;
         bool ok = true;
         for (int k = 0; k < 12 && ok; ++k) {
           const double t = 2 * M_PI * k / 12;
           const auto hk = skin(c + r * (std::cos(t) * u + std::sin(t) * v), upward);
-          ok = hk && std::abs(*hk - *h) <= std::tan(35 * M_PI / 180) * r;
-          if (ok) deepest = std::min(deepest, *hk), shallowest = std::max(shallowest, *hk);
+          const double drop = hk ? *h - *hk : HUGE_VAL;  // away from outside
+          const bool level = std::abs(drop) <= std::tan(35 * M_PI / 180) * r;
+          ok = level || drop >= 2e-3;
+          if (level) deepest = std::min(deepest, *hk), shallowest = std::max(shallowest, *hk);
         }
         if (!ok) continue;
         // A vent as high as it goes (by the voxel), then as near; a sprue as near.

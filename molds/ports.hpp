@@ -43,8 +43,8 @@ struct FillPlan {
 /// sprues from above when `sprue_from_above`. A hole it adds meets the cavity within 3 mm of the
 /// place it is wanted (6 or 12 mm where the holes already placed crowd it: they keep 1 mm apart),
 /// where it opens on the fill region and the skin under its rim slopes by at
-/// most 35° (a steeper skin leaves a knife edge of mold beside the hole); it is cut 0.5 mm past
-/// the skin's deepest point under its disc.
+/// most 35° or drops away by 2 mm or more (a steeper skin leaves a knife edge of mold beside the
+/// hole); it is cut 0.5 mm past the deepest of that skin under its rim.
 ///
 /// With `overmold` (shot 2's fill region, for shot 1), a thin pocket whose top lies within two
 /// voxels of it sits at a groove's mouth (the wedge of cast between a groove's wall and a sloping

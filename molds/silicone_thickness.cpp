@@ -7,7 +7,6 @@
 #include <Eigen/Geometry>
 
 #include "mesh/surface_distance.hpp"
-#include "molds/part_checks.hpp"
 
 namespace fibermold {
 
@@ -94,7 +93,38 @@ SiliconeThickness silicone_thickness(const SurfaceMesh& groove_body, const Surfa
                                groove_body.vertices.row(groove_body.faces(f, 2))).transpose() / 3;
     if (c.dot(pull) >= shadows.lowest_within(c, reach) - radius - 1.5 * voxel && skin.ray_distance(c, pull) > radius) walls.push_back(f);
   }
-  if (!walls.empty()) out.groove_web = thinnest_wall(groove_body, 2e-3, out.groove_web_at, walls);
+  // The silicone behind a wall face: the median over a cone of rays (the inward normal and 8 rays
+  // 30° off it, as the part checks measure walls) of how far each goes before it leaves the cast
+  // through the skin, projected on the normal. A ray that leaves through another groove's wall
+  // (crossing grooves leave a sheet between them that shot 2 encloses) or through a face more than
+  // 53° off its direction (a corner, no wall) does not count.
+  const SurfaceDistance cast(groove_body.vertices, groove_body.faces);
+  const auto to_skin = [&](const Eigen::Vector3d& origin, const Eigen::Vector3d& dir) {
+    const SurfaceDistance::Hit hit = cast.ray_hit(origin, dir, 1e-7);
+    if (!std::isfinite(hit.distance) || hit.normal.dot(dir) < 0.6) return HUGE_VAL;
+    return skin.closest(origin + hit.distance * dir).distance <= 1.5 * voxel ? hit.distance : HUGE_VAL;
+  };
+  const auto behind = [&](const Eigen::Vector3d& centre, const Eigen::Vector3d& inward) {
+    const Eigen::Vector3d a = inward.unitOrthogonal(), b = inward.cross(a);
+    const double tilt = M_PI / 6;
+    std::vector<double> d{to_skin(centre, inward)};
+    for (int k = 0; k < 8; ++k) {
+      const double t = 2 * M_PI * k / 8;
+      d.push_back(to_skin(centre, std::cos(tilt) * inward + std::sin(tilt) * (std::cos(t) * a + std::sin(t) * b)) * std::cos(tilt));
+    }
+    std::nth_element(d.begin(), d.begin() + 4, d.end());
+    return d[4];
+  };
+  for (const Eigen::Index f : walls) {
+    const Eigen::Vector3d p0 = groove_body.vertices.row(groove_body.faces(f, 0)), p1 = groove_body.vertices.row(groove_body.faces(f, 1)),
+                          p2 = groove_body.vertices.row(groove_body.faces(f, 2));
+    const Eigen::Vector3d n = (p1 - p0).cross(p2 - p0);
+    if (!(n.norm() > 0)) continue;
+    const Eigen::Vector3d centre = (p0 + p1 + p2) / 3, inward = -n.normalized();
+    // One ray first; the cone only where it sees thin silicone.
+    if (to_skin(centre, inward) >= 2e-3) continue;
+    if (const double t = behind(centre, inward); t < out.groove_web) out.groove_web = t, out.groove_web_at = centre;
+  }
 
   // Shot 2: over each laid muscle (its axis radius − muscle_radius below the fiber's), up to the skin.
   for (std::size_t f = 0; f < fibers.size(); ++f) {

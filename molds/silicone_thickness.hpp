@@ -14,7 +14,9 @@
 namespace fibermold {
 
 struct SiliconeThickness {
-  double groove_web = HUGE_VAL;  ///< m: the thinnest shot-1 silicone at a groove's walls, more than its radius below its mouth
+  /// m: the thinnest shot-1 silicone between a groove's walls (more than its radius below its
+  /// mouth) and the skin; below 2 mm, else +∞
+  double groove_web = HUGE_VAL;
   Eigen::Vector3d groove_web_at = Eigen::Vector3d::Zero();
   double overmold = HUGE_VAL;    ///< m: the thinnest shot-2 silicone over a muscle
   Eigen::Vector3d overmold_at = Eigen::Vector3d::Zero();

@@ -296,7 +296,11 @@ void MoldsStage::run(StageContext& ctx) const
     started = Clock::now();
     const Mold mold = make_mold(cavity, parting, shot_channels, o, name, &plan.ports);
     ctx.log.info("{}: mold block and parts in {:.2f} s", name, since(started));
+    const double upright = upright_share(cavity, parting.point, parting.normal, 3);
+    ctx.log.info("{}: {:.0f} % of the upper half's contact lies within 3° of the pull (walls it slides along; draft_deg {})", name,
+                 100 * upright, m.draft_deg);
     shots[name] = {{"cavity_volume_mL", six_places(signed_volume(cavity) / 1e-6)},
+                   {"upper_contact_within_3deg_of_pull_percent", six_places(100 * upright)},
                    {"silicone_volume_mL", six_places(silicone / 1e-6)},
                    {"silicone_mass_g", six_places(silicone * d.material.density * 1e3)},
                    {"parting_point_mm", vec_mm(parting.point)},

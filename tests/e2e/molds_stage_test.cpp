@@ -308,6 +308,20 @@ TEST_F(MoldsE2E, BadInputsStopWithoutWritingParts)
   EXPECT_THAT(r.err, HasSubstr("[fiber.m1]"));
 }
 
+TEST_F(MoldsE2E, AThinWebBetweenAGrooveAndTheSkinFailsTheMolds)
+{
+  // The groove's wall 0.3 mm from the bar's side (y = 8 mm): a web that tears. A small [collide]
+  // clearance lets the route through the route check (radius + half the clearance); the cast's
+  // thickness check stops it.
+  design("[collide]\nclearance = 0.2\n", "[[fiber]]\nname = \"m1\"\npoints = [[0, 5.9, 0], [60, 5.9, 0]]\n");
+  const auto r = make();
+  EXPECT_EQ(r.exit_code, 1) << r.err;
+  EXPECT_THAT(r.err, HasSubstr("shot1: the cast's silicone is"));
+  EXPECT_THAT(r.err, HasSubstr("thin between a groove and the skin near ("));
+  EXPECT_THAT(r.err, HasSubstr("below [mold] min_silicone = 0.50 mm"));
+  EXPECT_FALSE(fs::exists(out("shot1-lower.stl")));
+}
+
 TEST(MoldsExample, HandRoutedTwistMakesCheckedPartsFromTheAdaptiveMesh)
 {
   // The example's helix leaves its groove through the bar's top face, where the adaptive groove
