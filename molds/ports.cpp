@@ -161,7 +161,7 @@ private:
         if (!h || !opens_on_fill(c, upward)) continue;
         // Each point of the rim: on a skin within 35° of level, or over a drop of 2 mm or more
         // (a groove's rib, the body's side) where the hole's bottom stands on thick mold.
-        double deepest = *h, shallowest = *h;
+        double deepest = *h;  // of the level skin under the rim, in the hole's "along"
         bool ok = true;
         for (int k = 0; k < 12 && ok; ++k) {
           const double t = 2 * M_PI * k / 12;
@@ -169,7 +169,7 @@ private:
           const double drop = hk ? *h - *hk : HUGE_VAL;  // away from outside
           const bool level = std::abs(drop) <= std::tan(35 * M_PI / 180) * r;
           ok = level || drop >= 2e-3;
-          if (level) deepest = std::min(deepest, *hk), shallowest = std::max(shallowest, *hk);
+          if (level) deepest = std::min(deepest, *hk);
         }
         if (!ok) continue;
         // A vent as high as it goes (by the voxel), then as near; a sprue as near.
@@ -177,8 +177,8 @@ private:
         const double score = (highest ? std::round(along / step) * 1e6 : 0.0) - std::hypot(a, b);
         if (best && score <= best_score) continue;
         const Eigen::Vector3d at = c - (c.dot(up)) * up + (upward ? *h : -*h) * up;
-        // The cut reaches 0.5 mm past the skin's deepest point under the disc.
-        best = Port{at, diameter, upward, (upward ? *h - deepest : shallowest - *h) + 0.5e-3};
+        // The cut reaches 0.5 mm past the deepest level skin under the rim.
+        best = Port{at, diameter, upward, *h - deepest + 0.5e-3};
         best_score = score;
       }
     return best;

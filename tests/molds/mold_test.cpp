@@ -304,5 +304,18 @@ TEST(Molds, KeysFitTheirSocketsWithTheClearance)
   expect_parts_ok(with_channel);
 }
 
+TEST(Parting, UprightShareOfTheUpperHalfsContact)
+{
+  // A 10 mm cube parted at mid-height: above the plane the top (100 mm²) and the sides' upper
+  // halves (200 mm²), which lie along the pull.
+  const SurfaceMesh cube = box_solid({0, 0, 0}, {10 * mm, 10 * mm, 10 * mm});
+  EXPECT_NEAR(upright_share(cube, {0, 0, 5 * mm}, {0, 0, 1}, 3), 2.0 / 3.0, 1e-12);
+  // Sides leaning 10° off the pull (a frustum) are not within 3° of it: only the top is above.
+  SurfaceMesh frustum = cube;
+  for (Eigen::Index i = 0; i < frustum.num_vertices(); ++i)
+    if (frustum.vertices(i, 2) > 0) frustum.vertices.row(i).head<2>() = (frustum.vertices.row(i).head<2>().array() - 5 * mm) * (1 - 2 * std::tan(10 * M_PI / 180)) + 5 * mm;
+  EXPECT_NEAR(upright_share(frustum, {0, 0, 5 * mm}, {0, 0, 1}, 3), 0.0, 1e-12);
+}
+
 } // namespace
 } // namespace fibermold
