@@ -138,7 +138,8 @@ public:
   /// stands on thick mold); for a vent the highest such site, for a sprue the nearest.
   std::optional<Port> near(const Eigen::Vector3d& near, double diameter, bool upward, bool highest, const Ports& placed) const
   {
-    // Within 3 mm first; farther out (on a flat top) where the holes already placed crowd it.
+    // Within 3 mm first; farther out where nothing nearer takes the hole (the holes already placed
+    // crowd it on a flat top, or the skin is too steep).
     for (const double search : {3e-3, 6e-3, 12e-3})
       if (auto site = within(near, diameter, upward, highest, placed, search)) return site;
     return std::nullopt;
@@ -172,9 +173,11 @@ private:
           if (level) deepest = std::min(deepest, *hk);
         }
         if (!ok) continue;
-        // A vent as high as it goes (by the voxel), then as near; a sprue as near.
-        const double along = upward ? *h : -*h;  // the hole's mouth, as seen from outside
-        const double score = (highest ? std::round(along / step) * 1e6 : 0.0) - std::hypot(a, b);
+        // A vent as high as it goes (by the voxel) but not above the top it is for (higher skin is
+        // other air's), then as near; a sprue as near.
+        const double height = upward ? *h : -*h;  // the mouth's height along pull
+        if (highest && height > near.dot(up) + step) continue;
+        const double score = (highest ? std::round(height / step) * 1e6 : 0.0) - std::hypot(a, b);
         if (best && score <= best_score) continue;
         const Eigen::Vector3d at = c - (c.dot(up)) * up + (upward ? *h : -*h) * up;
         // The cut reaches 0.5 mm past the deepest level skin under the rim.
@@ -225,7 +228,7 @@ private:
 } // namespace
 
 FillPlan plan_fill(const VoxelRegion& region, const SurfaceMesh& cavity, Ports ports, double sprue_diameter, double vent_diameter,
-                   bool sprue_from_above, const VoxelRegion* overmold)
+                   bool sprue_from_above, const VoxelRegion* overmold, double tolerance)
 {
   const HoleSites sites(region, cavity);
   const auto at_a_groove = [&](const AirPocket& p) {
@@ -253,7 +256,7 @@ FillPlan plan_fill(const VoxelRegion& region, const SurfaceMesh& cavity, Ports p
     bool added = false;
     double left = f.fill_volume - f.reachable_volume - f.crevice_volume;
     for (const AirPocket& part : f.unreachable) {
-      if (left <= kTrappedAirTolerance || static_cast<int>(plan.ports.sprues.size()) >= kMaxSprues) break;
+      if (left <= tolerance || static_cast<int>(plan.ports.sprues.size()) >= kMaxSprues) break;
       if (const auto sprue = sites.near(part.at, sprue_diameter, sprue_from_above, false, plan.ports)) plan.ports.sprues.push_back(*sprue), added = true;
       left -= part.volume;
     }
@@ -263,7 +266,7 @@ FillPlan plan_fill(const VoxelRegion& region, const SurfaceMesh& cavity, Ports p
     before = f.trapped_volume;
     left = f.trapped_volume;
     for (const AirPocket& pocket : f.pockets) {
-      if (left <= kTrappedAirTolerance || static_cast<int>(plan.ports.vents.size()) >= kMaxVents) break;
+      if (left <= tolerance || static_cast<int>(plan.ports.vents.size()) >= kMaxVents) break;
       if (!pocket.ventable) continue;
       if (const auto vent = sites.near(pocket.at, vent_diameter, true, true, plan.ports)) plan.ports.vents.push_back(*vent), added = true;
       left -= pocket.volume;

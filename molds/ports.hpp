@@ -40,8 +40,10 @@ struct FillPlan {
 };
 
 /// `ports` completed by the fill simulation of `region`, whose mold is made around `cavity`:
-/// sprues from above when `sprue_from_above`. A hole it adds meets the cavity within 3 mm of the
-/// place it is wanted (6 or 12 mm where the holes already placed crowd it: they keep 1 mm apart),
+/// sprues from above when `sprue_from_above`, until what no sprue reaches and the trapped air are
+/// each within `tolerance` (m³). A hole it adds meets the cavity within 3 mm of the place it is
+/// wanted (6 or 12 mm where nothing nearer takes it; holes keep 1 mm apart; a vent not above the
+/// top of its pocket),
 /// where it opens on the fill region and the skin under its rim slopes by at
 /// most 35° or drops away by 2 mm or more (a steeper skin leaves a knife edge of mold beside the
 /// hole); it is cut 0.5 mm past the deepest of that skin under its rim.
@@ -50,6 +52,6 @@ struct FillPlan {
 /// voxels of it sits at a groove's mouth (the wedge of cast between a groove's wall and a sloping
 /// skin): shot 2 fills what it leaves, so it needs no vent and is not counted as trapped.
 FillPlan plan_fill(const VoxelRegion& region, const SurfaceMesh& cavity, Ports ports, double sprue_diameter, double vent_diameter,
-                   bool sprue_from_above, const VoxelRegion* overmold = nullptr);
+                   bool sprue_from_above, const VoxelRegion* overmold = nullptr, double tolerance = kTrappedAirTolerance);
 
 } // namespace fibermold

@@ -20,6 +20,14 @@ namespace fs = std::filesystem;
 
 namespace {
 
+/// A TOML number as a double. toml++ gives no double for an integer a double cannot hold exactly
+/// (beyond 2^53, e.g. 9223372036854775807): that one is rounded, and the range checks judge it.
+double as_double(const toml::node& n)
+{
+  if (const auto i = n.value_exact<std::int64_t>()) return static_cast<double>(*i);
+  return n.value<double>().value_or(std::nan(""));
+}
+
 /// A unit in the design file and its factor to SI.
 struct Unit {
   double to_si;
@@ -129,7 +137,7 @@ public:
       error(n, key, fmt::format("expected a number, got {}", type_name(*n)));
       return std::nullopt;
     }
-    const double v = *n->value<double>();
+    const double v = as_double(*n);
     if (!std::isfinite(v) || !range.contains(v)) {
       error(n, key, fmt::format("must be {}, got {}", range.describe(unit), format_number(v)));
       return std::nullopt;
@@ -240,7 +248,7 @@ public:
       error(n, key, fmt::format("expected three numbers [x, y, z]{}", unit.label[0] ? fmt::format(" in{}", unit.label) : ""));
       return std::nullopt;
     }
-    Vec3 v(*(*a)[0].value<double>(), *(*a)[1].value<double>(), *(*a)[2].value<double>());
+    Vec3 v(as_double((*a)[0]), as_double((*a)[1]), as_double((*a)[2]));
     if (!v.allFinite()) {
       error(n, key, "coordinates must be finite");
       return std::nullopt;
@@ -552,7 +560,7 @@ MuscleOptions read_muscle(Section s)
         s.error(n, key, "expected two lines [[slope_low, intercept_low Pa], [slope_high, intercept_high Pa]]");
       } else {
         for (int i = 0; i < 2; ++i)
-          for (int j = 0; j < 2; ++j) c[2 * i + j] = *(*(*a)[i].as_array())[j].value<double>();
+          for (int j = 0; j < 2; ++j) c[2 * i + j] = as_double((*(*a)[i].as_array())[j]);
         if (!std::all_of(c.begin(), c.end(), [](double v) { return std::isfinite(v); }))
           s.error(n, key, "coefficients must be finite");
       }

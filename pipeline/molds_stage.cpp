@@ -131,12 +131,12 @@ Json fill_report(const FillPlan& plan, double voxel, const std::function<Eigen::
   for (std::size_t k = 0; k < plan.ports.vents.size(); ++k)
     vents.push_back({{"mouth_mm", vec_mm(scale(plan.ports.vents[k].mouth))}, {"opens_on_fill_region", static_cast<bool>(f.vent_open[k])}});
   const double unreached = f.fill_volume - f.reachable_volume - f.crevice_volume;
-  if (unreached > kTrappedAirTolerance)
+  if (g3 * unreached > kTrappedAirTolerance && !f.unreachable.empty())
     problems.push_back(fmt::format("{}: {:.1f} mm³ of the {:.1f} mm³ that the shot fills is reached by no sprue (the largest part, "
-                                   "{:.1f} mm³, lowest at {}): {} sprues are the most placed",
+                                   "{:.1f} mm³, lowest at {}) with {} sprue(s) placed: no other fits near it",
                                    shot, g3 * unreached / mm3, g3 * f.fill_volume / mm3, g3 * f.unreachable.front().volume / mm3,
-                                   format_mm(scale(f.unreachable.front().at)), kMaxSprues));
-  if (f.trapped_volume > kTrappedAirTolerance) {
+                                   format_mm(scale(f.unreachable.front().at)), plan.ports.sprues.size()));
+  if (g3 * f.trapped_volume > kTrappedAirTolerance && !f.pockets.empty()) {
     const AirPocket& worst = f.pockets.front();
     problems.push_back(fmt::format("{}: the rising silicone traps {:.1f} mm³ of air, allowed {:.1f} mm³: the largest pocket, {:.1f} mm³, "
                                    "tops out at {} {}",
@@ -145,8 +145,8 @@ Json fill_report(const FillPlan& plan, double voxel, const std::function<Eigen::
                                    worst.ventable ? fmt::format("with {} vents placed: no more fits near it (within 3 mm the skin slopes more than 35°, or "
                                                                "another vent let out no more air)",
                                                                plan.ports.vents.size())
-                                                  : std::string("under cured silicone or a muscle, where no vent can reach it; "
-                                                                "another [mold] pull may open it upward")));
+                                                  : std::string("under cured silicone, a muscle or an overhang of the body, where no "
+                                                                "vent can reach it; another [mold] pull may open it upward")));
   }
   return {{"voxel_mm", voxel / units::mm},
           {"fill_volume_mL", six_places(g3 * f.fill_volume / 1e-6)},
@@ -270,7 +270,7 @@ void MoldsStage::run(StageContext& ctx) const
     const VoxelRegion& region = first ? regions.shot1 : regions.shot2;
     FillPlan plan = plan_fill(region, shot_cavity,
                               first ? cavity_ports(shot_cavity, pull, o.sprue_diameter, o.vents, o.vent_diameter, o.min_wall, name) : Ports{},
-                              o.sprue_diameter, o.vent_diameter, !first, first ? &regions.shot2 : nullptr);
+                              o.sprue_diameter, o.vent_diameter, !first, first ? &regions.shot2 : nullptr, kTrappedAirTolerance / g3);
     const double fill_seconds = since(started);
     std::erase_if(fill_failures, [&](const std::string& f) { return f.starts_with(name); });  // a shot made again
     const Json fill = fill_report(plan, region.voxel, scale, g3, name, fill_failures);
@@ -394,21 +394,21 @@ void MoldsStage::run(StageContext& ctx) const
   const SiliconeThickness thickness = silicone_thickness(groove.mesh, shot2_cavity, lines, radius, d.muscle.model.diameter / 2, pull, m.voxel,
                                                          2 * (d.muscle.model.diameter + d.collide.clearance));
   ctx.log.info("silicone: {:.2f} mm at the thinnest groove wall near {}, {:.2f} mm over the muscles at the thinnest, near {}; in {:.2f} s",
-               thickness.groove_web / units::mm, format_mm(thickness.groove_web_at), thickness.overmold / units::mm,
-               format_mm(thickness.overmold_at), since(started));
+               thickness.groove_web / units::mm, format_mm(scale(thickness.groove_web_at)), thickness.overmold / units::mm,
+               format_mm(scale(thickness.overmold_at)), since(started));
   if (thickness.groove_web < m.min_silicone)
     failures.push_back(fmt::format("shot1: the cast's silicone is {:.2f} mm thin between a groove and the skin near {}, below [mold] "
                                    "min_silicone = {:.2f} mm: move the fiber away from the skin there",
-                                   thickness.groove_web / units::mm, format_mm(thickness.groove_web_at), m.min_silicone / units::mm));
+                                   thickness.groove_web / units::mm, format_mm(scale(thickness.groove_web_at)), m.min_silicone / units::mm));
   if (thickness.overmold < m.min_silicone)
     failures.push_back(fmt::format("shot2: the overmold is {:.2f} mm thin over a muscle near {}, below [mold] min_silicone = {:.2f} mm: "
                                    "move the fiber deeper there",
-                                   thickness.overmold / units::mm, format_mm(thickness.overmold_at), m.min_silicone / units::mm));
+                                   thickness.overmold / units::mm, format_mm(scale(thickness.overmold_at)), m.min_silicone / units::mm));
   const auto finite_mm = [](double v) { return std::isfinite(v) ? Json(v / units::mm) : Json("none"); };
   const Json silicone{{"groove_wall_mm", finite_mm(thickness.groove_web)},
-                      {"groove_wall_at_mm", vec_mm(thickness.groove_web_at)},
+                      {"groove_wall_at_mm", vec_mm(scale(thickness.groove_web_at))},
                       {"over_muscle_mm", finite_mm(thickness.overmold)},
-                      {"over_muscle_at_mm", vec_mm(thickness.overmold_at)},
+                      {"over_muscle_at_mm", vec_mm(scale(thickness.overmold_at))},
                       {"min_silicone_mm", m.min_silicone / units::mm}};
   const double groove_mesh_error = std::abs(signed_volume(groove.mesh) - groove.volume) / groove.volume;
   if (!failures.empty()) {

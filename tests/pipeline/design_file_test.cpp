@@ -124,6 +124,10 @@ TEST_F(DesignFileTest, WrongTypesAndRangesNameKeyLineAndBound)
   EXPECT_THAT(problem(std::string(kMinimal) + "[mold]\npull = [0, 0]\n"), HasSubstr("expected three numbers"));
   EXPECT_THAT(problem(std::string(kMinimal) + "[mold]\npull = [0, 0, 0]\n"), HasSubstr("must not be the zero vector"));
   EXPECT_THAT(problem(std::string(kMinimal) + "[sim]\nquadrature_points = 5\n"), HasSubstr("must be 1, 4 or 8"));
+  // An integer no double holds exactly (toml++ gives none for it): rounded, then out of range, not
+  // an empty optional dereferenced into garbage.
+  EXPECT_THAT(problem(std::string(kMinimal) + "[material]\npoisson_ratio = 9223372036854775807\n"),
+              HasSubstr(":5:17: [material].poisson_ratio: must be in [0, 0.5), got 9.223372036854776e+18"));
 }
 
 TEST_F(DesignFileTest, MissingRequiredKeysAndFiles)
