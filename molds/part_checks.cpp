@@ -55,7 +55,7 @@ double cone_thickness(const SurfaceDistance& surface, const Eigen::Vector3d& cen
 /// The thinnest wall: each face's inward ray, confirmed by the cone where it looks thin. Faces in
 /// parallel; the first face (by index) of the least thickness wins, so the answer does not depend on
 /// the threads.
-double least_wall(const SurfaceMesh& m, double min_wall, Eigen::Vector3d& where, const std::vector<Eigen::Index>& faces)
+double thinnest_wall(const SurfaceMesh& m, double min_wall, Eigen::Vector3d& where)
 {
   const SurfaceDistance surface(m.vertices, m.faces);
   if (m.num_faces() == 0) return HUGE_VAL;
@@ -68,12 +68,10 @@ double least_wall(const SurfaceMesh& m, double min_wall, Eigen::Vector3d& where,
   const auto centre_of = [&](Eigen::Index f) {
     return Eigen::Vector3d((m.vertices.row(m.faces(f, 0)) + m.vertices.row(m.faces(f, 1)) + m.vertices.row(m.faces(f, 2))) / 3);
   };
-  const Eigen::Index count = faces.empty() ? m.num_faces() : static_cast<Eigen::Index>(faces.size());
   const Thinnest best = tbb::parallel_reduce(
-      tbb::blocked_range<Eigen::Index>(0, count, 1024), Thinnest{},
+      tbb::blocked_range<Eigen::Index>(0, m.num_faces(), 1024), Thinnest{},
       [&](const tbb::blocked_range<Eigen::Index>& range, Thinnest t) {
-        for (Eigen::Index k = range.begin(); k != range.end(); ++k) {
-          const Eigen::Index f = faces.empty() ? k : faces[static_cast<std::size_t>(k)];
+        for (Eigen::Index f = range.begin(); f != range.end(); ++f) {
           const Eigen::Vector3d a = m.vertices.row(m.faces(f, 0)), b = m.vertices.row(m.faces(f, 1)), c = m.vertices.row(m.faces(f, 2));
           const Eigen::Vector3d n = (b - a).cross(c - a);
           if (!(n.norm() > 0)) continue;
@@ -101,11 +99,6 @@ SurfaceMesh as_written(SurfaceMesh m)
 }
 
 } // namespace
-
-double thinnest_wall(const SurfaceMesh& solid, double min_wall, Eigen::Vector3d& where, const std::vector<Eigen::Index>& faces)
-{
-  return least_wall(solid, min_wall, where, faces);
-}
 
 PartCheck check_part(const SurfaceMesh& part, double min_wall, const Eigen::Vector3d& printer)
 {
@@ -135,7 +128,7 @@ PartCheck check_part(const SurfaceMesh& part, double min_wall, const Eigen::Vect
   if (const int shells = count_shells(part); shells != 1)
     out.problems.push_back(fmt::format("is {} separate pieces or has a closed void, not one solid", shells));
   Eigen::Vector3d where = Eigen::Vector3d::Zero();
-  out.min_thickness = least_wall(written, min_wall, where, {});
+  out.min_thickness = thinnest_wall(written, min_wall, where);
   if (out.min_thickness < min_wall * (1 - 1e-6))
     out.problems.push_back(fmt::format("has a wall of {:.2f} mm near ({:.1f}, {:.1f}, {:.1f}) mm, thinner than [export] min_wall = {:.2f} mm",
                                        out.min_thickness * 1e3, where.x() * 1e3, where.y() * 1e3, where.z() * 1e3, min_wall * 1e3));

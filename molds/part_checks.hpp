@@ -26,8 +26,4 @@ struct PartCheck {
 
 PartCheck check_part(const SurfaceMesh& part, double min_wall, const Eigen::Vector3d& printer_volume);
 
-/// The thinnest wall of a closed solid at the given faces (all when empty): each face's inward ray,
-/// confirmed by a cone of rays where it looks thinner than `min_wall`; `where` gets its face's centre.
-double thinnest_wall(const SurfaceMesh& solid, double min_wall, Eigen::Vector3d& where, const std::vector<Eigen::Index>& faces = {});
-
 } // namespace fibermold
