@@ -1,6 +1,6 @@
 #pragma once
 // Bad input: an exception that carries where (file, line, column, key) and what is wrong.
-// The CLI turns it into exit code 2 (STYLE.md rule 5).
+// The CLI turns it into exit code 2 (docs/architecture.md, "Rules of the house").
 
 #include <filesystem>
 #include <stdexcept>

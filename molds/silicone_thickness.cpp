@@ -6,7 +6,6 @@
 
 #include <Eigen/Geometry>
 
-#include "mesh/surface_distance.hpp"
 
 namespace fibermold {
 
@@ -58,6 +57,17 @@ private:
 
 } // namespace
 
+std::vector<bool> beyond_skin_ends(const std::vector<Eigen::Vector3d>& line, const SurfaceDistance& skin, double exempt)
+{
+  std::vector<bool> beyond(line.size(), true);
+  if (line.empty()) return beyond;
+  std::vector<double> s(line.size(), 0);
+  for (std::size_t k = 1; k < line.size(); ++k) s[k] = s[k - 1] + (line[k] - line[k - 1]).norm();
+  const bool first_on_skin = skin.closest(line.front()).distance < exempt / 2, last_on_skin = skin.closest(line.back()).distance < exempt / 2;
+  for (std::size_t k = 0; k < line.size(); ++k) beyond[k] = !((first_on_skin && s[k] < exempt) || (last_on_skin && s.back() - s[k] < exempt));
+  return beyond;
+}
+
 SiliconeThickness silicone_thickness(const SurfaceMesh& groove_body, const SurfaceMesh& body,
                                      const std::vector<std::vector<Eigen::Vector3d>>& fibers, double radius, double muscle_radius,
                                      const Eigen::Vector3d& pull_in, double voxel, double exempt)
@@ -73,13 +83,7 @@ SiliconeThickness silicone_thickness(const SurfaceMesh& groove_body, const Surfa
   // The points that count: not within `exempt` of an end on the skin.
   const SurfaceDistance skin(body.vertices, body.faces);
   std::vector<std::vector<bool>> kept;
-  for (const auto& line : fibers) {
-    std::vector<double> s(line.size(), 0);
-    for (std::size_t k = 1; k < line.size(); ++k) s[k] = s[k - 1] + (line[k] - line[k - 1]).norm();
-    const bool first_on_skin = skin.closest(line.front()).distance < exempt / 2, last_on_skin = skin.closest(line.back()).distance < exempt / 2;
-    std::vector<bool>& keep = kept.emplace_back(line.size(), true);
-    for (std::size_t k = 0; k < line.size(); ++k) keep[k] = !((first_on_skin && s[k] < exempt) || (last_on_skin && s.back() - s[k] < exempt));
-  }
+  for (const auto& line : fibers) kept.push_back(beyond_skin_ends(line, skin, exempt));
 
   // Shot 1: the groove body's faces on a groove's walls (their shadow within a voxel and a half of
   // a groove's edge, at or above its bottom), and the silicone behind them. Not the lip within a

@@ -9,6 +9,7 @@
 
 #include <Eigen/Core>
 
+#include "mesh/surface_distance.hpp"
 #include "mesh/surface_mesh.hpp"
 
 namespace fibermold {
@@ -21,6 +22,11 @@ struct SiliconeThickness {
   double overmold = HUGE_VAL;    ///< m: the thinnest shot-2 silicone over a muscle
   Eigen::Vector3d overmold_at = Eigen::Vector3d::Zero();
 };
+
+/// Per point of a fiber's polyline: whether it lies beyond the stretch, `exempt` (m) long along
+/// the fiber, at an end that lies on the skin (within exempt / 2 of it), where the fiber leaves the
+/// body by design. The molds' route check and the silicone's thickness leave that stretch out.
+std::vector<bool> beyond_skin_ends(const std::vector<Eigen::Vector3d>& line, const SurfaceDistance& skin, double exempt);
 
 /// `fibers`: each fiber's centre line as a dense polyline (m); groove `radius`, laid muscles of
 /// `muscle_radius` resting on the grooves' bottoms. Within `exempt` (m, along the fiber) of an end on

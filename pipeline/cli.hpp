@@ -1,5 +1,5 @@
 #pragma once
-// The fibermold command line (DESIGN.md, "Command line").
+// The fibermold command line (README.md, "Using it"; docs/pipeline.md, "Commands and options").
 
 namespace fibermold {
 

@@ -65,6 +65,10 @@ std::vector<Eigen::Vector3d> polyline(const Route& r, double step)
   return out;
 }
 
+/// The stretch of a fiber at an end on the skin that the molds' checks leave out: the optimizer's
+/// skin barrier's, 2 (d_min + w) (skin_barrier.cpp).
+double skin_end_stretch(const Design& d) { return 2 * (d.muscle.model.diameter + d.collide.clearance); }
+
 /// A fiber must stay in the body, and its groove away from the skin (other than above it, where
 /// the groove opens) by half the [collide] clearance, so that the groove neither breaks through the
 /// skin nor leaves a skin too thin to cast. The optimizer keeps a whole clearance around the muscle
@@ -75,15 +79,11 @@ void check_fiber(const Design& d, const Route& r, const std::vector<Eigen::Vecto
 {
   const std::string key = fmt::format("[fiber.{}]", r.name);
   const double need = radius + d.collide.clearance / 2;
-  const double exempt = 2 * (d.muscle.model.diameter + d.collide.clearance);  // as skin_barrier.cpp: 2 (d_min + w)
-  const bool first_on_skin = skin.closest(line.front()).distance < exempt / 2;
-  const bool last_on_skin = skin.closest(line.back()).distance < exempt / 2;
-  std::vector<double> s(line.size(), 0);
-  for (std::size_t k = 1; k < line.size(); ++k) s[k] = s[k - 1] + (line[k] - line[k - 1]).norm();
+  const std::vector<bool> beyond = beyond_skin_ends(line, skin, skin_end_stretch(d));
   for (std::size_t k = 0; k < line.size(); ++k) {
     const Eigen::Vector3d& p = line[k];
     const auto at = skin.closest(p);
-    const bool near_end = (first_on_skin && s[k] < exempt) || (last_on_skin && s.back() - s[k] < exempt);
+    const bool near_end = !beyond[k];
     if (!at.inside && !near_end)
       bad(d, key, fmt::format("the fiber (as routed in fibers.json) leaves the body at {}", format_mm(p)));
     if (near_end) continue;
@@ -255,12 +255,11 @@ void MoldsStage::run(StageContext& ctx) const
   std::optional<Draft> draft;
   // What each shot fills, sampled for the fill simulation (once: both shots' from the body, drafted or not).
   FillRegions regions;
-  double regions_seconds = 0;
   const auto scale = [&](const Eigen::Vector3d& p) -> Eigen::Vector3d { return centre + (p - centre) * grow; };
-  // Shot 1 fills the grooved body from below; shot 2 the grooves around the laid muscles, over
-  // cured silicone: its sprues come from above (ports.hpp).
   // A shot's fill problems apart from its parts': meshing the cavity again cannot help them.
   std::vector<std::string> fill_failures;
+  // Shot 1 fills the grooved body from below; shot 2 the grooves around the laid muscles, over
+  // cured silicone: its sprues come from above (ports.hpp).
   const auto make_shot = [&](const char* name, const SurfaceMesh& shot_cavity, Parting parting, double silicone,
                              const std::vector<Channel>& shot_channels) {
     std::vector<std::string> problems;
@@ -362,9 +361,8 @@ void MoldsStage::run(StageContext& ctx) const
   ctx.progress.checkpoint(0.2, "sampling what each shot fills");
   started = Clock::now();
   regions = fill_regions(shot2_cavity, lines, radius, d.muscle.model.diameter / 2, pull, fill_voxel(m.voxel, radius), draft ? draft->slope : 0);
-  regions_seconds = since(started);
   ctx.log.info("fill regions: {} and {} voxels of {:.2f} mm (shots 1 and 2) in {:.2f} s", regions.shot1.count(), regions.shot2.count(),
-               regions.shot1.voxel / units::mm, regions_seconds);
+               regions.shot1.voxel / units::mm, since(started));
   failures = make_shot("shot1", groove.mesh, parting1, g3 * groove.volume, {});
   if (!failures.empty() && groove.adaptivity > 0 && too_big.empty()) {
     ctx.log.info("shot 1 from the adaptive groove body mesh failed its checks ({}); meshing the groove body uniformly", failures.front());
@@ -391,8 +389,8 @@ void MoldsStage::run(StageContext& ctx) const
   // exempt as in check_fiber.
   ctx.progress.checkpoint(0.9, "measuring the silicone's thickness");
   started = Clock::now();
-  const SiliconeThickness thickness = silicone_thickness(groove.mesh, shot2_cavity, lines, radius, d.muscle.model.diameter / 2, pull, m.voxel,
-                                                         2 * (d.muscle.model.diameter + d.collide.clearance));
+  const SiliconeThickness thickness =
+      silicone_thickness(groove.mesh, shot2_cavity, lines, radius, d.muscle.model.diameter / 2, pull, m.voxel, skin_end_stretch(d));
   ctx.log.info("silicone: {:.2f} mm at the thinnest groove wall near {}, {:.2f} mm over the muscles at the thinnest, near {}; in {:.2f} s",
                thickness.groove_web / units::mm, format_mm(scale(thickness.groove_web_at)), thickness.overmold / units::mm,
                format_mm(scale(thickness.overmold_at)), since(started));

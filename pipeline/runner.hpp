@@ -1,5 +1,5 @@
 #pragma once
-// The Make-style runner (DESIGN.md, "Make-style execution"). Each stage's stamp records the content
+// The Make-style runner (docs/pipeline.md). Each stage's stamp records the content
 // hash of everything it read; a stage runs when that no longer matches. Outputs are made in a
 // staging folder and renamed into place, stamp last, so a failed or killed stage leaves the
 // previous outputs and no stamp (stale).

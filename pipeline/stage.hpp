@@ -1,5 +1,5 @@
 #pragma once
-// A pipeline stage (DESIGN.md, "The stages"): what it reads, and how it makes its outputs.
+// A pipeline stage (docs/architecture.md, "Stages"): what it reads, and how it makes its outputs.
 // The runner decides when it runs; a stage only writes files into its output folder.
 
 #include <filesystem>

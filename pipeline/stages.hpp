@@ -1,5 +1,5 @@
 #pragma once
-// The stages built into the shipped fibermold binary, in DESIGN.md's order.
+// The stages built into the shipped fibermold binary, in their order (docs/architecture.md).
 
 #include <memory>
 #include <vector>

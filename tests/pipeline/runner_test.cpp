@@ -1,4 +1,4 @@
-// The Make-style runner with test-only stages in a temporary build folder (STYLE.md rule 8).
+// The Make-style runner with test-only stages in a temporary build folder (docs/architecture.md, "Tests").
 #include "pipeline/runner.hpp"
 
 #include <csignal>
