@@ -2,6 +2,7 @@
 
 #include <cstdint>
 #include <cstring>
+#include <stdexcept>
 
 #include <Eigen/Geometry>
 
@@ -22,6 +23,8 @@ void put_vector(std::string& out, const Eigen::Vector3d& v)
 
 void write_stl(const std::filesystem::path& path, const SurfaceMesh& surface, const std::string& header)
 {
+  if (!surface.vertices.allFinite())
+    throw std::runtime_error(path.filename().string() + ": a vertex is not finite; nothing was written");
   std::string body;
   std::uint32_t count = 0;
   for (Eigen::Index f = 0; f < surface.num_faces(); ++f) {

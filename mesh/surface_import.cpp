@@ -3,7 +3,10 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <fstream>
 #include <map>
+#include <optional>
+#include <sstream>
 
 #include <assimp/Importer.hpp>
 #include <assimp/postprocess.h>
@@ -30,6 +33,44 @@ std::string lower(std::string s)
 {
   std::transform(s.begin(), s.end(), s.begin(), [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
   return s;
+}
+
+/// A PLY file whose header declares more elements than its body holds: assimp reads what is there
+/// and the surface then fails a later check ("not closed") for a reason that is not the real one.
+/// Lower bounds only: an ASCII element takes a line, a binary vertex at least three floats and a
+/// binary face at least a count byte and three 1-byte indices.
+std::optional<std::string> ply_truncation(const fs::path& file)
+{
+  std::ifstream in(file, std::ios::binary);
+  std::string line, format;
+  long long vertices = 0, faces = 0;
+  for (int k = 0; k < 1000 && std::getline(in, line); ++k) {
+    if (!line.empty() && line.back() == '\r') line.pop_back();
+    std::istringstream words(line);
+    std::string word, name;
+    long long count = 0;
+    words >> word;
+    if (word == "format") words >> format;
+    if (word == "element" && words >> name >> count) (name == "vertex" ? vertices : name == "face" ? faces : count) = count;
+    if (word == "end_header") break;
+  }
+  const auto header_end = static_cast<double>(in.tellg());
+  if (line.rfind("end_header", 0) != 0 || vertices < 0 || faces < 0 || header_end < 0) return std::nullopt;  // assimp judges the header
+  const auto size = static_cast<double>(fs::file_size(file));
+  const double elements = static_cast<double>(vertices) + static_cast<double>(faces);
+  const double least_bytes = 12.0 * static_cast<double>(vertices) + 4.0 * static_cast<double>(faces);  // no overflow near 2^63
+  if (format == "ascii") {
+    long long lines = 0;
+    while (std::getline(in, line) && static_cast<double>(lines) < elements)
+      if (line.find_first_not_of(" \t\r") != std::string::npos) ++lines;
+    if (static_cast<double>(lines) < elements)
+      return fmt::format("its header declares {} vertices and {} faces, but {} lines of data follow: the file is truncated or its "
+                         "header is wrong", vertices, faces, lines);
+  } else if (size - header_end < least_bytes) {
+    return fmt::format("its header declares {} vertices and {} faces, which need at least {:.0f} bytes, but {:.0f} follow: the file is "
+                       "truncated or its header is wrong", vertices, faces, least_bytes, size - header_end);
+  }
+  return std::nullopt;
 }
 
 } // namespace
@@ -92,8 +133,17 @@ SurfaceMesh import_surface(const fs::path& file, double metres_per_unit)
   // ValidateDataStructure runs first and rejects out-of-range indices before anything uses them.
   const unsigned flags = aiProcess_ValidateDataStructure | aiProcess_Triangulate | aiProcess_JoinIdenticalVertices |
                          aiProcess_DropNormals | aiProcess_RemoveComponent | aiProcess_PreTransformVertices;
+  if (extension == ".ply")
+    if (const auto truncated = ply_truncation(file)) fail(file, "cannot read the surface: " + *truncated);
   const aiScene* scene = importer.ReadFile(file.string(), flags);
-  if (!scene) fail(file, fmt::format("cannot read the surface: {}", importer.GetErrorString()));
+  if (!scene) {
+    std::string why = importer.GetErrorString();
+    for (const std::string& named : {" for " + file.string(), file.string()})  // the message names the file already
+      if (const auto at = why.find(named); at != std::string::npos) why.erase(at, named.size());
+    while (!why.empty() && (why.back() == '.' || why.back() == ' ' || why.back() == '\n')) why.pop_back();
+    fail(file, fmt::format("cannot read the surface ({}): the file is damaged, truncated or in another format (assimp: {})",
+                           extension, why));
+  }
 
   // Merge all meshes, welding vertices with identical coordinates across them.
   std::map<std::array<double, 3>, int> index_of;
@@ -135,6 +185,15 @@ SurfaceMesh import_surface(const fs::path& file, double metres_per_unit)
   if (non_triangles > 0)
     fail(file, fmt::format("the surface has {} point or line elements; only a closed triangle surface can be meshed",
                            non_triangles));
+
+  // A body between 0.1 mm and 10 m across: anything else is a unit mistake or a damaged file.
+  Eigen::Vector3d lo = vertices.front(), hi = vertices.front();
+  for (const Eigen::Vector3d& v : vertices) lo = lo.cwiseMin(v), hi = hi.cwiseMax(v);
+  const double span = (hi - lo).norm() * metres_per_unit;
+  if (!(span >= kMinBodySize && span <= kMaxBodySize))
+    fail(file, fmt::format("the surface spans {:.3g} mm corner to corner ({:.3g} to {:.3g} in the file's units): a body is between "
+                           "{} mm and {} m across; check [design].units", span / 1e-3, lo.minCoeff(), hi.maxCoeff(), kMinBodySize / 1e-3,
+                           kMaxBodySize));
 
   SurfaceMesh surface;
   surface.source = file;

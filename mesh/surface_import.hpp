@@ -11,8 +11,12 @@
 
 namespace fibermold {
 
+/// A body's extent corner to corner, m: smaller or larger is a unit mistake or a damaged file.
+constexpr double kMinBodySize = 1e-4, kMaxBodySize = 10;
+
 /// Reads `file`, scaled by `metres_per_unit`. Throws InputError naming the file for a missing,
-/// empty, unreadable or unsupported file, one without triangles, or non-finite coordinates.
+/// empty, unreadable, truncated or unsupported file, one without triangles, non-finite coordinates,
+/// or a body outside [kMinBodySize, kMaxBodySize] across.
 SurfaceMesh import_surface(const std::filesystem::path& file, double metres_per_unit);
 
 /// The files a surface is read from: the file itself and, for glTF, its external buffers, so that

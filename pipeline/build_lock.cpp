@@ -10,14 +10,24 @@
 
 #include <fmt/format.h>
 
+#include "core/input_error.hpp"
+
 namespace fibermold {
 
 BuildLock::BuildLock(const std::filesystem::path& build_dir)
 {
-  std::filesystem::create_directories(build_dir);
+  // A build folder that cannot be made or written is bad input (exit 2), not a failed stage.
+  const auto unusable = [&](const std::string& why) {
+    return InputError(Diagnostic{build_dir, 0, 0, "", fmt::format("cannot be used as the build folder: {}", why)});
+  };
+  std::error_code ec;
+  if (std::filesystem::exists(build_dir, ec) && !std::filesystem::is_directory(build_dir, ec))
+    throw unusable("it is a file, not a folder; name another with --build-dir");
+  std::filesystem::create_directories(build_dir, ec);
+  if (ec) throw unusable(ec.message());
   const std::filesystem::path path = build_dir / ".lock";
   fd_ = ::open(path.c_str(), O_RDWR | O_CREAT | O_CLOEXEC, 0644);
-  if (fd_ < 0) throw BuildLocked(fmt::format("cannot open {}: {}", path.string(), std::strerror(errno)));
+  if (fd_ < 0) throw unusable(fmt::format("cannot open {}: {}", path.filename().string(), std::strerror(errno)));
   if (::flock(fd_, LOCK_EX | LOCK_NB) != 0) {
     char buffer[32] = {};
     const ssize_t n = ::pread(fd_, buffer, sizeof buffer - 1, 0);

@@ -1,13 +1,18 @@
 #include "pipeline/cli.hpp"
 
+#include <chrono>
 #include <csignal>
 #include <cstdio>
+#include <cstdlib>
 #include <iostream>
+#include <thread>
 
 #include <CLI/CLI.hpp>
 #include <fmt/format.h>
 #include <fmt/ranges.h>
 #include <spdlog/spdlog.h>
+#include <pthread.h>
+#include <semaphore.h>
 #include <unistd.h>
 
 #include "core/input_error.hpp"
@@ -30,12 +35,50 @@ namespace fs = std::filesystem;
 
 namespace {
 
-void on_signal(int) { request_interrupt(); }
+/// Posted by the signal handler (sem_post is async-signal-safe); the watchdog waits on it.
+sem_t g_signalled;
 
-/// Ctrl-C (or SIGTERM) asks the running stage to stop at its next checkpoint; a second Ctrl-C
-/// kills at once (SA_RESETHAND), still leaving the previous outputs and a stale stamp.
-void install_signal_handlers()
+void on_signal(int)
 {
+  request_interrupt();
+  sem_post(&g_signalled);
+}
+
+/// After Ctrl-C or SIGTERM the running stage stops at its next checkpoint, cleans up and exits 130.
+/// A step without checkpoints (a boolean of two large meshes, a level-set carving) would keep it
+/// running: past kStopDeadline the watchdog ends the process as a kill would, which the pipeline
+/// survives by design (docs/pipeline.md, "Atomic outputs"): the stage keeps its previous outputs
+/// and no stamp, and its build lock is released with the process.
+constexpr auto kStopDeadline = std::chrono::milliseconds(700);
+
+void watch_for_stop()
+{
+  while (sem_wait(&g_signalled) != 0) {
+  }
+  std::this_thread::sleep_for(kStopDeadline);
+  constexpr char message[] = "fibermold: interrupted; the running step had no checkpoint within 0.7 s, so it was stopped at once: the "
+                             "stage that was running is stale, its previous outputs kept\n";
+  [[maybe_unused]] const auto written = ::write(STDERR_FILENO, message, sizeof message - 1);
+  std::_Exit(kExitInterrupted);
+}
+
+/// Ctrl-C (or SIGTERM) asks the running stage to stop at its next checkpoint, within 1 s in any
+/// case (watch_for_stop); a second Ctrl-C kills at once (SA_RESETHAND), still leaving the previous
+/// outputs and a stale stamp. The watchdog thread blocks both signals, so that they interrupt the
+/// main thread's system calls as before. `watchdog` false: the command's own loop answers at once
+/// and must outlive its children (the sweep: it stops them, and stops waiting for Slurm's jobs).
+void install_signal_handlers(bool watchdog)
+{
+  sem_init(&g_signalled, 0, 0);
+  if (watchdog) {
+    sigset_t stops, previous;
+    sigemptyset(&stops);
+    sigaddset(&stops, SIGINT);
+    sigaddset(&stops, SIGTERM);
+    pthread_sigmask(SIG_BLOCK, &stops, &previous);
+    std::thread(watch_for_stop).detach();
+    pthread_sigmask(SIG_SETMASK, &previous, nullptr);
+  }
   struct sigaction action {};
   action.sa_handler = on_signal;
   action.sa_flags = SA_RESETHAND;
@@ -102,7 +145,7 @@ ProgressFactory terminal_progress()
 int report_input_error(const InputError& e)
 {
   for (const Diagnostic& d : e.diagnostics()) fmt::print(stderr, "{}\n", d.to_string());
-  return 2;
+  return kExitBadInput;
 }
 
 } // namespace
@@ -115,7 +158,8 @@ int fibermold_main(int argc, char** argv)
                "fibermold"};
   app.require_subcommand(1);
   app.set_version_flag("--version", Runner::default_program());
-  app.footer("Exit codes: 0 done, 1 a stage failed, 2 bad command line or design file, 130 interrupted.\n"
+  app.footer("Exit codes: 0 done, 1 a stage failed on valid input, 2 bad input (command line, design file, mesh, build folder),\n"
+             "3 another fibermold is working in the build folder, 130 interrupted.\n"
              "DESIGN defaults to the bundled demo, " FIBERMOLD_DEFAULT_DESIGN ".");
 
   std::vector<std::string> words;
@@ -169,10 +213,10 @@ int fibermold_main(int argc, char** argv)
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
     const int code = app.exit(e);
-    return code == 0 ? 0 : 2;
+    return code == 0 ? kExitDone : kExitBadInput;
   }
 
-  install_signal_handlers();
+  install_signal_handlers(!sweep->parsed());
   try {
     const Runner runner(shipped_stages());
     if (sweep->parsed()) return run_sweep(sweep_request, runner);
@@ -231,16 +275,16 @@ int fibermold_main(int argc, char** argv)
     return report_input_error(e);
   } catch (const StageFailed& e) {
     fmt::print(stderr, "fibermold: stage {} failed: {}\n  log: {}\n", e.stage(), e.what(), e.log().string());
-    return 1;
+    return kExitStageFailed;
   } catch (const BuildLocked& e) {
     fmt::print(stderr, "fibermold: {}\n", e.what());
-    return 1;
+    return kExitLocked;
   } catch (const Interrupted&) {
     fmt::print(stderr, "fibermold: interrupted; the stage that was running is stale, its previous outputs kept\n");
-    return 130;
+    return kExitInterrupted;
   } catch (const std::exception& e) {
     fmt::print(stderr, "fibermold: error: {}\n", e.what());
-    return 1;
+    return kExitStageFailed;
   }
 }
 

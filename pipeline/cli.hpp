@@ -3,7 +3,10 @@
 
 namespace fibermold {
 
-/// Runs the command line; returns the exit code (0 done, 1 a stage failed, 2 bad input, 130 interrupted).
+/// Exit codes (docs/pipeline.md, "Exit codes").
+constexpr int kExitDone = 0, kExitStageFailed = 1, kExitBadInput = 2, kExitLocked = 3, kExitInterrupted = 130;
+
+/// Runs the command line; returns the exit code.
 int fibermold_main(int argc, char** argv);
 
 } // namespace fibermold

@@ -8,6 +8,7 @@
 
 #include "core/atomic_file.hpp"
 #include "core/input_error.hpp"
+#include "core/json_file.hpp"
 #include "core/units.hpp"
 #include "optimize/clearance_barrier.hpp"
 #include "optimize/collision_resolution.hpp"
@@ -21,15 +22,17 @@ namespace {
 
 using Json = nlohmann::ordered_json;
 
-constexpr double kReoptimizeRoom = 0.1e-3; // m
 constexpr double kReportReach = 10e-3; // m: clearances are reported up to this much above the asked one
 
-/// The smallest clearance (mm) among fibers and skin, or null when it is more than kReportReach
-/// above the clearance asked for.
-Json smallest_json(const FiberClearance& measure, const std::vector<Route>& routes, double clearance)
+/// The smallest clearance (mm) among fibers and skin, before and after; a value more than
+/// kReportReach above the clearance asked for is not measured, and left out.
+Json smallest_json(const FiberClearance& measure, const std::vector<Route>& before, const std::vector<Route>& after, double clearance)
 {
-  const double c = smallest_clearance(measure.contacts(routes, clearance + kReportReach));
-  return std::isfinite(c) ? Json(c / units::mm) : Json(nullptr);
+  Json out = Json::object();
+  for (const auto& [name, routes] : {std::pair{"before", &before}, std::pair{"after", &after}})
+    if (const double c = smallest_clearance(measure.contacts(*routes, clearance + kReportReach)); std::isfinite(c)) out[name] = c / units::mm;
+  out["measured_up_to"] = (clearance + kReportReach) / units::mm;
+  return out;
 }
 
 Json vec_mm(const Eigen::Vector3d& v) { return {v.x() / units::mm, v.y() / units::mm, v.z() / units::mm}; }
@@ -70,7 +73,7 @@ void check_inside(const Design& d, const FiberClearance& measure, const FibersFi
     const std::string what =
         fmt::format("the fiber (as routed in optimize/fibers.json) leaves the body at {}", format_mm(c.point_a));
     if (fibers.optimized) throw std::runtime_error(fmt::format("fiber {}: {}", routes[c.a].name, what));
-    throw InputError(Diagnostic{d.file, 0, 0, fmt::format("[fiber.{}]", routes[c.a].name), what});
+    throw InputError(design_problem(d, fmt::format("[fiber.{}]", routes[c.a].name), what));
   }
 }
 
@@ -121,7 +124,7 @@ CollisionResolution resolve(StageContext& ctx, const FiberClearance& measure, co
   ResolutionSettings settings;
   settings.clearance = d.collide.clearance;
   // Optimizing again needs room inside its barriers, which are infinite at the clearance itself.
-  settings.room = d.collide.reoptimize ? kReoptimizeRoom : 0;
+  settings.room = d.collide.reoptimize ? kBarrierRoom : 0;
   settings.smoothness = d.collide.smoothness;
   CollisionResolution r = resolve_collisions(measure, routes, settings);
   for (const Contact& c : r.collided)
@@ -147,7 +150,7 @@ void simulate_targets(StageContext& ctx, const FiberClearance& measure, const Fi
     throw std::runtime_error(fmt::format("optimize/fibers.json has {} fibers, the design {}: run optimize again",
                                          fibers.routing.routes.size(), d.fibers.size()));
   DesignRouting dr(ctx);
-  RoutingProblem& problem = dr.start(starting_routing(d)); // the muscle segments as the optimizer had them
+  RoutingProblem& problem = dr.start(optimization_start(d, *dr.skin).routing); // the muscle segments as the optimizer had them
   ctx.progress.update(0.1, "simulating the targets under the optimized routing");
   const std::vector<TargetErrors> before = errors_under(problem, dr, fibers.routing);
   std::vector<TargetErrors> resolved;
@@ -159,7 +162,10 @@ void simulate_targets(StageContext& ctx, const FiberClearance& measure, const Fi
                                            left.front().with_skin() ? "a fiber and the skin" : "two fibers",
                                            format_mm(left.front().point_a)));
     report["reoptimized"] = true;
-    report["smallest_clearance_mm"]["after"] = smallest_json(measure, final.routes, d.collide.clearance);
+    Json& smallest = report["smallest_clearance_mm"];
+    smallest.erase("after");
+    if (const Json again = smallest_json(measure, final.routes, final.routes, d.collide.clearance); again.contains("after"))
+      smallest["after"] = again["after"];
   }
   ctx.progress.update(0.85, "simulating the targets under the final routing");
   std::vector<Eigen::VectorXd> states;
@@ -199,12 +205,10 @@ void CollideStage::run(StageContext& ctx) const
   Json report{{"clearance_mm", d.collide.clearance / units::mm},
               {"changed", r.changed},
               {"rounds", r.iterations},
-              {"smallest_clearance_mm",
-               {{"before", smallest_json(measure, fibers.routing.routes, d.collide.clearance)},
-                {"after", smallest_json(measure, r.routes, d.collide.clearance)}}},
+              {"smallest_clearance_mm", smallest_json(measure, fibers.routing.routes, r.routes, d.collide.clearance)},
               {"collisions", collisions_json(r.collided, fibers.routing.routes)},
               {"reoptimized", false},
-              {"targets", nullptr}};
+              {"targets", Json::object()}};
   if (fibers.optimized && !d.targets.empty() && !d.tracking_curves.empty()) {
     simulate_targets(ctx, measure, fibers, r.changed, out.routing, report);
   } else {
@@ -214,7 +218,7 @@ void CollideStage::run(StageContext& ctx) const
   }
   report["moves_mm"] = moves_json(fibers.routing.routes, out.routing.routes);
   write_file_atomic(ctx.output_dir / "fibers.json", fibers_json(out));
-  write_file_atomic(ctx.output_dir / "report.json", report.dump(2) + "\n");
+  write_json_atomic(ctx.output_dir / "report.json", report);
 }
 
 } // namespace fibermold

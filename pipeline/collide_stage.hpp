@@ -21,7 +21,7 @@ public:
   {
     return {"design.units", "material", "sim", "fixed", "muscle", "tracking_curve", "target", "optimize", "collide"};
   }
-  int version() const override { return 2; }  ///< 2: writes deformed-<target>.json for the report
+  int version() const override { return 3; }  ///< 2: writes deformed-<target>.json for the report; 3: no null in report.json
   void run(StageContext& ctx) const override;
 };
 

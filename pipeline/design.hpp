@@ -11,6 +11,7 @@
 
 #include <Eigen/Core>
 
+#include "core/input_error.hpp"
 #include "sim/muscle_model.hpp"
 
 namespace fibermold {
@@ -176,6 +177,12 @@ struct Design {
   /// e.g. "mold.wall" → "4.0", "fiber.m1.points" → "[[0, 0, 0], ...]". The runner hashes these to
   /// decide which stages are stale and names the key that changed.
   std::map<std::string, std::string> values;
+  /// Where each key given was written: "[mold].voxel" → {line, column}; a key left at its default is absent.
+  std::map<std::string, std::pair<int, int>> places;
 };
+
+/// A problem with `key` of the design (e.g. "[mold].voxel", "[fiber.m1]"), found after reading
+/// it: at the key's line when it was written, else at the file.
+Diagnostic design_problem(const Design& d, const std::string& key, std::string message);
 
 } // namespace fibermold

@@ -56,12 +56,30 @@ struct Range {
     return fmt::format("{} {}{}", hi_open ? "<" : "≤", hi, unit.label);
   }
 };
-Range positive() { return {0, HUGE_VAL, true, false}; }
-Range non_negative() { return {0, HUGE_VAL, false, false}; }
-Range any() { return {}; }
 Range closed(double lo, double hi) { return {lo, hi, false, false}; }
+/// (0, hi]: a size, a rate or a tolerance, with the largest value that still means something.
+Range above_zero(double hi) { return {0, hi, true, false}; }
+
+/// The physical range of every number (docs/design-file.md, "Ranges"): wide enough for any soft
+/// robot, mold and printer, narrow enough that the products the pipeline forms (a modulus times a
+/// volume, a pressure times an area, a voxel count) stay far from overflow and underflow.
+/// Coordinates and lengths in mm: 10 m.
+constexpr double kMaxCoordinate = 1e4;
+/// Strings (names, paths): a path of 4096 bytes is what Linux takes.
+constexpr std::size_t kMaxString = 4096;
+/// Names become file names with suffixes; a file name has at most 255 bytes.
+constexpr std::size_t kMaxName = 100;
 
 std::string format_number(double v) { return fmt::format("{}", v); }
+
+/// A value written back in a message: quoted, and cut after 60 characters (a bad value can be megabytes).
+std::string excerpt(std::string_view text, char quote = '"')
+{
+  if (text.size() <= 60) return fmt::format("{}{}{}", quote, text, quote);
+  std::size_t cut = 57;
+  while (cut > 0 && (static_cast<unsigned char>(text[cut]) & 0xC0) == 0x80) --cut;  // not inside a UTF-8 character
+  return fmt::format("{}{}…{} ({} characters)", quote, text.substr(0, cut), quote, text.size());
+}
 std::string format_vec3(const Vec3& v)
 {
   return fmt::format("[{}, {}, {}]", format_number(v.x()), format_number(v.y()), format_number(v.z()));
@@ -201,7 +219,16 @@ public:
       error(n, key, fmt::format("expected a string, got {}", type_name(*n)));
       return std::nullopt;
     }
-    return *n->value<std::string>();
+    std::string text = *n->value<std::string>();
+    if (text.find('\0') != std::string::npos) {
+      error(n, key, fmt::format("{} contains a NUL character (\\u0000)", excerpt(text.substr(0, text.find('\0')))));
+      return std::nullopt;
+    }
+    if (text.size() > kMaxString) {
+      error(n, key, fmt::format("{} is longer than {} characters", excerpt(text), kMaxString));
+      return std::nullopt;
+    }
+    return text;
   }
 
   /// A string; required when `fallback` is empty.
@@ -230,7 +257,7 @@ public:
         if (std::find(allowed.begin(), allowed.end(), *read) != allowed.end()) {
           v = *read;
         } else {
-          std::string message = fmt::format("unknown value \"{}\"; expected one of: {}", *read,
+          std::string message = fmt::format("unknown value {}; expected one of: {}", excerpt(*read),
                                             fmt::join(allowed, ", "));
           if (auto hint = closest_match(*read, allowed)) message += fmt::format(" (did you mean \"{}\"?)", *hint);
           error(n, key, message);
@@ -241,7 +268,8 @@ public:
     return v;
   }
 
-  std::optional<Vec3> read_vec3(const toml::node* n, std::string_view key, const Unit& unit)
+  /// Three numbers, each within ±`bound` (design units).
+  std::optional<Vec3> read_vec3(const toml::node* n, std::string_view key, const Unit& unit, double bound)
   {
     const toml::array* a = n->as_array();
     if (!a || a->size() != 3 || !std::all_of(a->begin(), a->end(), [](const toml::node& e) { return e.is_number(); })) {
@@ -249,19 +277,19 @@ public:
       return std::nullopt;
     }
     Vec3 v(as_double((*a)[0]), as_double((*a)[1]), as_double((*a)[2]));
-    if (!v.allFinite()) {
-      error(n, key, "coordinates must be finite");
+    if (!v.allFinite() || v.cwiseAbs().maxCoeff() > bound) {
+      error(n, key, fmt::format("every coordinate must be in [{}, {}]{}, got {}", -bound, bound, unit.label, format_vec3(v)));
       return std::nullopt;
     }
     return v;
   }
 
   /// Three numbers in design units, returned in SI. `unit_length`: normalised, must be non-zero.
-  Vec3 vec3(std::string_view key, const Vec3& fallback, const Unit& unit, bool unit_length = false)
+  Vec3 vec3(std::string_view key, const Vec3& fallback, const Unit& unit, double bound, bool unit_length = false)
   {
     Vec3 v = fallback;
     if (const toml::node* n = node(key)) {
-      if (auto read = read_vec3(n, key, unit)) {
+      if (auto read = read_vec3(n, key, unit, bound)) {
         if (unit_length && read->norm() == 0)
           error(n, key, "must not be the zero vector");
         else
@@ -274,11 +302,11 @@ public:
     return v * unit.to_si;
   }
 
-  std::optional<Vec3> optional_vec3(std::string_view key, const Unit& unit)
+  std::optional<Vec3> optional_vec3(std::string_view key, const Unit& unit, double bound)
   {
     const toml::node* n = node(key);
     if (!n) return std::nullopt;
-    auto v = read_vec3(n, key, unit);
+    auto v = read_vec3(n, key, unit, bound);
     if (v) record(key, format_vec3(*v));
     if (v) return *v * unit.to_si;
     return std::nullopt;
@@ -300,7 +328,7 @@ public:
     }
     bool ok = true;
     for (const toml::node& element : *a) {
-      auto p = read_vec3(&element, fmt::format("{}[{}]", key, points.size() + 1), unit);
+      auto p = read_vec3(&element, fmt::format("{}[{}]", key, points.size() + 1), unit, kMaxCoordinate);
       ok = ok && p.has_value();
       points.push_back(p.value_or(Vec3::Zero()));
     }
@@ -355,7 +383,7 @@ public:
     for (auto&& [key, value] : *table_) {
       const std::string name(key.str());
       if (std::find(known_.begin(), known_.end(), name) != known_.end()) continue;
-      std::string message = fmt::format("unknown key '{}' in {}", name, display_);
+      std::string message = fmt::format("unknown key {} in {}", excerpt(name, '\''), display_);
       if (auto hint = closest_match(name, known_)) message += fmt::format("; did you mean '{}'?", *hint);
       else message += fmt::format("; valid keys: {}", fmt::join(known_, ", "));
       ctx_.error(key.source(), display_ + "." + name, message);
@@ -414,8 +442,10 @@ void check_name(Section& s, const std::string& name)
     return std::isalnum(c) || c == '-' || c == '_' || c == '.';
   });
   if (!ok && !name.empty())
-    s.error(s.node("name"), "name", fmt::format("\"{}\" cannot name a file: use letters, digits, '-', '_' and '.', not "
-                                                "starting with '.'", name));
+    s.error(s.node("name"), "name", fmt::format("{} cannot name a file: use letters, digits, '-', '_' and '.', not "
+                                                "starting with '.'", excerpt(name)));
+  else if (name.size() > kMaxName)
+    s.error(s.node("name"), "name", fmt::format("{} is longer than {} characters: it names files and folders", excerpt(name), kMaxName));
 }
 
 DesignOptions read_design(Section s, const fs::path& file)
@@ -434,10 +464,10 @@ MaterialOptions read_material(Section s)
 {
   MaterialOptions o;
   o.model = s.choice("model", o.model, {"neo-hookean"});
-  o.youngs_modulus = s.number("youngs_modulus", o.youngs_modulus, positive(), kPa);
+  o.youngs_modulus = s.number("youngs_modulus", o.youngs_modulus, closed(100, 1e10), kPa);
   o.poisson_ratio = s.number("poisson_ratio", o.poisson_ratio, {0.0, 0.5, false, true});
-  o.density = s.number("density", o.density, non_negative());
-  o.gravity = s.vec3("gravity", o.gravity, {1.0, " m/s²"});
+  o.density = s.number("density", o.density, closed(0, 3e4), {1.0, " kg/m³"});
+  o.gravity = s.vec3("gravity", o.gravity, {1.0, " m/s²"}, 1e3);
   s.finish();
   return o;
 }
@@ -445,7 +475,7 @@ MaterialOptions read_material(Section s)
 MeshOptions read_mesh(Section s)
 {
   MeshOptions o;
-  o.edge_length = s.optional_number("edge_length", positive(), kMm);
+  o.edge_length = s.optional_number("edge_length", closed(0.01, kMaxCoordinate), kMm);
   o.radius_edge_ratio = s.number("radius_edge_ratio", o.radius_edge_ratio, closed(1.1, 10.0));
   o.min_dihedral_deg = s.number("min_dihedral_deg", o.min_dihedral_deg, closed(0, 18), {1.0, "°"});
   o.max_tets = s.integer("max_tets", o.max_tets, 1000, 100'000'000);
@@ -478,8 +508,8 @@ Region read_region(Section& s, bool allow_point)
     ++given;
     Section b(s.context(), box, s.display() + ".box", box->source());
     const toml::node* min_node = b.node("min");
-    Vec3 lo = b.vec3("min", Vec3::Zero(), kMm);
-    Vec3 hi = b.vec3("max", Vec3::Zero(), kMm);
+    Vec3 lo = b.vec3("min", Vec3::Zero(), kMm, kMaxCoordinate);
+    Vec3 hi = b.vec3("max", Vec3::Zero(), kMm, kMaxCoordinate);
     if (!box->get("min")) b.missing("min", "the box's lower corner [x, y, z] in mm");
     if (!box->get("max")) b.missing("max", "the box's upper corner [x, y, z] in mm");
     if (box->get("min") && box->get("max") && !(lo.array() < hi.array()).all())
@@ -500,7 +530,7 @@ Region read_region(Section& s, bool allow_point)
     }
   }
   if (allow_point) {
-    if (auto p = s.optional_vec3("point", kMm)) {
+    if (auto p = s.optional_vec3("point", kMm, kMaxCoordinate)) {
       ++given;
       r.point = p;
     }
@@ -528,8 +558,9 @@ void for_each_entry(Context& ctx, const toml::table& root, const std::string& na
   for (std::size_t i = 0; i < a->size(); ++i) {
     const toml::table& t = *(*a)[i].as_table();
     std::string id = std::to_string(i + 1);
-    if (const toml::node* nn = t.get("name"); nn && nn->is_string() && !nn->value<std::string>()->empty())
-      id = *nn->value<std::string>();
+    if (const toml::node* nn = t.get("name"); nn && nn->is_string() && !nn->value<std::string>()->empty() &&
+                                              nn->value<std::string>()->size() <= kMaxName)
+      id = *nn->value<std::string>();  // a longer name is refused, and labelled by its index meanwhile
     read(Section(ctx, &t, fmt::format("[{}.{}]", name, id), t.source()), i + 1);
   }
 }
@@ -545,9 +576,9 @@ std::string entry_name(Section& s, std::string_view kind, std::size_t index, boo
 MuscleOptions read_muscle(Section s)
 {
   MuscleOptions o;
-  o.model.diameter = s.number("diameter", o.model.diameter / units::mm, positive(), kMm);
-  o.max_pressure = s.number("max_pressure", o.max_pressure / units::kPa, positive(), kKPa);
-  o.segments_per_length = s.number("segments_per_mm", o.segments_per_length * units::mm, positive()) / units::mm;
+  o.model.diameter = s.number("diameter", o.model.diameter / units::mm, closed(0.1, 100), kMm);
+  o.max_pressure = s.number("max_pressure", o.max_pressure / units::kPa, closed(0.1, 1e4), kKPa);
+  o.segments_per_length = s.number("segments_per_mm", o.segments_per_length * units::mm, closed(0.01, 10)) / units::mm;
   auto line = [&](std::string_view key, TwoPieceLine fallback) {
     std::array<double, 4> c{fallback.slope_low, fallback.intercept_low, fallback.slope_high, fallback.intercept_high};
     if (const toml::node* n = s.node(key)) {
@@ -561,8 +592,8 @@ MuscleOptions read_muscle(Section s)
       } else {
         for (int i = 0; i < 2; ++i)
           for (int j = 0; j < 2; ++j) c[2 * i + j] = as_double((*(*a)[i].as_array())[j]);
-        if (!std::all_of(c.begin(), c.end(), [](double v) { return std::isfinite(v); }))
-          s.error(n, key, "coefficients must be finite");
+        if (!std::all_of(c.begin(), c.end(), [](double v) { return std::isfinite(v) && std::abs(v) <= 1e9; }))
+          s.error(n, key, "every coefficient must be in [-1e9, 1e9]");
       }
     }
     s.record(key, fmt::format("[[{}, {}], [{}, {}]]", c[0], c[1], c[2], c[3]));
@@ -570,9 +601,9 @@ MuscleOptions read_muscle(Section s)
   };
   o.model.stiffness = line("stiffness", o.model.stiffness);
   o.model.taut = line("taut", o.model.taut);
-  o.model.rest_strain_slope = s.number("rest_strain_slope", o.model.rest_strain_slope, any(), {1.0, " 1/Pa"});
+  o.model.rest_strain_slope = s.number("rest_strain_slope", o.model.rest_strain_slope, closed(-1e-3, 1e-3), {1.0, " 1/Pa"});
   o.model.rest_strain_intercept = s.number("rest_strain_intercept", o.model.rest_strain_intercept, closed(-0.9, 0.9));
-  o.model.smoothing = s.number("smoothing", o.model.smoothing / units::kPa, positive(), kKPa);
+  o.model.smoothing = s.number("smoothing", o.model.smoothing / units::kPa, above_zero(1e4), kKPa);
   for (const auto& [key, line] : {std::pair{"stiffness", o.model.stiffness}, std::pair{"taut", o.model.taut}})
     if (line.slope_low == line.slope_high && line.intercept_low != line.intercept_high)
       s.error(s.node(key), key, "the two lines are parallel and distinct: they never meet");
@@ -624,8 +655,8 @@ std::vector<TrackingCurve> read_tracking_curves(Context& ctx, const toml::table&
     c.name = entry_name(s, "curve", i, false);
     c.points = s.points("points", kMm, 2, true);
     c.samples = s.integer("samples", c.samples, 2, 100000);
-    c.weight_position = s.number("weight_position", c.weight_position, non_negative());
-    c.weight_orientation = s.number("weight_orientation", c.weight_orientation, non_negative());
+    c.weight_position = s.number("weight_position", c.weight_position, closed(0, 1e9));
+    c.weight_orientation = s.number("weight_orientation", c.weight_orientation, closed(0, 1e9));
     s.finish();
     curves.push_back(std::move(c));
   });
@@ -636,8 +667,8 @@ Load read_load(Section s)
 {
   Load l;
   l.region = read_region(s, true);
-  l.force = s.optional_vec3("force", {1.0, " N"});
-  l.torque = s.optional_vec3("torque", {1.0, " N·m"});
+  l.force = s.optional_vec3("force", {1.0, " N"}, 1e5);
+  l.torque = s.optional_vec3("torque", {1.0, " N·m"}, 1e4);
   if (!l.force && !l.torque)
     s.context().error(s.where(), s.display(), "give force = [x, y, z] (N) and/or torque = [x, y, z] (N·m)");
   if (l.region.point && l.torque)
@@ -651,7 +682,7 @@ Target read_target(Section s, std::size_t index, const MuscleOptions& muscle, co
   Target t;
   t.name = entry_name(s, "target", index, true);
   t.kind = s.choice("kind", "", {"forces", "surface", "fibers"});
-  if (t.kind.empty()) s.missing("kind", "forces | surface | fibers");
+  if (t.kind.empty() && !s.node("kind")) s.missing("kind", "forces | surface | fibers");
 
   if (const toml::node* n = s.node("load")) {
     const toml::array* a = n->as_array();
@@ -665,7 +696,7 @@ Target read_target(Section s, std::size_t index, const MuscleOptions& muscle, co
     }
   }
   t.surface = s.file("surface", false, "");
-  t.strain_penalty = s.number("strain_penalty", 0.0, non_negative());
+  t.strain_penalty = s.number("strain_penalty", 0.0, closed(0, 1e9));
 
   if (const toml::node* n = s.node("fibers")) {
     const toml::array* a = n->as_array();
@@ -682,7 +713,7 @@ Target read_target(Section s, std::size_t index, const MuscleOptions& muscle, co
         act.points = f.points("points", kMm, 2, false);
         const bool known = std::any_of(fibers.begin(), fibers.end(), [&](const Fiber& fb) { return fb.name == act.name; });
         if (act.points.empty() && !known && !act.name.empty())
-          f.error(ft.get("name"), "name", fmt::format("no [[fiber]] named \"{}\" and no points given", act.name));
+          f.error(ft.get("name"), "name", fmt::format("no [[fiber]] named {} and no points given", excerpt(act.name)));
         f.finish();
         t.fibers.push_back(std::move(act));
       }
@@ -732,11 +763,11 @@ OptimizeOptions read_optimize(Section s)
   o.strategy = s.choice("strategy", o.strategy, {"simultaneous", "sequential"});
   o.max_iterations = s.integer("max_iterations", o.max_iterations, 0, 1000000);
   o.route_only_iterations = s.integer("route_only_iterations", o.route_only_iterations, 0, 1000000);
-  o.gradient_tolerance = s.number("gradient_tolerance", o.gradient_tolerance, positive());
-  o.relative_tolerance = s.number("relative_tolerance", o.relative_tolerance, positive());
-  o.weight_curvature = s.number("weight_curvature", o.weight_curvature, non_negative());
-  o.weight_skin_barrier = s.number("weight_skin_barrier", o.weight_skin_barrier, non_negative());
-  o.weight_pressure_barrier = s.number("weight_pressure_barrier", o.weight_pressure_barrier, non_negative());
+  o.gradient_tolerance = s.number("gradient_tolerance", o.gradient_tolerance, above_zero(1));
+  o.relative_tolerance = s.number("relative_tolerance", o.relative_tolerance, above_zero(1));
+  o.weight_curvature = s.number("weight_curvature", o.weight_curvature, closed(0, 1e9));
+  o.weight_skin_barrier = s.number("weight_skin_barrier", o.weight_skin_barrier, closed(0, 1e9));
+  o.weight_pressure_barrier = s.number("weight_pressure_barrier", o.weight_pressure_barrier, closed(0, 1e9));
   s.finish();
   return o;
 }
@@ -744,9 +775,9 @@ OptimizeOptions read_optimize(Section s)
 CollideOptions read_collide(Section s)
 {
   CollideOptions o;
-  o.clearance = s.number("clearance", o.clearance / units::mm, non_negative(), kMm);
-  o.smoothness = s.number("smoothness", o.smoothness / units::mm, positive(), kMm);
-  o.samples_per_length = s.number("samples_per_mm", o.samples_per_length * units::mm, positive()) / units::mm;
+  o.clearance = s.number("clearance", o.clearance / units::mm, closed(0, 100), kMm);
+  o.smoothness = s.number("smoothness", o.smoothness / units::mm, above_zero(kMaxCoordinate), kMm);
+  o.samples_per_length = s.number("samples_per_mm", o.samples_per_length * units::mm, above_zero(100)) / units::mm;
   o.reoptimize = s.boolean("reoptimize", o.reoptimize);
   s.finish();
   return o;
@@ -756,9 +787,9 @@ MoldOptions read_mold(Section s)
 {
   MoldOptions o;
   const auto mm = [&](std::string_view key, double si, Range r) { return s.number(key, si / units::mm, r, kMm); };
-  o.wall = mm("wall", o.wall, positive());
+  o.wall = mm("wall", o.wall, above_zero(1000));
   o.voxel = mm("voxel", o.voxel, closed(0.01, 5.0));
-  o.pull = s.vec3("pull", o.pull, kNone, true);
+  o.pull = s.vec3("pull", o.pull, kNone, kMaxCoordinate, true);
   if (const toml::node* n = s.node("parting")) {
     if (n->is_string()) {
       if (*n->value<std::string>() != "auto")
@@ -768,7 +799,7 @@ MoldOptions read_mold(Section s)
       Section p(s.context(), t, s.display() + ".parting", t->source());
       if (!t->get("point")) p.missing("point", "a point on the parting plane, mm");
       if (!t->get("normal")) p.missing("normal", "the parting plane's normal");
-      PartingPlane plane{p.vec3("point", Vec3::Zero(), kMm), p.vec3("normal", Vec3::UnitZ(), kNone, true)};
+      PartingPlane plane{p.vec3("point", Vec3::Zero(), kMm, kMaxCoordinate), p.vec3("normal", Vec3::UnitZ(), kNone, kMaxCoordinate, true)};
       p.finish();
       o.parting = plane;
     } else {
@@ -779,17 +810,17 @@ MoldOptions read_mold(Section s)
   }
   o.keys = s.integer("keys", o.keys, 0, 8);
   o.key_shape = s.choice("key_shape", o.key_shape, {"cone", "hemisphere"});
-  o.key_diameter = mm("key_diameter", o.key_diameter, positive());
-  o.key_clearance = mm("key_clearance", o.key_clearance, non_negative());
-  o.sprue_diameter = mm("sprue_diameter", o.sprue_diameter, positive());
+  o.key_diameter = mm("key_diameter", o.key_diameter, above_zero(100));
+  o.key_clearance = mm("key_clearance", o.key_clearance, closed(0, 10));
+  o.sprue_diameter = mm("sprue_diameter", o.sprue_diameter, above_zero(100));
   o.vents = s.integer("vents", o.vents, 0, 16);
-  o.vent_diameter = mm("vent_diameter", o.vent_diameter, positive());
-  o.groove_clearance = mm("groove_clearance", o.groove_clearance, non_negative());
-  o.min_silicone = mm("min_silicone", o.min_silicone, non_negative());
-  o.end_channel_length = mm("end_channel_length", o.end_channel_length, non_negative());
-  o.end_channel_diameter = mm("end_channel_diameter", o.end_channel_diameter, positive());
+  o.vent_diameter = mm("vent_diameter", o.vent_diameter, above_zero(100));
+  o.groove_clearance = mm("groove_clearance", o.groove_clearance, closed(0, 10));
+  o.min_silicone = mm("min_silicone", o.min_silicone, closed(0, 100));
+  o.end_channel_length = mm("end_channel_length", o.end_channel_length, closed(0, 1000));
+  o.end_channel_diameter = mm("end_channel_diameter", o.end_channel_diameter, above_zero(100));
   o.screw_holes = s.integer("screw_holes", o.screw_holes, 0, 16);
-  o.screw_diameter = mm("screw_diameter", o.screw_diameter, positive());
+  o.screw_diameter = mm("screw_diameter", o.screw_diameter, above_zero(100));
   o.draft_deg = s.number("draft_deg", o.draft_deg, {0.0, 15.0, false, false}, {1.0, "°"});
   o.shrink = s.number("shrink", o.shrink, {0.0, 0.2, false, false});
   s.finish();
@@ -822,10 +853,10 @@ ExportOptions read_export(Section s)
   std::vector<std::string> quoted;
   for (const std::string& f : o.formats) quoted.push_back("\"" + f + "\"");
   s.record("formats", fmt::format("[{}]", fmt::join(quoted, ", ")));
-  o.printer_volume = s.vec3("printer_volume", o.printer_volume / units::mm, kMm);
+  o.printer_volume = s.vec3("printer_volume", o.printer_volume / units::mm, kMm, kMaxCoordinate);
   if (!(o.printer_volume.array() > 0).all())
     s.error(s.node("printer_volume"), "printer_volume", "every side must be > 0 mm");
-  o.min_wall = s.number("min_wall", o.min_wall / units::mm, positive(), kMm);
+  o.min_wall = s.number("min_wall", o.min_wall / units::mm, above_zero(100), kMm);
   s.finish();
   return o;
 }
@@ -936,10 +967,21 @@ Design parse(std::string_view text, const fs::path& path)
     throw InputError(std::move(ctx.problems));
   }
   d.values = std::move(ctx.values);
+  for (const auto& [key, where] : ctx.sources)
+    d.places[key] = {static_cast<int>(where.begin.line), static_cast<int>(where.begin.column)};
   return d;
 }
 
 } // namespace
+
+Diagnostic design_problem(const Design& d, const std::string& key, std::string message)
+{
+  std::pair<int, int> at{0, 0};
+  if (auto it = d.places.find(key); it != d.places.end()) at = it->second;
+  else if (auto section = d.places.lower_bound(key + "."); section != d.places.end() && section->first.starts_with(key + "."))
+    at = section->second;  // "[fiber.m1]": its first key written
+  return {d.file, at.first, at.second, key, std::move(message)};
+}
 
 Design parse_design(std::string_view toml_text, const fs::path& path) { return parse(toml_text, path); }
 

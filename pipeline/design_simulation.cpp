@@ -20,7 +20,7 @@ namespace {
 
 [[noreturn]] void bad(const Design& d, const std::string& key, const std::string& message)
 {
-  throw InputError(Diagnostic{d.file, 0, 0, key, message});
+  throw InputError(design_problem(d, key, message));
 }
 
 

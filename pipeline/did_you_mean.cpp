@@ -24,6 +24,7 @@ std::size_t edit_distance(std::string_view a, std::string_view b)
 std::optional<std::string> closest_match(std::string_view word, const std::vector<std::string>& candidates)
 {
   std::optional<std::string> best;
+  if (word.size() > 100) return best;  // no key or value is that long, and the table would take n·m words
   std::size_t best_distance = 0;
   for (const std::string& candidate : candidates) {
     const std::size_t d = edit_distance(word, candidate);

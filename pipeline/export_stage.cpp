@@ -9,6 +9,7 @@
 #include <spdlog/spdlog.h>
 
 #include "core/atomic_file.hpp"
+#include "core/json_file.hpp"
 #include "core/units.hpp"
 #include "export/lay_flat.hpp"
 #include "export/stl_writer.hpp"
@@ -154,7 +155,7 @@ std::vector<ReportTable> behaviour_tables(const StageContext& ctx)
   const auto report = json_if_any(ctx.upstream("collide", "report.json"));
   if (!report) return out;
   const auto mm = [](const Json& v) { return v.is_number() ? fixed(v.get<double>(), 3) : std::string("–"); };
-  if ((*report)["targets"].is_object()) {
+  if ((*report)["targets"].is_object() && !(*report)["targets"].empty()) {
     ReportTable targets{"Targets: error over the tracking curves and the surface (mm)",
                         {"target", "RMSE before collide", "RMSE after", "change", "max before", "max after", "surface RMSE after", "surface max after"},
                         {}};
@@ -175,8 +176,8 @@ std::vector<ReportTable> behaviour_tables(const StageContext& ctx)
   }
   if (collisions.rows.empty()) collisions.rows.push_back({"none: every fiber was clear", "", ""});
   out.push_back(std::move(collisions));
-  ReportTable moves{fmt::format("Collide: smallest clearance {} → {} mm (asked {} mm); {} round(s){}", mm((*report)["smallest_clearance_mm"]["before"]),
-                                mm((*report)["smallest_clearance_mm"]["after"]), mm((*report)["clearance_mm"]), (*report)["rounds"].get<int>(),
+  ReportTable moves{fmt::format("Collide: smallest clearance {} → {} mm (asked {} mm); {} round(s){}", mm((*report)["smallest_clearance_mm"].value("before", Json())),
+                                mm((*report)["smallest_clearance_mm"].value("after", Json())), mm((*report)["clearance_mm"]), (*report)["rounds"].get<int>(),
                                 (*report)["reoptimized"].get<bool>() ? ", optimized again" : ""),
                     {"fiber", "largest control point move (mm)", "largest tangent change (mm)"},
                     {}};
@@ -219,8 +220,8 @@ std::optional<ReportPlot> optimization_history(const StageContext& ctx)
 }
 
 /// The page users open first: the groove body with its muscles in the shot 1 mold (upper half
-/// lifted off along pull), the shot 2 mold beside it (hidden), the parts' checks, the silicone and
-/// the stage timings.
+/// lifted off along pull), the shot 2 mold beside it (hidden), the parts' checks and the silicone.
+/// No timings (they are in make's output and the stage logs): the same design gives the same page.
 std::string report(const StageContext& ctx, const Json& molds, const Json& parts, const Json& shots)
 {
   const Design& d = ctx.design;
@@ -261,15 +262,8 @@ std::string report(const StageContext& ctx, const Json& molds, const Json& parts
                              fmt::format("{} from {}", f["sprues"].size(), f["sprues"].empty() ? "" : f["sprues"][0]["from"].get<std::string>()),
                              std::to_string(f["vents"].size()), fixed(f["reachable_percent"], 1) + " %", fixed(f["trapped_air_mm3"], 2)});
   }
-  ReportTable timings{"Stage timings", {"stage", "seconds"}, {}};
-  for (const char* stage : {"mesh", "targets", "optimize", "collide", "molds"}) {
-    const auto stamp = ctx.build_dir / ".stamps" / (std::string(stage) + ".json");
-    if (!std::filesystem::exists(stamp)) continue;
-    const Json s = Json::parse(read_file(stamp), nullptr, false);
-    if (s.is_object() && s.contains("seconds")) timings.rows.push_back({stage, fixed(s["seconds"], 2)});
-  }
   std::vector<ReportTable> tables = behaviour_tables(ctx);
-  tables.insert(tables.end(), {checks, silicone, timings});
+  tables.insert(tables.end(), {checks, silicone});
   std::vector<ReportPlot> plots;
   if (auto history = optimization_history(ctx)) plots.push_back(std::move(*history));
   return report_html("fibermold: " + d.design.name, meshes, lines, tables, plots);
@@ -312,7 +306,7 @@ void ExportStage::run(StageContext& ctx) const
   for (const auto& [shot, info] : molds["shots"].items())
     shots[shot] = {{"silicone_volume_mL", info["silicone_volume_mL"]}, {"silicone_mass_g", info["silicone_mass_g"]}, {"fill", info["fill"]}};
   const Json manifest{{"design", d.design.name}, {"units", "mm"}, {"voxel_mm", molds["voxel_mm"]}, {"parts", parts}, {"shots", shots}};
-  write_file_atomic(ctx.output_dir / "manifest.json", manifest.dump(2) + "\n");
+  write_json_atomic(ctx.output_dir / "manifest.json", manifest);
   write_file_atomic(ctx.output_dir / "README.txt", casting_guide(d.design.name, molds["shots"], d.export_.formats.front()));
   ctx.progress.checkpoint(-1, "writing the report");
   write_file_atomic(ctx.output_dir / "report.html", report(ctx, molds, parts, shots));

@@ -4,6 +4,7 @@
 #include <nlohmann/json.hpp>
 
 #include "core/atomic_file.hpp"
+#include "core/json_file.hpp"
 #include "core/units.hpp"
 #include "sim/hermite_spline.hpp"
 
@@ -41,7 +42,7 @@ std::string fibers_json(const FibersFile& f)
                       {"length_mm", HermiteSpline(r.points, r.tangents).length() / units::mm},
                       {"pressure_kPa", pressures}});
   }
-  return Json{{"optimized", f.optimized}, {"fibers", fibers}}.dump(2) + "\n";
+  return checked_json(Json{{"optimized", f.optimized}, {"fibers", fibers}}, "fibers.json");
 }
 
 FibersFile read_fibers_json(const std::filesystem::path& path)

@@ -9,12 +9,14 @@
 
 #include "core/atomic_file.hpp"
 #include "core/input_error.hpp"
+#include "core/json_file.hpp"
 #include "core/units.hpp"
 #include "export/vtu_writer.hpp"
 #include "mesh/mesh_quality.hpp"
 #include "mesh/surface_import.hpp"
 #include "mesh/surface_repair.hpp"
 #include "mesh/tetrahedralize.hpp"
+#include "pipeline/molds_stage.hpp"
 
 namespace fibermold {
 
@@ -29,10 +31,10 @@ void require_mesh_size(const Design& d, double volume, double edge)
 {
   const double expected_tets = 1.2 * volume / regular_tet_volume(edge);
   if (expected_tets > d.mesh.max_tets)
-    throw InputError(Diagnostic{d.file, 0, 0, "[mesh].edge_length",
+    throw InputError(design_problem(d, "[mesh].edge_length",
                                 fmt::format("{:.4g} mm for a body of {:.4g} mm³ would make about {:.3g} tets, more than "
                                             "[mesh].max_tets = {}; raise edge_length, or check [design].units",
-                                            edge / units::mm, volume / 1e-9, expected_tets, d.mesh.max_tets)});
+                                            edge / units::mm, volume / 1e-9, expected_tets, d.mesh.max_tets)));
 }
 
 /// A closed void inside the body cannot be cast in a two-part mold: nothing would hold it open
@@ -102,8 +104,14 @@ SurfaceCheck check_design_surface(const Design& design, std::vector<std::string>
   SurfaceCheck check;
   RepairReport repair;
   nlohmann::json seconds;
-  prepared_surface(design, check, repair, seconds);
+  const SurfaceMesh surface = prepared_surface(design, check, repair, seconds);
   repairs = repair.changes();
+  // What the stages would refuse later for their size, refused now.
+  require_mesh_size(design, check.volume, target_edge_length(design, check.volume));
+  double groove_length = 0;
+  for (const Fiber& f : design.fibers)
+    for (std::size_t k = 1; k < f.points.size(); ++k) groove_length += (f.points[k] - f.points[k - 1]).norm();
+  require_mold_grids(design, surface, groove_length);
   return check;
 }
 
@@ -176,7 +184,7 @@ void MeshStage::run(StageContext& ctx) const
   // Timings go to the log, not the report: an output that changes on every run would make every
   // downstream stage rerun after a rerun of this one.
   ctx.log.info("seconds: {}", seconds.dump());
-  write_file_atomic(ctx.output_dir / "report.json", report.dump(2) + "\n");
+  write_json_atomic(ctx.output_dir / "report.json", report);
   ctx.log.info("mesh: {} nodes, {} tets, volume {:.6g} mL, dihedral angles {:.1f}°–{:.1f}°, in {:.2f} s",
                mesh.nodes.rows(), mesh.num_tets(), q.volume / 1e-6, q.min_dihedral_deg, q.max_dihedral_deg,
                since(start));

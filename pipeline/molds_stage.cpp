@@ -12,10 +12,12 @@
 
 #include "core/atomic_file.hpp"
 #include "core/input_error.hpp"
+#include "core/json_file.hpp"
 #include "core/units.hpp"
 #include "export/stl_writer.hpp"
 #include "mesh/surface_distance.hpp"
 #include "mesh/tet_mesh.hpp"
+#include "molds/grid_budget.hpp"
 #include "molds/groove.hpp"
 #include "molds/mold_block.hpp"
 #include "molds/part_checks.hpp"
@@ -33,7 +35,7 @@ using Json = nlohmann::ordered_json;
 
 [[noreturn]] void bad(const Design& d, const std::string& key, const std::string& message)
 {
-  throw InputError(Diagnostic{d.file, 0, 0, key, message});
+  throw InputError(design_problem(d, key, message));
 }
 
 /// The body's skin: the tet mesh's boundary with only the vertices it uses.
@@ -163,6 +165,13 @@ Json fill_report(const FillPlan& plan, double voxel, const std::function<Eigen::
 
 } // namespace
 
+void require_mold_grids(const Design& d, const SurfaceMesh& body, double groove_length)
+{
+  const double radius = d.muscle.model.diameter / 2 + d.mold.groove_clearance;
+  if (const auto problem = grid_budget_problem(estimate_grids(body, d.mold.voxel, radius, groove_length), d.mold.voxel))
+    bad(d, "[mold].voxel", *problem);
+}
+
 void MoldsStage::run(StageContext& ctx) const
 {
   const Design& d = ctx.design;
@@ -211,6 +220,11 @@ void MoldsStage::run(StageContext& ctx) const
     add_channel(r.points.front(), -r.tangents.front());
     add_channel(r.points.back(), r.tangents.back());
   }
+
+  double groove_length = 0;
+  for (const auto& line : lines)
+    for (std::size_t k = 1; k < line.size(); ++k) groove_length += (line[k] - line[k - 1]).norm();
+  require_mold_grids(d, body, groove_length);
 
   ctx.progress.checkpoint(0.1, "carving the grooves (level set)");
   using Clock = std::chrono::steady_clock;
@@ -425,7 +439,7 @@ void MoldsStage::run(StageContext& ctx) const
                     {"silicone_thickness", silicone},
                     {"shots", shots},
                     {"parts", parts}};
-  write_file_atomic(ctx.output_dir / "report.json", report.dump(2) + "\n");
+  write_json_atomic(ctx.output_dir / "report.json", report);
 }
 
 } // namespace fibermold

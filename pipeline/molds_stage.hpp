@@ -8,9 +8,14 @@
 // any failed check fails the stage and nothing is written. Outputs: molds/<shot>-lower.stl, <shot>-upper.stl (mm, in the body's frame),
 // groove-body.stl, report.json.
 
+#include "mesh/surface_mesh.hpp"
 #include "pipeline/stage.hpp"
 
 namespace fibermold {
+
+/// Refuses (InputError on [mold].voxel) a voxel too fine for the body and its grooves of
+/// `groove_length` in all (molds/grid_budget.hpp), before any carving; `check` asks it too.
+void require_mold_grids(const Design& d, const SurfaceMesh& body, double groove_length);
 
 class MoldsStage final : public Stage {
 public:

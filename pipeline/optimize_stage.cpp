@@ -10,6 +10,7 @@
 #include "core/array_file.hpp"
 #include "core/atomic_file.hpp"
 #include "core/input_error.hpp"
+#include "core/json_file.hpp"
 #include "core/units.hpp"
 #include "optimize/clearance_barrier.hpp"
 #include "optimize/routing_optimizer.hpp"
@@ -28,7 +29,7 @@ double since(Clock::time_point t) { return std::chrono::duration<double>(Clock::
 
 [[noreturn]] void bad(const Design& d, const std::string& key, const std::string& message)
 {
-  throw InputError(Diagnostic{d.file, 0, 0, key, message});
+  throw InputError(design_problem(d, key, message));
 }
 
 std::vector<std::string> target_names(const Design& d)
@@ -59,25 +60,17 @@ void check_fibers_inside(const Design& d, const SurfaceDistance& skin)
   }
 }
 
-/// Fibers that start clear of each other are kept clear: the clearance barrier between fibers joins
-/// eq. 4, so that collide finds nothing to move. Fibers that start too close are left to cross and
-/// to collide, which parts them afterwards. Returns whether the barrier is on.
+/// Puts the clearance barrier between fibers on when the start (optimization_start) is clear, so that
+/// no path of the optimizer crosses two fibers (whether they crossed hinged on rounding, and crossed
+/// fibers can lock together at their fixed ends). Returns whether it is on.
 bool keep_fibers_apart(StageContext& ctx, RoutingProblem& problem, const SurfaceDistance& skin, const Routing& start,
                        std::unique_ptr<FiberClearance>& measure, std::unique_ptr<ClearanceBarrier>& barrier)
 {
   const Design& d = ctx.design;
   if (start.routes.size() < 2) return false;
-  const double radius = d.muscle.model.diameter / 2;
-  measure = std::make_unique<FiberClearance>(skin, start.routes, radius, d.collide.clearance, d.collide.samples_per_length);
-  const std::vector<Contact> close = measure->contacts(measure->lines(start.routes), d.collide.clearance, false);
-  if (!close.empty()) {
-    const Contact& c = close.front();
-    ctx.log.info("fibers {} and {} start {:.2f} mm apart at {}, less than the [collide] clearance: the optimizer lets "
-                 "fibers cross, and collide parts them afterwards",
-                 start.routes[c.a].name, start.routes[c.b].name, c.clearance / units::mm, format_mm(c.point_a));
-    return false;
-  }
-  barrier = std::make_unique<ClearanceBarrier>(*measure, start.routes, d.collide.clearance, radius);
+  measure = std::make_unique<FiberClearance>(skin, start.routes, d.muscle.model.diameter / 2, d.collide.clearance, d.collide.samples_per_length);
+  if (!measure->contacts(measure->lines(start.routes), d.collide.clearance, false).empty()) return false;
+  barrier = std::make_unique<ClearanceBarrier>(*measure, start.routes, d.collide.clearance, d.muscle.model.diameter / 2);
   problem.set_clearance_barrier(barrier.get(), kClearanceBarrierWeight);
   ctx.log.info("the fibers start clear of each other; a barrier keeps them {:.2f} mm apart", d.collide.clearance / units::mm);
   return true;
@@ -138,14 +131,17 @@ void OptimizeStage::run(StageContext& ctx) const
   const std::vector<std::string> names = target_names(d);
   if (!d.optimize.enabled) {
     write_file_atomic(ctx.output_dir / "fibers.json", fibers_json({starting_routing(d), names, false}));
-    write_file_atomic(ctx.output_dir / "report.json", nlohmann::ordered_json{{"optimized", false}}.dump(2) + "\n");
+    write_json_atomic(ctx.output_dir / "report.json", nlohmann::ordered_json{{"optimized", false}});
     ctx.log.info("[optimize] enabled = false: the [[fiber]] routes pass through unchanged");
     return;
   }
   check_inputs(d);
   DesignRouting dr(ctx);
   check_fibers_inside(d, *dr.skin);
-  const Routing start = starting_routing(d);
+  const OptimizationStart begun = optimization_start(d, *dr.skin);
+  for (const std::string& line : begun.log) ctx.log.info("{}", line);
+  if (!begun.warning.empty()) ctx.log.warn("{}", begun.warning);
+  const Routing& start = begun.routing;
   RoutingProblem& problem = dr.start(start);
   const RoutingSettings settings = routing_settings(d);
   double closest = 0;
@@ -253,7 +249,7 @@ void OptimizeStage::run(StageContext& ctx) const
       {"targets", per_target}};
   write_file_atomic(ctx.output_dir / "fibers.json", fibers_json(fibers));
   write_file_atomic(ctx.output_dir / "history.csv", history.text());
-  write_file_atomic(ctx.output_dir / "report.json", report.dump(2) + "\n");
+  write_json_atomic(ctx.output_dir / "report.json", report);
 }
 
 } // namespace fibermold

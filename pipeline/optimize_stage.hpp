@@ -17,8 +17,9 @@ public:
   std::vector<std::string> design_keys() const override
   {
     return {"design.units", "material", "sim", "fixed", "muscle", "fiber", "tracking_curve", "target", "optimize",
-            "collide.clearance", "collide.samples_per_mm"};
+            "collide.clearance", "collide.samples_per_mm", "collide.smoothness"};  // smoothness: optimization_start
   }
+  int version() const override { return 2; }  ///< 2: fibers moved apart before optimizing, kept apart throughout
   void run(StageContext& ctx) const override;
 };
 

@@ -7,7 +7,9 @@
 
 #include "core/array_file.hpp"
 #include "core/input_error.hpp"
+#include "core/json_file.hpp"
 #include "core/units.hpp"
+#include "optimize/collision_resolution.hpp"
 #include "pipeline/design_simulation.hpp"
 
 namespace fibermold {
@@ -21,8 +23,8 @@ DesignRouting::DesignRouting(const StageContext& ctx)
     curves.push_back(sample_tracking_curve(c.points, c.samples, c.weight_position, c.weight_orientation));
     for (const Eigen::Vector3d& q : curves.back().points)
       if (const auto at = skin->closest(q); !at.inside && at.distance > 1e-6)
-        throw InputError(Diagnostic{d.file, 0, 0, fmt::format("[tracking_curve.{}]", c.name),
-                                    fmt::format("the curve leaves the body at {}", format_mm(q))});
+        throw InputError(design_problem(d, fmt::format("[tracking_curve.{}]", c.name),
+                                    fmt::format("the curve leaves the body at {}", format_mm(q))));
   }
   sim = std::make_unique<Simulation>(mesh, simulation_options(d, mesh));
   for (const Target& t : d.targets) {
@@ -73,6 +75,33 @@ Routing starting_routing(const Design& d)
   }
   r.pressures = actuator_mask(d).cast<double>() * (d.muscle.max_pressure / 2);
   return r;
+}
+
+OptimizationStart optimization_start(const Design& d, const SurfaceDistance& skin)
+{
+  OptimizationStart out{starting_routing(d), {}, {}};
+  std::vector<Route>& routes = out.routing.routes;
+  if (routes.size() < 2) return out;
+  const FiberClearance measure(skin, routes, d.muscle.model.diameter / 2, d.collide.clearance, d.collide.samples_per_length);
+  if (measure.contacts(measure.lines(routes), d.collide.clearance + kBarrierRoom / 2, false).empty()) return out;
+  ResolutionSettings settings;
+  settings.clearance = d.collide.clearance;
+  settings.room = kBarrierRoom;
+  settings.smoothness = d.collide.smoothness;
+  try {
+    const CollisionResolution r = resolve_collisions(measure, routes, settings);
+    for (const Contact& c : r.collided)
+      if (!c.with_skin())
+        out.log.push_back(fmt::format("fibers {} and {} start {:.2f} mm apart at {}, less than the [collide] clearance", routes[c.a].name,
+                                      routes[c.b].name, c.clearance / units::mm, format_mm(c.point_a)));
+    out.log.push_back(fmt::format("moved apart before optimizing, in {} rounds: the smallest clearance went from {:.3f} mm to {:.3f} mm",
+                                  r.iterations, r.before / units::mm, r.after / units::mm));
+    routes = r.routes;
+  } catch (const CollisionError& e) {
+    out.warning = fmt::format("the starting fibers cannot be moved apart ({}); the optimizer lets them cross, and collide parts "
+                              "them afterwards", e.what());
+  }
+  return out;
 }
 
 BfgsOptions bfgs_options(const Design& d)
@@ -136,8 +165,8 @@ std::string deformed_json(DesignRouting& dr, const Routing& r, int t, const Eige
     for (double s : muscles[m]->segments().t) line.push_back(mm(dr.sim->basis().at(muscles[m]->spline().position(s), 0).position(x)));
     fibers[r.routes[m].name] = line;
   }
-  return nlohmann::ordered_json{{"target", dr.target_names[static_cast<std::size_t>(t)]}, {"nodes_mm", points}, {"fibers_mm", fibers}}.dump() +
-         "\n";
+  return checked_json(nlohmann::ordered_json{{"target", dr.target_names[static_cast<std::size_t>(t)]}, {"nodes_mm", points}, {"fibers_mm", fibers}},
+                      fmt::format("deformed-{}.json", dr.target_names[static_cast<std::size_t>(t)]), -1);
 }
 
 } // namespace fibermold

@@ -49,6 +49,9 @@ RoutingSettings routing_settings(const Design& d);
 /// over the fibers in contact (mm): small, so that it does not outweigh the targets while it stays
 /// infinite at the clearance (as IPC's κ).
 inline constexpr double kClearanceBarrierWeight = 4e-3;
+/// Fibers moved apart for a barrier are moved this much beyond the clearance: the barrier is
+/// infinite at the clearance itself, and an optimizer needs room inside it (m).
+inline constexpr double kBarrierRoom = 0.1e-3;
 
 /// Which fibers drive which target: a target's `actuators`, all fibers when it names none, fiber k
 /// alone for target k with the sequential strategy.
@@ -56,6 +59,19 @@ ActuatorMask actuator_mask(const Design& d);
 
 /// The [[fiber]] routes; pressures half the maximum for each target's actuators, 0 for the others.
 Routing starting_routing(const Design& d);
+
+/// The routing the optimizer starts from (docs/optimize.md, "clearance barrier"): the [[fiber]]
+/// routes, and where two start closer than the [collide] clearance, moved apart to it + kBarrierRoom
+/// by collide's resolution (optimize/collision_resolution.hpp), so that the barrier between fibers
+/// holds from the first iteration. Collide takes its muscle segments from it, as the optimizer had
+/// them. `log`: what was done, one line each; `warning`: why a start could not be moved apart (two
+/// fixed ends too close), else empty.
+struct OptimizationStart {
+  Routing routing;
+  std::vector<std::string> log;
+  std::string warning;
+};
+OptimizationStart optimization_start(const Design& d, const SurfaceDistance& skin);
 
 /// The [optimize] stopping rules.
 BfgsOptions bfgs_options(const Design& d);

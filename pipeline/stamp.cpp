@@ -3,6 +3,7 @@
 #include <nlohmann/json.hpp>
 
 #include "core/atomic_file.hpp"
+#include "core/json_file.hpp"
 
 namespace fibermold {
 
@@ -17,7 +18,7 @@ std::string Stamp::to_json() const
   j["outputs"] = outputs;
   j["seconds"] = seconds;
   j["finished"] = finished;
-  return j.dump(2) + "\n";
+  return checked_json(j, "stamp.json");
 }
 
 std::optional<Stamp> Stamp::load(const std::filesystem::path& path)

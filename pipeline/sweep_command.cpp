@@ -21,6 +21,7 @@
 
 #include "core/atomic_file.hpp"
 #include "core/input_error.hpp"
+#include "core/json_file.hpp"
 #include "core/progress.hpp"
 #include "pipeline/build_lock.hpp"
 #include "pipeline/content_hash.hpp"
@@ -250,7 +251,7 @@ std::map<std::string, std::string> submit_slurm(const SweepPlan& plan,
     previous = out.substr(0, out.find_first_of(";\n"));
     jobs[stage] = previous;
     recorded[stage] = {{"job", previous}, {"tasks", it->second}};
-    write_file_atomic(dir / "jobs.json", recorded.dump(2) + "\n");
+    write_json_atomic(dir / "jobs.json", recorded);
     fmt::print("{}: {} task(s), Slurm job {}\n", stage, it->second.size(), previous);
     std::fflush(stdout);
   }

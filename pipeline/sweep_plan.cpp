@@ -5,6 +5,7 @@
 #include <nlohmann/json.hpp>
 
 #include "core/atomic_file.hpp"
+#include "core/json_file.hpp"
 #include "pipeline/design_file.hpp"
 
 namespace fibermold {
@@ -64,7 +65,7 @@ void write_plan(const SweepPlan& plan, const fs::path& build_dir)
                {"axes", plan.axes},
                {"stages", plan.stages},
                {"cases", cases}};
-  write_file_atomic(build_dir / "sweep.json", j.dump(2) + "\n");
+  write_json_atomic(build_dir / "sweep.json", j);
 }
 
 SweepPlan read_plan(const fs::path& build_dir)

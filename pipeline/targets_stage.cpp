@@ -11,6 +11,7 @@
 #include "core/array_file.hpp"
 #include "core/atomic_file.hpp"
 #include "core/input_error.hpp"
+#include "core/json_file.hpp"
 #include "core/units.hpp"
 #include "mesh/surface_import.hpp"
 #include "pipeline/design_simulation.hpp"
@@ -42,15 +43,15 @@ std::vector<std::pair<int, Eigen::Vector3d>> target_surface(const Design& d, con
   const std::string key = fmt::format("[target.{}].surface", t.name);
   const SurfaceMesh s = import_surface(t.surface, d.design.surface_scale);
   if (s.num_vertices() != mesh.surface_to_node.size())
-    throw InputError(Diagnostic{d.file, 0, 0, key,
+    throw InputError(design_problem(d, key,
                                 fmt::format("{} has {} vertices, the body's surface {}: a target surface must be a "
                                             "deformed copy of the body's surface (same vertices, same order)",
-                                            t.surface.filename().string(), s.num_vertices(), mesh.surface_to_node.size())});
+                                            t.surface.filename().string(), s.num_vertices(), mesh.surface_to_node.size())));
   if (face_set(s.faces, &mesh.surface_to_node) != face_set(mesh.boundary_faces, nullptr))
-    throw InputError(Diagnostic{d.file, 0, 0, key,
+    throw InputError(design_problem(d, key,
                                 fmt::format("{} connects its vertices differently from the body's surface: the vertex "
                                             "order changed (export it from the same mesh without reordering)",
-                                            t.surface.filename().string())});
+                                            t.surface.filename().string())));
   std::vector<std::pair<int, Eigen::Vector3d>> moved;
   for (Eigen::Index v = 0; v < s.num_vertices(); ++v) moved.emplace_back(mesh.surface_to_node(v), s.vertices.row(v).transpose());
   return moved;
@@ -69,8 +70,8 @@ Solved solve_target(const Design& d, const Target& t, const TetMesh& mesh, const
                     std::unique_ptr<Simulation>& sim)
 {
   if (t.strain_penalty > 0)
-    throw InputError(Diagnostic{d.file, 0, 0, fmt::format("[target.{}].strain_penalty", t.name),
-                                "the large-strain penalty is not available yet; remove the key"});
+    throw InputError(design_problem(d, fmt::format("[target.{}].strain_penalty", t.name),
+                                "the large-strain penalty is not available yet; remove the key"));
   Solved out;
   if (t.kind == "surface") {
     const auto moved = target_surface(d, t, mesh);
@@ -144,7 +145,7 @@ void TargetsStage::run(StageContext& ctx) const
     if (t.kind == "surface") report[t.name]["max_surface_error_mm"] = solved.surface_error / units::mm;
     ctx.log.info("target {} ({}): max displacement {:.3f} mm; {}", t.name, t.kind, max_mm, solved.summary.brief());
   }
-  write_file_atomic(ctx.output_dir / "report.json", report.dump(2) + "\n");
+  write_json_atomic(ctx.output_dir / "report.json", report);
 }
 
 } // namespace fibermold

@@ -2,7 +2,6 @@
 
 #include <algorithm>
 #include <cstdlib>
-#include <thread>
 
 #include <dlfcn.h>
 
@@ -11,46 +10,26 @@
 namespace fibermold {
 
 namespace {
-/// OpenBLAS (Debian's default BLAS under CHOLMOD) keeps its worker threads spinning on
-/// sched_yield for about 0.1 s after each call, and on 2 cores they took that time from the
-/// assembly's oneTBB threads when every BLAS call had 2 threads (session 9: bench/sim's twisting
-/// bar 4.2 → 3.6–4.0 s with one). So BLAS runs on one thread, except inside a factorization: there
-/// all cores serve it, as nothing else runs meanwhile (session 14, bench/sim, per factorization:
-/// the bar at the paper's tet count 0.035–0.050 → 0.029–0.043 s in six runs each way, the 4 mm
-/// cantilever 0.090–0.098 → 0.070–0.073 s and the fem-p2 cantilever 0.178–0.181 → 0.146–0.176 s
-/// in three; the assemblies after them no slower). A user's OPENBLAS_NUM_THREADS is left alone; another BLAS is
-/// not touched.
-class BlasThreads {
-public:
-  static const BlasThreads& get()
-  {
-    static const BlasThreads threads;
-    return threads;
-  }
-  /// All cores for BLAS while it lives.
-  struct Factorizing {
-    Factorizing() { get().use(get().cores_); }
-    ~Factorizing() { get().use(1); }
-    Factorizing(const Factorizing&) = delete;
-    Factorizing& operator=(const Factorizing&) = delete;
-  };
-
-private:
-  using SetThreads = void (*)(int);
-  BlasThreads()
-  {
-    if (std::getenv("OPENBLAS_NUM_THREADS")) return;
-    set_ = reinterpret_cast<SetThreads>(dlsym(RTLD_DEFAULT, "openblas_set_num_threads"));
-    cores_ = static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
-    if (set_) set_(1);
-  }
-  void use(int threads) const
-  {
-    if (set_) set_(threads);
-  }
-  SetThreads set_ = nullptr;
-  int cores_ = 1;
-};
+/// BLAS (under CHOLMOD's supernodal factorization) runs on one thread, on every machine: OpenBLAS
+/// splits dpotrf and dsyrk by its thread count, and the rounding with them, so that a 2-core and a
+/// 64-core machine would optimize the same design along different paths (session 16: the twisting
+/// bar's optimization took 382 iterations with 2 BLAS threads, 374 with one, surface RMSE 1.073 and
+/// 1.081 mm). One thread costs little here: the assembly runs on all cores through oneTBB, and with
+/// two BLAS threads their spinning took the assembly's time (session 9); inside a factorization
+/// two threads saved 10–25 % of it (session 14). A user's OPENBLAS_NUM_THREADS is left alone; another
+/// BLAS is not touched. The kernel OpenBLAS picks for the CPU (OPENBLAS_CORETYPE) still rounds its
+/// own way: docs/optimize.md, "The same design on other machines", gives what that moves.
+void one_blas_thread()
+{
+  static const bool done = [] {
+    if (std::getenv("OPENBLAS_NUM_THREADS")) return false;
+    using SetThreads = void (*)(int);
+    const auto set = reinterpret_cast<SetThreads>(dlsym(RTLD_DEFAULT, "openblas_set_num_threads"));
+    if (set) set(1);
+    return set != nullptr;
+  }();
+  (void)done;
+}
 
 /// Debian's CHOLMOD is built with OpenMP and asks for 4 threads (CHOLMOD_OMP_NUM_THREADS, fixed
 /// when the library was built) in the loops that copy A and the updates into each supernode: many
@@ -76,7 +55,7 @@ struct CholmodSolver::Impl {
 
 CholmodSolver::CholmodSolver() : impl_(std::make_unique<Impl>())
 {
-  BlasThreads::get();
+  one_blas_thread();
   impl_->llt.cholmod().print = 0;  // "not positive definite" is an answer here, not an error to print
 }
 CholmodSolver::~CholmodSolver() = default;
@@ -95,10 +74,7 @@ bool CholmodSolver::factorize(const Eigen::SparseMatrix<double>& A, double shift
     ++analyses_;
   }
   impl_->llt.setShift(shift);
-  {
-    const BlasThreads::Factorizing all_cores;
-    impl_->llt.factorize(A);
-  }
+  impl_->llt.factorize(A);
   return impl_->llt.info() == Eigen::Success;
 }
 

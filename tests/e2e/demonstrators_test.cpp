@@ -185,8 +185,9 @@ TEST(Demonstrators, TentacleErrorsWithinThePapersTipOnlyMatchesLessOfTheBodyAndF
 
 TEST(Demonstrators, WalkingRobotMusclesAreOptimizedMovedApartAndMolded)
 {
-  // Paper, section VIII-F: no errors given. Both poses are optimized together, the crossing
-  // muscles are moved apart and optimized again, and both shots of molds pass their checks.
+  // Paper, section VIII-F: no errors given. Both poses are optimized together with the muscles
+  // moved apart at the start and kept apart by the clearance barrier (they started 0.5 mm apart),
+  // so collide finds every clearance held and changes nothing, and both shots of molds pass their checks.
   test::TempDir dir;
   nlohmann::json report;
   ASSERT_NO_FATAL_FAILURE(make_example("walking-robot", dir.path(),
@@ -202,13 +203,14 @@ TEST(Demonstrators, WalkingRobotMusclesAreOptimizedMovedApartAndMolded)
     std::printf("walking robot %s: tracking RMSE %.2f → %.2f mm optimized, %.2f mm after collide\n", target,
                 t["start"]["rmse_mm"].get<double>(), c["before"]["rmse_mm"].get<double>(),
                 c["after"]["rmse_mm"].get<double>());
-    // Measured: bend 7.26 → 1.91 → 2.56 mm, twist 5.22 → 1.39 → 3.44 mm. Thirty iterations of
-    // optimizing again do not win the twist back here; the full example's 300 nearly do (docs/collide.md).
-    EXPECT_LT(c["before"]["rmse_mm"].get<double>(), t["start"]["rmse_mm"].get<double>() / 2) << target;
-    EXPECT_LT(c["after"]["rmse_mm"].get<double>(), t["start"]["rmse_mm"].get<double>()) << target;
+    // Measured (30 iterations): bend 7.27 → 4.87 mm, twist 5.27 → 4.15 mm; the full example's 300
+    // reach 0.56 and 1.25 mm (docs/collide.md).
+    EXPECT_LT(c["before"]["rmse_mm"].get<double>(), t["start"]["rmse_mm"].get<double>() * 0.85) << target;
+    EXPECT_EQ(c["after"]["rmse_mm"].get<double>(), c["before"]["rmse_mm"].get<double>()) << target;
   }
-  EXPECT_LT(collide["smallest_clearance_mm"]["before"].get<double>(), 1.0);
-  EXPECT_GE(collide["smallest_clearance_mm"]["after"].get<double>(), 1.0 - 0.05);
+  EXPECT_TRUE(report["fibers_kept_apart"].get<bool>());
+  EXPECT_FALSE(collide["changed"].get<bool>());
+  EXPECT_GE(collide["smallest_clearance_mm"]["before"].get<double>(), 1.0 - 1e-3);
 }
 
 } // namespace

@@ -212,10 +212,14 @@ TEST_F(MeshStageE2E, UnsupportedExtension)
 
 TEST_F(MeshStageE2E, WrongUnitsAreRefusedBeforeMeshing)
 {
-  write_stl(dir_ / "box.stl", box_);  // in mm, declared as m: a 40 m box at 5 mm edges
+  write_stl(dir_ / "box.stl", box_);  // in mm, declared as m: a 40 m box, beyond any robot
   test::write_text(dir_ / "design.toml", "[design]\nsurface = \"box.stl\"\nunits = \"m\"\n[mesh]\nedge_length = 5.0\n");
-  expect_rejected("more than [mesh].max_tets = 2000000; raise edge_length, or check [design].units");
-  EXPECT_THAT(make().err, HasSubstr("is 40000 mm across: is [design].units right?"));
+  expect_rejected("box.stl: the surface spans 4.9e+04 mm corner to corner (0 to 40 in the file's units): a body is between 0.1 mm "
+                  "and 10 m across; check [design].units");
+  // Declared as cm: a 400 mm box, at 2 mm edges about 2e7 tets.
+  test::write_text(dir_ / "design.toml", "[design]\nsurface = \"box.stl\"\nunits = \"cm\"\n[mesh]\nedge_length = 2.0\n");
+  expect_rejected("design.toml:5:15: [mesh].edge_length: 2 mm for a body of 1.6e+07 mm³ would make about 2.04e+07 tets, more than "
+                  "[mesh].max_tets = 2000000; raise edge_length, or check [design].units");
 }
 
 /// A glTF tetrahedron of edge `a` mm with its geometry in the external buffer tet.bin.

@@ -1,5 +1,9 @@
 #include "pipeline/design_file.hpp"
 
+#include <cmath>
+#include <regex>
+
+#include <fmt/format.h>
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
@@ -116,7 +120,7 @@ TEST_F(DesignFileTest, WrongTypesAndRangesNameKeyLineAndBound)
 {
   EXPECT_THAT(problem(std::string(kMinimal) + "[mold]\nkeys = \"four\"\n"),
               HasSubstr(":5:8: [mold].keys: expected an integer, got a string"));
-  EXPECT_THAT(problem(std::string(kMinimal) + "[mold]\nwall = -1\n"), HasSubstr("[mold].wall: must be > 0 mm, got -1"));
+  EXPECT_THAT(problem(std::string(kMinimal) + "[mold]\nwall = -1\n"), HasSubstr("[mold].wall: must be in (0, 1000] mm, got -1"));
   EXPECT_THAT(problem(std::string(kMinimal) + "[material]\npoisson_ratio = 0.5\n"),
               HasSubstr("[material].poisson_ratio: must be in [0, 0.5)"));
   EXPECT_THAT(problem(std::string(kMinimal) + "[sim]\nbasis = \"mls-linaer\"\n"),
@@ -238,6 +242,62 @@ TEST_F(DesignFileTest, PartingPlaneAndFormats)
   EXPECT_DOUBLE_EQ(d.mold.parting->normal.z(), 1.0);
   EXPECT_EQ(d.export_.formats, (std::vector<std::string>{"stl", "3mf"}));
   EXPECT_THAT(problem(std::string(kMinimal) + "[export]\nformats = [\"stp\"]\n"), HasSubstr("unknown format"));
+}
+
+/// docs/design-file.md's "Ranges" table, row by row for the keys of plain sections: just outside
+/// each bound is refused at its line, naming the bound as the table gives it; just inside is taken.
+TEST_F(DesignFileTest, EveryDocumentedRangeIsTheOneChecked)
+{
+  const std::string doc = test::read_text(fs::path(FIBERMOLD_SOURCE_DIR) / "docs" / "design-file.md");
+  const std::regex row(R"(\| `\[(material|mesh|sim|muscle|optimize|collide|mold|export)\] (\w+)` \| ([\[(])(-?[0-9.e]+), (-?[0-9.e]+)([\])]) \|)");
+  int rows = 0;
+  for (auto it = std::sregex_iterator(doc.begin(), doc.end(), row); it != std::sregex_iterator(); ++it, ++rows) {
+    const std::smatch& m = *it;
+    const std::string section = m[1], key = m[2];
+    const double lo = std::stod(m[4]), hi = std::stod(m[5]);
+    const bool lo_open = m[3] == "(", hi_open = m[6] == ")";
+    const auto text = [&](double v) { return fmt::format("{}[{}]\n{} = {}\n", kMinimal, section, key, v); };
+    const bool integer = std::floor(lo) == lo && std::floor(hi) == hi && hi - lo >= 8 && hi <= 1e8 &&
+                         (key == "max_tets" || key.find("iterations") != std::string::npos || key == "keys" || key == "vents" ||
+                          key == "screw_holes");
+    const double step = integer ? 1 : std::max(std::abs(hi - lo), 1.0) * 1e-6;
+    const double below = lo_open ? lo : lo - step, above = hi_open ? hi : hi + step;
+    for (const double bad : {below, above}) {
+      const std::string p = problem(integer ? fmt::format("{}[{}]\n{} = {}\n", kMinimal, section, key, static_cast<long long>(bad)) : text(bad));
+      EXPECT_THAT(p, HasSubstr(fmt::format(":5:{}: [{}].{}: must be", key.size() + 4, section, key))) << p;
+      if (!integer) {
+        EXPECT_THAT(p, HasSubstr(fmt::format("{}{}, {}{}", lo_open ? "(" : "[", lo, hi, hi_open ? ")" : "]"))) << p;
+      }
+    }
+    // Inside: the geometric mean of positive bounds (a value from the middle of a range of decades),
+    // else up to 1 (a larger one would meet the checks between keys: a min_wall above the wall).
+    const double inside = lo > 0 ? std::sqrt(lo * hi) : hi_open ? (lo + hi) / 2 : std::min(hi, 1.0);
+    const std::string ok = integer ? fmt::format("{}[{}]\n{} = {}\n", kMinimal, section, key, static_cast<long long>(std::round(inside))) : text(inside);
+    EXPECT_NO_THROW(parse(ok)) << ok;
+  }
+  EXPECT_GE(rows, 40);
+}
+
+TEST_F(DesignFileTest, CoordinatesStringsAndNamesHaveLimits)
+{
+  const std::string fiber = std::string(kMinimal) + "[[fiber]]\nname = \"m\"\npoints = [[0, 0, 0], [1e308, 0, 0]]\n";
+  EXPECT_THAT(problem(fiber), HasSubstr(":6:22: [fiber.m].points[2]: every coordinate must be in [-10000, 10000] mm, got [1e+308, 0, 0]"));
+  EXPECT_THAT(problem(std::string(kMinimal) + "[material]\ngravity = [0, 0, -1e4]\n"),
+              HasSubstr("[material].gravity: every coordinate must be in [-1000, 1000] m/s²"));
+  EXPECT_THAT(problem(std::string(kMinimal) + "[mold]\nparting = { point = [0, 0, 2e4], normal = [0, 0, 1] }\n"),
+              HasSubstr("[mold].parting.point: every coordinate must be in [-10000, 10000] mm"));
+  // A NUL would cut a path short, and a megabyte of value is not echoed back whole.
+  EXPECT_THAT(problem("[design]\nsurface = \"body\\u0000.stl\"\n"), HasSubstr("[design].surface: \"body\" contains a NUL character"));
+  const std::string huge(8 << 20, 'x');
+  const std::string p = problem(std::string(kMinimal) + "[sim]\nbasis = \"" + huge + "\"\n");
+  EXPECT_THAT(p, HasSubstr("(8388608 characters) is longer than 4096 characters"));
+  EXPECT_LT(p.size(), 300u);
+  EXPECT_THAT(problem("[design]\nsurface = \"body.stl\"\nname = \"" + std::string(101, 'a') + "\"\n"),
+              HasSubstr("is longer than 100 characters: it names files and folders"));
+  // A wrong value of a required choice is reported once, as wrong, not also as missing.
+  const auto kind = problems(std::string(kMinimal) + "[[target]]\nname = \"t\"\nkind = \"Forces\"\nload = [{ point = [0, 0, 0], force = [1, 0, 0] }]\n");
+  ASSERT_EQ(kind.size(), 1u);
+  EXPECT_THAT(kind.front().to_string(), HasSubstr("unknown value \"Forces\"; expected one of: forces, surface, fibers (did you mean \"forces\"?)"));
 }
 
 TEST(DesignKeyMatches, SectionAndKeyPrefixes)

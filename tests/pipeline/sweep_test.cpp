@@ -120,7 +120,7 @@ TEST_F(Sweep, ProblemsAreReportedAtTheSweepFilesLine)
   EXPECT_THAT(problems("[axes]\n\"mold.wal\" = [3, 4]\n"),
               HasSubstr(file + ":4:15: \"mold.wal\" = 3: unknown key 'wal' in [mold]"));
   EXPECT_THAT(problems("[axes]\n\"mold.wall\" = [3, -4]\n"),
-              HasSubstr(file + ":4:19: \"mold.wall\" = -4: must be > 0 mm"));
+              HasSubstr(file + ":4:19: \"mold.wall\" = -4: must be in (0, 1000] mm"));
   EXPECT_THAT(problems("[axes]\n\"fiber.m2.points\" = [[[0, 0, 0], [60, 0, 0]]]\n"),
               HasSubstr(file + ":4:22: \"fiber.m2.points\": the base design has no [[fiber]] named 'm2' (it has: m1)"));
   EXPECT_THAT(problems("[axes]\nwall = [3]\n"),
