@@ -17,6 +17,7 @@
 #include "mesh/surface_repair.hpp"
 #include "mesh/tetrahedralize.hpp"
 #include "pipeline/molds_stage.hpp"
+#include "pipeline/optimize_stage.hpp"
 
 namespace fibermold {
 
@@ -112,6 +113,7 @@ SurfaceCheck check_design_surface(const Design& design, std::vector<std::string>
   for (const Fiber& f : design.fibers)
     for (std::size_t k = 1; k < f.points.size(); ++k) groove_length += (f.points[k] - f.points[k - 1]).norm();
   require_mold_grids(design, surface, groove_length);
+  require_optimizable(design, SurfaceDistance(surface.vertices, surface.faces));
   return check;
 }
 

@@ -39,27 +39,6 @@ std::vector<std::string> target_names(const Design& d)
   return names;
 }
 
-void check_inputs(const Design& d)
-{
-  if (d.fibers.empty()) bad(d, "[[fiber]]", "nothing to optimize: give at least one fiber");
-  if (d.targets.empty()) bad(d, "[[target]]", "nothing to optimize for: give at least one target");
-  if (d.tracking_curves.empty())
-    bad(d, "[[tracking_curve]]", "the optimizer compares deformations along tracking curves: give at least one");
-  if (d.optimize.strategy == "sequential" && d.fibers.size() != d.targets.size())
-    bad(d, "[optimize].strategy",
-        fmt::format("sequential drives one fiber per target, in order: {} fiber(s) for {} target(s)", d.fibers.size(),
-                    d.targets.size()));
-}
-
-void check_fibers_inside(const Design& d, const SurfaceDistance& skin)
-{
-  for (const Fiber& f : d.fibers) {
-    const HermiteSpline s(f.points, f.tangents);
-    for (const Eigen::Vector3d& c : split_into_segments(s, segment_count(s, d.muscle.segments_per_length)).centres)
-      if (!skin.closest(c).inside) bad(d, fmt::format("[fiber.{}]", f.name), fmt::format("the fiber leaves the body at {}", format_mm(c)));
-  }
-}
-
 /// Puts the clearance barrier between fibers on when the start (optimization_start) is clear, so that
 /// no path of the optimizer crosses two fibers (whether they crossed hinged on rounding, and crossed
 /// fibers can lock together at their fixed ends). Returns whether it is on.
@@ -124,6 +103,24 @@ RoutingResult optimize(const Design& d, RoutingProblem& problem, const BfgsOptio
 
 } // namespace
 
+void require_optimizable(const Design& d, const SurfaceDistance& skin)
+{
+  if (!d.optimize.enabled) return;
+  if (d.fibers.empty()) bad(d, "[[fiber]]", "nothing to optimize: give at least one fiber");
+  if (d.targets.empty()) bad(d, "[[target]]", "nothing to optimize for: give at least one target");
+  if (d.tracking_curves.empty())
+    bad(d, "[[tracking_curve]]", "the optimizer compares deformations along tracking curves: give at least one");
+  if (d.optimize.strategy == "sequential" && d.fibers.size() != d.targets.size())
+    bad(d, "[optimize].strategy",
+        fmt::format("sequential drives one fiber per target, in order: {} fiber(s) for {} target(s)", d.fibers.size(),
+                    d.targets.size()));
+  for (const Fiber& f : d.fibers) {
+    const HermiteSpline s(f.points, f.tangents);
+    for (const Eigen::Vector3d& c : split_into_segments(s, segment_count(s, d.muscle.segments_per_length)).centres)
+      if (!skin.closest(c).inside) bad(d, fmt::format("[fiber.{}]", f.name), fmt::format("the fiber leaves the body at {}", format_mm(c)));
+  }
+}
+
 void OptimizeStage::run(StageContext& ctx) const
 {
   const Design& d = ctx.design;
@@ -135,9 +132,8 @@ void OptimizeStage::run(StageContext& ctx) const
     ctx.log.info("[optimize] enabled = false: the [[fiber]] routes pass through unchanged");
     return;
   }
-  check_inputs(d);
   DesignRouting dr(ctx);
-  check_fibers_inside(d, *dr.skin);
+  require_optimizable(d, *dr.skin);
   const OptimizationStart begun = optimization_start(d, *dr.skin);
   for (const std::string& line : begun.log) ctx.log.info("{}", line);
   if (!begun.warning.empty()) ctx.log.warn("{}", begun.warning);

@@ -6,9 +6,16 @@
 // timings). With [optimize] enabled = false it passes the [[fiber]] routes through unchanged.
 // Ctrl-C stops it and keeps the best design so far in <build>/optimize.interrupted/.
 
+#include "mesh/surface_distance.hpp"
 #include "pipeline/stage.hpp"
 
 namespace fibermold {
+
+/// What the optimize stage refuses as bad input before it simulates anything: no fiber, target or
+/// tracking curve; a sequential strategy with as many fibers as targets not given; a fiber that
+/// leaves the body (`skin`: the body's surface). Nothing when [optimize] enabled = false. `check`
+/// asks it too, so that a design check passes is not refused by make.
+void require_optimizable(const Design& d, const SurfaceDistance& skin);
 
 class OptimizeStage final : public Stage {
 public:

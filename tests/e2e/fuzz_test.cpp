@@ -101,6 +101,20 @@ TEST(FuzzE2E, OnceFoundReproducersAreRefusedAtTheirLine)
   }
 }
 
+/// bench/fuzz_bench found it (a design cut short after its [mesh]): check passed a design without a
+/// fiber, which the optimize stage then refused as bad input. check now asks what optimize asks.
+TEST(FuzzE2E, CheckRefusesWhatOptimizeWouldRefuse)
+{
+  test::TempDir dir;
+  std::string design = kDesign;
+  design.erase(design.find(test::kBarMuscle), std::string(test::kBarMuscle).size());
+  test::write_text(dir / "design.toml", design);
+  write_stl(dir / "bar.stl", bar());
+  const auto r = test::run_fibermold("check design.toml", dir.path());
+  EXPECT_EQ(r.exit_code, 2) << r.out << r.err;
+  EXPECT_THAT(r.err, HasSubstr("design.toml: [[fiber]]: nothing to optimize: give at least one fiber"));
+}
+
 TEST(FuzzE2E, ABuildFolderThatIsAFileIsBadInputAndABusyOneHasItsOwnCode)
 {
   test::TempDir dir;

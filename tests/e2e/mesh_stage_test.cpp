@@ -276,8 +276,14 @@ TEST_F(MeshStageE2E, RerunWithSameInputsWritesIdenticalOutputs)
 TEST_F(MeshStageE2E, CheckReportsTheSurfaceWithoutRunning)
 {
   write_stl(dir_ / "box.stl", box_);
+  // check answers for the whole make: a body without fibers to optimize would be refused by the
+  // optimize stage, so check refuses it (exit 2) unless the optimizer is off.
   design("box.stl");
-  const auto r = test::run_fibermold("check design.toml", dir_.path());
+  auto r = test::run_fibermold("check design.toml", dir_.path());
+  EXPECT_EQ(r.exit_code, 2) << r.err;
+  EXPECT_THAT(r.err, HasSubstr("[[fiber]]: nothing to optimize: give at least one fiber"));
+  design("box.stl", "edge_length = 5.0\n[optimize]\nenabled = false");
+  r = test::run_fibermold("check design.toml", dir_.path());
   EXPECT_EQ(r.exit_code, 0) << r.err;
   EXPECT_THAT(r.out, HasSubstr("1 component(s), 16000 mm³"));
   EXPECT_FALSE(fs::exists(dir_ / "out"));
