@@ -557,7 +557,9 @@ void for_each_entry(Context& ctx, const toml::table& root, const std::string& na
   }
   for (std::size_t i = 0; i < a->size(); ++i) {
     const toml::table& t = *(*a)[i].as_table();
-    std::string id = std::to_string(i + 1);
+    // Unnamed: the default name the entry takes (entry_name), so that a stage naming it later finds its line.
+    std::string id = name == "tracking_curve" ? fmt::format("curve{}", i + 1) : name == "fixed" ? fmt::format("fixed{}", i + 1)
+                                                                                               : std::to_string(i + 1);
     if (const toml::node* nn = t.get("name"); nn && nn->is_string() && !nn->value<std::string>()->empty() &&
                                               nn->value<std::string>()->size() <= kMaxName)
       id = *nn->value<std::string>();  // a longer name is refused, and labelled by its index meanwhile

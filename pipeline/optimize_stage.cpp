@@ -119,6 +119,7 @@ void require_optimizable(const Design& d, const SurfaceDistance& skin)
     for (const Eigen::Vector3d& c : split_into_segments(s, segment_count(s, d.muscle.segments_per_length)).centres)
       if (!skin.closest(c).inside) bad(d, fmt::format("[fiber.{}]", f.name), fmt::format("the fiber leaves the body at {}", format_mm(c)));
   }
+  tracking_samples(d, skin);
 }
 
 void OptimizeStage::run(StageContext& ctx) const

@@ -12,8 +12,8 @@
 namespace fibermold {
 
 /// What the optimize stage refuses as bad input before it simulates anything: no fiber, target or
-/// tracking curve; a sequential strategy with as many fibers as targets not given; a fiber that
-/// leaves the body (`skin`: the body's surface). Nothing when [optimize] enabled = false. `check`
+/// tracking curve; a sequential strategy with as many fibers as targets not given; a fiber or a
+/// tracking curve that leaves the body (`skin`: the body's surface). Nothing when [optimize] enabled = false. `check`
 /// asks it too, so that a design check passes is not refused by make.
 void require_optimizable(const Design& d, const SurfaceDistance& skin);
 

@@ -14,18 +14,25 @@
 
 namespace fibermold {
 
+std::vector<TrackingSamples> tracking_samples(const Design& d, const SurfaceDistance& skin)
+{
+  std::vector<TrackingSamples> curves;
+  for (const TrackingCurve& c : d.tracking_curves) {
+    curves.push_back(sample_tracking_curve(c.points, c.samples, c.weight_position, c.weight_orientation));
+    for (const Eigen::Vector3d& q : curves.back().points)
+      if (const auto at = skin.closest(q); !at.inside && at.distance > 1e-6)
+        throw InputError(design_problem(d, fmt::format("[tracking_curve.{}]", c.name),
+                                        fmt::format("the curve leaves the body at {}", format_mm(q))));
+  }
+  return curves;
+}
+
 DesignRouting::DesignRouting(const StageContext& ctx)
     : design(ctx.design), mesh(load_tet_mesh(ctx.upstream("mesh", "body.tetmesh"))), model(ctx.design.muscle.model)
 {
   const Design& d = ctx.design;
   skin = std::make_unique<SurfaceDistance>(mesh.nodes, mesh.boundary_faces);
-  for (const TrackingCurve& c : d.tracking_curves) {
-    curves.push_back(sample_tracking_curve(c.points, c.samples, c.weight_position, c.weight_orientation));
-    for (const Eigen::Vector3d& q : curves.back().points)
-      if (const auto at = skin->closest(q); !at.inside && at.distance > 1e-6)
-        throw InputError(design_problem(d, fmt::format("[tracking_curve.{}]", c.name),
-                                    fmt::format("the curve leaves the body at {}", format_mm(q))));
-  }
+  curves = tracking_samples(d, *skin);
   sim = std::make_unique<Simulation>(mesh, simulation_options(d, mesh));
   for (const Target& t : d.targets) {
     target_names.push_back(t.name);

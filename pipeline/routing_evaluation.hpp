@@ -17,6 +17,9 @@
 
 namespace fibermold {
 
+/// The samples of every tracking curve; InputError at the curve when one leaves the body (`skin`).
+std::vector<TrackingSamples> tracking_samples(const Design& d, const SurfaceDistance& skin);
+
 /// The body, its skin, the targets and the tracking curves of a design, and the routing problem
 /// over them; built from the mesh and targets stages' outputs.
 struct DesignRouting {

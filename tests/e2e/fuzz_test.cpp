@@ -113,6 +113,13 @@ TEST(FuzzE2E, CheckRefusesWhatOptimizeWouldRefuse)
   const auto r = test::run_fibermold("check design.toml", dir.path());
   EXPECT_EQ(r.exit_code, 2) << r.out << r.err;
   EXPECT_THAT(r.err, HasSubstr("design.toml: [[fiber]]: nothing to optimize: give at least one fiber"));
+  // A tracking curve out of the body, found by the optimize stage before: check finds it now, at its line.
+  design = kDesign;
+  design.replace(design.find("[60, 0, 0]]\nsamples"), 10, "[60, 0, 12]");
+  test::write_text(dir / "design.toml", design);
+  const auto out = test::run_fibermold("check design.toml", dir.path());
+  EXPECT_EQ(out.exit_code, 2) << out.out << out.err;
+  EXPECT_THAT(out.err, ::testing::ContainsRegex("design\\.toml:[0-9]+:[0-9]+: \\[tracking_curve\\.centre\\]: the curve leaves the body at"));
 }
 
 TEST(FuzzE2E, ABuildFolderThatIsAFileIsBadInputAndABusyOneHasItsOwnCode)

@@ -95,7 +95,12 @@ TEST_F(OptimizeE2E, BadInputsAreNamed)
   design("[[tracking_curve]]\nname = \"out\"\npoints = [[0, 0, 0], [60, 0, 12]]\n");
   r = make();
   EXPECT_EQ(r.exit_code, 2);
-  EXPECT_THAT(r.err, HasSubstr("[tracking_curve.out]: the curve leaves the body at"));
+  EXPECT_THAT(r.err, ::testing::ContainsRegex("design\\.toml:[0-9]+:[0-9]+: \\[tracking_curve\\.out\\]: the curve leaves the body at"));
+  // Unnamed, it is found by its default name, at its line all the same.
+  design("[[tracking_curve]]\npoints = [[0, 0, 0], [60, 0, 12]]\n");
+  r = make();
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_THAT(r.err, ::testing::ContainsRegex("design\\.toml:[0-9]+:[0-9]+: \\[tracking_curve\\.curve[0-9]\\]: the curve leaves the body at"));
 }
 
 TEST_F(OptimizeE2E, InterruptKeepsTheBestDesignSoFar)
