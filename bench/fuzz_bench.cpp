@@ -8,11 +8,11 @@
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
-#include <fstream>
 #include <map>
 #include <string>
 #include <unistd.h>
 
+#include "core/atomic_file.hpp"
 #include "export/stl_writer.hpp"
 #include "fuzz.hpp"
 #include "mutants.hpp"
@@ -28,18 +28,6 @@ namespace {
 const std::string kDesign = std::string(test::kBarDesign) + test::kBarMuscle + test::kBarTrackingCurve + test::kBarTarget +
                             "[optimize]\nmax_iterations = 2\n[mold]\nvoxel = 0.6\nwall = 3\nkeys = 2\n";
 
-void write(const fs::path& p, const std::string& text)
-{
-  std::ofstream out(p, std::ios::binary);
-  out << text;
-}
-
-std::string slurp(const fs::path& p)
-{
-  std::ifstream in(p, std::ios::binary);
-  return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
-}
-
 struct Tally {
   int runs = 0, makes = 0, crashes = 0, hangs = 0, violations = 0;
   std::map<int, int> check, make;
@@ -52,8 +40,8 @@ void run(const std::vector<test::Mutant>& mutants, bool mesh, const std::string&
   for (const test::Mutant& m : mutants) {
     fs::remove_all(dir);
     fs::create_directories(dir);
-    write(dir / "design.toml", mesh ? kDesign : m.text);
-    write(dir / "bar.stl", mesh ? m.text : bar_stl);
+    write_file_atomic(dir / "design.toml", mesh ? kDesign : m.text);
+    write_file_atomic(dir / "bar.stl", mesh ? m.text : bar_stl);
     const test::FuzzRun r = test::fuzz_run(dir, makes_left > 0, 30, 300);
     ++t.runs;
     ++t.check[r.check];
@@ -88,7 +76,7 @@ int main(int argc, char** argv)
   const std::uint64_t seed = argc > 4 ? std::strtoull(argv[4], nullptr, 10) : 1;
   const fs::path scratch = fs::temp_directory_path() / ("fibermold-fuzz-bar-" + std::to_string(::getpid()) + ".stl");
   write_stl(scratch, test::box({0, -0.008, -0.008}, {0.06, 0.008, 0.008}, Eigen::Vector3i(10, 3, 3)));
-  const std::string bar = slurp(scratch);
+  const std::string bar = read_file(scratch);
   fs::remove(scratch);
 
   const auto started = std::chrono::steady_clock::now();

@@ -9,8 +9,11 @@
 
 namespace fibermold {
 
-GridEstimate estimate_grids(const SurfaceMesh& body, double voxel, double radius, double groove_length)
+GridEstimate estimate_grids(const SurfaceMesh& body, double voxel, double radius, const std::vector<std::vector<Eigen::Vector3d>>& fibers)
 {
+  double groove_length = 0;
+  for (const auto& line : fibers)
+    for (std::size_t k = 1; k < line.size(); ++k) groove_length += (line[k] - line[k - 1]).norm();
   double area = 0;
   for (Eigen::Index f = 0; f < body.faces.rows(); ++f) {
     const Eigen::Vector3d a = body.vertices.row(body.faces(f, 0)), b = body.vertices.row(body.faces(f, 1)),

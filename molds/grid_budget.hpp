@@ -7,6 +7,7 @@
 
 #include <optional>
 #include <string>
+#include <vector>
 
 #include <Eigen/Core>
 
@@ -19,8 +20,8 @@ struct GridEstimate {
   double fill_voxels = 0;  ///< the fill simulation's grid over the body's box
 };
 
-/// Estimates for `body` carved at `voxel` (m) with grooves of `radius` (m) along `groove_length` (m) of fiber.
-GridEstimate estimate_grids(const SurfaceMesh& body, double voxel, double radius, double groove_length);
+/// Estimates for `body` carved at `voxel` (m) with grooves of `radius` (m) along the polylines `fibers`.
+GridEstimate estimate_grids(const SurfaceMesh& body, double voxel, double radius, const std::vector<std::vector<Eigen::Vector3d>>& fibers);
 
 /// 25× the twisting bar's band (1.9 million voxels at 0.2 mm): minutes of carving, a few GB.
 constexpr double kMaxBandVoxels = 5e7;

@@ -109,10 +109,9 @@ SurfaceCheck check_design_surface(const Design& design, std::vector<std::string>
   repairs = repair.changes();
   // What the stages would refuse later for their size, refused now.
   require_mesh_size(design, check.volume, target_edge_length(design, check.volume));
-  double groove_length = 0;
-  for (const Fiber& f : design.fibers)
-    for (std::size_t k = 1; k < f.points.size(); ++k) groove_length += (f.points[k] - f.points[k - 1]).norm();
-  require_mold_grids(design, surface, groove_length);
+  std::vector<std::vector<Eigen::Vector3d>> fibers;
+  for (const Fiber& f : design.fibers) fibers.push_back(f.points);
+  require_mold_grids(design, surface, fibers);
   require_optimizable(design, SurfaceDistance(surface.vertices, surface.faces));
   return check;
 }

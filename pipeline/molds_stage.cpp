@@ -165,10 +165,10 @@ Json fill_report(const FillPlan& plan, double voxel, const std::function<Eigen::
 
 } // namespace
 
-void require_mold_grids(const Design& d, const SurfaceMesh& body, double groove_length)
+void require_mold_grids(const Design& d, const SurfaceMesh& body, const std::vector<std::vector<Eigen::Vector3d>>& fibers)
 {
   const double radius = d.muscle.model.diameter / 2 + d.mold.groove_clearance;
-  if (const auto problem = grid_budget_problem(estimate_grids(body, d.mold.voxel, radius, groove_length), d.mold.voxel))
+  if (const auto problem = grid_budget_problem(estimate_grids(body, d.mold.voxel, radius, fibers), d.mold.voxel))
     bad(d, "[mold].voxel", *problem);
 }
 
@@ -221,10 +221,7 @@ void MoldsStage::run(StageContext& ctx) const
     add_channel(r.points.back(), r.tangents.back());
   }
 
-  double groove_length = 0;
-  for (const auto& line : lines)
-    for (std::size_t k = 1; k < line.size(); ++k) groove_length += (line[k] - line[k - 1]).norm();
-  require_mold_grids(d, body, groove_length);
+  require_mold_grids(d, body, lines);
 
   ctx.progress.checkpoint(0.1, "carving the grooves (level set)");
   using Clock = std::chrono::steady_clock;

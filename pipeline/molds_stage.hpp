@@ -13,9 +13,9 @@
 
 namespace fibermold {
 
-/// Refuses (InputError on [mold].voxel) a voxel too fine for the body and its grooves of
-/// `groove_length` in all (molds/grid_budget.hpp), before any carving; `check` asks it too.
-void require_mold_grids(const Design& d, const SurfaceMesh& body, double groove_length);
+/// Refuses (InputError on [mold].voxel) a voxel too fine for the body and its grooves along the
+/// polylines `fibers` (molds/grid_budget.hpp), before any carving; `check` asks it too.
+void require_mold_grids(const Design& d, const SurfaceMesh& body, const std::vector<std::vector<Eigen::Vector3d>>& fibers);
 
 class MoldsStage final : public Stage {
 public:

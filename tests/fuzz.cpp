@@ -1,12 +1,10 @@
 #include "fuzz.hpp"
 
-#include <fstream>
-#include <sstream>
-
 #include <sys/wait.h>
 
 #include <nlohmann/json.hpp>
 
+#include "core/atomic_file.hpp"
 #include "core/json_file.hpp"
 
 namespace fibermold::test {
@@ -20,14 +18,6 @@ struct Ran {
   std::string err;
 };
 
-std::string slurp(const fs::path& p)
-{
-  std::ifstream in(p, std::ios::binary);
-  std::ostringstream s;
-  s << in.rdbuf();
-  return s.str();
-}
-
 /// The binary under test in `dir`, killed after `seconds` (SIGKILL: a SIGTERM would be honoured as
 /// Ctrl-C, exit 130; timeout(1) then exits 137).
 Ran run(const fs::path& dir, const std::string& arguments, int seconds)
@@ -38,7 +28,7 @@ Ran run(const fs::path& dir, const std::string& arguments, int seconds)
   const int status = std::system(command.c_str());
   Ran r;
   r.code = WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);
-  r.err = slurp(err).substr(0, 600);
+  r.err = read_file(err).substr(0, 600);
   return r;
 }
 
@@ -58,7 +48,7 @@ std::string bad_json(const fs::path& dir)
     if (!entry.is_regular_file() || entry.path().extension() != ".json") continue;
     const std::string rel = fs::relative(entry.path(), dir).string();
     if (rel.find(".staging") != std::string::npos) continue;  // a killed stage's leftovers, not outputs
-    const auto j = nlohmann::json::parse(slurp(entry.path()), nullptr, false);
+    const auto j = nlohmann::json::parse(read_file(entry.path()), nullptr, false);
     if (j.is_discarded()) return rel + " is not JSON";
     if (const auto at = first_non_finite(j)) return rel + " holds null or a non-finite number at " + *at;
   }
