@@ -4,10 +4,10 @@
 #include <benchmark/benchmark.h>
 
 #include "mesh/mesh_quality.hpp"
-#include "sim/sim_fixtures.hpp"
 #include "sim/cholmod_solver.hpp"
 #include "sim/mls_basis.hpp"
 #include "sim/neo_hookean.hpp"
+#include "sim/sim_fixtures.hpp"
 #include "sim/sparse_hessian.hpp"
 
 namespace fibermold {

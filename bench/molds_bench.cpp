@@ -14,9 +14,9 @@
 #include <nlohmann/json.hpp>
 
 #include "core/atomic_file.hpp"
-#include "pipeline/design_file.hpp"
-#include "pipeline/runner.hpp"
-#include "pipeline/stages.hpp"
+#include "design/design_file.hpp"
+#include "make/runner.hpp"
+#include "stages/stages.hpp"
 
 using namespace fibermold;
 namespace fs = std::filesystem;

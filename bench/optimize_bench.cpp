@@ -16,11 +16,11 @@
 #include "core/array_file.hpp"
 #include "core/atomic_file.hpp"
 #include "core/units.hpp"
-#include "pipeline/design_file.hpp"
-#include "pipeline/design_simulation.hpp"
-#include "pipeline/fibers_file.hpp"
-#include "pipeline/runner.hpp"
-#include "pipeline/stages.hpp"
+#include "design/design_file.hpp"
+#include "make/runner.hpp"
+#include "stages/design_simulation.hpp"
+#include "stages/fibers_file.hpp"
+#include "stages/stages.hpp"
 
 using namespace fibermold;
 namespace fs = std::filesystem;

@@ -9,9 +9,9 @@
 #include "mesh/surface_import.hpp"
 #include "mesh/tetrahedralize.hpp"
 #include "primitives.hpp"
-#include "sim/sim_fixtures.hpp"
 #include "sim/external_forces.hpp"
 #include "sim/muscle_energy.hpp"
+#include "sim/sim_fixtures.hpp"
 #include "sim/simulation.hpp"
 
 using namespace fibermold;
@@ -89,7 +89,7 @@ Row cantilever(const std::string& basis, double edge)
   const TetMesh mesh = tetrahedralize(surface, {edge, 1.5, 10, basis == "fem-p2"}, progress);
   const auto start = std::chrono::steady_clock::now();
   SimulationOptions o;
-  o.basis = basis;
+  o.basis = *value_in(kBasisNames, basis);
   o.fixed_nodes = {nodes_in_box(mesh.nodes, {-1, -1, -1}, {1e-9, 1, 1})};
   Simulation sim(mesh, o);
   Eigen::VectorXd x = sim.rest();

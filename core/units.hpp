@@ -1,6 +1,10 @@
 #pragma once
 // SI inside; millimetres and kilopascals only at the edges (design file, STL, reports).
 
+#include <string>
+
+#include <Eigen/Core>
+
 namespace fibermold::units {
 
 inline constexpr double mm = 1e-3;   ///< metres per millimetre
@@ -8,3 +12,10 @@ inline constexpr double kPa = 1e3;   ///< pascals per kilopascal
 inline constexpr double mm3_per_mL = 1e3;
 
 } // namespace fibermold::units
+
+namespace fibermold {
+
+/// A point for a message or a log: "(x, y, z) mm", to a tenth of a millimetre.
+std::string format_mm(const Eigen::Vector3d& p);
+
+} // namespace fibermold

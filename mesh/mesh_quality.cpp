@@ -73,11 +73,34 @@ MeshQuality mesh_quality(const TetMesh& mesh)
     }
   }
   double length = 0;
-  for (const auto& [a, b] : edges) length += (mesh.nodes.row(a) - mesh.nodes.row(b)).norm();
+  q.min_edge_length = edges.empty() ? 0 : HUGE_VAL;
+  for (const auto& [a, b] : edges) {
+    const double l = (mesh.nodes.row(a) - mesh.nodes.row(b)).norm();
+    length += l;
+    q.min_edge_length = std::min(q.min_edge_length, l);
+    q.max_edge_length = std::max(q.max_edge_length, l);
+  }
   q.mean_edge_length = edges.empty() ? 0 : length / static_cast<double>(edges.size());
   const auto good = mesh.num_tets() - q.inverted_tets;
   q.mean_radius_edge_ratio = good > 0 ? ratio_sum / static_cast<double>(good) : 0;
   return q;
+}
+
+QualityMisses quality_misses(const TetMesh& mesh, double max_ratio, double min_dihedral_deg)
+{
+  QualityMisses m;
+  double worst = 0;
+  for (Eigen::Index t = 0; t < mesh.num_tets(); ++t) {
+    std::array<Eigen::Vector3d, 4> p;
+    for (int k = 0; k < 4; ++k) p[k] = mesh.nodes.row(mesh.tets(t, k)).transpose();
+    if (mesh.tet_volume(t) <= 0) continue;
+    const double ratio = radius_edge_ratio(p[0], p[1], p[2], p[3]);
+    if (ratio > max_ratio) ++m.over_ratio;
+    const std::array<double, 6> angles = dihedral_angles(p);
+    if (*std::min_element(angles.begin(), angles.end()) < min_dihedral_deg) ++m.under_dihedral;
+    if (ratio > worst) worst = ratio, m.worst_at = (p[0] + p[1] + p[2] + p[3]) / 4;
+  }
+  return m;
 }
 
 } // namespace fibermold

@@ -8,6 +8,7 @@ namespace fibermold {
 struct MeshQuality {
   double volume = 0;                  ///< m³
   double mean_edge_length = 0;        ///< m, over the unique corner edges
+  double min_edge_length = 0, max_edge_length = 0;  ///< m
   double min_dihedral_deg = 0, max_dihedral_deg = 0;
   double mean_radius_edge_ratio = 0;  ///< circumradius / shortest edge; 0.612 for a regular tet
   double max_radius_edge_ratio = 0;
@@ -15,6 +16,14 @@ struct MeshQuality {
 };
 
 MeshQuality mesh_quality(const TetMesh& mesh);
+
+/// The tets outside TetGen's quality bounds: a radius-edge ratio above `max_ratio` or a dihedral
+/// angle below `min_dihedral_deg` (TetGen cannot meet them next to a surface it must keep).
+struct QualityMisses {
+  Eigen::Index over_ratio = 0, under_dihedral = 0;
+  Eigen::Vector3d worst_at = Eigen::Vector3d::Zero();  ///< the centroid of the tet of largest ratio
+};
+QualityMisses quality_misses(const TetMesh& mesh, double max_ratio, double min_dihedral_deg);
 
 /// Circumradius over shortest edge of the tet with corners a, b, c, d.
 double radius_edge_ratio(const Eigen::Vector3d& a, const Eigen::Vector3d& b, const Eigen::Vector3d& c,

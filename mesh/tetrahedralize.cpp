@@ -110,6 +110,20 @@ std::vector<Eigen::Vector3d> cavity_points(const SurfaceMesh& s)
 
 double regular_tet_volume(double a) { return a * a * a / (6.0 * std::sqrt(2.0)); }
 
+// V / (a³/(6√2)) = 5000
+double default_edge_length(double volume) { return std::cbrt(volume / 5000.0 * 6.0 * std::sqrt(2.0)); }
+
+double expected_tets(double volume, double edge_length) { return 1.2 * volume / regular_tet_volume(edge_length); }
+
+double longest_edge(const SurfaceMesh& surface)
+{
+  double longest = 0;
+  for (Eigen::Index f = 0; f < surface.num_faces(); ++f)
+    for (int c = 0; c < 3; ++c)
+      longest = std::max(longest, (surface.vertices.row(surface.faces(f, c)) - surface.vertices.row(surface.faces(f, (c + 1) % 3))).norm());
+  return longest;
+}
+
 TetMesh tetrahedralize(const SurfaceMesh& surface, const TetOptions& options, Progress& progress)
 {
   if (!(options.edge_length > 0)) throw std::invalid_argument("tetrahedralize: edge_length must be > 0");
@@ -146,8 +160,8 @@ TetMesh tetrahedralize(const SurfaceMesh& surface, const TetOptions& options, Pr
 
   const double max_volume = regular_tet_volume(options.edge_length * scale);
   if (!(max_volume > 0)) throw std::invalid_argument("tetrahedralize: the volume bound must be > 0");
-  std::string switches = fmt::format("pYQq{:.6f}/{:.6f}{}", options.radius_edge_ratio, options.min_dihedral_deg,
-                                     options.quadratic ? "o2" : "");
+  std::string switches = fmt::format("p{}Qq{:.6f}/{:.6f}{}", options.keep_surface ? "Y" : "", options.radius_edge_ratio,
+                                     options.min_dihedral_deg, options.quadratic ? "o2" : "");
   tetgenbehavior behaviour;
   if (!behaviour.parse_commandline(switches.data())) throw std::logic_error("TetGen rejected -" + switches);
   behaviour.fixedvolume = 1;  // -a with the bound set directly, not printed into the switches
@@ -169,7 +183,7 @@ TetMesh tetrahedralize(const SurfaceMesh& surface, const TetOptions& options, Pr
   orient_corners(mesh);
   if (corners == 10) order_edge_nodes(mesh);
 
-  // With -Y the input points come first, in order; check rather than trust.
+  // The input points come first, in order (TetGen adds its points after them); check rather than trust.
   mesh.surface_to_node.resize(surface.num_vertices());
   for (Eigen::Index v = 0; v < surface.num_vertices(); ++v) {
     if (v >= mesh.nodes.rows() || (mesh.nodes.row(v) - surface.vertices.row(v)).norm() > 1e-12 * diagonal)

@@ -1,8 +1,12 @@
 #pragma once
-// Tetrahedralizing the body with TetGen: a constrained, quality mesh that keeps the input surface
-// exactly (no Steiner points on it), so that every surface vertex is a node and the boundary faces
-// are the input faces. Second-order (10-node) tetrahedra on request.
+// Tetrahedralizing the body with TetGen: a constrained, quality mesh whose surface is the input's.
+// Every input vertex is a node (the first ones, in order). With keep_surface the boundary faces are
+// the input faces (no Steiner points on the surface, -Y); without, TetGen splits the input faces
+// where the edge length or its quality bounds ask (a CAD export's few large triangles), adding
+// points on them: the surface's shape is kept exactly, its triangles follow the edge length.
+// Second-order (10-node) tetrahedra on request.
 
+#include "core/names.hpp"
 #include "core/progress.hpp"
 #include "mesh/surface_mesh.hpp"
 #include "mesh/tet_mesh.hpp"
@@ -14,12 +18,35 @@ struct TetOptions {
   double radius_edge_ratio = 1.5;  ///< TetGen's quality bound (-q)
   double min_dihedral_deg = 10;    ///< TetGen's dihedral-angle bound (-q.../angle)
   bool quadratic = false;          ///< 10-node tetrahedra (-o2)
+  bool keep_surface = true;        ///< no points added on the surface (-Y)
 };
+
+/// What the mesh stage does with the input surface's triangles ([mesh] surface_triangles): split
+/// them when they are too large for the edge length (auto), always let TetGen split them (split),
+/// or keep them exactly (keep).
+enum class SurfaceTriangles { automatic, keep, split };
+inline constexpr std::array<Named<SurfaceTriangles>, 3> kSurfaceTrianglesNames{
+    {{SurfaceTriangles::automatic, "auto"}, {SurfaceTriangles::keep, "keep"}, {SurfaceTriangles::split, "split"}}};
+inline std::string_view choice_name(SurfaceTriangles s) { return name_in(kSurfaceTrianglesNames, s); }
+
+/// Whether the input's triangles are too large for `edge_length`: an edge longer than
+/// kSplitEdgeFactor × edge_length makes the mesh stage (at [mesh] surface_triangles = "auto") let
+/// TetGen split the surface. The examples' surfaces, made for their edge lengths, have edges up to
+/// 1.6 × theirs.
+inline constexpr double kSplitEdgeFactor = 2.0;
+double longest_edge(const SurfaceMesh& surface);
 
 /// The surface must have passed check_surface(). Throws std::runtime_error when TetGen fails.
 TetMesh tetrahedralize(const SurfaceMesh& surface, const TetOptions& options, Progress& progress);
 
 /// Volume of a regular tetrahedron with edge `a`: a³/(6√2).
 double regular_tet_volume(double a);
+
+/// The edge length for a body of `volume` when none is asked: about 5,000 regular tets fill it.
+double default_edge_length(double volume);
+
+/// About how many tets TetGen makes of a body of `volume` at `edge_length`: 1.2 × the regular
+/// tets that fill it (its quality bounds add some).
+double expected_tets(double volume, double edge_length);
 
 } // namespace fibermold

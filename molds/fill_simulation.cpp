@@ -154,141 +154,189 @@ struct AirSets {
   }
 };
 
+/// One fill simulation's grids and findings; its phases in the order they run.
+class FillSweep {
+public:
+  explicit FillSweep(const VoxelRegion& r) : r_(r), g_(r), offsets_(g_.offsets()), cell_(r.voxel * r.voxel * r.voxel)
+  {
+    state_.assign(static_cast<std::size_t>(g_.nxy * g_.nz), kOutside);
+    for (int k = 0; k < r.size.z(); ++k)
+      for (int j = 0; j < r.size.y(); ++j)
+        for (int i = 0; i < r.size.x(); ++i)
+          if (const auto c = r.cells[static_cast<std::size_t>(r.index(i, j, k))]; c != VoxelRegion::mold)
+            state_[static_cast<std::size_t>(g_.at(i, j, k))] = c == VoxelRegion::fill ? kInside : kSolid;
+    set_.assign(state_.size(), -1);
+    out_.fill_volume = static_cast<double>(r.count()) * cell_;
+  }
+
+  /// What the sprues reach: the region's part connected to a sprue's voxels.
+  void reach_from(const std::vector<Port>& sprues)
+  {
+    std::vector<Index> queue;
+    for (const Port& p : sprues) {
+      const std::vector<Index> mouth = voxels_of(p);
+      out_.sprue_open.push_back(!mouth.empty());
+      for (Index d : mouth)
+        if (state(d) == kInside) state(d) = kReached, queue.push_back(d);
+    }
+    flood(queue, kReached);
+    out_.reachable_volume = static_cast<double>(queue.size()) * cell_;
+  }
+
+  /// The parts no sprue reaches, each with its lowest point; crevices apart.
+  void count_unreached()
+  {
+    for (Index d = 0; d < static_cast<Index>(state_.size()); ++d) {
+      if (state(d) != kInside) continue;
+      std::vector<Index> part{d};
+      state(d) = kCounted;
+      flood(part, kCounted);
+      const bool crevice = std::none_of(part.begin(), part.end(), [&](Index e) { return thick_at(e); });
+      if (crevice) {
+        out_.crevice_volume += static_cast<double>(part.size()) * cell_;
+        continue;
+      }
+      // Named by the voxel of its lowest level nearest that level's middle.
+      const Index low = *std::min_element(part.begin(), part.end()) / g_.nxy;  // k is the slowest index
+      double i = 0, j = 0, n = 0;
+      for (Index e : part)
+        if (e / g_.nxy == low) i += static_cast<double>(e % g_.nx - 1), j += static_cast<double>((e % g_.nxy) / g_.nx - 1), ++n;
+      const auto id = static_cast<std::int32_t>(-2 - static_cast<std::int32_t>(out_.unreachable.size()));
+      for (Index e : part) set_[static_cast<std::size_t>(e)] = id;
+      const Index at = nearest_in_level(r_, g_, low - 1, std::lround(i / n), std::lround(j / n),
+                                        [&](Index e) { return set_[static_cast<std::size_t>(e)] == id; }, std::max(r_.size.x(), r_.size.y()));
+      out_.unreachable.push_back({static_cast<double>(part.size()) * cell_, centre(at)});
+    }
+  }
+
+  void open_vents(const std::vector<Port>& vents)
+  {
+    for (const Port& p : vents) {
+      bool open = false;
+      for (Index d : voxels_of(p))
+        if (state(d) == kReached || state(d) == kVent) state(d) = kVent, open = true;
+      out_.vent_open.push_back(open);
+    }
+  }
+
+  /// The air above each level, swept from the top down: each set of air that rises into no vent
+  /// is a pocket when the level above closes it off.
+  void sweep_air()
+  {
+    std::vector<std::int32_t> level;
+    std::vector<bool> level_thick;
+    const auto seal = [&](std::int32_t root, Index voxels, const Top& top, bool thick) {
+      const AirPocket p = pocket(root, voxels, top, thick);
+      if (!thick && !p.ventable) out_.crevice_air_volume += p.volume;
+      else out_.pockets.push_back(p);
+    };
+    const auto nested = [&](std::int32_t root, Index voxels, const Top& top, bool thick) {
+      if (static_cast<double>(voxels) * cell_ >= 1e-9) out_.nested.push_back(pocket(root, voxels, top, thick));
+    };
+    for (Index k = r_.size.z() - 1; k >= 0; --k) {
+      level.clear();
+      level_thick.clear();
+      for (Index j = 0; j < r_.size.y(); ++j)
+        for (Index i = 0, d = g_.at(0, j, k); i < r_.size.x(); ++i, ++d) {
+          const std::uint8_t s = state(d);
+          if (s != kReached && s != kVent) continue;
+          const std::int32_t c = air_.add(s == kVent, i, j, k, d);
+          set_[static_cast<std::size_t>(d)] = c;
+          level.push_back(c);
+          level_thick.push_back(thick_at(d));
+          for (std::size_t n = 0; n < 13; ++n)
+            if (const std::int32_t e = set_[static_cast<std::size_t>(d + offsets_[n])]; e >= 0) air_.unite(c, e, seal, nested);
+        }
+      for (std::size_t n = 0; n < level.size(); ++n) {
+        const auto root = static_cast<std::size_t>(air_.find(level[n]));
+        ++air_.above[root];
+        air_.thick[root] = air_.thick[root] || level_thick[n];
+      }
+    }
+    for (std::size_t c = 0; c < air_.parent.size(); ++c)
+      if (air_.parent[c] == static_cast<std::int32_t>(c) && !air_.vented[c])
+        seal(static_cast<std::int32_t>(c), air_.above[c], air_.top[c], air_.thick[c]);
+  }
+
+  FillResult result()
+  {
+    const auto largest_first = [](const AirPocket& a, const AirPocket& b) { return a.volume > b.volume; };
+    std::sort(out_.pockets.begin(), out_.pockets.end(), largest_first);
+    std::sort(out_.unreachable.begin(), out_.unreachable.end(), largest_first);
+    std::sort(out_.nested.begin(), out_.nested.end(), largest_first);
+    for (const AirPocket& p : out_.pockets) out_.trapped_volume += p.volume;
+    return std::move(out_);
+  }
+
+private:
+  std::uint8_t& state(Index d) { return state_[static_cast<std::size_t>(d)]; }
+
+  Eigen::Vector3d centre(Index d) const
+  {
+    const Eigen::Vector3i v = g_.region_ijk(d);
+    return r_.centre(v.x(), v.y(), v.z());
+  }
+
+  /// Fill on all six sides: not a crevice's voxel.
+  bool thick_at(Index d) const
+  {
+    const std::array<Index, 6> faces{1, -1, g_.nx, -g_.nx, g_.nxy, -g_.nxy};
+    return std::all_of(faces.begin(), faces.end(), [&](Index o) { return is_fill(state_[static_cast<std::size_t>(d + o)]); });
+  }
+
+  std::vector<Index> voxels_of(const Port& p) const
+  {
+    std::vector<Index> found = port_voxels(r_, p);
+    for (Index& d : found) {
+      const Index i = d % r_.size.x(), j = (d / r_.size.x()) % r_.size.y(), k = d / (static_cast<Index>(r_.size.x()) * r_.size.y());
+      d = g_.at(i, j, k);
+    }
+    return found;
+  }
+
+  void flood(std::vector<Index>& q, std::uint8_t mark)
+  {
+    for (std::size_t n = 0; n < q.size(); ++n)
+      for (const Index o : offsets_)
+        if (const Index e = q[n] + o; state(e) == kInside) state(e) = mark, q.push_back(e);
+  }
+
+  /// A pocket is named by the voxel of its top level nearest the level's middle (within 8 voxels of
+  /// it; else any voxel of that level: a long thin pocket's middle may be far from it); a vent can
+  /// reach it when only mold lies above that voxel. One no thicker than two voxels that no vent can
+  /// reach is a crevice.
+  AirPocket pocket(std::int32_t root, Index voxels, const Top& top, bool thick)
+  {
+    const Index i = std::lround(top.i / static_cast<double>(top.n)), j = std::lround(top.j / static_cast<double>(top.n));
+    Index at = nearest_in_level(r_, g_, top.k, i, j, [&](Index d) {
+      return set_[static_cast<std::size_t>(d)] >= 0 && air_.find(set_[static_cast<std::size_t>(d)]) == root;
+    }, 8);
+    if (at < 0) at = top.any;
+    bool ventable = true;
+    for (Index e = at + g_.nxy; e < static_cast<Index>(state_.size()); e += g_.nxy) ventable = ventable && state_[static_cast<std::size_t>(e)] == kOutside;
+    return AirPocket{static_cast<double>(voxels) * cell_, centre(at), ventable, !thick};
+  }
+
+  const VoxelRegion& r_;
+  const Padded g_;
+  const std::vector<Index> offsets_;
+  const double cell_;
+  std::vector<std::uint8_t> state_;
+  std::vector<std::int32_t> set_;  ///< per voxel: its air set in the sweep (≥ 0), or −2 − p for unreachable part p
+  AirSets air_;
+  FillResult out_;
+};
+
 } // namespace
 
 FillResult simulate_fill(const VoxelRegion& r, const std::vector<Port>& sprues, const std::vector<Port>& vents)
 {
-  FillResult out;
-  const double cell = r.voxel * r.voxel * r.voxel;
-  const Padded g(r);
-  const std::vector<Index> offsets = g.offsets();
-  const auto centre = [&](Index d) {
-    const Eigen::Vector3i v = g.region_ijk(d);
-    return r.centre(v.x(), v.y(), v.z());
-  };
-  std::vector<std::uint8_t> state(static_cast<std::size_t>(g.nxy * g.nz), kOutside);
-  for (int k = 0; k < r.size.z(); ++k)
-    for (int j = 0; j < r.size.y(); ++j)
-      for (int i = 0; i < r.size.x(); ++i)
-        if (const auto c = r.cells[static_cast<std::size_t>(r.index(i, j, k))]; c != VoxelRegion::mold)
-          state[static_cast<std::size_t>(g.at(i, j, k))] = c == VoxelRegion::fill ? kInside : kSolid;
-  // Per voxel: its air set in the sweep (≥ 0), or −2 − p for unreachable part p.
-  std::vector<std::int32_t> set(state.size(), -1);
-  out.fill_volume = static_cast<double>(r.count()) * cell;
-  const auto voxels_of = [&](const Port& p) {
-    std::vector<Index> found = port_voxels(r, p);
-    for (Index& d : found) {
-      const Index i = d % r.size.x(), j = (d / r.size.x()) % r.size.y(), k = d / (static_cast<Index>(r.size.x()) * r.size.y());
-      d = g.at(i, j, k);
-    }
-    return found;
-  };
-
-  // What the sprues reach: the region's part connected to a sprue's voxels.
-  std::vector<Index> queue;
-  for (const Port& p : sprues) {
-    const std::vector<Index> mouth = voxels_of(p);
-    out.sprue_open.push_back(!mouth.empty());
-    for (Index d : mouth)
-      if (state[static_cast<std::size_t>(d)] == kInside) state[static_cast<std::size_t>(d)] = kReached, queue.push_back(d);
-  }
-  const auto flood = [&](std::vector<Index>& q, std::uint8_t mark) {
-    for (std::size_t n = 0; n < q.size(); ++n)
-      for (const Index o : offsets)
-        if (const Index e = q[n] + o; state[static_cast<std::size_t>(e)] == kInside) state[static_cast<std::size_t>(e)] = mark, q.push_back(e);
-  };
-  flood(queue, kReached);
-  out.reachable_volume = static_cast<double>(queue.size()) * cell;
-
-  // The parts no sprue reaches, each with its lowest point; crevices apart.
-  const std::array<Index, 6> faces{1, -1, g.nx, -g.nx, g.nxy, -g.nxy};
-  for (Index d = 0; d < static_cast<Index>(state.size()); ++d) {
-    if (state[static_cast<std::size_t>(d)] != kInside) continue;
-    std::vector<Index> part{d};
-    state[static_cast<std::size_t>(d)] = kCounted;
-    flood(part, kCounted);
-    const bool crevice = std::none_of(part.begin(), part.end(), [&](Index e) {
-      return std::all_of(faces.begin(), faces.end(), [&](Index o) { return is_fill(state[static_cast<std::size_t>(e + o)]); });
-    });
-    if (crevice) {
-      out.crevice_volume += static_cast<double>(part.size()) * cell;
-      continue;
-    }
-    // Named by the voxel of its lowest level nearest that level's middle.
-    const Index low = *std::min_element(part.begin(), part.end()) / g.nxy;  // k is the slowest index
-    double i = 0, j = 0, n = 0;
-    for (Index e : part)
-      if (e / g.nxy == low) i += static_cast<double>(e % g.nx - 1), j += static_cast<double>((e % g.nxy) / g.nx - 1), ++n;
-    const auto id = static_cast<std::int32_t>(-2 - static_cast<std::int32_t>(out.unreachable.size()));
-    for (Index e : part) set[static_cast<std::size_t>(e)] = id;
-    const Index at = nearest_in_level(r, g, low - 1, std::lround(i / n), std::lround(j / n),
-                                      [&](Index e) { return set[static_cast<std::size_t>(e)] == id; }, std::max(r.size.x(), r.size.y()));
-    out.unreachable.push_back({static_cast<double>(part.size()) * cell, centre(at)});
-  }
-
-  for (const Port& p : vents) {
-    bool open = false;
-    for (Index d : voxels_of(p))
-      if (state[static_cast<std::size_t>(d)] == kReached || state[static_cast<std::size_t>(d)] == kVent)
-        state[static_cast<std::size_t>(d)] = kVent, open = true;
-    out.vent_open.push_back(open);
-  }
-
-  // The air above each level, swept from the top down.
-  AirSets air;
-  std::vector<std::int32_t> level;
-  std::vector<bool> level_thick;
-  // A pocket is named by the voxel of its top level nearest the level's middle (within 8 voxels of
-  // it; else any voxel of that level: a long thin pocket's middle may be far from it); a vent can reach
-  // it when only mold lies above that voxel. One no thicker than two voxels that no vent can
-  // reach is a crevice.
-  const auto name = [&](std::int32_t root, Index voxels, const Top& top, bool thick) {
-    const Index i = std::lround(top.i / static_cast<double>(top.n)), j = std::lround(top.j / static_cast<double>(top.n));
-    Index at = nearest_in_level(r, g, top.k, i, j, [&](Index d) {
-      return set[static_cast<std::size_t>(d)] >= 0 && air.find(set[static_cast<std::size_t>(d)]) == root;
-    }, 8);
-    if (at < 0) at = top.any;
-    bool ventable = true;
-    for (Index e = at + g.nxy; e < static_cast<Index>(state.size()); e += g.nxy) ventable = ventable && state[static_cast<std::size_t>(e)] == kOutside;
-    return AirPocket{static_cast<double>(voxels) * cell, centre(at), ventable, !thick};
-  };
-  const auto seal = [&](std::int32_t root, Index voxels, const Top& top, bool thick) {
-    const AirPocket p = name(root, voxels, top, thick);
-    if (!thick && !p.ventable) out.crevice_air_volume += p.volume;
-    else out.pockets.push_back(p);
-  };
-  const auto nested = [&](std::int32_t root, Index voxels, const Top& top, bool thick) {
-    if (static_cast<double>(voxels) * cell >= 1e-9) out.nested.push_back(name(root, voxels, top, thick));
-  };
-  for (Index k = r.size.z() - 1; k >= 0; --k) {
-    level.clear();
-    level_thick.clear();
-    for (Index j = 0; j < r.size.y(); ++j)
-      for (Index i = 0, d = g.at(0, j, k); i < r.size.x(); ++i, ++d) {
-        const std::uint8_t s = state[static_cast<std::size_t>(d)];
-        if (s != kReached && s != kVent) continue;
-        const std::int32_t c = air.add(s == kVent, i, j, k, d);
-        set[static_cast<std::size_t>(d)] = c;
-        level.push_back(c);
-        level_thick.push_back(std::all_of(faces.begin(), faces.end(), [&](Index o) { return is_fill(state[static_cast<std::size_t>(d + o)]); }));
-        for (std::size_t n = 0; n < 13; ++n)
-          if (const std::int32_t e = set[static_cast<std::size_t>(d + offsets[n])]; e >= 0) air.unite(c, e, seal, nested);
-      }
-    for (std::size_t n = 0; n < level.size(); ++n) {
-      const auto root = static_cast<std::size_t>(air.find(level[n]));
-      ++air.above[root];
-      air.thick[root] = air.thick[root] || level_thick[n];
-    }
-  }
-  for (std::size_t c = 0; c < air.parent.size(); ++c)
-    if (air.parent[c] == static_cast<std::int32_t>(c) && !air.vented[c]) seal(static_cast<std::int32_t>(c), air.above[c], air.top[c], air.thick[c]);
-
-  const auto largest_first = [](const AirPocket& a, const AirPocket& b) { return a.volume > b.volume; };
-  std::sort(out.pockets.begin(), out.pockets.end(), largest_first);
-  std::sort(out.unreachable.begin(), out.unreachable.end(), largest_first);
-  std::sort(out.nested.begin(), out.nested.end(), largest_first);
-  for (const AirPocket& p : out.pockets) out.trapped_volume += p.volume;
-  return out;
+  FillSweep sweep(r);
+  sweep.reach_from(sprues);
+  sweep.count_unreached();
+  sweep.open_vents(vents);
+  sweep.sweep_air();
+  return sweep.result();
 }
 
 } // namespace fibermold

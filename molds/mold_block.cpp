@@ -78,9 +78,9 @@ void reattach_loose_pieces(SurfaceMesh& from, SurfaceMesh& to, double base, bool
   from = std::move(kept);
 }
 
-SurfaceMesh key_solid(const Eigen::Vector3d& base, double radius, const std::string& shape, double sink)
+SurfaceMesh key_solid(const Eigen::Vector3d& base, double radius, KeyShape shape, double sink)
 {
-  if (shape == "hemisphere") return hemisphere_solid(base - Eigen::Vector3d(0, 0, sink), Eigen::Vector3d::UnitZ(), radius + sink, 32);
+  if (shape == KeyShape::hemisphere) return hemisphere_solid(base - Eigen::Vector3d(0, 0, sink), Eigen::Vector3d::UnitZ(), radius + sink, 32);
   return cone_solid(base - Eigen::Vector3d(0, 0, sink), base + Eigen::Vector3d(0, 0, radius), radius, radius / 2, 32);
 }
 

@@ -11,22 +11,11 @@
 #include <Eigen/Core>
 
 #include "mesh/surface_mesh.hpp"
+#include "molds/mold_options.hpp"
 #include "molds/parting.hpp"
 #include "molds/ports.hpp"
 
 namespace fibermold {
-
-struct MoldBlockOptions {
-  double wall = 4e-3, min_wall = 1e-3;
-  int keys = 4;                       ///< 0 to 8: block corners first, then edge midpoints
-  std::string key_shape = "cone";     ///< cone | hemisphere
-  double key_diameter = 6e-3, key_clearance = 0.2e-3;
-  double sprue_diameter = 4e-3;
-  int vents = 2;
-  double vent_diameter = 1.5e-3;
-  int screw_holes = 0;                ///< 0 to 16, through both halves along pull, in the rim around the cavity
-  double screw_diameter = 3.4e-3;
-};
 
 /// A straight channel, e.g. where a fiber leaves the body: from `start` (inside the body) along
 /// `direction` out through the mold wall; laid parallel to the parting plane, and onto it when it

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <optional>
 #include <vector>
 #include <stdexcept>
 
@@ -45,6 +46,40 @@ void bfgs_update(Eigen::MatrixXd& H, const Eigen::VectorXd& s, const Eigen::Vect
   H += rho * rho * (y.dot(Hy) + 1 / rho) * s * s.transpose() - rho * (Hy * s.transpose() + s * Hy.transpose());
 }
 
+/// The curvature pair (s, y) taken into H when it is one (y·s > 0): on the first, H is scaled
+/// first (Nocedal & Wright, eq. 6.20).
+void take_pair(Eigen::MatrixXd& H, bool& scaled, const Eigen::VectorXd& s, const Eigen::VectorXd& y)
+{
+  if (!(y.dot(s) > 1e-12 * s.norm() * y.norm())) return;
+  if (!scaled) {
+    H *= y.dot(s) / y.dot(y);  // eq. 6.20
+    scaled = true;
+  }
+  bfgs_update(H, s, y);
+}
+
+/// The relative-tolerance rule: f fell by at most relative_tolerance of its value over the last
+/// `window` iterations. `values`: f after each iteration, the last one fx.
+std::optional<std::string> stalled(const std::vector<double>& values, double fx, const BfgsOptions& options)
+{
+  if (static_cast<int>(values.size()) <= options.window) return std::nullopt;
+  const double before = values[values.size() - 1 - options.window];
+  if (before - fx > options.relative_tolerance * std::abs(fx)) return std::nullopt;
+  return fmt::format("f fell by {:.3g} of its value over the last {} iterations", (before - fx) / std::abs(fx), options.window);
+}
+
+/// `result` ending at the best point `tracked` saw.
+BfgsResult finished(BfgsResult& result, const Tracked& tracked, bool converged, std::string message)
+{
+  result.x = tracked.best_x;
+  result.value = tracked.best;
+  result.gradient_norm = tracked.best_g.norm();
+  result.evaluations = tracked.evaluations;
+  result.converged = converged;
+  result.message = std::move(message);
+  return result;
+}
+
 } // namespace
 
 BfgsResult minimize_bfgs(const Objective& f, Eigen::VectorXd x, const BfgsOptions& options,
@@ -78,15 +113,7 @@ BfgsResult minimize_bfgs(const Objective& f, Eigen::VectorXd x, const BfgsOption
   // search's step where that one needed many trials (near a design where f jumps up, the walking
   // robot's last line searches each spent their 20 evaluations halving from 1).
   double first_trial = 1;
-  auto finish = [&](bool converged, std::string message) {
-    result.x = tracked.best_x;
-    result.value = tracked.best;
-    result.gradient_norm = tracked.best_g.norm();
-    result.evaluations = tracked.evaluations;
-    result.converged = converged;
-    result.message = std::move(message);
-    return result;
-  };
+  auto finish = [&](bool converged, std::string message) { return finished(result, tracked, converged, std::move(message)); };
   try {
     for (;;) {
       const double gnorm = g.norm();
@@ -130,14 +157,7 @@ BfgsResult minimize_bfgs(const Objective& f, Eigen::VectorXd x, const BfgsOption
       }
       first_trial = along_bfgs && tracked.evaluations - evaluations_before > kManyTrials ? 4 * step : 1;
       ++result.iterations;
-      const Eigen::VectorXd s = x - xp, y = g - gp;
-      if (y.dot(s) > 1e-12 * s.norm() * y.norm()) {
-        if (!scaled) {
-          H *= y.dot(s) / y.dot(y);  // eq. 6.20
-          scaled = true;
-        }
-        bfgs_update(H, s, y);
-      }
+      take_pair(H, scaled, x - xp, g - gp);
       if (on_iteration) on_iteration({result.iterations, fx, g.norm(), step * d.norm(), tracked.evaluations}, x);
       values.push_back(fx);
       // All its evaluations for less than a window's tolerance spread over its iterations: where f
@@ -151,12 +171,7 @@ BfgsResult minimize_bfgs(const Objective& f, Eigen::VectorXd x, const BfgsOption
         H.setIdentity();
         scaled = false;
       }
-      if (static_cast<int>(values.size()) > options.window) {
-        const double before = values[values.size() - 1 - options.window];
-        if (before - fx <= options.relative_tolerance * std::abs(fx))
-          return finish(true, fmt::format("f fell by {:.3g} of its value over the last {} iterations", (before - fx) / std::abs(fx),
-                                          options.window));
-      }
+      if (auto message = stalled(values, fx, options)) return finish(true, std::move(*message));
     }
   } catch (const Interrupted&) {
     finish(false, "interrupted");

@@ -34,19 +34,18 @@ void absorb(RoutingResult& out, RoutingProblem& problem, const BfgsResult& r)
 
 } // namespace
 
-RoutingResult optimize_routing(RoutingProblem& problem, const std::string& strategy, const BfgsOptions& options,
+RoutingResult optimize_routing(RoutingProblem& problem, Strategy strategy, const BfgsOptions& options,
                                const RoutingCallback& on_iteration, Progress& progress, ActuatorMask actuators)
 {
   const int T = problem.num_targets(), F = problem.num_fibers();
   RoutingResult out;
   out.routing = problem.base();
-  if (strategy == "simultaneous") {
+  if (strategy == Strategy::simultaneous) {
     if (actuators.size() == 0) actuators = Mask::Constant(T, F, true);
     problem.set_free(std::vector<bool>(F, true), actuators, std::vector<bool>(T, true));
     absorb(out, problem, run(problem, 0, options, on_iteration, progress));
     return out;
   }
-  if (strategy != "sequential") throw std::invalid_argument("unknown strategy " + strategy);
   if (F != T)
     throw std::invalid_argument(fmt::format("the sequential strategy drives one fiber per target: {} fiber(s), {} target(s)", F, T));
   for (int k = 0; k < F && !out.interrupted; ++k) {

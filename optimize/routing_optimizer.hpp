@@ -10,6 +10,7 @@
 #include <functional>
 #include <string>
 
+#include "core/names.hpp"
 #include "optimize/bfgs.hpp"
 #include "optimize/routing_problem.hpp"
 
@@ -31,10 +32,17 @@ using RoutingCallback = std::function<void(int stage, const BfgsIteration&, cons
 /// pressure they start with (0 for an unassigned fiber).
 using ActuatorMask = Eigen::Matrix<bool, Eigen::Dynamic, Eigen::Dynamic>;
 
+/// How the fibers are optimized (paper section VI): all at once for all targets, or fiber k for
+/// target k, one after the other with the earlier ones fixed.
+enum class Strategy { simultaneous, sequential };
+inline constexpr std::array<Named<Strategy>, 2> kStrategyNames{{{Strategy::simultaneous, "simultaneous"},
+                                                                {Strategy::sequential, "sequential"}}};
+inline std::string_view choice_name(Strategy s) { return name_in(kStrategyNames, s); }
+
 /// `actuators` applies to simultaneous (empty: every fiber for every target). Throws
-/// std::invalid_argument for "sequential" with a number of fibers different from the number of
-/// targets, or an unknown strategy.
-RoutingResult optimize_routing(RoutingProblem& problem, const std::string& strategy, const BfgsOptions& options,
+/// std::invalid_argument for sequential with a number of fibers different from the number of
+/// targets.
+RoutingResult optimize_routing(RoutingProblem& problem, Strategy strategy, const BfgsOptions& options,
                                const RoutingCallback& on_iteration, Progress& progress, ActuatorMask actuators = {});
 
 } // namespace fibermold

@@ -205,150 +205,212 @@ bool NewtonSolver::factorize_shifted(NewtonSummary& s, double& shift)
   return false;
 }
 
-NewtonSummary NewtonSolver::solve(Eigen::VectorXd& x, const NewtonOptions& options, Progress& progress)
-{
-  const auto start = Clock::now();
+/// One solve's state: where it is, and what the factorization held is of.
+struct NewtonSolver::SolveState {
+  SolveState(Eigen::VectorXd& x, const NewtonOptions& options) : x(x), options(options), secant(options.quasi_newton_pairs) {}
+
+  Eigen::VectorXd& x;
+  const NewtonOptions& options;
   NewtonSummary s;
-  adjoint_ready_ = false;
-  Eigen::VectorXd g;
-  double E = value_and_gradient(x, g);
-  if (!(E < HUGE_VAL)) {
-    s.message = "the starting state is invalid (an inverted element)";
-    return s;
-  }
-  s.initial_residual = g.norm();
-  const double goal = options.tolerance * options.force_scale;
+  Eigen::VectorXd g;           // ∇E(x)
+  double E = 0;                // E(x)
+  double goal = 0;             // the tolerance on |∇E|, N
   double last_alpha = 0, shift = 0;
-  // A solve that starts where the last one ended (the optimizer's warm start, with the muscles
-  // moved a little) takes its first step on that solve's factorization of the exact Hessian: a
-  // design step that changes little then costs no assembly before the finishing one.
   bool fresh = false;          // the factorization is of the Hessian at x
-  bool stale = !(restart_ready_ && x.size() == restart_x_.size() && x == restart_x_);
-  restart_ready_ = false;
+  bool stale = true;           // the next step needs a new factorization
   bool exact_first = true;     // false: the next factorization is the projected Hessian
   bool near = false;           // the factorization is of the Hessian at a state within kNearTolerance
   bool finishing = false;      // below the tolerance, taking the step that finish_on_fresh_step asks for
-  int full_steps = 0;  // steps on a fresh factorization: what max_iterations bounds
-  int reused_run = 0;
-  LbfgsCorrection secant(options.quasi_newton_pairs);  // the steps since the last factorization
-  const auto converge = [&](bool factorization_serves_adjoint) {
-    s.converged = true;
-    s.message = "gradient below tolerance";
-    adjoint_ready_ = factorization_serves_adjoint;
-    if (adjoint_ready_) adjoint_x_ = x;
-    restart_ready_ = kind_ == Factorization::exact;
-    restart_x_ = x;
-  };
-  for (;;) {
-    s.residual = g.norm();
-    s.energy = E;
-    if (!std::isfinite(s.residual)) {
-      s.message = "the gradient is not finite";
-      break;
-    }
-    // A solve that must end on a fresh factorization takes it near the tolerance, where steps on it
-    // contract by 1e-2 or more, and ends far below the tolerance (or where its steps stop shrinking
-    // |∇E|: round-off); reused ones from farther only approach it.
-    if (s.residual <= goal) {
-      if (!options.finish_on_fresh_step || (near && (s.residual <= kFarBelow * goal || stale))) {
-        converge(near && kind_ == Factorization::exact);
-        break;
-      }
-      if (!near) {
-        finishing = true;
-        stale = true;
-      }
-    }
-    if (options.finish_on_fresh_step && !fresh && !near && s.residual <= kNearTolerance * goal) stale = true;
-    if ((full_steps >= options.max_iterations || s.iterations >= kStepsPerIteration * options.max_iterations) && !finishing) {
-      if (s.residual <= goal) converge(near && kind_ == Factorization::exact);
-      else s.message = fmt::format("no convergence in {} iterations ({} steps)", options.max_iterations, s.iterations);
-      break;
-    }
-    if (stale) {
-      kind_ = factorize_at(x, s, shift, exact_first);
-      if (kind_ == Factorization::none) {
-        if (finishing) converge(false);  // x is below the tolerance all the same
-        break;
-      }
-      stale = false;
-      reused_run = 0;
-      fresh = true;
-      exact_first = true;
-      near = s.residual <= kNearTolerance * goal;
-    }
-    progress.checkpoint(-1, fmt::format("Newton iteration {}: |∇E| = {:.3e} N, last step {:.3g}, shift {:.3g}{}", s.iterations,
-                                        s.residual, last_alpha, shift, fresh ? "" : ", Hessian reused"));
-    auto t = Clock::now();
-    if (fresh) secant.clear();
-    const Eigen::VectorXd dx = -secant.apply(g, [&](const Eigen::VectorXd& q) { return cholmod_.solve(q); });
-    s.seconds_solve += since(t);
+  int full_steps = 0;          // steps on a fresh factorization: what max_iterations bounds
+  int reused_run = 0;          // steps on the factorization held
+  LbfgsCorrection secant;      // the steps since the last factorization
+};
 
-    // Backtracking (Armijo) that rejects any invalid state.
-    const double slope = g.dot(dx);
-    double alpha = 1;
-    Eigen::VectorXd trial, trial_g;
-    double trial_E = HUGE_VAL;
-    int halvings = 0;
-    // A kept factorization whose step needs more than a few halvings is refactorized instead.
-    const int max_halvings = fresh ? options.max_halvings : std::min(options.max_halvings, 4);
-    for (; slope < 0 && halvings <= max_halvings; ++halvings, alpha /= 2) {
-      trial = x + alpha * dx;
-      trial_E = value_and_gradient(trial, trial_g);
-      if (!(trial_E < HUGE_VAL)) continue;
-      if (trial_E <= E + 1e-4 * alpha * slope) break;
-      // Near the minimum the energy difference drowns in round-off: accept a step that lowers |∇E|.
-      if (std::abs(trial_E - E) <= 1e-12 * std::abs(E) && trial_g.norm() < s.residual) break;
-    }
-    if (!(slope < 0) || halvings > max_halvings) {
-      if (!fresh || kind_ == Factorization::shifted) {  // an old Hessian's direction: refactorize
-        stale = true;                                    // and try again; a shifted one's: project
-        exact_first = !fresh;
-        continue;
-      }
-      if (s.residual <= goal) {  // the factorization is of the Hessian at x, which is below the tolerance
-        converge(kind_ == Factorization::exact);
-        break;
-      }
-      s.message = "the line search found no decrease";
-      break;
-    }
-    if (fresh && kind_ == Factorization::exact && alpha < kRoundOffStep && s.residual <= kRoundOffAccept * goal) {
-      converge(true);  // the factorization is of the exact Hessian at x
-      s.message = fmt::format("gradient at its round-off floor, {:.2g}× the tolerance", s.residual / goal);
-      break;
-    }
-    if (finishing && !(trial_g.norm() <= goal)) {  // the extra step must not undo convergence
-      converge(false);
-      break;
-    }
-    secant.add(trial - x, trial_g - g);
-    x = std::move(trial);
-    E = trial_E;
-    g = std::move(trial_g);
-    last_alpha = alpha;
-    ++s.iterations;
-    if (fresh) ++full_steps;
-    finishing = false;
-    // The factorization is kept for the next step while its steps go well: a step then costs a
-    // gradient and a solve instead of an assembly and a factorization. Quasi-Newton: while a step
-    // needs at most one halving, unless the factorization is of a shifted Hessian (a poor model:
-    // kept, a bent muscle bar crawled 21 steps at α = 0.5 on one; a projected one is kept, and
-    // its steps are corrected by the pairs like any other). Plain: while full steps halve |∇E|.
-    // From rest, sim_bench's twisting bar at 2,433 DoFs took 16 factorizations in 29 steps with
-    // plain reuse, 10 in 39 when only full quasi-Newton steps kept it, 5 in 57 with this rule.
-    // Below the tolerance a kept factorization must still halve |∇E|: where it stops doing so
-    // (round-off), a solve that finishes on a fresh factorization ends there.
-    const bool contracted = g.norm() <= options.reuse_contraction * s.residual;
-    stale = options.quasi_newton_pairs > 0
-                ? !(alpha >= 0.5 && kind_ != Factorization::shifted && (s.residual > goal || contracted))
-                : !(alpha == 1 && contracted);
-    reused_run = stale ? 0 : reused_run + 1;
-    if (reused_run > kLongestReuse) stale = true;
-    fresh = false;
+/// A line search's outcome: the state it accepted, or found = false.
+struct NewtonSolver::Trial {
+  bool found = false;
+  double alpha = 1, E = HUGE_VAL;
+  Eigen::VectorXd x, g;
+};
+
+// The states of a solve and their rules:
+//   before a step: converged (below the tolerance, on a factorization that lets it end), out of
+//     iterations, or on to a step (stops_before_step);
+//   a stale factorization is replaced: exact, shifted or projected (refactorizes_if_stale);
+//   the step: a (quasi-)Newton direction and a backtracking line search (line_search); one that
+//     fails on an old or shifted factorization retries on a new one (retries_after_failed_search);
+//   after a step: the round-off floor, or the finishing step done (stops_at_step); else the step
+//     is taken and the factorization kept while its steps go well (take_step).
+NewtonSummary NewtonSolver::solve(Eigen::VectorXd& x, const NewtonOptions& options, Progress& progress)
+{
+  const auto start = Clock::now();
+  SolveState st(x, options);
+  adjoint_ready_ = false;
+  st.E = value_and_gradient(x, st.g);
+  if (!(st.E < HUGE_VAL)) {
+    st.s.message = "the starting state is invalid (an inverted element)";
+    return st.s;
   }
-  s.seconds_total = since(start);
-  return s;
+  st.s.initial_residual = st.g.norm();
+  st.goal = options.tolerance * options.force_scale;
+  // A solve that starts where the last one ended (the optimizer's warm start, with the muscles
+  // moved a little) takes its first step on that solve's factorization of the exact Hessian: a
+  // design step that changes little then costs no assembly before the finishing one.
+  st.stale = !(restart_ready_ && x.size() == restart_x_.size() && x == restart_x_);
+  restart_ready_ = false;
+  while (!stops_before_step(st) && refactorizes_if_stale(st)) {
+    progress.checkpoint(-1, fmt::format("Newton iteration {}: |∇E| = {:.3e} N, last step {:.3g}, shift {:.3g}{}", st.s.iterations,
+                                        st.s.residual, st.last_alpha, st.shift, st.fresh ? "" : ", Hessian reused"));
+    auto t = Clock::now();
+    if (st.fresh) st.secant.clear();
+    const Eigen::VectorXd dx = -st.secant.apply(st.g, [&](const Eigen::VectorXd& q) { return cholmod_.solve(q); });
+    st.s.seconds_solve += since(t);
+    Trial trial = line_search(st, dx);
+    if (!trial.found) {
+      if (retries_after_failed_search(st)) continue;
+      break;
+    }
+    if (stops_at_step(st, trial)) break;
+    take_step(st, trial);
+  }
+  st.s.seconds_total = since(start);
+  return st.s;
+}
+
+void NewtonSolver::converge(SolveState& st, bool factorization_serves_adjoint)
+{
+  st.s.converged = true;
+  st.s.message = "gradient below tolerance";
+  adjoint_ready_ = factorization_serves_adjoint;
+  if (adjoint_ready_) adjoint_x_ = st.x;
+  restart_ready_ = kind_ == Factorization::exact;
+  restart_x_ = st.x;
+}
+
+bool NewtonSolver::stops_before_step(SolveState& st)
+{
+  NewtonSummary& s = st.s;
+  const NewtonOptions& options = st.options;
+  s.residual = st.g.norm();
+  s.energy = st.E;
+  if (!std::isfinite(s.residual)) {
+    s.message = "the gradient is not finite";
+    return true;
+  }
+  // A solve that must end on a fresh factorization takes it near the tolerance, where steps on it
+  // contract by 1e-2 or more, and ends far below the tolerance (or where its steps stop shrinking
+  // |∇E|: round-off); reused ones from farther only approach it.
+  if (s.residual <= st.goal) {
+    if (!options.finish_on_fresh_step || (st.near && (s.residual <= kFarBelow * st.goal || st.stale))) {
+      converge(st, st.near && kind_ == Factorization::exact);
+      return true;
+    }
+    if (!st.near) {
+      st.finishing = true;
+      st.stale = true;
+    }
+  }
+  if (options.finish_on_fresh_step && !st.fresh && !st.near && s.residual <= kNearTolerance * st.goal) st.stale = true;
+  if ((st.full_steps >= options.max_iterations || s.iterations >= kStepsPerIteration * options.max_iterations) && !st.finishing) {
+    if (s.residual <= st.goal) converge(st, st.near && kind_ == Factorization::exact);
+    else s.message = fmt::format("no convergence in {} iterations ({} steps)", options.max_iterations, s.iterations);
+    return true;
+  }
+  return false;
+}
+
+bool NewtonSolver::refactorizes_if_stale(SolveState& st)
+{
+  if (!st.stale) return true;
+  kind_ = factorize_at(st.x, st.s, st.shift, st.exact_first);
+  if (kind_ == Factorization::none) {
+    if (st.finishing) converge(st, false);  // x is below the tolerance all the same
+    return false;
+  }
+  st.stale = false;
+  st.reused_run = 0;
+  st.fresh = true;
+  st.exact_first = true;
+  st.near = st.s.residual <= kNearTolerance * st.goal;
+  return true;
+}
+
+NewtonSolver::Trial NewtonSolver::line_search(SolveState& st, const Eigen::VectorXd& dx)
+{
+  // Backtracking (Armijo) that rejects any invalid state.
+  const double slope = st.g.dot(dx);
+  Trial t;
+  int halvings = 0;
+  // A kept factorization whose step needs more than a few halvings is refactorized instead.
+  const int max_halvings = st.fresh ? st.options.max_halvings : std::min(st.options.max_halvings, 4);
+  for (; slope < 0 && halvings <= max_halvings; ++halvings, t.alpha /= 2) {
+    t.x = st.x + t.alpha * dx;
+    t.E = value_and_gradient(t.x, t.g);
+    if (!(t.E < HUGE_VAL)) continue;
+    if (t.E <= st.E + 1e-4 * t.alpha * slope) break;
+    // Near the minimum the energy difference drowns in round-off: accept a step that lowers |∇E|.
+    if (std::abs(t.E - st.E) <= 1e-12 * std::abs(st.E) && t.g.norm() < st.s.residual) break;
+  }
+  t.found = slope < 0 && halvings <= max_halvings;
+  return t;
+}
+
+bool NewtonSolver::retries_after_failed_search(SolveState& st)
+{
+  if (!st.fresh || kind_ == Factorization::shifted) {  // an old Hessian's direction: refactorize
+    st.stale = true;                                   // and try again; a shifted one's: project
+    st.exact_first = !st.fresh;
+    return true;
+  }
+  if (st.s.residual <= st.goal) {  // the factorization is of the Hessian at x, which is below the tolerance
+    converge(st, kind_ == Factorization::exact);
+    return false;
+  }
+  st.s.message = "the line search found no decrease";
+  return false;
+}
+
+bool NewtonSolver::stops_at_step(SolveState& st, const Trial& t)
+{
+  if (st.fresh && kind_ == Factorization::exact && t.alpha < kRoundOffStep && st.s.residual <= kRoundOffAccept * st.goal) {
+    converge(st, true);  // the factorization is of the exact Hessian at x
+    st.s.message = fmt::format("gradient at its round-off floor, {:.2g}× the tolerance", st.s.residual / st.goal);
+    return true;
+  }
+  if (st.finishing && !(t.g.norm() <= st.goal)) {  // the extra step must not undo convergence
+    converge(st, false);
+    return true;
+  }
+  return false;
+}
+
+void NewtonSolver::take_step(SolveState& st, Trial& t)
+{
+  st.secant.add(t.x - st.x, t.g - st.g);
+  st.x = std::move(t.x);
+  st.E = t.E;
+  st.g = std::move(t.g);
+  st.last_alpha = t.alpha;
+  ++st.s.iterations;
+  if (st.fresh) ++st.full_steps;
+  st.finishing = false;
+  // The factorization is kept for the next step while its steps go well: a step then costs a
+  // gradient and a solve instead of an assembly and a factorization. Quasi-Newton: while a step
+  // needs at most one halving, unless the factorization is of a shifted Hessian (a poor model:
+  // kept, a bent muscle bar crawled 21 steps at α = 0.5 on one; a projected one is kept, and
+  // its steps are corrected by the pairs like any other). Plain: while full steps halve |∇E|.
+  // From rest, sim_bench's twisting bar at 2,433 DoFs took 16 factorizations in 29 steps with
+  // plain reuse, 10 in 39 when only full quasi-Newton steps kept it, 5 in 57 with this rule.
+  // Below the tolerance a kept factorization must still halve |∇E|: where it stops doing so
+  // (round-off), a solve that finishes on a fresh factorization ends there.
+  const double residual = st.s.residual, goal = st.goal;
+  const bool contracted = st.g.norm() <= st.options.reuse_contraction * residual;
+  st.stale = st.options.quasi_newton_pairs > 0
+                 ? !(t.alpha >= 0.5 && kind_ != Factorization::shifted && (residual > goal || contracted))
+                 : !(t.alpha == 1 && contracted);
+  st.reused_run = st.stale ? 0 : st.reused_run + 1;
+  if (st.reused_run > kLongestReuse) st.stale = true;
+  st.fresh = false;
 }
 
 } // namespace fibermold

@@ -97,6 +97,18 @@ private:
   /// serve (the refinement's correction is too large).
   bool refined_solve(const Eigen::VectorXd& x, const Eigen::VectorXd& b, Eigen::VectorXd& lambda) const;
 
+  // The steps of solve(), a state machine over SolveState (newton_solver.cpp): each says whether
+  // the solve goes on.
+  struct SolveState;
+  struct Trial;
+  void converge(SolveState& st, bool factorization_serves_adjoint);
+  bool stops_before_step(SolveState& st);
+  bool refactorizes_if_stale(SolveState& st);
+  Trial line_search(SolveState& st, const Eigen::VectorXd& dx);
+  bool retries_after_failed_search(SolveState& st);
+  bool stops_at_step(SolveState& st, const Trial& t);
+  void take_step(SolveState& st, Trial& t);
+
   std::vector<const Energy*> energies_;
   std::size_t fixed_energies_;
   SparseHessian hessian_;

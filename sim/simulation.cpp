@@ -17,15 +17,14 @@ namespace fibermold {
 namespace {
 std::unique_ptr<Basis> make_basis(const TetMesh& mesh, const SimulationOptions& o, double mean_edge)
 {
-  if (o.basis == "fem-p1" || o.basis == "fem-p2") {
-    if ((o.basis == "fem-p2") != (mesh.nodes_per_tet() == 10))
-      throw std::invalid_argument(fmt::format("basis {} needs {}-node tets, the mesh has {}", o.basis,
-                                              o.basis == "fem-p2" ? 10 : 4, mesh.nodes_per_tet()));
+  if (o.basis == BasisKind::fem_p1 || o.basis == BasisKind::fem_p2) {
+    if ((o.basis == BasisKind::fem_p2) != (mesh.nodes_per_tet() == 10))
+      throw std::invalid_argument(fmt::format("basis {} needs {}-node tets, the mesh has {}", choice_name(o.basis),
+                                              o.basis == BasisKind::fem_p2 ? 10 : 4, mesh.nodes_per_tet()));
     return std::make_unique<FemBasis>(mesh);
   }
-  if (o.basis != "mls-linear" && o.basis != "mls-quadratic") throw std::invalid_argument("unknown basis " + o.basis);
   MlsOptions mls;
-  mls.quadratic = o.basis == "mls-quadratic";
+  mls.quadratic = o.basis == BasisKind::mls_quadratic;
   mls.radius = o.mls_radius * mean_edge;
   return std::make_unique<MlsBasis>(mesh.nodes, mls);
 }

@@ -6,6 +6,7 @@
 #include <string>
 #include <vector>
 
+#include "core/names.hpp"
 #include "mesh/tet_mesh.hpp"
 #include "sim/newton_solver.hpp"
 #include "sim/quadrature_points.hpp"
@@ -13,8 +14,16 @@
 
 namespace fibermold {
 
+/// The shape functions (paper section IV): MLS of linear or quadratic completeness, or FEM.
+enum class BasisKind { mls_linear, mls_quadratic, fem_p1, fem_p2 };
+inline constexpr std::array<Named<BasisKind>, 4> kBasisNames{{{BasisKind::mls_linear, "mls-linear"},
+                                                              {BasisKind::mls_quadratic, "mls-quadratic"},
+                                                              {BasisKind::fem_p1, "fem-p1"},
+                                                              {BasisKind::fem_p2, "fem-p2"}}};
+inline std::string_view choice_name(BasisKind b) { return name_in(kBasisNames, b); }
+
 struct SimulationOptions {
-  std::string basis = "mls-linear";    ///< mls-linear | mls-quadratic | fem-p1 | fem-p2
+  BasisKind basis = BasisKind::mls_linear;
   double mls_radius = 1.7;             ///< × mean edge length
   int quadrature_points = 8;
   double youngs_modulus = 86.4e3;      ///< Pa

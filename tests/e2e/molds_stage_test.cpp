@@ -351,7 +351,7 @@ TEST(MoldsExample, HandRoutedTwistMakesCheckedPartsFromTheAdaptiveMesh)
 TEST_F(MoldsE2E, SigtermWhileCarvingStopsWithinASecond)
 {
   // The level-set carving and the booleans have no checkpoint inside: the stop is the watchdog's
-  // (pipeline/cli.cpp), which ends the process 0.7 s after the signal, as a kill would.
+  // (cli/cli.cpp), which ends the process 0.7 s after the signal, as a kill would.
   std::string fine = kDesign;
   fine.replace(fine.find("voxel = 0.3"), 11, "voxel = 0.12");
   test::write_text(dir_ / "design.toml", fine + "[[fiber]]\nname = \"m1\"\npoints = [[0, 0, 0], [60, 0, 0]]\n");

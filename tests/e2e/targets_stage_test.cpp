@@ -9,9 +9,9 @@
 #include "export/stl_writer.hpp"
 #include "mesh/mesh_quality.hpp"
 #include "mesh/surface_import.hpp"
-#include "sim/mls_basis.hpp"
 #include "mesh/tet_mesh.hpp"
 #include "primitives.hpp"
+#include "sim/mls_basis.hpp"
 #include "test_support.hpp"
 
 namespace fibermold {

@@ -7,8 +7,8 @@
 #include <nlohmann/json.hpp>
 
 #include "core/units.hpp"
-#include "export/stl_writer.hpp"
 #include "export/report_html.hpp"
+#include "export/stl_writer.hpp"
 #include "export/three_mf_writer.hpp"
 #include "mesh/surface_import.hpp"
 #include "primitives.hpp"

@@ -1,8 +1,8 @@
 // Distance to a closed surface and inside/outside, against a box where both are known exactly.
 #include <gtest/gtest.h>
 
-#include "mesh/surface_distance.hpp"
 #include "../primitives.hpp"
+#include "mesh/surface_distance.hpp"
 
 namespace fibermold {
 namespace {

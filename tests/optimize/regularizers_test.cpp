@@ -2,6 +2,7 @@
 
 #include <gtest/gtest.h>
 
+#include "finite_differences.hpp"
 #include "optimize/barrier.hpp"
 #include "optimize/fiber_curvature.hpp"
 
@@ -17,10 +18,11 @@ TEST(Barrier, DerivativesAndSupport)
   EXPECT_GT(barrier(1e-6, dhat), barrier(1e-3, dhat));
   int checked = 0;
   for (double d : {1e-4, 0.003, 0.03, 0.07, 0.0999}) {
-    const double h = 1e-8 * d;
-    EXPECT_NEAR((barrier(d + h, dhat) - barrier(d - h, dhat)) / (2 * h), barrier_gradient(d, dhat), 1e-6 * std::abs(barrier_gradient(d, dhat)) + 1e-12);
-    EXPECT_NEAR((barrier_gradient(d + h, dhat) - barrier_gradient(d - h, dhat)) / (2 * h), barrier_hessian(d, dhat),
-                1e-6 * std::abs(barrier_hessian(d, dhat)) + 1e-9);
+    const Eigen::VectorXd x = Eigen::VectorXd::Constant(1, d), one = Eigen::VectorXd::Ones(1);
+    const test::ScalarFunction b = [&](const Eigen::VectorXd& y) { return barrier(y[0], dhat); };
+    const test::ScalarFunction db = [&](const Eigen::VectorXd& y) { return barrier_gradient(y[0], dhat); };
+    EXPECT_TRUE(test::matches_fd(barrier_gradient(d, dhat), test::central_difference(b, x, one, 1e-8 * d), test::kFdTolerance, 1e-12)) << d;
+    EXPECT_TRUE(test::matches_fd(barrier_hessian(d, dhat), test::central_difference(db, x, one, 1e-8 * d), test::kFdTolerance, 1e-9)) << d;
     ++checked;
   }
   EXPECT_EQ(checked, 5);
@@ -47,22 +49,12 @@ TEST(FiberCurvature, CircleAndStraightLineAndGradient)
   const HermiteSpline s(P);
   const std::vector<Eigen::Vector3d> T = s.tangents();
   const FiberParameterGradient g = fiber_curvature_gradient(s);
-  const double h = 1e-8;
-  double worst = 0, scale = 0;
-  for (int which = 0; which < 2; ++which)
-    for (std::size_t k = 0; k < P.size(); ++k)
-      for (int c = 0; c < 3; ++c) {
-        auto p = P, t = T;
-        (which ? t : p)[k][c] += h;
-        const double plus = fiber_curvature(HermiteSpline(p, t));
-        (which ? t : p)[k][c] -= 2 * h;
-        const double minus = fiber_curvature(HermiteSpline(p, t));
-        const double an = (which ? g.tangents : g.points)[k][c];
-        worst = std::max(worst, std::abs((plus - minus) / (2 * h) - an));
-        scale = std::max(scale, std::abs(an));
-      }
-  ASSERT_GT(scale, 0);
-  EXPECT_LE(worst, 1e-6 * scale);
+  const test::ScalarFunction curvature = [&](const Eigen::VectorXd& v) {
+    const auto lists = test::unstacked(v, {P.size(), T.size()});
+    return fiber_curvature(HermiteSpline(lists[0], lists[1]));
+  };
+  ASSERT_GT(test::stacked({g.points, g.tangents}).cwiseAbs().maxCoeff(), 0);
+  EXPECT_TRUE(test::matches_fd(test::stacked({g.points, g.tangents}), test::fd_gradient(curvature, test::stacked({P, T}), 1e-8)));
 }
 
 } // namespace

@@ -4,9 +4,9 @@
 
 #include <memory>
 
+#include "../sim/sim_fixtures.hpp"
 #include "optimize/routing_problem.hpp"
 #include "sim/external_forces.hpp"
-#include "../sim/sim_fixtures.hpp"
 
 namespace fibermold::test {
 

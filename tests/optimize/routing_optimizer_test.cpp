@@ -40,7 +40,7 @@ TEST(RoutingOptimizer, RecoversAnSShapedFiber)
   NullProgress progress;
   BfgsOptions o;
   o.max_iterations = 400;
-  const RoutingResult r = optimize_routing(problem, "simultaneous", o, nullptr, progress);
+  const RoutingResult r = optimize_routing(problem, Strategy::simultaneous, o, nullptr, progress);
   const Errors after = errors(problem, r.routing, 0);
   std::printf("recovery: RMSE %.3f → %.4f mm, max %.3f → %.4f mm, %d iterations, %d evaluations, p = %.1f kPa (%s)\n",
               before.rmse / mm, after.rmse / mm, before.max / mm, after.max / mm, r.iterations, r.evaluations,
@@ -52,7 +52,7 @@ TEST(RoutingOptimizer, RecoversAnSShapedFiber)
 
 /// Two targets, bend and twist, made by known fibers; two straight fibers to start. Tracking
 /// curves on the centre line and along an edge, so that the twist shows in positions.
-void bend_and_twist(const std::string& strategy)
+void bend_and_twist(Strategy strategy)
 {
   constexpr double L = 0.08, a = 0.016;
   test::RoutingFixture fx(L, a, 0.008, 20, 0.1, 1e-9);
@@ -68,7 +68,7 @@ void bend_and_twist(const std::string& strategy)
   start.routes = {test::RoutingFixture::route("bend", straight(0, 0.001, 4)),
                   test::RoutingFixture::route("twist", straight(0.002, -0.002, 6))};
   start.pressures = Eigen::MatrixXd::Constant(2, 2, 212e3);
-  if (strategy == "sequential") start.pressures(0, 1) = start.pressures(1, 0) = 0;
+  if (strategy == Strategy::sequential) start.pressures(0, 1) = start.pressures(1, 0) = 0;
   RoutingProblem problem(*fx.sim, fx.model, *fx.skin, targets, fx.curves, start, {});
 
   const Errors before[2] = {errors(problem, start, 0), errors(problem, start, 1)};
@@ -78,19 +78,19 @@ void bend_and_twist(const std::string& strategy)
   const RoutingResult r = optimize_routing(problem, strategy, o, nullptr, progress);
   const Errors after[2] = {errors(problem, r.routing, 0), errors(problem, r.routing, 1)};
   for (int t = 0; t < 2; ++t) {
-    std::printf("%s, target %s: RMSE %.3f → %.3f mm (%.1f×), max %.3f → %.3f mm; %d iterations (%s)\n", strategy.c_str(),
+    std::printf("%s, target %s: RMSE %.3f → %.3f mm (%.1f×), max %.3f → %.3f mm; %d iterations (%s)\n", std::string(choice_name(strategy)).c_str(),
                 t == 0 ? "bend" : "twist", before[t].rmse / mm, after[t].rmse / mm, before[t].rmse / after[t].rmse,
                 before[t].max / mm, after[t].max / mm, r.iterations, r.message.c_str());
     EXPECT_LE(after[t].rmse, before[t].rmse / 5) << "target " << t;
   }
-  if (strategy == "sequential") {  // orthogonal actuators: one pressurized per target
+  if (strategy == Strategy::sequential) {  // orthogonal actuators: one pressurized per target
     EXPECT_EQ(r.routing.pressures(0, 1), 0);
     EXPECT_EQ(r.routing.pressures(1, 0), 0);
   }
 }
 
-TEST(RoutingOptimizer, BendAndTwistSimultaneous) { bend_and_twist("simultaneous"); }
-TEST(RoutingOptimizer, BendAndTwistSequential) { bend_and_twist("sequential"); }
+TEST(RoutingOptimizer, BendAndTwistSimultaneous) { bend_and_twist(Strategy::simultaneous); }
+TEST(RoutingOptimizer, BendAndTwistSequential) { bend_and_twist(Strategy::sequential); }
 
 } // namespace
 } // namespace fibermold

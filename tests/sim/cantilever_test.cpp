@@ -26,7 +26,7 @@ Result hang(const std::string& basis, double edge, double gravity_scale)
   Result r;
   r.mesh = test::box_mesh({0, -kA / 2, -kA / 2}, {kL, kA / 2, kA / 2}, edge, basis == "fem-p2");
   SimulationOptions o;
-  o.basis = basis;
+  o.basis = *value_in(kBasisNames, basis);
   o.gravity = {0, 0, -9.81 * gravity_scale};
   o.fixed_nodes = {nodes_in_box(r.mesh.nodes, {-1e-3, -1, -1}, {1e-9, 1, 1})};
   r.sim = std::make_unique<Simulation>(r.mesh, o);

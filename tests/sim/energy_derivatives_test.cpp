@@ -13,6 +13,7 @@
 #include "sim/muscle_energy.hpp"
 #include "sim/neo_hookean.hpp"
 #include "sim/soft_dirichlet.hpp"
+#include "finite_differences.hpp"
 #include "sim_fixtures.hpp"
 
 namespace fibermold {
@@ -91,22 +92,24 @@ TEST_P(EnergyDerivatives, GradientAndHessianMatchFiniteDifferences)
     energy->add_hessian(x, H, false);
     const Eigen::MatrixXd Hd = Eigen::MatrixXd(H.full());
 
-    // Central differences along random directions and along coordinates.
+    // Central differences along random directions.
     std::mt19937 random(seed);
     std::normal_distribution<double> normal;
+    const test::ScalarFunction value = [&](const Eigen::VectorXd& y) { return energy->value(y); };
+    const test::VectorFunction gradient = [&](const Eigen::VectorXd& y) {
+      Eigen::VectorXd gy = Eigen::VectorXd::Zero(y.size());
+      energy->add_gradient(y, gy);
+      return gy;
+    };
     const double h = 1e-7;
     for (int trial = 0; trial < 6; ++trial) {
       Eigen::VectorXd d(x.size());
       for (Eigen::Index k = 0; k < d.size(); ++k) d[k] = normal(random);
       d.normalize();
-      const double fd = (energy->value(x + h * d) - energy->value(x - h * d)) / (2 * h);
-      EXPECT_NEAR(fd, g.dot(d), 1e-6 * g.norm() + 1e-12);
-      Eigen::VectorXd gp = Eigen::VectorXd::Zero(x.size()), gm = Eigen::VectorXd::Zero(x.size());
-      energy->add_gradient(x + h * d, gp);
-      energy->add_gradient(x - h * d, gm);
-      const Eigen::VectorXd fd_h = (gp - gm) / (2 * h);
-      const Eigen::VectorXd an = Hd * d;
-      EXPECT_LE((fd_h - an).norm(), 1e-6 * std::max(an.norm(), 1e-9 * Hd.norm()) + 1e-12) << "trial " << trial;
+      EXPECT_TRUE(test::matches_fd(g.dot(d), test::central_difference(value, x, d, h), test::kFdTolerance, 1e-6 * g.norm() + 1e-12))
+          << "gradient, trial " << trial;
+      EXPECT_TRUE(test::matches_fd(Hd * d, test::central_difference(gradient, x, d, h), test::kFdTolerance, 1e-15 * Hd.norm() + 1e-12))
+          << "Hessian, trial " << trial;
     }
     EXPECT_LE((Hd - Hd.transpose()).norm(), 1e-12 * std::max(1.0, Hd.norm()));
   }
@@ -120,16 +123,13 @@ TEST(NeoHookean, StressIsTheDerivativeOfTheDensity)
   const Eigen::Matrix3d F = (Eigen::Matrix3d() << 1.1, 0.2, 0.0, -0.1, 0.95, 0.15, 0.05, 0.0, 1.2).finished();
   const Eigen::Matrix3d P = neo_hookean_stress(F, l);
   const Eigen::Matrix<double, 9, 9> D = neo_hookean_stress_derivative(F, l);
-  const double h = 1e-7;
-  for (int i = 0; i < 3; ++i)
-    for (int j = 0; j < 3; ++j) {
-      Eigen::Matrix3d dF = Eigen::Matrix3d::Zero();
-      dF(i, j) = h;
-      EXPECT_NEAR((neo_hookean_density(F + dF, l) - neo_hookean_density(F - dF, l)) / (2 * h), P(i, j), 1e-6 * P.norm());
-      const Eigen::Matrix3d dP = (neo_hookean_stress(F + dF, l) - neo_hookean_stress(F - dF, l)) / (2 * h);
-      for (int a = 0; a < 3; ++a)
-        for (int b = 0; b < 3; ++b) EXPECT_NEAR(dP(a, b), D(3 * a + b, 3 * i + j), 1e-6 * D.norm());
-    }
+  // F flattened row by row, as D's indices are: 3 i + j.
+  const auto matrix = [](const Eigen::VectorXd& f) { return Eigen::Matrix3d(f.reshaped<Eigen::RowMajor>(3, 3)); };
+  const Eigen::VectorXd f = F.reshaped<Eigen::RowMajor>();
+  const test::ScalarFunction density = [&](const Eigen::VectorXd& y) { return neo_hookean_density(matrix(y), l); };
+  const test::VectorFunction stress = [&](const Eigen::VectorXd& y) { return Eigen::VectorXd(neo_hookean_stress(matrix(y), l).reshaped<Eigen::RowMajor>()); };
+  EXPECT_TRUE(test::matches_fd(P.reshaped<Eigen::RowMajor>(), test::fd_gradient(density, f, 1e-7)));
+  EXPECT_TRUE(test::matches_fd(D, test::fd_jacobian(stress, f, 1e-7)));
   EXPECT_EQ(neo_hookean_density(-Eigen::Matrix3d::Identity(), l), HUGE_VAL);  // inverted: no energy defined
 }
 

@@ -26,7 +26,7 @@ Actuated actuate(const std::string& basis, double youngs_modulus, double p, cons
   Actuated r;
   r.mesh = test::box_mesh({0, -kA / 2, -kA / 2}, {kL, kA / 2, kA / 2}, 0.004);
   SimulationOptions o;
-  o.basis = basis;
+  o.basis = *value_in(kBasisNames, basis);
   o.youngs_modulus = youngs_modulus;
   o.poisson_ratio = 0.3;
   o.gravity = Eigen::Vector3d::Zero();

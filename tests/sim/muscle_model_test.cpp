@@ -4,6 +4,8 @@
 
 #include <gtest/gtest.h>
 
+#include "finite_differences.hpp"
+
 namespace fibermold {
 namespace {
 
@@ -16,10 +18,13 @@ TEST(SmoothedTwoPieceLine, FollowsItsAsymptotesAndItsDerivatives)
   EXPECT_NEAR(smoothed_two_piece(E, 425e3, rho).value, 26.36 * 425e3 + 4.40e6, 1e-6 * 15.6e6);
   EXPECT_NEAR(smoothed_two_piece(E, 425e3, rho).d1, 26.36, 1e-9);
   for (double p : {0.0, 100e3, 119.2e3, 125e3, 300e3}) {
-    const double h = 1.0;
     const Smoothed s = smoothed_two_piece(E, p, rho);
-    EXPECT_NEAR((smoothed_two_piece(E, p + h, rho).value - smoothed_two_piece(E, p - h, rho).value) / (2 * h), s.d1, 1e-6 * 600);
-    EXPECT_NEAR((smoothed_two_piece(E, p + h, rho).d1 - smoothed_two_piece(E, p - h, rho).d1) / (2 * h), s.d2, 1e-6 * std::abs(s.d2) + 1e-12);
+    const Eigen::VectorXd x = Eigen::VectorXd::Constant(1, p), one = Eigen::VectorXd::Ones(1);
+    const test::ScalarFunction value = [&](const Eigen::VectorXd& q) { return smoothed_two_piece(E, q[0], rho).value; };
+    const test::ScalarFunction d1 = [&](const Eigen::VectorXd& q) { return smoothed_two_piece(E, q[0], rho).d1; };
+    // 1 Pa steps on pressures of 1e5 Pa; the slopes are of order 600 (Pa/Pa), a value of 1e7 Pa.
+    EXPECT_TRUE(test::matches_fd(s.d1, test::central_difference(value, x, one, 1.0), 0, 1e-6 * 600)) << p;
+    EXPECT_TRUE(test::matches_fd(s.d2, test::central_difference(d1, x, one, 1.0), test::kFdTolerance, 1e-12)) << p;
   }
 }
 
@@ -46,14 +51,18 @@ TEST(MuscleModel, DensityDerivativesMatchFiniteDifferencesAcrossTheJoint)
     for (double eps : {-0.2, 0.0, em - 0.01, em, em + 1e-4, em + 0.05, 0.4}) {
       const MuscleDensity d = m.density(p, eps);
       const double he = 1e-9, hp = 1e-3;  // small: the third derivative jumps at the joint
-      const MuscleDensity e1 = m.density(p, eps + he), e0 = m.density(p, eps - he);
-      const MuscleDensity p1 = m.density(p + hp, eps), p0 = m.density(p - hp, eps);
-      const auto near = [](double fd, double an, double scale) { EXPECT_NEAR(fd, an, 1e-6 * scale + 1e-9) << fd << " vs " << an; };
-      near((e1.psi - e0.psi) / (2 * he), d.d_eps, std::abs(d.d_eps));
-      near((e1.d_eps - e0.d_eps) / (2 * he), d.d_eps_eps, std::abs(d.d_eps_eps));
-      near((p1.psi - p0.psi) / (2 * hp), d.d_p, std::abs(d.d_p) + 1);
-      near((p1.d_eps - p0.d_eps) / (2 * hp), d.d_eps_p, std::abs(d.d_eps_p) + 1);
-      near((p1.d_p - p0.d_p) / (2 * hp), d.d_p_p, std::abs(d.d_p_p) + 1e-3);
+      const Eigen::VectorXd x = Eigen::Vector2d(p, eps), along_p = Eigen::Vector2d(1, 0), along_eps = Eigen::Vector2d(0, 1);
+      const auto of = [&](double MuscleDensity::*field) -> test::ScalarFunction {
+        return [&m, field](const Eigen::VectorXd& y) { return m.density(y[0], y[1]).*field; };
+      };
+      const auto check = [&](double analytic, double fd, double floor) {
+        EXPECT_TRUE(test::matches_fd(analytic, fd, test::kFdTolerance, 1e-6 * floor + 1e-9)) << "p " << p << ", ε " << eps;
+      };
+      check(d.d_eps, test::central_difference(of(&MuscleDensity::psi), x, along_eps, he), 0);
+      check(d.d_eps_eps, test::central_difference(of(&MuscleDensity::d_eps), x, along_eps, he), 0);
+      check(d.d_p, test::central_difference(of(&MuscleDensity::psi), x, along_p, hp), 1);
+      check(d.d_eps_p, test::central_difference(of(&MuscleDensity::d_eps), x, along_p, hp), 1);
+      check(d.d_p_p, test::central_difference(of(&MuscleDensity::d_p), x, along_p, hp), 1e-3);
     }
   }
 }

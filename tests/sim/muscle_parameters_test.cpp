@@ -8,6 +8,7 @@
 #include "mesh/mesh_quality.hpp"
 #include "sim/mls_basis.hpp"
 #include "sim/muscle_energy.hpp"
+#include "finite_differences.hpp"
 #include "sim_fixtures.hpp"
 
 namespace fibermold {
@@ -50,27 +51,16 @@ struct Fixture {
 void check(const Fixture& fx, const FiberParameterGradient& analytic, double pressure,
            const std::function<double(const MuscleEnergy&)>& f)
 {
-  const double h = 1e-7;
-  double worst = 0, scale = 0;
-  for (int which = 0; which < 2; ++which)
-    for (std::size_t k = 0; k < fx.points.size(); ++k)
-      for (int c = 0; c < 3; ++c) {
-        auto p = fx.points, tg = fx.tangents;
-        auto& target = which == 0 ? p : tg;
-        target[k][c] += h;
-        const double plus = f(fx.energy(p, tg, pressure));
-        target[k][c] -= 2 * h;
-        const double minus = f(fx.energy(p, tg, pressure));
-        const double fd = (plus - minus) / (2 * h);
-        const double an = (which == 0 ? analytic.points : analytic.tangents)[k][c];
-        worst = std::max(worst, std::abs(fd - an));
-        scale = std::max(scale, std::abs(an));
-      }
-  ASSERT_GT(scale, 0) << "nothing to check";
-  EXPECT_LE(worst, 1e-6 * scale);
-  const double hp = 1.0;
-  const double fd_p = (f(fx.energy(fx.points, fx.tangents, pressure + hp)) - f(fx.energy(fx.points, fx.tangents, pressure - hp))) / (2 * hp);
-  EXPECT_NEAR(fd_p, analytic.pressure, 1e-6 * std::abs(analytic.pressure) + 1e-15);
+  const test::ScalarFunction at = [&](const Eigen::VectorXd& v) {
+    const auto lists = test::unstacked(v, {fx.points.size(), fx.tangents.size()});
+    return f(fx.energy(lists[0], lists[1], pressure));
+  };
+  ASSERT_GT(test::stacked({analytic.points, analytic.tangents}).cwiseAbs().maxCoeff(), 0) << "nothing to check";
+  EXPECT_TRUE(test::matches_fd(test::stacked({analytic.points, analytic.tangents}),
+                               test::fd_gradient(at, test::stacked({fx.points, fx.tangents}), 1e-7)));
+  const test::ScalarFunction in_pressure = [&](const Eigen::VectorXd& p) { return f(fx.energy(fx.points, fx.tangents, p[0])); };
+  EXPECT_TRUE(test::matches_fd(analytic.pressure, test::central_difference(in_pressure, Eigen::VectorXd::Constant(1, pressure), Eigen::VectorXd::Ones(1), 1.0),
+                               test::kFdTolerance, 1e-15));
   EXPECT_NE(analytic.pressure, 0);
 }
 

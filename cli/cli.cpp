@@ -1,0 +1,311 @@
+#include "cli/cli.hpp"
+
+#include <chrono>
+#include <csignal>
+#include <cstdio>
+#include <cstdlib>
+#include <iostream>
+#include <thread>
+
+#include <CLI/CLI.hpp>
+#include <fmt/format.h>
+#include <fmt/ranges.h>
+#include <spdlog/spdlog.h>
+#include <pthread.h>
+#include <semaphore.h>
+#include <unistd.h>
+
+#include "cli/terminal_progress.hpp"
+#include "core/input_error.hpp"
+#include "design/design_file.hpp"
+#include "make/build_lock.hpp"
+#include "make/runner.hpp"
+#include "stages/mesh_stage.hpp"
+#include "stages/simulate_command.hpp"
+#include "stages/stages.hpp"
+#include "sweep/sweep_command.hpp"
+
+#ifndef FIBERMOLD_DEFAULT_DESIGN
+#define FIBERMOLD_DEFAULT_DESIGN "examples/twisting-bar/design.toml"
+#endif
+
+namespace fibermold {
+
+namespace fs = std::filesystem;
+
+namespace {
+
+/// Posted by the signal handler (sem_post is async-signal-safe); the watchdog waits on it.
+sem_t g_signalled;
+
+void on_signal(int)
+{
+  request_interrupt();
+  sem_post(&g_signalled);
+}
+
+/// After Ctrl-C or SIGTERM the running stage stops at its next checkpoint, cleans up and exits 130.
+/// A step without checkpoints (a boolean of two large meshes, a level-set carving) would keep it
+/// running: past kStopDeadline the watchdog ends the process as a kill would, which the pipeline
+/// survives by design (docs/pipeline.md, "Atomic outputs"): the stage keeps its previous outputs
+/// and no stamp, and its build lock is released with the process.
+constexpr auto kStopDeadline = std::chrono::milliseconds(700);
+
+void watch_for_stop()
+{
+  while (sem_wait(&g_signalled) != 0) {
+  }
+  std::this_thread::sleep_for(kStopDeadline);
+  constexpr char message[] = "fibermold: interrupted; the running step had no checkpoint within 0.7 s, so it was stopped at once: the "
+                             "stage that was running is stale, its previous outputs kept\n";
+  [[maybe_unused]] const auto written = ::write(STDERR_FILENO, message, sizeof message - 1);
+  std::_Exit(kExitInterrupted);
+}
+
+/// Ctrl-C (or SIGTERM) asks the running stage to stop at its next checkpoint, within 1 s in any
+/// case (watch_for_stop); a second Ctrl-C kills at once (SA_RESETHAND), still leaving the previous
+/// outputs and a stale stamp. The watchdog thread blocks both signals, so that they interrupt the
+/// main thread's system calls as before. `watchdog` false: the command's own loop answers at once
+/// and must outlive its children (the sweep: it stops them, and stops waiting for Slurm's jobs).
+void install_signal_handlers(bool watchdog)
+{
+  sem_init(&g_signalled, 0, 0);
+  if (watchdog) {
+    sigset_t stops, previous;
+    sigemptyset(&stops);
+    sigaddset(&stops, SIGINT);
+    sigaddset(&stops, SIGTERM);
+    pthread_sigmask(SIG_BLOCK, &stops, &previous);
+    std::thread(watch_for_stop).detach();
+    pthread_sigmask(SIG_SETMASK, &previous, nullptr);
+  }
+  struct sigaction action {};
+  action.sa_handler = on_signal;
+  action.sa_flags = SA_RESETHAND;
+  sigemptyset(&action.sa_mask);
+  sigaction(SIGINT, &action, nullptr);
+  sigaction(SIGTERM, &action, nullptr);
+}
+
+/// `[DESIGN] [STAGE...]`: the first word is the design when it names a file or ends in .toml.
+struct DesignAndStages {
+  fs::path design;
+  std::vector<std::string> stages;
+};
+
+/// The first word is the design unless it names a stage; `check` and `simulate` take only a design.
+DesignAndStages split_arguments(const std::vector<std::string>& words, const fs::path& default_design,
+                                const std::vector<std::string>& stage_names)
+{
+  DesignAndStages result{default_design, {}};
+  std::size_t first = 0;
+  if (!words.empty() && std::find(stage_names.begin(), stage_names.end(), words[0]) == stage_names.end()) {
+    result.design = words[0];
+    first = 1;
+  }
+  result.stages.assign(words.begin() + static_cast<std::ptrdiff_t>(first), words.end());
+  return result;
+}
+
+fs::path build_dir_for(const Design& design, const std::string& option)
+{
+  return option.empty() ? fs::path("out") / design.design.name : fs::path(option);
+}
+
+void print_status(const std::vector<StageStatus>& statuses)
+{
+  std::size_t width = 0;
+  for (const StageStatus& s : statuses) width = std::max(width, s.stage.size());
+  for (const StageStatus& s : statuses) {
+    if (s.fresh) {
+      fmt::print("{:<{}}  fresh\n", s.stage, width);
+      continue;
+    }
+    std::vector<std::string> shown(s.reasons.begin(), s.reasons.begin() + std::min<std::ptrdiff_t>(3, std::ssize(s.reasons)));
+    std::string more = s.reasons.size() > 3 ? fmt::format("; and {} more", s.reasons.size() - 3) : "";
+    fmt::print("{:<{}}  stale ({}{})\n", s.stage, width, fmt::join(shown, "; "), more);
+  }
+}
+
+void print_design_summary(const Design& d)
+{
+  fmt::print("{}: ok\n", d.file.string());
+  fmt::print("  design {}: surface {} ({}), basis {}, {} fixed region(s), {} fiber(s), {} target(s), "
+             "{} tracking curve(s)\n",
+             d.design.name, d.design.surface.filename().string(), d.design.units, choice_name(d.sim.basis), d.fixed.size(),
+             d.fibers.size(), d.targets.size(), d.tracking_curves.size());
+}
+
+ProgressFactory terminal_progress()
+{
+  const bool tty = ::isatty(STDERR_FILENO) != 0;
+  return [tty](const std::string& stage) { return std::make_unique<TerminalProgress>(stage, stderr, tty); };
+}
+
+int report_input_error(const InputError& e)
+{
+  for (const Diagnostic& d : e.diagnostics()) fmt::print(stderr, "{}\n", d.to_string());
+  return kExitBadInput;
+}
+
+int run_simulate(const Design& design, const Runner& runner, const fs::path& build_dir, const SimulateRequest& request)
+{
+  const SimulateResult r = fibermold::simulate(design, runner, build_dir, request, terminal_progress());
+  fmt::print("simulate {}: max displacement {:.3f} mm; Newton {} iterations, |∇E| {:.2e} N, {:.2f} s "
+             "(assembly {:.2f} s, factorization {:.2f} s, solve {:.2f} s)\n  {}\n",
+             r.name, r.max_displacement / 1e-3, r.summary.iterations, r.summary.residual, r.summary.seconds_total,
+             r.summary.seconds_assembly, r.summary.seconds_factorization, r.summary.seconds_solve, r.vtu.string());
+  if (!r.conditioning.empty()) fmt::print("  warning: {}\n", r.conditioning);
+  return kExitDone;
+}
+
+int run_check(const Design& design)
+{
+  std::vector<std::string> repairs;
+  const SurfaceCheck surface = check_design_surface(design, repairs);
+  print_design_summary(design);
+  fmt::print("  surface: closed, manifold, outward, no self-intersections; {} component(s), {:.6g} mm³\n",
+             surface.components, surface.volume / 1e-9);
+  for (const std::string& w : surface.warnings) fmt::print("  warning: {}\n", w);
+  for (const std::string& r : repairs) fmt::print("  repair would: {}\n", r);
+  return kExitDone;
+}
+
+int run_make(const Design& design, const Runner& runner, const MakeOptions& options)
+{
+  if (runner.closure(options.targets).empty()) {
+    fmt::print("nothing to do: this build of fibermold has no stages yet\n");
+    return kExitDone;
+  }
+  const auto runs = runner.make(design, options, terminal_progress());
+  double seconds = 0;
+  int ran = 0;
+  for (const StageRun& r : runs) {
+    seconds += r.seconds;
+    ran += r.ran ? 1 : 0;
+    if (r.ran) fmt::print("{}: done in {:.2f} s\n", r.stage, r.seconds);
+  }
+  fmt::print("make: {} stage(s) ran, {} fresh, {:.2f} s; outputs in {}\n", ran, runs.size() - ran, seconds,
+             options.build_dir.string());
+  return kExitDone;
+}
+
+/// The exit code for what a command threw, told on stderr.
+int report_failure(const std::exception_ptr& error)
+{
+  try {
+    std::rethrow_exception(error);
+  } catch (const InputError& e) {
+    return report_input_error(e);
+  } catch (const StageFailed& e) {
+    fmt::print(stderr, "fibermold: stage {} failed: {}\n  log: {}\n", e.stage(), e.what(), e.log().string());
+    return kExitStageFailed;
+  } catch (const BuildLocked& e) {
+    fmt::print(stderr, "fibermold: {}\n", e.what());
+    return kExitLocked;
+  } catch (const Interrupted&) {
+    fmt::print(stderr, "fibermold: interrupted; the stage that was running is stale, its previous outputs kept\n");
+    return kExitInterrupted;
+  } catch (const std::exception& e) {
+    fmt::print(stderr, "fibermold: error: {}\n", e.what());
+    return kExitStageFailed;
+  }
+}
+
+} // namespace
+
+int fibermold_main(int argc, char** argv)
+{
+  spdlog::set_pattern("%v");
+  CLI::App app{"fibermold: from a soft robot's body to printable mold parts.\n"
+               "Stages: mesh → targets → optimize → collide → molds → export; only stale stages run.",
+               "fibermold"};
+  app.require_subcommand(1);
+  app.set_version_flag("--version", Runner::default_program());
+  app.footer("Exit codes: 0 done, 1 a stage failed on valid input, 2 bad input (command line, design file, mesh, build folder),\n"
+             "3 another fibermold is working in the build folder, 130 interrupted.\n"
+             "DESIGN defaults to the bundled demo, " FIBERMOLD_DEFAULT_DESIGN ".");
+
+  std::vector<std::string> words;
+  std::string build_dir_option;
+  bool force = false;
+
+  CLI::App* make = app.add_subcommand("make", "Run what is stale, up to STAGE (default: every stage)");
+  make->add_option("DESIGN_AND_STAGES", words, "[DESIGN] [STAGE...]: the first word is the design unless it is a stage");
+  make->add_flag("--force", force, "Rerun the selected stages even when fresh");
+  make->add_option("--build-dir", build_dir_option, "Build folder (default: out/<design name>)");
+
+  CLI::App* status = app.add_subcommand("status", "Each stage: fresh, or stale and which input changed");
+  status->add_option("DESIGN_AND_STAGES", words, "[DESIGN] [STAGE...]");
+  status->add_option("--build-dir", build_dir_option, "Build folder (default: out/<design name>)");
+
+  CLI::App* clean = app.add_subcommand("clean", "Remove the outputs, stamps and logs of stages (default: all)");
+  clean->add_option("DESIGN_AND_STAGES", words, "[DESIGN] [STAGE...]");
+  clean->add_option("--build-dir", build_dir_option, "Build folder (default: out/<design name>)");
+
+  CLI::App* check = app.add_subcommand("check", "Validate the design file and its files; run nothing");
+  check->add_option("DESIGN", words, "[DESIGN]")->expected(0, 1);
+
+  std::string target;
+  std::vector<std::string> pressures;
+  CLI::App* simulate = app.add_subcommand("simulate", "Forward simulation of a design only");
+  simulate->add_option("DESIGN", words, "DESIGN")->expected(0, 1);
+  simulate->add_option("--target", target, "Simulate this target's loads");
+  simulate->add_option("--pressure", pressures, "FIBER=kPa, repeatable");
+  simulate->add_option("--build-dir", build_dir_option, "Build folder (default: out/<design name>)");
+
+  SweepRequest sweep_request;
+  std::vector<std::string> sbatch_flags;
+  CLI::App* sweep = app.add_subcommand("sweep", "Many designs: the cases of a sweep file, as local processes or Slurm job arrays");
+  sweep->add_option("SWEEP", sweep_request.sweep, "The sweep file (docs/sweep.md)")->required();
+  sweep->add_option("--engine", sweep_request.engine, "local (processes on this machine) or slurm (job arrays)")->capture_default_str();
+  sweep->add_option("--jobs", sweep_request.jobs, "local: tasks at once (default: one per hardware thread)");
+  sweep->add_option("--build-dir", sweep_request.build_dir, "Sweep folder (default: out/sweep-<name>)");
+  sweep->add_flag("--no-wait{false}", sweep_request.wait, "slurm: return once the jobs are submitted");
+  sweep->add_flag("--status", sweep_request.status, "Report each stage's builds and the queue; run nothing");
+  sweep->add_option("--partition", sweep_request.slurm.partition, "slurm: partition");
+  sweep->add_option("--time", sweep_request.slurm.time, "slurm: time limit per task, e.g. 02:00:00");
+  sweep->add_option("--cpus-per-task", sweep_request.slurm.cpus_per_task, "slurm: CPUs per task");
+  sweep->add_option("--sbatch-flag", sweep_request.slurm.extra, "slurm: one more sbatch flag, repeatable (e.g. --sbatch-flag=--mem=4G)");
+
+  std::vector<std::string> task_words;
+  CLI::App* sweep_task = app.add_subcommand("sweep-task", "One task of a sweep (run by `fibermold sweep`)");
+  sweep_task->group("");  // hidden from --help
+  sweep_task->add_option("BUILD_DIR STAGE CASE", task_words)->expected(3)->required();
+
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::ParseError& e) {
+    const int code = app.exit(e);
+    return code == 0 ? kExitDone : kExitBadInput;
+  }
+
+  install_signal_handlers(!sweep->parsed());
+  try {
+    const Runner runner(shipped_stages());
+    if (sweep->parsed()) return run_sweep(sweep_request, runner);
+    if (sweep_task->parsed()) return run_sweep_task(task_words[0], task_words[1], task_words[2], runner);
+    const DesignAndStages args =
+        split_arguments(words, FIBERMOLD_DEFAULT_DESIGN,
+                        check->parsed() || simulate->parsed() ? std::vector<std::string>{} : runner.stage_names());
+    const Design design = load_design(args.design);
+    if (simulate->parsed()) return run_simulate(design, runner, build_dir_for(design, build_dir_option), {target, pressures});
+    if (check->parsed()) return run_check(design);
+    const fs::path build_dir = build_dir_for(design, build_dir_option);
+    if (status->parsed()) {
+      if (runner.stage_names().empty()) fmt::print("this build of fibermold has no stages yet\n");
+      print_status(runner.status(design, build_dir, args.stages));
+      return 0;
+    }
+    if (clean->parsed()) {
+      runner.clean(build_dir, args.stages);
+      fmt::print("cleaned {}\n", build_dir.string());
+      return 0;
+    }
+    return run_make(design, runner, {build_dir, args.stages, force});
+  } catch (...) {
+    return report_failure(std::current_exception());
+  }
+}
+
+} // namespace fibermold

@@ -1,3 +1,0 @@
-#include "pipeline/cli.hpp"
-
-int main(int argc, char** argv) { return fibermold::fibermold_main(argc, argv); }

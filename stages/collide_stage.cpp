@@ -1,0 +1,223 @@
+#include "stages/collide_stage.hpp"
+
+#include <cmath>
+
+#include <fmt/format.h>
+#include <nlohmann/json.hpp>
+#include <spdlog/spdlog.h>
+
+#include "core/atomic_file.hpp"
+#include "core/input_error.hpp"
+#include "core/json_file.hpp"
+#include "core/units.hpp"
+#include "optimize/clearance_barrier.hpp"
+#include "optimize/collision_resolution.hpp"
+#include "stages/design_simulation.hpp"
+#include "stages/fibers_file.hpp"
+#include "stages/routing_evaluation.hpp"
+
+namespace fibermold {
+
+namespace {
+
+using Json = nlohmann::ordered_json;
+
+constexpr double kReportReach = 10e-3; // m: clearances are reported up to this much above the asked one
+
+/// The smallest clearance (mm) among fibers and skin, before and after; a value more than
+/// kReportReach above the clearance asked for is not measured, and left out.
+Json smallest_json(const FiberClearance& measure, const std::vector<Route>& before, const std::vector<Route>& after, double clearance)
+{
+  Json out = Json::object();
+  for (const auto& [name, routes] : {std::pair{"before", &before}, std::pair{"after", &after}})
+    if (const double c = smallest_clearance(measure.contacts(*routes, clearance + kReportReach)); std::isfinite(c)) out[name] = c / units::mm;
+  out["measured_up_to"] = (clearance + kReportReach) / units::mm;
+  return out;
+}
+
+Json vec_mm(const Eigen::Vector3d& v) { return {v.x() / units::mm, v.y() / units::mm, v.z() / units::mm}; }
+
+Json collisions_json(const std::vector<Contact>& contacts, const std::vector<Route>& routes)
+{
+  Json out = Json::array();
+  for (const Contact& c : contacts)
+    out.push_back(
+        {{"between", c.with_skin() ? Json{routes[c.a].name, "skin"} : Json{routes[c.a].name, routes[c.b].name}},
+         {"clearance_mm", c.clearance / units::mm},
+         {"at_mm", vec_mm(c.point_a)}});
+  return out;
+}
+
+/// How far each control point and tangent moved, per fiber (mm).
+Json moves_json(const std::vector<Route>& before, const std::vector<Route>& after)
+{
+  Json out = Json::object();
+  for (std::size_t f = 0; f < before.size(); ++f) {
+    Json points = Json::array(), tangents = Json::array();
+    for (std::size_t k = 0; k < before[f].points.size(); ++k) {
+      points.push_back((after[f].points[k] - before[f].points[k]).norm() / units::mm);
+      tangents.push_back((after[f].tangents[k] - before[f].tangents[k]).norm() / units::mm);
+    }
+    out[before[f].name] = {{"points", points}, {"tangents", tangents}};
+  }
+  return out;
+}
+
+/// A centre line outside the body is a routing error, not a collision: refused rather than pulled
+/// in; the design's when the routes are hand-made (exit 2), the optimizer's otherwise (exit 1).
+void check_inside(const Design& d, const FiberClearance& measure, const FibersFile& fibers)
+{
+  const std::vector<Route>& routes = fibers.routing.routes;
+  for (const Contact& c : measure.contacts(measure.lines(routes), -measure.radius())) {
+    if (!c.with_skin()) continue;
+    const std::string what =
+        fmt::format("the fiber (as routed in optimize/fibers.json) leaves the body at {}", format_mm(c.point_a));
+    if (fibers.optimized) throw std::runtime_error(fmt::format("fiber {}: {}", routes[c.a].name, what));
+    throw InputError(design_problem(d, fmt::format("[fiber.{}]", routes[c.a].name), what));
+  }
+}
+
+/// The errors of every target under routing r, each equilibrium found from rest.
+std::vector<TargetErrors> errors_under(RoutingProblem& problem, DesignRouting& dr, const Routing& r,
+                                       std::vector<Eigen::VectorXd>* states = nullptr)
+{
+  problem.forget_states();
+  std::vector<TargetErrors> out;
+  for (int t = 0; t < problem.num_targets(); ++t) {
+    const Eigen::VectorXd x = problem.equilibrium(r, t);
+    out.push_back(target_errors(problem, dr.mesh, t, x));
+    if (states) states->push_back(x);
+  }
+  return out;
+}
+
+/// Optimizes again from the resolved routing with the clearance between fibers as a barrier
+/// (the skin barrier keeps them off the skin), as the paper suggests (section V-B).
+Routing reoptimize(StageContext& ctx, RoutingProblem& problem, const FiberClearance& measure, const Routing& resolved)
+{
+  const Design& d = ctx.design;
+  const ClearanceBarrier barrier(measure, resolved.routes, d.collide.clearance, d.muscle.model.diameter / 2);
+  problem.set_base(resolved);
+  problem.set_clearance_barrier(&barrier, kClearanceBarrierWeight);
+  const BfgsOptions o = bfgs_options(d);
+  const RoutingCallback on_iteration = [&](int, const BfgsIteration& it, const RoutingTerms& terms) {
+    const std::string what = fmt::format("optimizing again, iteration {}: objective {:.4g} (distance {:.4g}, clearance "
+                                         "barrier {:.3g})",
+                                         it.iteration, terms.total, terms.distance, terms.clearance);
+    ctx.progress.update(0.2 + 0.6 * it.iteration / std::max(1, o.max_iterations), what);
+    ctx.log.info("{}", what);
+  };
+  const RoutingResult r = optimize_routing(problem, Strategy::simultaneous, o, on_iteration, ctx.progress, actuator_mask(d));
+  problem.set_clearance_barrier(nullptr, 0);
+  if (r.interrupted) throw Interrupted();
+  ctx.log.info("optimized again: {} after {} iterations", r.message, r.iterations);
+  return r.routing;
+}
+
+/// Resolves the clearances of the routing and says what it found.
+CollisionResolution resolve(StageContext& ctx, const FiberClearance& measure, const FibersFile& fibers)
+{
+  const Design& d = ctx.design;
+  const std::vector<Route>& routes = fibers.routing.routes;
+  check_inside(d, measure, fibers);
+  ResolutionSettings settings;
+  settings.clearance = d.collide.clearance;
+  // Optimizing again needs room inside its barriers, which are infinite at the clearance itself.
+  settings.room = d.collide.reoptimize ? kBarrierRoom : 0;
+  settings.smoothness = d.collide.smoothness;
+  CollisionResolution r = resolve_collisions(measure, routes, settings);
+  for (const Contact& c : r.collided)
+    ctx.log.info("{}: clearance {:.2f} mm at {}",
+                 c.with_skin() ? "fiber " + routes[c.a].name + " and the skin"
+                               : "fibers " + routes[c.a].name + " and " + routes[c.b].name,
+                 c.clearance / units::mm, format_mm(c.point_a));
+  if (r.changed)
+    ctx.log.info("resolved in {} rounds: the smallest clearance went from {:.3f} mm to {:.3f} mm", r.iterations,
+                 r.before / units::mm, r.after / units::mm);
+  else
+    ctx.log.info("every clearance holds (the smallest is {:.3f} mm): the routing is unchanged", r.before / units::mm);
+  return r;
+}
+
+/// Every target simulated from rest under the optimized routing and under the final one (optimized
+/// again first when asked), into the report; deformed-<target>.vtu of the final one.
+void simulate_targets(StageContext& ctx, const FiberClearance& measure, const FibersFile& fibers, bool changed,
+                      Routing& final, Json& report)
+{
+  const Design& d = ctx.design;
+  if (fibers.routing.routes.size() != d.fibers.size())
+    throw std::runtime_error(fmt::format("optimize/fibers.json has {} fibers, the design {}: run optimize again",
+                                         fibers.routing.routes.size(), d.fibers.size()));
+  DesignRouting dr(ctx);
+  RoutingProblem& problem = dr.start(optimization_start(d, *dr.skin).routing); // the muscle segments as the optimizer had them
+  ctx.progress.update(0.1, "simulating the targets under the optimized routing");
+  const std::vector<TargetErrors> before = errors_under(problem, dr, fibers.routing);
+  std::vector<TargetErrors> resolved;
+  if (changed && d.collide.reoptimize) {
+    resolved = errors_under(problem, dr, final);
+    final = reoptimize(ctx, problem, measure, final);
+    if (const auto left = measure.contacts(final.routes, d.collide.clearance - 1e-6); !left.empty())
+      throw std::runtime_error(fmt::format("optimizing again left {} closer than the clearance at {}",
+                                           left.front().with_skin() ? "a fiber and the skin" : "two fibers",
+                                           format_mm(left.front().point_a)));
+    report["reoptimized"] = true;
+    Json& smallest = report["smallest_clearance_mm"];
+    smallest.erase("after");
+    if (const Json again = smallest_json(measure, final.routes, final.routes, d.collide.clearance); again.contains("after"))
+      smallest["after"] = again["after"];
+  }
+  ctx.progress.update(0.85, "simulating the targets under the final routing");
+  std::vector<Eigen::VectorXd> states;
+  const std::vector<TargetErrors> after = errors_under(problem, dr, final, &states);
+  Json targets = Json::object();
+  for (int t = 0; t < problem.num_targets(); ++t) {
+    const std::string& name = dr.target_names[t];
+    write_deformed_target(ctx.output_dir / fmt::format("deformed-{}.vtu", name), dr, final, t, states[t]);
+    write_file_atomic(ctx.output_dir / fmt::format("deformed-{}.json", name), deformed_json(dr, final, t, states[t]));
+    const double change = before[t].rmse > 0 ? 100 * (after[t].rmse - before[t].rmse) / before[t].rmse : 0;
+    targets[name] = {
+        {"before", errors_json(before[t])}, {"after", errors_json(after[t])}, {"rmse_change_percent", change}};
+    if (!resolved.empty()) targets[name]["resolved"] = errors_json(resolved[t]);
+    ctx.log.info("target {}: RMSE {:.3f} mm before, {:.3f} mm after ({:+.1f} %); max {:.3f} → {:.3f} mm on the "
+                 "tracking curves; surface RMSE {:.3f} → {:.3f} mm",
+                 name, before[t].rmse / units::mm, after[t].rmse / units::mm, change, before[t].max / units::mm,
+                 after[t].max / units::mm, before[t].surface_rmse / units::mm, after[t].surface_rmse / units::mm);
+  }
+  report["targets"] = targets;
+}
+
+} // namespace
+
+void CollideStage::run(StageContext& ctx) const
+{
+  const Design& d = ctx.design;
+  const FibersFile fibers = read_fibers_json(ctx.upstream("optimize", "fibers.json"));
+  const TetMesh mesh = load_tet_mesh(ctx.upstream("mesh", "body.tetmesh"));
+  const SurfaceDistance skin(mesh.nodes, mesh.boundary_faces);
+  ctx.progress.update(0.05, "measuring clearances");
+  const FiberClearance measure(skin, fibers.routing.routes, d.muscle.model.diameter / 2, d.collide.clearance,
+                               d.collide.samples_per_length);
+  const CollisionResolution r = resolve(ctx, measure, fibers);
+
+  FibersFile out = fibers;
+  out.routing.routes = r.routes;
+  Json report{{"clearance_mm", d.collide.clearance / units::mm},
+              {"changed", r.changed},
+              {"rounds", r.iterations},
+              {"smallest_clearance_mm", smallest_json(measure, fibers.routing.routes, r.routes, d.collide.clearance)},
+              {"collisions", collisions_json(r.collided, fibers.routing.routes)},
+              {"reoptimized", false},
+              {"targets", Json::object()}};
+  if (fibers.optimized && !d.targets.empty() && !d.tracking_curves.empty()) {
+    simulate_targets(ctx, measure, fibers, r.changed, out.routing, report);
+  } else {
+    if (d.collide.reoptimize)
+      ctx.log.warn("[collide] reoptimize: the routing was not optimized, so it is not optimized again");
+    ctx.log.info("the routing was not optimized: nothing to compare against the targets");
+  }
+  report["moves_mm"] = moves_json(fibers.routing.routes, out.routing.routes);
+  write_file_atomic(ctx.output_dir / "fibers.json", fibers_json(out));
+  write_json_atomic(ctx.output_dir / "report.json", report);
+}
+
+} // namespace fibermold

@@ -1,0 +1,28 @@
+#pragma once
+// The collide stage, between optimize and molds: fibers that come closer to each other or to the
+// skin than [collide] clearance are moved apart by the smallest smooth change of their routes
+// (optimize/collision_resolution.hpp; the paper did this by hand, sections V-B and VIII-F), and
+// every target is simulated again with the resolved routing and its pressures, to show the robot
+// still does its job; with [collide] reoptimize = true the optimizer then runs again from the
+// resolved routing with the clearance between fibers as a barrier. Outputs: collide/fibers.json (optimize's schema),
+// report.json (collisions, smallest clearance before and after, how far each control point moved, per-target errors
+// before and after), deformed-<target>.vtu. A clear routing passes through bit for bit; a clearance that cannot be had
+// fails the stage, naming the fibers and the place.
+
+#include "make/stage.hpp"
+
+namespace fibermold {
+
+class CollideStage final : public Stage {
+public:
+  std::string name() const override { return "collide"; }
+  std::vector<std::string> upstream() const override { return {"mesh", "targets", "optimize"}; }
+  std::vector<std::string> design_keys() const override
+  {
+    return {"design.units", "material", "sim", "fixed", "muscle", "fiber", "tracking_curve", "target", "optimize", "collide"};
+  }
+  int version() const override { return 3; }  ///< 2: writes deformed-<target>.json for the report; 3: no null in report.json
+  void run(StageContext& ctx) const override;
+};
+
+} // namespace fibermold

@@ -1,0 +1,205 @@
+#include "stages/design_simulation.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+#include <Eigen/LU>
+#include <fmt/format.h>
+
+#include "core/input_error.hpp"
+#include "core/units.hpp"
+#include "export/vtu_writer.hpp"
+#include "sim/external_forces.hpp"
+#include "sim/fem_basis.hpp"
+
+namespace fibermold {
+
+namespace fs = std::filesystem;
+
+namespace {
+
+[[noreturn]] void bad(const Design& d, const std::string& key, const std::string& message)
+{
+  throw InputError(design_problem(d, key, message));
+}
+
+
+/// True when P lies in a tet of the mesh (within 1e-6 in barycentric coordinates).
+bool inside_body(const FemBasis& locator, const Eigen::Vector3d& P)
+{
+  return locator.barycentric(locator.locate(P), P).minCoeff() >= -1e-6;
+}
+
+} // namespace
+
+/// The mesh nodes a region (box or surface vertices) selects.
+std::vector<int> region_nodes(const Region& r, const TetMesh& mesh, const Design& d, const std::string& key)
+{
+  std::vector<int> nodes;
+  if (r.box) nodes = nodes_in_box(mesh.nodes, (*r.box)[0], (*r.box)[1]);
+  for (int v : r.vertices) {
+    if (v >= mesh.surface_to_node.size())
+      bad(d, key, fmt::format("vertex {} does not exist: the surface has {} vertices", v, mesh.surface_to_node.size()));
+    nodes.push_back(mesh.surface_to_node(v));
+  }
+  std::sort(nodes.begin(), nodes.end());
+  nodes.erase(std::unique(nodes.begin(), nodes.end()), nodes.end());
+  return nodes;
+}
+
+
+SimulationOptions simulation_options(const Design& d, const TetMesh& mesh, bool held)
+{
+  SimulationOptions o;
+  o.basis = d.sim.basis;
+  o.mls_radius = d.sim.mls_radius;
+  o.quadrature_points = d.sim.quadrature_points;
+  o.youngs_modulus = d.material.youngs_modulus;
+  o.poisson_ratio = d.material.poisson_ratio;
+  o.density = d.material.density;
+  o.gravity = d.material.gravity;
+  if (!held) return o;
+  if (d.fixed.empty())
+    bad(d, "[[fixed]]", "the body is held nowhere: add a [[fixed]] region (a free body under load has no equilibrium)");
+  for (const FixedRegion& f : d.fixed) {
+    const std::string key = fmt::format("[fixed.{}]", f.name);
+    std::vector<int> nodes = region_nodes(f.region, mesh, d, key);
+    if (nodes.empty()) {
+      const Eigen::Vector3d lo = mesh.nodes.colwise().minCoeff(), hi = mesh.nodes.colwise().maxCoeff();
+      bad(d, key, fmt::format("holds no node of the mesh, which spans {} to {}", format_mm(lo), format_mm(hi)));
+    }
+    o.fixed_nodes.push_back(std::move(nodes));
+  }
+  return o;
+}
+
+
+/// The nodal forces of a forces target's loads.
+Eigen::VectorXd target_forces(const Design& d, const Target& t, const Simulation& sim)
+{
+  const TetMesh& mesh = sim.mesh();
+  Eigen::VectorXd f = Eigen::VectorXd::Zero(3 * mesh.nodes.rows());
+  const Eigen::VectorXd weights = sim.load_weights();
+  const FemBasis locator(mesh);
+  for (std::size_t i = 0; i < t.loads.size(); ++i) {
+    const Load& load = t.loads[i];
+    const std::string key = fmt::format("[target.{}].load[{}]", t.name, i + 1);
+    if (load.region.point) {
+      const Eigen::Vector3d& P = *load.region.point;
+      if (!inside_body(locator, P))
+        bad(d, key, fmt::format("the point {} lies outside the body", format_mm(P)));
+      f += point_force(sim.basis().at(P, 0), mesh.nodes.rows(), *load.force);
+      continue;
+    }
+    const std::vector<int> nodes = region_nodes(load.region, mesh, d, key);
+    if (nodes.empty()) bad(d, key, "the load's region holds no node of the mesh");
+    if (load.force) f += region_force(nodes, weights, mesh.nodes, *load.force);
+    try {
+      if (load.torque) f += region_torque(nodes, weights, mesh.nodes, *load.torque);
+    } catch (const std::invalid_argument& e) {
+      bad(d, key, fmt::format("{}; the region holds {} node(s)", e.what(), nodes.size()));
+    }
+  }
+  return f;
+}
+
+
+namespace {
+
+/// Refuses a fiber that leaves the body: every segment end must lie in a tet (within 1e-6 of it).
+void require_inside(const Design& d, const std::string& fiber, const FemBasis& locator, const HermiteSpline& spline,
+                    const FiberSegments& segments)
+{
+  for (double t : segments.t) {
+    const Eigen::Vector3d p = spline.position(t);
+    if (!inside_body(locator, p))
+      bad(d, fmt::format("[fiber.{}]", fiber), fmt::format("the fiber leaves the body at {}", format_mm(p)));
+  }
+}
+
+} // namespace
+
+std::vector<Actuation> target_actuations(const Design& d, const Target& t)
+{
+  std::vector<Actuation> out;
+  for (const FiberActuation& a : t.fibers) {
+    const Fiber* f = nullptr;
+    for (const Fiber& fb : d.fibers)
+      if (fb.name == a.name) f = &fb;
+    if (a.points.empty()) out.push_back({a.name, f->points, f->tangents, a.pressure});
+    else out.push_back({a.name, a.points, {}, a.pressure});
+  }
+  return out;
+}
+
+std::vector<const MuscleEnergy*> add_muscles(Simulation& sim, const Design& d, const MuscleModel& model,
+                                             const std::vector<Actuation>& actuations)
+{
+  const FemBasis locator(sim.mesh());
+  std::vector<const MuscleEnergy*> muscles;
+  for (const Actuation& a : actuations) {
+    HermiteSpline spline(a.points, a.tangents);
+    const int count = segment_count(spline, d.muscle.segments_per_length);
+    std::vector<double> t = segment_parameters(spline, count);
+    const FiberSegments segments = segments_at(spline, t);
+    for (std::size_t j = 0; j < segments.vectors.size(); ++j)
+      if (!(segments.vectors[j].norm() > 1e-9))
+        bad(d, fmt::format("[fiber.{}]", a.fiber),
+            fmt::format("the fiber has no length near {} (repeated points?)", format_mm(segments.centres[j])));
+    require_inside(d, a.fiber, locator, spline, segments);
+    auto muscle = std::make_unique<MuscleEnergy>(sim.basis(), model, std::move(spline), std::move(t), a.pressure);
+    muscles.push_back(muscle.get());
+    sim.add_energy(std::move(muscle));
+  }
+  return muscles;
+}
+
+
+/// VTU of the deformed body (points at x(X_i), displacement in mm, von Mises stress in kPa at each
+/// tet's centre) with the fibers as deformed polylines.
+void write_deformed(const fs::path& path, const Simulation& sim, const Eigen::VectorXd& x,
+                    const std::vector<const MuscleEnergy*>& muscles, const LameParameters& lame)
+{
+  const TetMesh& mesh = sim.mesh();
+  const Eigen::MatrixX3d deformed = sim.deformed_nodes(x);
+  std::vector<Eigen::Vector3d> rest_points, points;
+  for (Eigen::Index i = 0; i < mesh.nodes.rows(); ++i) {
+    rest_points.push_back(mesh.nodes.row(i).transpose());
+    points.push_back(deformed.row(i).transpose());
+  }
+  std::vector<std::vector<int>> lines;
+  for (std::size_t m = 0; m < muscles.size(); ++m) {
+    std::vector<int> line;
+    for (double t : muscles[m]->segments().t) {
+      const Eigen::Vector3d X = muscles[m]->spline().position(t);
+      line.push_back(static_cast<int>(points.size()));
+      rest_points.push_back(X);
+      points.push_back(sim.basis().at(X, 0).position(x));
+    }
+    lines.push_back(std::move(line));
+  }
+  Eigen::MatrixX3d P(static_cast<Eigen::Index>(points.size()), 3);
+  Eigen::MatrixXd u(P.rows(), 3);
+  for (Eigen::Index i = 0; i < P.rows(); ++i) {
+    P.row(i) = points[i].transpose();
+    u.row(i) = (points[i] - rest_points[i]).transpose() / units::mm;
+  }
+  VtuGrid grid(P);
+  grid.add_cells(mesh.tets, mesh.nodes_per_tet() == 10 ? VtkCell::quadratic_tetra : VtkCell::tetra);
+  for (const auto& line : lines) grid.add_cell(line, VtkCell::poly_line);
+  Eigen::MatrixXd von_mises = Eigen::MatrixXd::Zero(grid.num_cells(), 1);
+  for (Eigen::Index t = 0; t < mesh.num_tets(); ++t) {
+    Eigen::Vector3d c = Eigen::Vector3d::Zero();
+    for (int k = 0; k < 4; ++k) c += mesh.nodes.row(mesh.tets(t, k)).transpose() / 4;
+    const Eigen::Matrix3d F = sim.basis().at(c, 1, t).deformation_gradient(x);
+    const Eigen::Matrix3d sigma = neo_hookean_stress(F, lame) * F.transpose() / F.determinant();  // Cauchy
+    const Eigen::Matrix3d s = sigma - sigma.trace() / 3 * Eigen::Matrix3d::Identity();
+    von_mises(t, 0) = std::sqrt(1.5 * s.squaredNorm()) / units::kPa;
+  }
+  grid.add_point_field("displacement_mm", u);
+  grid.add_cell_field("von_mises_kPa", von_mises);
+  grid.write(path);
+}
+
+
+} // namespace fibermold

@@ -1,0 +1,48 @@
+#pragma once
+// The design turned into a simulation: held regions, loads and muscles on the mesh, shared by the
+// targets stage and `fibermold simulate`.
+
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include "design/design.hpp"
+#include "mesh/tet_mesh.hpp"
+#include "sim/muscle_energy.hpp"
+#include "sim/neo_hookean.hpp"
+#include "sim/simulation.hpp"
+
+namespace fibermold {
+
+/// A pressurized fiber: its route and its pressure (Pa).
+struct Actuation {
+  std::string fiber;
+  std::vector<Eigen::Vector3d> points, tangents;
+  double pressure;
+};
+
+/// Basis, material, gravity and (when `held`) the [[fixed]] regions as node lists. Throws
+/// InputError for a body held nowhere or a region that holds no node.
+SimulationOptions simulation_options(const Design& d, const TetMesh& mesh, bool held = true);
+
+/// The mesh nodes a region (box or surface vertices) selects; InputError for a vertex that does not exist.
+std::vector<int> region_nodes(const Region& r, const TetMesh& mesh, const Design& d, const std::string& key);
+
+/// The nodal forces of a `kind = "forces"` target's loads.
+Eigen::VectorXd target_forces(const Design& d, const Target& t, const Simulation& sim);
+
+/// The fibers and pressures of a `kind = "fibers"` target.
+std::vector<Actuation> target_actuations(const Design& d, const Target& t);
+
+/// Adds one muscle energy per actuation, segmented by [muscle] segments_per_mm; InputError for a
+/// fiber that leaves the body. The returned energies are owned by `sim` and keep a reference to
+/// `model`, which must outlive them.
+std::vector<const MuscleEnergy*> add_muscles(Simulation& sim, const Design& d, const MuscleModel& model,
+                                             const std::vector<Actuation>& actuations);
+
+/// VTU of the deformed body (points at x(X_i), displacement in mm, von Mises stress in kPa at each
+/// tet's centre) with the fibers as deformed polylines.
+void write_deformed(const std::filesystem::path& path, const Simulation& sim, const Eigen::VectorXd& x,
+                    const std::vector<const MuscleEnergy*>& muscles, const LameParameters& lame);
+
+} // namespace fibermold

@@ -1,0 +1,315 @@
+#include "stages/export_stage.hpp"
+
+#include <optional>
+#include <sstream>
+
+#include <Eigen/Geometry>
+#include <fmt/format.h>
+#include <nlohmann/json.hpp>
+#include <spdlog/spdlog.h>
+
+#include "core/atomic_file.hpp"
+#include "core/json_file.hpp"
+#include "core/units.hpp"
+#include "export/lay_flat.hpp"
+#include "export/report_html.hpp"
+#include "export/stl_writer.hpp"
+#include "export/three_mf_writer.hpp"
+#include "mesh/surface_import.hpp"
+#include "mesh/tet_mesh.hpp"
+#include "optimize/tracking_curve.hpp"
+#include "sim/hermite_spline.hpp"
+#include "stages/fibers_file.hpp"
+
+namespace fibermold {
+
+namespace {
+
+using Json = nlohmann::ordered_json;
+
+/// "the sprue hole", "the 2 sprue holes (one per groove system, one after the other)".
+std::string sprue_holes(const Json& sprues)
+{
+  return sprues.size() == 1 ? "the sprue hole" : fmt::format("the {} sprue holes (one for each part that the others do not reach, one after the other)", sprues.size());
+}
+/// "the vent", "every one of the 3 vents".
+std::string vent_holes(const Json& vents)
+{
+  return vents.size() == 1 ? "the vent" : fmt::format("every one of the {} vents", vents.size());
+}
+
+std::string casting_guide(const std::string& design, const Json& shots, const std::string& format)
+{
+  const std::string ext = "." + format, FORMAT = format == "3mf" ? "3MF file" : "STL";
+  const auto ml = [&](const char* shot) { return shots[shot]["silicone_volume_mL"].get<double>(); };
+  const auto g = [&](const char* shot) { return shots[shot]["silicone_mass_g"].get<double>(); };
+  const auto fill = [&](const char* shot) -> const Json& { return shots[shot]["fill"]; };
+  return fmt::format(R"(fibermold mold parts for "{}"
+
+Print every {} as it lies (each stands on its largest flat face; units mm).
+
+Shot 1, the grooved body: shot1-lower{} and shot1-upper{}.
+  1. Close the two halves on their keys and clamp them. Stand the mold upright: lower half down,
+     the sprue hole underneath, the vents on top.
+  2. Inject about {:.1f} mL ({:.1f} g) of silicone through {} from below, slowly,
+     until silicone comes out of {}; then plug the sprue.
+  3. Let it cure, and demold: the body has an open groove for each muscle.
+  4. Trim the cast's sprue and vent stubs flush with its skin: shot 2's cavity is the body's
+     own shape and has no room for them.
+
+Lay each muscle into its groove, resting on the groove's bottom, its ends and supply tubes along
+the grooves' ends.
+
+Shot 2, the overmold: shot2-lower{} and shot2-upper{}.
+  5. Put the grooved body with its muscles into the lower half, grooves up, and route the supply
+     tubes out through the channels at the fibers' ends. Close on the keys and clamp.
+  6. Stand the mold upright as in shot 1. In this shot the sprue comes in from the TOP of the
+     upper half, straight over the lowest point of the grooves: the cured body lies below them,
+     so they cannot be filled from below. Inject about {:.1f} mL ({:.1f} g) of silicone slowly
+     through {}; it runs down into the grooves and rises around the muscles;
+     go on until silicone comes out of {}.
+  7. Let it cure, demold and trim the stubs as in step 4.
+
+The fill of both shots was simulated (silicone rising level by level from the sprue): shot 1
+reaches {:.1f} % of its cavity and traps {:.2f} mm³ of air, shot 2 reaches {:.1f} % of the
+grooves (the rest: crevices along the muscles thinner than the simulation's voxel) and traps
+{:.2f} mm³ (allowed: {:.1f} mm³ per shot). manifest.json lists where each sprue
+and vent meets the cavity, each part's size, volume, checks and how its printed pose maps back to
+the body.
+)",
+                     design, FORMAT, ext, ext, ml("shot1"), g("shot1"), sprue_holes(fill("shot1")["sprues"]),
+                     vent_holes(fill("shot1")["vents"]), ext, ext, ml("shot2"), g("shot2"), sprue_holes(fill("shot2")["sprues"]),
+                     vent_holes(fill("shot2")["vents"]), fill("shot1")["reachable_percent"].get<double>(),
+                     fill("shot1")["trapped_air_mm3"].get<double>(), fill("shot2")["reachable_percent"].get<double>(),
+                     fill("shot2")["trapped_air_mm3"].get<double>(), fill("shot1")["trapped_air_tolerance_mm3"].get<double>());
+}
+
+/// Each fiber's centre line, 10 points per mm.
+std::vector<ReportLine> fiber_lines(const FibersFile& fibers)
+{
+  std::vector<ReportLine> out;
+  for (const Route& r : fibers.routing.routes) {
+    const HermiteSpline spline(r.points, r.tangents);
+    const int n = std::max(2, static_cast<int>(spline.length() / 0.1e-3));
+    ReportLine line{r.name, {}};
+    for (double t : segment_parameters(spline, n)) line.points.push_back(spline.position(t));
+    out.push_back(std::move(line));
+  }
+  return out;
+}
+
+std::string fixed(double value, int digits) { return fmt::format("{:.{}f}", value, digits); }
+
+/// How a part's printed pose maps back to the body's frame, in mm: printed = rotation · p + translation.
+Json placement_json(const Placement& placed)
+{
+  Json rotation = Json::array();
+  for (int i = 0; i < 3; ++i) rotation.push_back({placed.rotation(i, 0), placed.rotation(i, 1), placed.rotation(i, 2)});
+  const Eigen::Vector3d t = placed.translation / units::mm;
+  return {{"rotation", rotation}, {"translation_mm", {t.x(), t.y(), t.z()}}, {"maps", "printed = rotation · body + translation"}};
+}
+
+std::optional<Json> json_if_any(const std::filesystem::path& file)
+{
+  std::error_code ec;
+  if (!std::filesystem::exists(file, ec)) return std::nullopt;
+  Json j = Json::parse(read_file(file), nullptr, false);
+  return j.is_discarded() ? std::nullopt : std::optional<Json>(std::move(j));
+}
+
+/// The body at rest and, per target, deformed under the final routing (collide/deformed-*.json),
+/// with its fibers, at `offset`; the first target's shown, the rest switched off; the tracking
+/// curves at rest.
+void add_bodies(const StageContext& ctx, const Eigen::Vector3d& offset, std::vector<ReportMesh>& meshes, std::vector<ReportLine>& lines)
+{
+  const TetMesh body = load_tet_mesh(ctx.upstream("mesh", "body.tetmesh"));
+  bool first = true;
+  for (const Target& target : ctx.design.targets) {
+    const auto state = json_if_any(ctx.upstream("collide", "deformed-" + target.name + ".json"));
+    if (!state || !state->contains("nodes_mm") || (*state)["nodes_mm"].size() != static_cast<std::size_t>(body.nodes.rows())) continue;
+    SurfaceMesh deformed{Eigen::MatrixX3d(body.nodes.rows(), 3), body.boundary_faces, {}};
+    for (Eigen::Index i = 0; i < body.nodes.rows(); ++i)
+      for (int k = 0; k < 3; ++k) deformed.vertices(i, k) = (*state)["nodes_mm"][static_cast<std::size_t>(i)][static_cast<std::size_t>(k)].get<double>() * units::mm;
+    meshes.push_back({"body, " + target.name, std::move(deformed), {0.5F, 0.78F, 0.5F}, first, offset});
+    for (const auto& [fiber, points] : (*state)["fibers_mm"].items()) {
+      ReportLine line{target.name + ": " + fiber, {}, {0.8F, 0.1F, 0.1F}, first};
+      for (const Json& p : points) line.points.push_back(offset + Eigen::Vector3d(p[0], p[1], p[2]) * units::mm);
+      lines.push_back(std::move(line));
+    }
+    first = false;
+  }
+  // At rest: shown when no target's deformed state is (optimize disabled, or no targets).
+  meshes.push_back({"body at rest", SurfaceMesh{body.nodes, body.boundary_faces, {}}, {0.75F, 0.75F, 0.75F}, first, offset});
+  for (const TrackingCurve& c : ctx.design.tracking_curves) {
+    ReportLine line{"tracking curve " + c.name, {}, {0.1F, 0.3F, 0.9F}, true};
+    for (const Eigen::Vector3d& p : sample_tracking_curve(c.points, std::max(c.samples, 64), 1, 0).points) line.points.push_back(offset + p);
+    lines.push_back(std::move(line));
+  }
+}
+
+/// How well the robot does its job, from collide's report: each target's error before and after the
+/// collisions were resolved, and what collide changed.
+std::vector<ReportTable> behaviour_tables(const StageContext& ctx)
+{
+  std::vector<ReportTable> out;
+  const auto report = json_if_any(ctx.upstream("collide", "report.json"));
+  if (!report) return out;
+  const auto mm = [](const Json& v) { return v.is_number() ? fixed(v.get<double>(), 3) : std::string("–"); };
+  if ((*report)["targets"].is_object() && !(*report)["targets"].empty()) {
+    ReportTable targets{"Targets: error over the tracking curves and the surface (mm)",
+                        {"target", "RMSE before collide", "RMSE after", "change", "max before", "max after", "surface RMSE after", "surface max after"},
+                        {}};
+    for (const auto& [name, t] : (*report)["targets"].items())
+      targets.rows.push_back({name, mm(t["before"]["rmse_mm"]), mm(t["after"]["rmse_mm"]),
+                              t["rmse_change_percent"].is_number() ? fmt::format("{:+.1f} %", t["rmse_change_percent"].get<double>()) : "–",
+                              mm(t["before"]["max_error_mm"]), mm(t["after"]["max_error_mm"]), mm(t["after"]["surface_rmse_mm"]),
+                              mm(t["after"]["surface_max_error_mm"])});
+    out.push_back(std::move(targets));
+  }
+  ReportTable collisions{"Collisions", {"between", "clearance before (mm)", "at (mm)"}, {}};
+  for (const Json& c : (*report)["collisions"]) {
+    std::string between;
+    for (const Json& n : c["between"]) between += (between.empty() ? "" : " and ") + n.get<std::string>();
+    std::string at;
+    for (const Json& v : c["at_mm"]) at += (at.empty() ? "" : ", ") + (v.is_number() ? fixed(v.get<double>(), 1) : std::string("–"));
+    collisions.rows.push_back({between, mm(c["clearance_mm"]), "(" + at + ")"});
+  }
+  if (collisions.rows.empty()) collisions.rows.push_back({"none: every fiber was clear", "", ""});
+  out.push_back(std::move(collisions));
+  ReportTable moves{fmt::format("Collide: smallest clearance {} → {} mm (asked {} mm); {} round(s){}", mm((*report)["smallest_clearance_mm"].value("before", Json())),
+                                mm((*report)["smallest_clearance_mm"].value("after", Json())), mm((*report)["clearance_mm"]), (*report)["rounds"].get<int>(),
+                                (*report)["reoptimized"].get<bool>() ? ", optimized again" : ""),
+                    {"fiber", "largest control point move (mm)", "largest tangent change (mm)"},
+                    {}};
+  for (const auto& [fiber, m] : (*report)["moves_mm"].items()) {
+    double point = 0, tangent = 0;
+    for (const Json& v : m["points"]) point = std::max(point, v.is_number() ? v.get<double>() : 0.0);
+    for (const Json& v : m["tangents"]) tangent = std::max(tangent, v.is_number() ? v.get<double>() : 0.0);
+    moves.rows.push_back({fiber, fixed(point, 3), fixed(tangent, 3)});
+  }
+  out.push_back(std::move(moves));
+  return out;
+}
+
+/// The optimizer's objective and distance term per iteration, from optimize/history.csv.
+std::optional<ReportPlot> optimization_history(const StageContext& ctx)
+{
+  std::error_code ec;
+  const std::filesystem::path file = ctx.upstream("optimize", "history.csv");
+  if (!std::filesystem::exists(file, ec)) return std::nullopt;
+  std::istringstream lines(read_file(file));
+  std::string header;
+  std::getline(lines, header);
+  std::vector<std::string> columns;
+  std::istringstream names(header);
+  for (std::string c; std::getline(names, c, ',');) columns.push_back(c);
+  const auto column = [&](const std::string& name) { return std::find(columns.begin(), columns.end(), name) - columns.begin(); };
+  const auto iteration = column("iteration"), objective = column("objective"), distance = column("distance");
+  if (std::max({iteration, objective, distance}) >= std::ssize(columns)) return std::nullopt;
+  ReportPlot plot{"Optimization", "iteration", "objective", {{"objective", {}}, {"distance term", {}}}, true};
+  for (std::string line; std::getline(lines, line);) {
+    std::vector<double> v;
+    std::istringstream cells(line);
+    for (std::string cell; std::getline(cells, cell, ',');) v.push_back(std::strtod(cell.c_str(), nullptr));
+    if (std::ssize(v) < std::ssize(columns)) continue;
+    plot.series[0].second.emplace_back(v[iteration], v[objective]);
+    plot.series[1].second.emplace_back(v[iteration], v[distance]);
+  }
+  if (plot.series[0].second.empty()) return std::nullopt;
+  return plot;
+}
+
+/// The page users open first: the groove body with its muscles in the shot 1 mold (upper half
+/// lifted off along pull), the shot 2 mold beside it (hidden), the parts' checks and the silicone.
+/// No timings (they are in make's output and the stage logs): the same design gives the same page.
+std::string report(const StageContext& ctx, const Json& molds, const Json& parts, const Json& shots)
+{
+  const Design& d = ctx.design;
+  const auto load = [&](const std::string& file) { return import_surface(ctx.upstream("molds", file), units::mm); };
+  std::vector<ReportMesh> meshes;
+  meshes.push_back({"groove body (shot 1)", load("groove-body.stl"), {0.93F, 0.55F, 0.45F}, true, Eigen::Vector3d::Zero()});
+  double width = 0, height = 0;
+  for (const auto& [name, info] : molds["parts"].items()) {
+    const Eigen::Vector3d size(info["size_mm"][0], info["size_mm"][1], info["size_mm"][2]);
+    width = std::max(width, size.maxCoeff() * units::mm);
+    height = std::max(height, size.minCoeff() * units::mm);
+  }
+  const Eigen::Vector3d pull = d.mold.pull.normalized();
+  const Eigen::Vector3d aside = (pull.cross(Eigen::Vector3d::UnitZ()).norm() > 0.5 ? pull.cross(Eigen::Vector3d::UnitZ()) : pull.cross(Eigen::Vector3d::UnitX())).normalized();
+  for (const auto& [name, info] : molds["parts"].items()) {
+    const bool shot1 = info["shot"] == "shot1", upper = name.find("upper") != std::string::npos;
+    const Eigen::Vector3d offset = (upper ? 1.5 * height : 0.0) * pull + (shot1 ? 0.0 : 1.3 * width) * aside;
+    meshes.push_back({name, load(info["file"].get<std::string>()), upper ? std::array{0.55F, 0.65F, 0.8F} : std::array{0.45F, 0.55F, 0.7F},
+                      shot1, offset});
+  }
+  const FibersFile fibers = read_fibers_json(ctx.upstream("collide", "fibers.json"));
+  std::vector<ReportLine> lines = fiber_lines(fibers);
+  add_bodies(ctx, -1.3 * width * aside, meshes, lines);
+
+  ReportTable checks{"Mold parts", {"part", "files", "triangles", "volume (mL)", "thinnest wall (mm)", "fits the printer", "checks"}, {}};
+  for (const Json& p : parts) {
+    std::string files;
+    for (const Json& f : p["files"]) files += (files.empty() ? "" : ", ") + f.get<std::string>();
+    checks.rows.push_back({p["name"], files, std::to_string(p["triangles"].get<long>()), fixed(p["volume_mL"], 2), fixed(p["min_wall_mm"], 2),
+                           p["fits_printer_as_placed"].get<bool>() ? "lying flat" : "turned", p["checks_passed"].get<bool>() ? "passed" : "FAILED"});
+  }
+  ReportTable silicone{"Silicone and its fill (simulated: rising level by level from the sprues)",
+                       {"shot", "volume (mL)", "mass (g)", "sprues", "vents", "fill reached", "air trapped (mm³)"},
+                       {}};
+  for (const auto& [shot, info] : shots.items()) {
+    const Json& f = info["fill"];
+    silicone.rows.push_back({shot, fixed(info["silicone_volume_mL"], 2), fixed(info["silicone_mass_g"], 2),
+                             fmt::format("{} from {}", f["sprues"].size(), f["sprues"].empty() ? "" : f["sprues"][0]["from"].get<std::string>()),
+                             std::to_string(f["vents"].size()), fixed(f["reachable_percent"], 1) + " %", fixed(f["trapped_air_mm3"], 2)});
+  }
+  std::vector<ReportTable> tables = behaviour_tables(ctx);
+  tables.insert(tables.end(), {checks, silicone});
+  std::vector<ReportPlot> plots;
+  if (auto history = optimization_history(ctx)) plots.push_back(std::move(*history));
+  return report_html("fibermold: " + d.design.name, meshes, lines, tables, plots);
+}
+
+} // namespace
+
+void ExportStage::run(StageContext& ctx) const
+{
+  const Design& d = ctx.design;
+  const Json molds = Json::parse(read_file(ctx.upstream("molds", "report.json")));
+  Json parts = Json::array();
+  for (const auto& [name, info] : molds["parts"].items()) {
+    ctx.progress.checkpoint(-1, "laying out " + name);
+    const SurfaceMesh part = import_surface(ctx.upstream("molds", info["file"].get<std::string>()), units::mm);
+    const Placement placed = lay_flat(part, d.export_.printer_volume);
+    Json files = Json::array();
+    for (const std::string& format : d.export_.formats) {
+      const std::string file = name + "." + format;
+      if (format == "3mf") write_3mf(ctx.output_dir / file, placed.part, name);
+      else write_stl(ctx.output_dir / file, placed.part, fmt::format("fibermold {} {} (mm)", d.design.name, name));
+      files.push_back(file);
+    }
+    parts.push_back({{"name", name},
+                     {"shot", info["shot"]},
+                     {"file", files[0]},
+                     {"files", files},
+                     {"size_mm", {placed.size.x() / units::mm, placed.size.y() / units::mm, placed.size.z() / units::mm}},
+                     {"lies_on_mm2", placed.flat_area / 1e-6},
+                     {"fits_printer_as_placed", placed.fits},
+                     {"volume_mL", info["volume_mL"]},
+                     {"triangles", placed.part.num_faces()},
+                     {"min_wall_mm", info["min_wall_mm"]},
+                     {"checks_passed", info["checks_passed"]},
+                     {"from_body_frame", placement_json(placed)}});
+    if (!placed.fits)
+      ctx.log.warn("part {} does not fit the printer lying flat; its best fit turns it: axes {}", name, info["print_axes"].dump());
+  }
+  Json shots = Json::object();
+  for (const auto& [shot, info] : molds["shots"].items())
+    shots[shot] = {{"silicone_volume_mL", info["silicone_volume_mL"]}, {"silicone_mass_g", info["silicone_mass_g"]}, {"fill", info["fill"]}};
+  const Json manifest{{"design", d.design.name}, {"units", "mm"}, {"voxel_mm", molds["voxel_mm"]}, {"parts", parts}, {"shots", shots}};
+  write_json_atomic(ctx.output_dir / "manifest.json", manifest);
+  write_file_atomic(ctx.output_dir / "README.txt", casting_guide(d.design.name, molds["shots"], d.export_.formats.front()));
+  ctx.progress.checkpoint(-1, "writing the report");
+  write_file_atomic(ctx.output_dir / "report.html", report(ctx, molds, parts, shots));
+}
+
+} // namespace fibermold

@@ -1,0 +1,22 @@
+#pragma once
+// The export stage: the mold parts as the printer needs them. Each part of the molds stage is laid
+// flat on its largest planar face and written as a binary STL (and 3MF when asked) in mm;
+// manifest.json lists every part (files, bounding box, volume, triangles, checks) and each shot's
+// silicone volume and mass; README.txt says how to cast; report.html shows the parts and the fibers
+// in 3D with the checks and the stage timings. Outputs in <build>/export/.
+
+#include "make/stage.hpp"
+
+namespace fibermold {
+
+class ExportStage final : public Stage {
+public:
+  std::string name() const override { return "export"; }
+  std::vector<std::string> upstream() const override { return {"mesh", "optimize", "collide", "molds"}; }
+  /// The report shows the tracking curves and names the targets.
+  std::vector<std::string> design_keys() const override { return {"design.name", "export", "tracking_curve", "target"}; }
+  int version() const override { return 3; }  ///< 2: the fill in the manifest and README.txt, parts' transforms; 3: no timings in report.html
+  void run(StageContext& ctx) const override;
+};
+
+} // namespace fibermold

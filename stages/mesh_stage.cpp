@@ -1,0 +1,252 @@
+#include "stages/mesh_stage.hpp"
+
+#include <chrono>
+#include <cmath>
+
+#include <fmt/format.h>
+#include <nlohmann/json.hpp>
+#include <spdlog/spdlog.h>
+
+#include "core/atomic_file.hpp"
+#include "core/input_error.hpp"
+#include "core/json_file.hpp"
+#include "core/units.hpp"
+#include "export/vtu_writer.hpp"
+#include "mesh/mesh_quality.hpp"
+#include "mesh/surface_distance.hpp"
+#include "mesh/surface_import.hpp"
+#include "mesh/surface_repair.hpp"
+#include "mesh/tetrahedralize.hpp"
+#include "stages/molds_stage.hpp"
+#include "stages/optimize_stage.hpp"
+
+namespace fibermold {
+
+namespace {
+
+using Clock = std::chrono::steady_clock;
+double since(Clock::time_point t) { return std::chrono::duration<double>(Clock::now() - t).count(); }
+
+/// Refuses an edge length that would make more than [mesh] max_tets tets (wrong units, typically),
+/// before any remeshing or TetGen run can take all memory.
+void require_mesh_size(const Design& d, double volume, double edge)
+{
+  const double tets = expected_tets(volume, edge);
+  if (tets > d.mesh.max_tets)
+    throw InputError(design_problem(d, "[mesh].edge_length",
+                                fmt::format("{:.4g} mm for a body of {:.4g} mm³ would make about {:.3g} tets, more than "
+                                            "[mesh].max_tets = {}; raise edge_length, or check [design].units",
+                                            edge / units::mm, volume / 1e-9, tets, d.mesh.max_tets)));
+}
+
+/// A closed void inside the body cannot be cast in a two-part mold: nothing would hold it open
+/// (it takes a core, which fibermold does not make).
+void require_castable(const SurfaceCheck& check, const SurfaceMesh& surface)
+{
+  std::vector<Diagnostic> diagnostics;
+  for (const SurfaceCavity& c : check.cavities)
+    diagnostics.push_back({surface.source, 0, 0, "",
+                           fmt::format("surface {} has a closed internal cavity of {:.4g} mm³ around ({:.1f}, {:.1f}, {:.1f}) mm: a "
+                                       "two-part mold cannot cast it (the void would need a core to hold it, which fibermold does "
+                                       "not make); fill it, or open it to the outside through the skin",
+                                       surface.source.filename().string(), c.volume / 1e-9, c.centre.x() / units::mm,
+                                       c.centre.y() / units::mm, c.centre.z() / units::mm)});
+  if (!diagnostics.empty()) throw InputError(std::move(diagnostics));
+}
+
+/// Import, check, and repair when asked; throws InputError when the result cannot be meshed or cast.
+SurfaceMesh prepared_surface(const Design& d, SurfaceCheck& check, RepairReport& repair, nlohmann::json& seconds)
+{
+  auto t = Clock::now();
+  SurfaceMesh surface = import_surface(d.design.surface, d.design.surface_scale);
+  seconds["import"] = since(t);
+  t = Clock::now();
+  check = check_surface(surface);
+  seconds["check"] = since(t);
+  if (d.mesh.repair) {
+    t = Clock::now();
+    surface = repair_surface(surface, {}, repair);
+    check = check_surface(surface);
+    if (d.mesh.remesh && check.ok()) {
+      const double edge = target_edge_length(d, check.volume);
+      require_mesh_size(d, check.volume, edge);
+      RepairOptions options;
+      options.remesh_edge_length = edge;
+      RepairReport remeshing;
+      surface = repair_surface(surface, options, remeshing);
+      repair.remeshed = remeshing.remeshed;
+      repair.faces_after = remeshing.faces_after;
+      check = check_surface(surface);
+    }
+    seconds["repair"] = since(t);
+  }
+  require_valid_surface(check, surface, d.mesh.repair);
+  require_castable(check, surface);
+  return surface;
+}
+
+/// The share of tets outside the quality bounds above which the mesh stage warns.
+constexpr double kQualityMissWarning = 0.01;
+
+/// How the mesh's surface follows the input's: the points TetGen added on it, and their largest
+/// distance from the input surface (0 up to round-off: they lie on its triangles).
+struct SurfaceFollowing {
+  Eigen::Index points_added = 0;
+  double deviation = 0;  ///< m
+};
+SurfaceFollowing surface_following(const SurfaceMesh& input, const TetMesh& mesh)
+{
+  SurfaceFollowing f;
+  std::vector<bool> on_surface(static_cast<std::size_t>(mesh.nodes.rows()), false);
+  for (Eigen::Index i = 0; i < mesh.boundary_faces.size(); ++i) on_surface[static_cast<std::size_t>(mesh.boundary_faces(i))] = true;
+  const SurfaceDistance distance(input.vertices, input.faces);
+  for (Eigen::Index v = input.num_vertices(); v < mesh.nodes.rows(); ++v) {
+    if (!on_surface[static_cast<std::size_t>(v)]) continue;
+    ++f.points_added;
+    f.deviation = std::max(f.deviation, distance.closest(mesh.nodes.row(v).transpose()).distance);
+  }
+  return f;
+}
+
+/// The tets for ParaView, with each one's radius-edge ratio and volume.
+void write_mesh_vtu(const std::filesystem::path& path, const TetMesh& mesh)
+{
+  VtuGrid grid(mesh.nodes);
+  grid.add_cells(mesh.tets, mesh.nodes_per_tet() == 10 ? VtkCell::quadratic_tetra : VtkCell::tetra);
+  Eigen::MatrixXd ratio(mesh.num_tets(), 1), volume(mesh.num_tets(), 1);
+  for (Eigen::Index i = 0; i < mesh.num_tets(); ++i) {
+    const auto corner = [&](int k) { return Eigen::Vector3d(mesh.nodes.row(mesh.tets(i, k))); };
+    ratio(i, 0) = radius_edge_ratio(corner(0), corner(1), corner(2), corner(3));
+    volume(i, 0) = mesh.tet_volume(i) / 1e-9;
+  }
+  grid.add_cell_field("radius_edge_ratio", ratio);
+  grid.add_cell_field("volume_mm3", volume);
+  grid.write(path);
+}
+
+nlohmann::json point_mm(const Eigen::Vector3d& p)
+{
+  return {p.x() / units::mm, p.y() / units::mm, p.z() / units::mm};
+}
+
+} // namespace
+
+std::vector<std::filesystem::path> MeshStage::input_files(const Design& d) const { return surface_files(d.design.surface); }
+
+double target_edge_length(const Design& design, double body_volume)
+{
+  return design.mesh.edge_length ? *design.mesh.edge_length : default_edge_length(body_volume);
+}
+
+SurfaceCheck check_design_surface(const Design& design, std::vector<std::string>& repairs)
+{
+  SurfaceCheck check;
+  RepairReport repair;
+  nlohmann::json seconds;
+  const SurfaceMesh surface = prepared_surface(design, check, repair, seconds);
+  repairs = repair.changes();
+  // What the stages would refuse later for their size, refused now.
+  require_mesh_size(design, check.volume, target_edge_length(design, check.volume));
+  std::vector<std::vector<Eigen::Vector3d>> fibers;
+  for (const Fiber& f : design.fibers) fibers.push_back(f.points);
+  require_mold_grids(design, surface, fibers);
+  require_optimizable(design, SurfaceDistance(surface.vertices, surface.faces));
+  return check;
+}
+
+void MeshStage::run(StageContext& ctx) const
+{
+  const Design& d = ctx.design;
+  const auto start = Clock::now();
+  nlohmann::ordered_json report;
+  nlohmann::json seconds;
+  SurfaceCheck check;
+  RepairReport repair;
+  ctx.progress.checkpoint(0.0, "importing " + d.design.surface.filename().string());
+  const SurfaceMesh surface = prepared_surface(d, check, repair, seconds);
+  for (const std::string& w : check.warnings) ctx.log.warn("surface {}: {}", surface.source.filename().string(), w);
+  for (const std::string& change : repair.changes()) ctx.log.info("repair: {}", change);
+
+  const double edge = target_edge_length(d, check.volume);
+  require_mesh_size(d, check.volume, edge);
+  ctx.log.info("surface: {} vertices, {} faces, volume {:.6g} mm³; target edge {:.4g} mm", surface.num_vertices(),
+               surface.num_faces(), check.volume / 1e-9, edge / units::mm);
+  const double longest = longest_edge(surface);
+  const bool split = d.mesh.surface_triangles == SurfaceTriangles::split ||
+                     (d.mesh.surface_triangles == SurfaceTriangles::automatic && longest > kSplitEdgeFactor * edge);
+  if (split)
+    ctx.log.info("surface: its longest edge is {:.3g} mm, {:.2g}× the edge length: TetGen splits its triangles to the edge length",
+                 longest / units::mm, longest / edge);
+  auto t = Clock::now();
+  ctx.progress.checkpoint(0.1, "tetrahedralizing");
+  const TetMesh mesh =
+      tetrahedralize(surface, {edge, d.mesh.radius_edge_ratio, d.mesh.min_dihedral_deg, d.sim.basis == BasisKind::fem_p2, !split}, ctx.progress);
+  seconds["tetrahedralize"] = since(t);
+  const SurfaceFollowing following = surface_following(surface, mesh);
+  ctx.progress.checkpoint(0.8, "measuring quality");
+  const MeshQuality q = mesh_quality(mesh);
+  if (q.inverted_tets > 0) throw std::runtime_error(fmt::format("TetGen produced {} inverted tets", q.inverted_tets));
+  const QualityMisses misses = quality_misses(mesh, d.mesh.radius_edge_ratio, d.mesh.min_dihedral_deg);
+  // TetGen's dihedral bound is best effort: a few slivers (0.04–0.5 % of the examples' tets) are
+  // reported, not warned about; more than 1 % is a mesh to look at.
+  if (misses.over_ratio + misses.under_dihedral > kQualityMissWarning * static_cast<double>(mesh.num_tets()))
+    ctx.log.warn("mesh: {} of {} tets exceed the radius-edge ratio bound {} (up to {:.3g}, near {}) and {} have a dihedral angle "
+                 "under {}°{}",
+                 misses.over_ratio, mesh.num_tets(), d.mesh.radius_edge_ratio, q.max_radius_edge_ratio, format_mm(misses.worst_at),
+                 misses.under_dihedral, d.mesh.min_dihedral_deg,
+                 split ? "" : ": TetGen cannot meet its bounds beside the input's triangles, kept exactly; [mesh] surface_triangles = "
+                              "\"split\" lets it add points on the surface");
+  const double volume_error = std::abs(q.volume - check.volume) / check.volume;
+  // Kept exactly, the tets fill the surface to round-off; points TetGen adds on the input's
+  // triangles lie on them to round-off of their coordinates, which the volume sees at ~1e-8.
+  if (volume_error > (split ? 1e-6 : 1e-9))
+    throw std::runtime_error(fmt::format("tet volume {:.9g} mm³ differs from the surface's {:.9g} mm³ (relative {:.2e})",
+                                         q.volume / 1e-9, check.volume / 1e-9, volume_error));
+
+  ctx.progress.checkpoint(0.9, "writing");
+  save_tet_mesh(mesh, ctx.output_dir / "body.tetmesh");
+  write_mesh_vtu(ctx.output_dir / "body.vtu", mesh);
+
+  seconds["total"] = since(start);
+  report["surface"] = {{"file", d.design.surface.string()},
+                       {"units", d.design.units},
+                       {"vertices", surface.num_vertices()},
+                       {"faces", surface.num_faces()},
+                       {"components", check.components},
+                       {"volume_mm3", check.volume / 1e-9},
+                       {"bounds_mm", {{"min", point_mm(check.min)}, {"max", point_mm(check.max)}}},
+                       {"warnings", check.warnings},
+                       {"repaired", repair.changes()}};
+  report["mesh"] = {{"nodes", mesh.nodes.rows()},
+                    {"tets", mesh.num_tets()},
+                    {"nodes_per_tet", mesh.nodes_per_tet()},
+                    {"boundary_faces", mesh.boundary_faces.rows()},
+                    {"volume_mm3", q.volume / 1e-9},
+                    {"volume_mL", q.volume / 1e-6},
+                    {"target_edge_length_mm", edge / units::mm},
+                    {"mean_edge_length_mm", q.mean_edge_length / units::mm},
+                    {"edge_length_mm", {{"mean", q.mean_edge_length / units::mm}, {"min", q.min_edge_length / units::mm},
+                                        {"max", q.max_edge_length / units::mm}}},
+                    {"surface_triangles", {{"policy", choice_name(d.mesh.surface_triangles)},
+                                           {"split", split},
+                                           {"input_longest_edge_mm", longest / units::mm},
+                                           {"points_added", following.points_added},
+                                           {"deviation_mm", following.deviation / units::mm}}},
+                    {"quality_bounds_met", misses.over_ratio + misses.under_dihedral == 0},
+                    {"tets_over_radius_edge_bound", misses.over_ratio},
+                    {"tets_under_dihedral_bound", misses.under_dihedral},
+                    {"min_dihedral_deg", q.min_dihedral_deg},
+                    {"max_dihedral_deg", q.max_dihedral_deg},
+                    {"radius_edge_ratio", {{"mean", q.mean_radius_edge_ratio}, {"max", q.max_radius_edge_ratio},
+                                           {"bound", d.mesh.radius_edge_ratio}}},
+                    {"min_dihedral_bound_deg", d.mesh.min_dihedral_deg}};
+  // Timings go to the log, not the report: an output that changes on every run would make every
+  // downstream stage rerun after a rerun of this one.
+  ctx.log.info("seconds: {}", seconds.dump());
+  write_json_atomic(ctx.output_dir / "report.json", report);
+  ctx.log.info("mesh: {} nodes, {} tets, volume {:.6g} mL, dihedral angles {:.1f}°–{:.1f}°, in {:.2f} s",
+               mesh.nodes.rows(), mesh.num_tets(), q.volume / 1e-6, q.min_dihedral_deg, q.max_dihedral_deg,
+               since(start));
+}
+
+} // namespace fibermold

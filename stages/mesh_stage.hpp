@@ -1,0 +1,32 @@
+#pragma once
+// The mesh stage: import the body's surface, check it, repair it on request, tetrahedralize it.
+// Outputs: mesh/body.tetmesh (for later stages), mesh/body.vtu (ParaView), mesh/report.json.
+
+#include <string>
+#include <vector>
+
+#include "make/stage.hpp"
+#include "mesh/surface_check.hpp"
+
+namespace fibermold {
+
+class MeshStage final : public Stage {
+public:
+  std::string name() const override { return "mesh"; }
+  std::vector<std::string> design_keys() const override
+  {
+    return {"design.surface", "design.units", "mesh", "sim.basis"};
+  }
+  std::vector<std::filesystem::path> input_files(const Design& d) const override;
+  int version() const override { return 2; }  ///< 2: the surface's triangles split where too large; edge lengths, quality bounds and the surface's deviation in the report
+  void run(StageContext& ctx) const override;
+};
+
+/// What `fibermold check` says about the surface: imports and checks it (and, with
+/// [mesh] repair = true, checks the repaired copy). Throws InputError when it cannot be meshed.
+SurfaceCheck check_design_surface(const Design& design, std::vector<std::string>& repairs);
+
+/// Target edge length: [mesh] edge_length, or one that fits about 5,000 regular tets in the body.
+double target_edge_length(const Design& design, double body_volume);
+
+} // namespace fibermold

@@ -1,0 +1,198 @@
+#include "stages/molds_stage.hpp"
+
+#include <cmath>
+
+#include <Eigen/Geometry>
+#include <fmt/format.h>
+#include <nlohmann/json.hpp>
+#include <spdlog/spdlog.h>
+
+#include "core/input_error.hpp"
+#include "core/json_file.hpp"
+#include "core/units.hpp"
+#include "export/stl_writer.hpp"
+#include "mesh/surface_distance.hpp"
+#include "mesh/tet_mesh.hpp"
+#include "molds/grid_budget.hpp"
+#include "molds/two_shot_molds.hpp"
+#include "sim/hermite_spline.hpp"
+#include "stages/design_simulation.hpp"
+#include "stages/fibers_file.hpp"
+
+namespace fibermold {
+
+namespace {
+
+using Json = nlohmann::ordered_json;
+
+[[noreturn]] void bad(const Design& d, const std::string& key, const std::string& message)
+{
+  throw InputError(design_problem(d, key, message));
+}
+
+/// The body's skin: the tet mesh's boundary with only the vertices it uses.
+SurfaceMesh body_surface(const TetMesh& mesh)
+{
+  SurfaceMesh s;
+  Eigen::VectorXi index = Eigen::VectorXi::Constant(mesh.nodes.rows(), -1);
+  int used = 0;
+  for (Eigen::Index f = 0; f < mesh.boundary_faces.rows(); ++f)
+    for (int c = 0; c < 3; ++c)
+      if (index(mesh.boundary_faces(f, c)) < 0) index(mesh.boundary_faces(f, c)) = used++;
+  s.vertices.resize(used, 3);
+  for (Eigen::Index i = 0; i < mesh.nodes.rows(); ++i)
+    if (index(i) >= 0) s.vertices.row(index(i)) = mesh.nodes.row(i);
+  s.faces.resize(mesh.boundary_faces.rows(), 3);
+  for (Eigen::Index f = 0; f < mesh.boundary_faces.rows(); ++f)
+    for (int c = 0; c < 3; ++c) s.faces(f, c) = index(mesh.boundary_faces(f, c));
+  return s;
+}
+
+/// A route as the molds see it: its spline sampled about every `step` along its length.
+MoldFiber mold_fiber(const Route& r, double step)
+{
+  const HermiteSpline s(r.points, r.tangents);
+  const int n = std::max(2, static_cast<int>(std::ceil(s.length() / step)));
+  MoldFiber f;
+  f.start = r.points.front();
+  f.end = r.points.back();
+  f.start_tangent = r.tangents.front();
+  f.end_tangent = r.tangents.back();
+  f.length = s.length();
+  for (double v : segment_parameters(s, n)) f.line.push_back(s.position(v));
+  return f;
+}
+
+/// The stretch of a fiber at an end on the skin that the molds' checks leave out: the optimizer's
+/// skin barrier's, 2 (d_min + w) (skin_barrier.cpp).
+double skin_end_stretch(const Design& d) { return 2 * (d.muscle.model.diameter + d.collide.clearance); }
+
+/// A reported quantity to six decimals (mL: a nanolitre): the digits below vary with the number of
+/// threads that summed it (OpenVDB's level set volume), and the same design should give the same report.
+double six_places(double v) { return std::round(v * 1e6) / 1e6; }
+
+Json vec_mm(const Eigen::Vector3d& v) { return {v.x() / units::mm, v.y() / units::mm, v.z() / units::mm}; }
+
+/// A fill simulation's findings for the report. No timings: the same design gives the same report.
+Json fill_report(const FillPlan& plan, double voxel, const TwoShotMolds& molds)
+{
+  const FillResult& f = plan.fill;
+  const double mm3 = 1e-9, g3 = std::pow(molds.grow, 3);
+  Json pockets = Json::array(), sprues = Json::array(), vents = Json::array();
+  for (std::size_t k = 0; k < f.pockets.size() && k < 10; ++k)
+    pockets.push_back({{"volume_mm3", six_places(g3 * f.pockets[k].volume / mm3)},
+                       {"top_mm", vec_mm(molds.scaled(f.pockets[k].at))},
+                       {"ventable", f.pockets[k].ventable}});
+  for (std::size_t k = 0; k < plan.ports.sprues.size(); ++k)
+    sprues.push_back({{"mouth_mm", vec_mm(molds.scaled(plan.ports.sprues[k].mouth))},
+                      {"from", plan.ports.sprues[k].upward ? "above" : "below"},
+                      {"opens_on_fill_region", static_cast<bool>(f.sprue_open[k])}});
+  for (std::size_t k = 0; k < plan.ports.vents.size(); ++k)
+    vents.push_back({{"mouth_mm", vec_mm(molds.scaled(plan.ports.vents[k].mouth))}, {"opens_on_fill_region", static_cast<bool>(f.vent_open[k])}});
+  return {{"voxel_mm", voxel / units::mm},
+          {"fill_volume_mL", six_places(g3 * f.fill_volume / 1e-6)},
+          {"reachable_percent", f.fill_volume > 0 ? six_places(100 * f.reachable_volume / f.fill_volume) : 0.0},
+          {"crevices_unfilled_mm3", six_places(g3 * f.crevice_volume / mm3)},
+          {"crevices_air_mm3", six_places(g3 * f.crevice_air_volume / mm3)},
+          {"overmolded_air_mm3", six_places(g3 * f.overmolded_air_volume / mm3)},
+          {"trapped_air_mm3", six_places(g3 * f.trapped_volume / mm3)},
+          {"trapped_air_tolerance_mm3", kTrappedAirTolerance / mm3},
+          {"pockets", pockets},
+          {"sprues", sprues},
+          {"vents", vents}};
+}
+
+Json molds_report(const TwoShotMolds& molds, const Design& d)
+{
+  const MoldOptions& m = d.mold;
+  Json shots = Json::object(), parts = Json::object();
+  for (const ShotMold& s : molds.shots)
+    shots[s.name] = {{"cavity_volume_mL", six_places(s.cavity_volume / 1e-6)},
+                     {"upper_contact_within_3deg_of_pull_percent", six_places(100 * s.upright_share)},
+                     {"silicone_volume_mL", six_places(s.silicone_volume / 1e-6)},
+                     {"silicone_mass_g", six_places(s.silicone_volume * d.material.density * 1e3)},
+                     {"parting_point_mm", vec_mm(s.parting.point)},
+                     {"parting_normal", {s.parting.normal.x(), s.parting.normal.y(), s.parting.normal.z()}},
+                     {"undercut_area_mm2", s.parting.undercut_area / 1e-6},
+                     {"sprues", s.sprues},
+                     {"vents", s.vents},
+                     {"keys", s.keys},
+                     {"screw_holes", s.screw_holes},
+                     {"fill", fill_report(s.plan, s.fill_voxel, molds)}};
+  for (const CheckedPart& p : molds.parts) {
+    const PartCheck& c = p.check;
+    parts[p.part.name] = {{"shot", p.shot},
+                          {"file", p.part.name + ".stl"},
+                          {"triangles", p.part.mesh.num_faces()},
+                          {"volume_mL", six_places(c.volume / 1e-6)},
+                          {"size_mm", vec_mm(c.size)},
+                          {"min_wall_mm", c.min_thickness / units::mm},
+                          {"fits_printer", c.fits},
+                          {"print_axes", {c.orientation.x(), c.orientation.y(), c.orientation.z()}},
+                          {"checks_passed", c.ok()}};
+  }
+  const SiliconeThickness& t = molds.thickness;
+  const auto finite_mm = [](double v) { return std::isfinite(v) ? Json(v / units::mm) : Json("none"); };
+  const Json silicone{{"groove_wall_mm", finite_mm(t.groove_web)},
+                      {"groove_wall_at_mm", vec_mm(molds.scaled(t.groove_web_at))},
+                      {"over_muscle_mm", finite_mm(t.overmold)},
+                      {"over_muscle_at_mm", vec_mm(molds.scaled(t.overmold_at))},
+                      {"min_silicone_mm", m.min_silicone / units::mm}};
+  const GrooveBody& g = molds.groove;
+  return {{"voxel_mm", m.voxel / units::mm},
+          {"groove_radius_mm", molds.groove_radius / units::mm},
+          {"groove_mesh_volume_error", six_places(std::abs(signed_volume(g.mesh) - g.volume) / g.volume)},
+          {"shrink", m.shrink},
+          {"draft_deg", m.draft_deg},
+          {"draft_offset_mm", molds.draft_offset / units::mm},
+          {"silicone_thickness", silicone},
+          {"shots", shots},
+          {"parts", parts}};
+}
+
+} // namespace
+
+void require_mold_grids(const Design& d, const SurfaceMesh& body, const std::vector<std::vector<Eigen::Vector3d>>& fibers)
+{
+  const double radius = groove_radius(d.muscle.model.diameter, d.mold);
+  if (const auto problem = grid_budget_problem(estimate_grids(body, d.mold.voxel, radius, fibers), d.mold.voxel))
+    bad(d, "[mold].voxel", *problem);
+}
+
+void MoldsStage::run(StageContext& ctx) const
+{
+  const Design& d = ctx.design;
+  const MoldOptions& m = d.mold;
+  if (m.parting && m.parting->normal.normalized().cross(m.pull.normalized()).norm() > 1e-6)
+    bad(d, "[mold].parting", "the parting plane's normal must be parallel to [mold].pull: the halves come apart along pull");
+
+  MoldJob job;
+  job.body = body_surface(load_tet_mesh(ctx.upstream("mesh", "body.tetmesh")));
+  job.muscle_diameter = d.muscle.model.diameter;
+  job.end_stretch = skin_end_stretch(d);
+  job.min_wall = d.export_.min_wall;
+  job.printer_volume = d.export_.printer_volume;
+  const SurfaceDistance skin(job.body.vertices, job.body.faces);
+  const double radius = groove_radius(d.muscle.model.diameter, m);
+  std::vector<std::vector<Eigen::Vector3d>> lines;
+  for (const Route& r : read_fibers_json(ctx.upstream("collide", "fibers.json")).routing.routes) {
+    job.fibers.push_back(mold_fiber(r, mold_line_step(m)));
+    if (auto problem = groove_problem(job.fibers.back().line, skin, radius, d.collide.clearance, m.pull, job.end_stretch))
+      bad(d, fmt::format("[fiber.{}]", r.name), *problem);
+    lines.push_back(job.fibers.back().line);
+  }
+  require_mold_grids(d, job.body, lines);
+
+  const MoldLog log{[&](const std::string& s) { ctx.log.info("{}", s); }, [&](const std::string& s) { ctx.log.warn("{}", s); }};
+  const TwoShotMolds molds = two_shot_molds(job, m, ctx.progress, log);
+  if (!molds.failures.empty()) {
+    std::string list;
+    for (const auto& f : molds.failures) list += "\n  " + f;
+    throw std::runtime_error(fmt::format("{} mold part check(s) failed; no part written:{}", molds.failures.size(), list));
+  }
+  for (const CheckedPart& p : molds.parts) write_stl(ctx.output_dir / (p.part.name + ".stl"), p.part.mesh, "fibermold " + p.part.name + " (mm)");
+  write_stl(ctx.output_dir / "groove-body.stl", molds.groove.mesh, "fibermold groove body, shot 1 (mm)");
+  write_json_atomic(ctx.output_dir / "report.json", molds_report(molds, d));
+}
+
+} // namespace fibermold

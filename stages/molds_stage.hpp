@@ -1,0 +1,33 @@
+#pragma once
+// The molds stage (paper section VII, Fig. 7): the two shots of the casting.
+//   shot 1: the body with an open groove per muscle (level set), in a two-part mold;
+//   shot 2: the full body, the overmold that closes the grooves over the laid-in muscles, with
+//           channels where the fibers leave the body for their ends and supply tubes.
+// Fiber routes come from collide/fibers.json (the [[fiber]] routes when [optimize] enabled =
+// false, given their clearance by collide all the same). Every part is checked (part_checks.hpp);
+// any failed check fails the stage and nothing is written. Outputs: molds/<shot>-lower.stl, <shot>-upper.stl (mm, in the body's frame),
+// groove-body.stl, report.json.
+
+#include "make/stage.hpp"
+#include "mesh/surface_mesh.hpp"
+
+namespace fibermold {
+
+/// Refuses (InputError on [mold].voxel) a voxel too fine for the body and its grooves along the
+/// polylines `fibers` (molds/grid_budget.hpp), before any carving; `check` asks it too.
+void require_mold_grids(const Design& d, const SurfaceMesh& body, const std::vector<std::vector<Eigen::Vector3d>>& fibers);
+
+class MoldsStage final : public Stage {
+public:
+  std::string name() const override { return "molds"; }
+  std::vector<std::string> upstream() const override { return {"mesh", "collide"}; }
+  std::vector<std::string> design_keys() const override
+  {
+    return {"design.units", "material.density", "muscle.diameter", "collide.clearance", "mold", "export.min_wall",
+            "export.printer_volume"};
+  }
+  int version() const override { return 2; }  ///< 2: sprues and vents from the fill simulation, its report, the silicone's thickness
+  void run(StageContext& ctx) const override;
+};
+
+} // namespace fibermold

@@ -1,0 +1,268 @@
+#include "stages/optimize_stage.hpp"
+
+#include <chrono>
+#include <cmath>
+
+#include <fmt/format.h>
+#include <nlohmann/json.hpp>
+#include <spdlog/spdlog.h>
+
+#include "core/array_file.hpp"
+#include "core/atomic_file.hpp"
+#include "core/input_error.hpp"
+#include "core/json_file.hpp"
+#include "core/units.hpp"
+#include "optimize/clearance_barrier.hpp"
+#include "optimize/routing_optimizer.hpp"
+#include "stages/design_simulation.hpp"
+#include "stages/fibers_file.hpp"
+#include "stages/routing_evaluation.hpp"
+
+namespace fibermold {
+
+namespace fs = std::filesystem;
+
+namespace {
+
+using Clock = std::chrono::steady_clock;
+double since(Clock::time_point t) { return std::chrono::duration<double>(Clock::now() - t).count(); }
+
+[[noreturn]] void bad(const Design& d, const std::string& key, const std::string& message)
+{
+  throw InputError(design_problem(d, key, message));
+}
+
+std::vector<std::string> target_names(const Design& d)
+{
+  std::vector<std::string> names;
+  for (const Target& t : d.targets) names.push_back(t.name);
+  return names;
+}
+
+/// Puts the clearance barrier between fibers on when the start (optimization_start) is clear, so that
+/// no path of the optimizer crosses two fibers (whether they crossed hinged on rounding, and crossed
+/// fibers can lock together at their fixed ends). Returns whether it is on.
+bool keep_fibers_apart(StageContext& ctx, RoutingProblem& problem, const SurfaceDistance& skin, const Routing& start,
+                       std::unique_ptr<FiberClearance>& measure, std::unique_ptr<ClearanceBarrier>& barrier)
+{
+  const Design& d = ctx.design;
+  if (start.routes.size() < 2) return false;
+  measure = std::make_unique<FiberClearance>(skin, start.routes, d.muscle.model.diameter / 2, d.collide.clearance, d.collide.samples_per_length);
+  if (!measure->contacts(measure->lines(start.routes), d.collide.clearance, false).empty()) return false;
+  barrier = std::make_unique<ClearanceBarrier>(*measure, start.routes, d.collide.clearance, d.muscle.model.diameter / 2);
+  problem.set_clearance_barrier(barrier.get(), kClearanceBarrierWeight);
+  ctx.log.info("the fibers start clear of each other; a barrier keeps them {:.2f} mm apart", d.collide.clearance / units::mm);
+  return true;
+}
+
+/// history.csv: one row per accepted BFGS step.
+class History {
+public:
+  explicit History(const std::vector<std::string>& targets)
+  {
+    text_ = "iteration,stage,objective,distance,curvature,skin_barrier,pressure_barrier,clearance_barrier";
+    for (const std::string& t : targets) text_ += ",distance_" + t;
+    text_ += ",gradient_norm,step,evaluations,seconds\n";
+  }
+  void add(int iteration, int stage, const BfgsIteration& it, const RoutingTerms& terms, double seconds)
+  {
+    text_ += fmt::format("{},{},{:.9g},{:.9g},{:.9g},{:.9g},{:.9g},{:.9g}", iteration, stage + 1, terms.total,
+                         terms.distance, terms.curvature, terms.skin, terms.pressure, terms.clearance);
+    for (double v : terms.per_target) text_ += fmt::format(",{:.9g}", v);
+    text_ += fmt::format(",{:.6g},{:.6g},{},{:.3f}\n", it.gradient_norm, it.step, it.evaluations, seconds);
+  }
+  const std::string& text() const { return text_; }
+
+private:
+  std::string text_;
+};
+
+/// The routes and pressures optimized; first, with `route_only_iterations`, the routes alone at
+/// their starting pressures (reported as stage −1). At zero pressure a route has no effect, so an optimizer that turns a
+/// muscle down before its route does the job can stop there (the twisting bar: a straight muscle
+/// bends the bar, so the pressure falls to zero before a helix forms).
+RoutingResult optimize(const Design& d, RoutingProblem& problem, const BfgsOptions& o, const RoutingCallback& on_iteration,
+                       Progress& progress)
+{
+  const int route_only = d.optimize.route_only_iterations;
+  if (route_only == 0) return optimize_routing(problem, d.optimize.strategy, o, on_iteration, progress, actuator_mask(d));
+  BfgsOptions first = o;
+  first.max_iterations = route_only;
+  const ActuatorMask none = ActuatorMask::Constant(problem.num_targets(), problem.num_fibers(), false);
+  const RoutingCallback routes_only = [&](int, const BfgsIteration& it, const RoutingTerms& terms) {
+    on_iteration(-1, it, terms);
+  };
+  const RoutingResult routes = optimize_routing(problem, Strategy::simultaneous, first, routes_only, progress, none);
+  if (routes.interrupted) return routes;
+  problem.set_base(routes.routing);
+  RoutingResult both = optimize_routing(problem, d.optimize.strategy, o, on_iteration, progress, actuator_mask(d));
+  both.iterations += routes.iterations;
+  both.evaluations += routes.evaluations;
+  return both;
+}
+
+/// Target t's entry in report.json, with its deformed state written: the errors at equilibrium x
+/// of the optimized routing `r` against those at the start, the pressures, and the errors of a
+/// solve from rest.
+nlohmann::ordered_json target_report(StageContext& ctx, DesignRouting& dr, const Routing& r, int t, const Eigen::VectorXd& x,
+                                     const TargetErrors& before)
+{
+  const Design& d = ctx.design;
+  RoutingProblem& problem = *dr.problem;
+  const std::string& name = dr.target_names[t];
+  const TargetErrors after = target_errors(problem, dr.mesh, t, x);
+  // A robot starts from rest: where that leads elsewhere, the body has more than one equilibrium.
+  // Its time is the paper's "sim (s)" of Table II.
+  const auto rest_started = Clock::now();
+  const int rest_newton = problem.newton().iterations;
+  const Eigen::VectorXd at_rest = problem.equilibrium(r, t);
+  const double rest_seconds = since(rest_started);
+  const TargetErrors from_rest = target_errors(problem, dr.mesh, t, at_rest);
+  if (std::abs(from_rest.rmse - after.rmse) > 0.1 * after.rmse + 0.01 * units::mm)
+    ctx.log.warn("target {}: solved from rest, the body reaches another equilibrium than the optimizer's: RMSE {:.3f} "
+                 "mm instead of {:.3f} mm",
+                 name, from_rest.rmse / units::mm, after.rmse / units::mm);
+  write_deformed_target(ctx.output_dir / fmt::format("deformed-{}.vtu", name), dr, r, t, x);
+  nlohmann::ordered_json pressures = nlohmann::ordered_json::object();
+  for (int f = 0; f < problem.num_fibers(); ++f) pressures[d.fibers[f].name] = r.pressures(t, f) / units::kPa;
+  nlohmann::ordered_json entry = errors_json(after);
+  entry["pressure_kPa"] = pressures;
+  entry["start"] = errors_json(before);
+  entry["from_rest"] = errors_json(from_rest);
+  entry["from_rest"]["seconds"] = rest_seconds;
+  entry["from_rest"]["newton_iterations"] = problem.newton().iterations - rest_newton;
+  ctx.log.info("target {}: RMSE {:.3f} mm (from {:.3f}), max {:.3f} mm (from {:.3f}) on the tracking curves; surface RMSE {:.3f} mm, max {:.3f} mm",
+               name, after.rmse / units::mm, before.rmse / units::mm, after.max / units::mm, before.max / units::mm,
+               after.surface_rmse / units::mm, after.surface_max / units::mm);
+  return entry;
+}
+
+/// A starting route the skin barrier refuses (InputError at the fiber).
+void require_start_inside(const Design& d, RoutingProblem& problem, const Routing& start)
+{
+  double closest = 0;
+  Eigen::Vector3d where;
+  if (const int f = problem.skin_violation(start, closest, where); f >= 0)
+    bad(d, fmt::format("[fiber.{}]", d.fibers[f].name),
+        fmt::format("the starting route passes {:.2f} mm from the skin at {}; the optimizer keeps fibers at least {:.2f} mm "
+                    "inside ([muscle] diameter/2 + [collide] clearance)",
+                    closest / units::mm, format_mm(where), routing_settings(d).skin_distance / units::mm));
+}
+
+} // namespace
+
+void require_optimizable(const Design& d, const SurfaceDistance& skin)
+{
+  if (!d.optimize.enabled) return;
+  if (d.fibers.empty()) bad(d, "[[fiber]]", "nothing to optimize: give at least one fiber");
+  if (d.targets.empty()) bad(d, "[[target]]", "nothing to optimize for: give at least one target");
+  if (d.tracking_curves.empty())
+    bad(d, "[[tracking_curve]]", "the optimizer compares deformations along tracking curves: give at least one");
+  if (d.optimize.strategy == Strategy::sequential && d.fibers.size() != d.targets.size())
+    bad(d, "[optimize].strategy",
+        fmt::format("sequential drives one fiber per target, in order: {} fiber(s) for {} target(s)", d.fibers.size(),
+                    d.targets.size()));
+  for (const Fiber& f : d.fibers) {
+    const HermiteSpline s(f.points, f.tangents);
+    for (const Eigen::Vector3d& c : split_into_segments(s, segment_count(s, d.muscle.segments_per_length)).centres)
+      if (!skin.closest(c).inside) bad(d, fmt::format("[fiber.{}]", f.name), fmt::format("the fiber leaves the body at {}", format_mm(c)));
+  }
+  tracking_samples(d, skin);
+}
+
+void OptimizeStage::run(StageContext& ctx) const
+{
+  const Design& d = ctx.design;
+  const auto started = Clock::now();
+  const std::vector<std::string> names = target_names(d);
+  if (!d.optimize.enabled) {
+    write_file_atomic(ctx.output_dir / "fibers.json", fibers_json({starting_routing(d), names, false}));
+    write_json_atomic(ctx.output_dir / "report.json", nlohmann::ordered_json{{"optimized", false}});
+    ctx.log.info("[optimize] enabled = false: the [[fiber]] routes pass through unchanged");
+    return;
+  }
+  DesignRouting dr(ctx);
+  require_optimizable(d, *dr.skin);
+  const OptimizationStart begun = optimization_start(d, *dr.skin);
+  for (const std::string& line : begun.log) ctx.log.info("{}", line);
+  if (!begun.warning.empty()) ctx.log.warn("{}", begun.warning);
+  const Routing& start = begun.routing;
+  RoutingProblem& problem = dr.start(start);
+  require_start_inside(d, problem, start);
+
+  std::unique_ptr<FiberClearance> measure;
+  std::unique_ptr<ClearanceBarrier> barrier;
+  const bool kept_apart = keep_fibers_apart(ctx, problem, *dr.skin, start, measure, barrier);
+
+  std::vector<TargetErrors> before;
+  for (int t = 0; t < problem.num_targets(); ++t) before.push_back(target_errors(problem, dr.mesh, t, problem.equilibrium(start, t)));
+  for (int t = 0; t < problem.num_targets(); ++t)
+    ctx.log.info("target {}: at the start, RMSE {:.3f} mm, max {:.3f} mm on the tracking curves", names[t],
+                 before[t].rmse / units::mm, before[t].max / units::mm);
+
+  const BfgsOptions o = bfgs_options(d);
+  History history(names);
+  int iterations = 0;
+  const int stages = d.optimize.strategy == Strategy::sequential ? static_cast<int>(d.fibers.size()) : 1;
+  // Progress over the iteration budget: the route-only ones, then max_iterations per stage.
+  const double budget = d.optimize.route_only_iterations + stages * std::max(1, o.max_iterations);
+  int route_only_done = 0;
+  const RoutingCallback on_iteration = [&](int stage, const BfgsIteration& it, const RoutingTerms& terms) {
+    ++iterations;
+    history.add(iterations, stage, it, terms, since(started));
+    if (stage < 0) ++route_only_done;
+    const std::string what =
+        fmt::format("{}iteration {}: objective {:.4g} (distance {:.4g}), |∇| {:.2g}",
+                    stage < 0 ? "routes only, " : stages > 1 ? fmt::format("fiber {}/{}, ", stage + 1, stages) : "",
+                    it.iteration, terms.total, terms.distance, it.gradient_norm);
+    const double done = stage < 0 ? route_only_done : route_only_done + stage * std::max(1, o.max_iterations) + it.iteration;
+    ctx.progress.update(done / budget, what);
+    ctx.log.info("{}", what);
+  };
+  const RoutingResult result = optimize(d, problem, o, on_iteration, ctx.progress);
+  const FibersFile fibers{result.routing, names, true};
+
+  if (result.interrupted) {
+    const fs::path kept = ctx.build_dir / "optimize.interrupted";
+    fs::create_directories(kept);
+    write_file_atomic(kept / "fibers.json", fibers_json(fibers));
+    write_file_atomic(kept / "history.csv", history.text());
+    ctx.log.warn("interrupted after {} iterations; the best design so far (objective {:.4g}) is in {}", iterations,
+                 result.value, kept.string());
+    throw Interrupted();
+  }
+  ctx.log.info("{} after {} iterations, {} evaluations", result.message, result.iterations, result.evaluations);
+
+  nlohmann::ordered_json per_target = nlohmann::ordered_json::object();
+  std::vector<Eigen::VectorXd> optimized;  // the equilibria the optimizer scored (warm-started)
+  for (int t = 0; t < problem.num_targets(); ++t) optimized.push_back(problem.equilibrium(result.routing, t));
+  problem.forget_states();
+  for (int t = 0; t < problem.num_targets(); ++t) {
+    ctx.progress.checkpoint(1, "writing target " + names[t]);
+    per_target[names[t]] = target_report(ctx, dr, result.routing, t, optimized[t], before[t]);
+  }
+  const nlohmann::ordered_json report{
+      {"optimized", true},
+      {"strategy", choice_name(d.optimize.strategy)},
+      {"converged", result.converged},
+      {"fibers_kept_apart", kept_apart},
+      {"message", result.message},
+      {"iterations", result.iterations},
+      {"evaluations", result.evaluations},
+      {"objective", result.value},
+      {"newton_iterations", problem.newton().iterations},
+      {"newton",
+       {{"solves", problem.newton().solves},
+        {"assemblies", problem.newton().assemblies},
+        {"factorizations", problem.newton().factorizations},
+        {"symbolic_analyses", problem.simulation().symbolic_analyses()},
+        {"seconds_assembly", problem.newton().seconds_assembly},
+        {"seconds_factorization", problem.newton().seconds_factorization}}},
+      {"seconds", {{"total", since(started)}, {"simulation", problem.seconds_simulation()}, {"adjoint", problem.seconds_adjoint()}}},
+      {"targets", per_target}};
+  write_file_atomic(ctx.output_dir / "fibers.json", fibers_json(fibers));
+  write_file_atomic(ctx.output_dir / "history.csv", history.text());
+  write_json_atomic(ctx.output_dir / "report.json", report);
+}
+
+} // namespace fibermold

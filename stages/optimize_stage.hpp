@@ -1,0 +1,33 @@
+#pragma once
+// The optimize stage (paper sections IV-C and V): co-optimizes the fibers' routes and each
+// target's pressures so that the actuated body matches every target along the tracking curves.
+// Outputs: optimize/fibers.json, history.csv (one row per BFGS iteration), deformed-<target>.vtu,
+// report.json (per target RMSE and max error on the tracking curves and the surface, pressures,
+// timings). With [optimize] enabled = false it passes the [[fiber]] routes through unchanged.
+// Ctrl-C stops it and keeps the best design so far in <build>/optimize.interrupted/.
+
+#include "make/stage.hpp"
+#include "mesh/surface_distance.hpp"
+
+namespace fibermold {
+
+/// What the optimize stage refuses as bad input before it simulates anything: no fiber, target or
+/// tracking curve; a sequential strategy with as many fibers as targets not given; a fiber or a
+/// tracking curve that leaves the body (`skin`: the body's surface). Nothing when [optimize] enabled = false. `check`
+/// asks it too, so that a design check passes is not refused by make.
+void require_optimizable(const Design& d, const SurfaceDistance& skin);
+
+class OptimizeStage final : public Stage {
+public:
+  std::string name() const override { return "optimize"; }
+  std::vector<std::string> upstream() const override { return {"mesh", "targets"}; }
+  std::vector<std::string> design_keys() const override
+  {
+    return {"design.units", "material", "sim", "fixed", "muscle", "fiber", "tracking_curve", "target", "optimize",
+            "collide.clearance", "collide.samples_per_mm", "collide.smoothness"};  // smoothness: optimization_start
+  }
+  int version() const override { return 2; }  ///< 2: fibers moved apart before optimizing, kept apart throughout
+  void run(StageContext& ctx) const override;
+};
+
+} // namespace fibermold

@@ -1,0 +1,162 @@
+#include "stages/routing_evaluation.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+#include <fmt/format.h>
+
+#include "core/array_file.hpp"
+#include "core/input_error.hpp"
+#include "core/json_file.hpp"
+#include "core/units.hpp"
+#include "optimize/collision_resolution.hpp"
+#include "stages/design_simulation.hpp"
+
+namespace fibermold {
+
+std::vector<TrackingSamples> tracking_samples(const Design& d, const SurfaceDistance& skin)
+{
+  std::vector<TrackingSamples> curves;
+  for (const TrackingCurve& c : d.tracking_curves) {
+    curves.push_back(sample_tracking_curve(c.points, c.samples, c.weight_position, c.weight_orientation));
+    for (const Eigen::Vector3d& q : curves.back().points)
+      if (const auto at = skin.closest(q); !at.inside && at.distance > 1e-6)
+        throw InputError(design_problem(d, fmt::format("[tracking_curve.{}]", c.name),
+                                        fmt::format("the curve leaves the body at {}", format_mm(q))));
+  }
+  return curves;
+}
+
+DesignRouting::DesignRouting(const StageContext& ctx)
+    : design(ctx.design), mesh(load_tet_mesh(ctx.upstream("mesh", "body.tetmesh"))), model(ctx.design.muscle.model)
+{
+  const Design& d = ctx.design;
+  skin = std::make_unique<SurfaceDistance>(mesh.nodes, mesh.boundary_faces);
+  curves = tracking_samples(d, *skin);
+  sim = std::make_unique<Simulation>(mesh, simulation_options(d, mesh));
+  for (const Target& t : d.targets) {
+    target_names.push_back(t.name);
+    targets.push_back(load_array(ctx.upstream("targets", t.name + ".positions"), "positions"));
+  }
+}
+
+RoutingProblem& DesignRouting::start(const Routing& routing)
+{
+  problem = std::make_unique<RoutingProblem>(*sim, model, *skin, targets, curves, routing, routing_settings(design));
+  return *problem;
+}
+
+RoutingSettings routing_settings(const Design& d)
+{
+  RoutingSettings s;
+  s.max_pressure = d.muscle.max_pressure;
+  s.segments_per_length = d.muscle.segments_per_length;
+  s.skin_distance = d.muscle.model.diameter / 2 + d.collide.clearance;
+  s.skin_band = d.muscle.model.diameter / 2;
+  s.weight_curvature = d.optimize.weight_curvature;
+  s.weight_skin = d.optimize.weight_skin_barrier;
+  s.weight_pressure = d.optimize.weight_pressure_barrier;
+  return s;
+}
+
+ActuatorMask actuator_mask(const Design& d)
+{
+  const auto T = static_cast<Eigen::Index>(d.targets.size()), F = static_cast<Eigen::Index>(d.fibers.size());
+  ActuatorMask m = ActuatorMask::Constant(T, F, d.optimize.strategy != Strategy::sequential);
+  for (Eigen::Index t = 0; t < T; ++t) {
+    if (d.optimize.strategy == Strategy::sequential && t < F) m(t, t) = true;
+    const std::vector<std::string>& names = d.targets[t].actuators;
+    if (names.empty()) continue;
+    for (Eigen::Index f = 0; f < F; ++f)
+      m(t, f) = std::find(names.begin(), names.end(), d.fibers[f].name) != names.end();
+  }
+  return m;
+}
+
+Routing starting_routing(const Design& d)
+{
+  Routing r;
+  for (const Fiber& f : d.fibers) {
+    const HermiteSpline s(f.points, f.tangents);
+    r.routes.push_back({f.name, s.points(), s.tangents()});
+  }
+  r.pressures = actuator_mask(d).cast<double>() * (d.muscle.max_pressure / 2);
+  return r;
+}
+
+OptimizationStart optimization_start(const Design& d, const SurfaceDistance& skin)
+{
+  OptimizationStart out{starting_routing(d), {}, {}};
+  std::vector<Route>& routes = out.routing.routes;
+  if (routes.size() < 2) return out;
+  const FiberClearance measure(skin, routes, d.muscle.model.diameter / 2, d.collide.clearance, d.collide.samples_per_length);
+  if (measure.contacts(measure.lines(routes), d.collide.clearance + kBarrierRoom / 2, false).empty()) return out;
+  ResolutionSettings settings;
+  settings.clearance = d.collide.clearance;
+  settings.room = kBarrierRoom;
+  settings.smoothness = d.collide.smoothness;
+  try {
+    const CollisionResolution r = resolve_collisions(measure, routes, settings);
+    for (const Contact& c : r.collided)
+      if (!c.with_skin())
+        out.log.push_back(fmt::format("fibers {} and {} start {:.2f} mm apart at {}, less than the [collide] clearance", routes[c.a].name,
+                                      routes[c.b].name, c.clearance / units::mm, format_mm(c.point_a)));
+    out.log.push_back(fmt::format("moved apart before optimizing, in {} rounds: the smallest clearance went from {:.3f} mm to {:.3f} mm",
+                                  r.iterations, r.before / units::mm, r.after / units::mm));
+    routes = r.routes;
+  } catch (const CollisionError& e) {
+    out.warning = fmt::format("the starting fibers cannot be moved apart ({}); the optimizer lets them cross, and collide parts "
+                              "them afterwards", e.what());
+  }
+  return out;
+}
+
+BfgsOptions bfgs_options(const Design& d)
+{
+  BfgsOptions o;
+  o.max_iterations = d.optimize.max_iterations;
+  o.gradient_tolerance = d.optimize.gradient_tolerance;
+  o.relative_tolerance = d.optimize.relative_tolerance;
+  return o;
+}
+
+nlohmann::ordered_json errors_json(const TargetErrors& e)
+{
+  return {{"rmse_mm", e.rmse / units::mm},
+          {"max_error_mm", e.max / units::mm},
+          {"surface_rmse_mm", e.surface_rmse / units::mm},
+          {"surface_max_error_mm", e.surface_max / units::mm}};
+}
+
+void write_deformed_target(const std::filesystem::path& path, DesignRouting& dr, const Routing& r, int t,
+                           const Eigen::VectorXd& x)
+{
+  const LameParameters lame =
+      LameParameters::from_young_poisson(dr.design.material.youngs_modulus, dr.design.material.poisson_ratio);
+  std::vector<const MuscleEnergy*> muscles;
+  const auto owned = dr.problem->muscles(r, t);
+  for (const auto& m : owned) muscles.push_back(m.get());
+  write_deformed(path, *dr.sim, x, muscles, lame);
+}
+
+std::string deformed_json(DesignRouting& dr, const Routing& r, int t, const Eigen::VectorXd& x)
+{
+  const Eigen::MatrixX3d nodes = dr.sim->deformed_nodes(x);
+  nlohmann::ordered_json points = nlohmann::ordered_json::array(), fibers = nlohmann::ordered_json::object();
+  // To 0.1 µm: the report draws them in float32 anyway.
+  const auto mm = [](const Eigen::Vector3d& p) {
+    const auto r = [](double v) { return std::round(v / units::mm * 1e4) / 1e4; };
+    return nlohmann::ordered_json{r(p.x()), r(p.y()), r(p.z())};
+  };
+  for (Eigen::Index i = 0; i < nodes.rows(); ++i) points.push_back(mm(nodes.row(i).transpose()));
+  const auto muscles = dr.problem->muscles(r, t);
+  for (std::size_t m = 0; m < muscles.size() && m < r.routes.size(); ++m) {
+    nlohmann::ordered_json line = nlohmann::ordered_json::array();
+    for (double s : muscles[m]->segments().t) line.push_back(mm(dr.sim->basis().at(muscles[m]->spline().position(s), 0).position(x)));
+    fibers[r.routes[m].name] = line;
+  }
+  return checked_json(nlohmann::ordered_json{{"target", dr.target_names[static_cast<std::size_t>(t)]}, {"nodes_mm", points}, {"fibers_mm", fibers}},
+                      fmt::format("deformed-{}.json", dr.target_names[static_cast<std::size_t>(t)]), -1);
+}
+
+} // namespace fibermold

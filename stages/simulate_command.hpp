@@ -1,0 +1,32 @@
+#pragma once
+// `fibermold simulate DESIGN [--target NAME | --pressure FIBER=kPa ...]`: a forward simulation of
+// the design on its mesh (made first when stale), written as <build>/simulate/deformed-<name>.vtu.
+
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include "design/design.hpp"
+#include "make/runner.hpp"
+#include "sim/newton_solver.hpp"
+
+namespace fibermold {
+
+struct SimulateRequest {
+  std::string target;                  ///< a [[target]] name, or empty
+  std::vector<std::string> pressures;  ///< "FIBER=kPa"
+};
+
+struct SimulateResult {
+  std::string name;                    ///< "twist", or "pressures"
+  std::filesystem::path vtu;
+  double max_displacement = 0;         ///< m
+  NewtonSummary summary;
+  std::string conditioning;            ///< where the MLS radius had to be widened; empty when nowhere
+};
+
+/// Throws InputError for a bad request or design (exit 2), std::runtime_error when the solve fails.
+SimulateResult simulate(const Design& design, const Runner& runner, const std::filesystem::path& build_dir,
+                        const SimulateRequest& request, const ProgressFactory& progress);
+
+} // namespace fibermold

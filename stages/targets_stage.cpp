@@ -1,0 +1,151 @@
+#include "stages/targets_stage.hpp"
+
+#include <algorithm>
+#include <array>
+#include <set>
+
+#include <fmt/format.h>
+#include <nlohmann/json.hpp>
+#include <spdlog/spdlog.h>
+
+#include "core/array_file.hpp"
+#include "core/atomic_file.hpp"
+#include "core/input_error.hpp"
+#include "core/json_file.hpp"
+#include "core/units.hpp"
+#include "mesh/surface_import.hpp"
+#include "sim/external_forces.hpp"
+#include "stages/design_simulation.hpp"
+
+namespace fibermold {
+
+namespace {
+
+using Triangle = std::array<int, 3>;
+
+/// Faces as rotation-normalised node triples, to compare connectivity whatever the starting corner.
+std::set<Triangle> face_set(const Eigen::MatrixX3i& faces, const Eigen::VectorXi* map)
+{
+  std::set<Triangle> out;
+  for (Eigen::Index f = 0; f < faces.rows(); ++f) {
+    Triangle t{faces(f, 0), faces(f, 1), faces(f, 2)};
+    if (map)
+      for (int& v : t) v = (*map)(v);
+    std::rotate(t.begin(), std::min_element(t.begin(), t.end()), t.end());
+    out.insert(t);
+  }
+  return out;
+}
+
+/// Surface vertex positions of a `kind = "surface"` target, checked against the body's surface.
+std::vector<std::pair<int, Eigen::Vector3d>> target_surface(const Design& d, const Target& t, const TetMesh& mesh)
+{
+  const std::string key = fmt::format("[target.{}].surface", t.name);
+  const SurfaceMesh s = import_surface(t.surface, d.design.surface_scale);
+  if (s.num_vertices() != mesh.surface_to_node.size())
+    throw InputError(design_problem(d, key,
+                                fmt::format("{} has {} vertices, the body's surface {}: a target surface must be a "
+                                            "deformed copy of the body's surface (same vertices, same order)",
+                                            t.surface.filename().string(), s.num_vertices(), mesh.surface_to_node.size())));
+  if (face_set(s.faces, &mesh.surface_to_node) != face_set(mesh.boundary_faces, nullptr))
+    throw InputError(design_problem(d, key,
+                                fmt::format("{} connects its vertices differently from the body's surface: the vertex "
+                                            "order changed (export it from the same mesh without reordering)",
+                                            t.surface.filename().string())));
+  std::vector<std::pair<int, Eigen::Vector3d>> moved;
+  for (Eigen::Index v = 0; v < s.num_vertices(); ++v) moved.emplace_back(mesh.surface_to_node(v), s.vertices.row(v).transpose());
+  return moved;
+}
+
+struct Solved {
+  Eigen::VectorXd x;
+  NewtonSummary summary;
+  double surface_error = 0;  ///< surface targets: largest distance of the field from the prescribed surface, m
+};
+
+/// Equilibrium of the body for one target; a surface target is reached in steps so that each
+/// Newton solve starts close to its answer.
+Solved solve_target(const Design& d, const Target& t, const TetMesh& mesh, const MuscleModel& model, StageContext& ctx,
+                    std::vector<const MuscleEnergy*>& muscles, Eigen::MatrixX3d& deformed,
+                    std::unique_ptr<Simulation>& sim)
+{
+  if (t.strain_penalty > 0)
+    throw InputError(design_problem(d, fmt::format("[target.{}].strain_penalty", t.name),
+                                "the large-strain penalty is not available yet; remove the key"));
+  Solved out;
+  if (t.kind == TargetKind::surface) {
+    const auto moved = target_surface(d, t, mesh);
+    SimulationOptions o = simulation_options(d, mesh, false);  // the whole surface is prescribed
+    o.gravity = Eigen::Vector3d::Zero();
+    constexpr int kSteps = 4;
+    Eigen::VectorXd x;
+    for (int step = 1; step <= kSteps; ++step) {
+      SimulationOptions stepped = o;
+      for (const auto& [node, position] : moved) {
+        const Eigen::Vector3d rest = mesh.nodes.row(node).transpose();
+        stepped.moved_nodes.emplace_back(node, rest + (position - rest) * step / kSteps);
+      }
+      sim = std::make_unique<Simulation>(mesh, stepped);
+      if (x.size() == 0) x = sim->rest();
+      out.summary = sim->solve(x, ctx.progress);
+      if (!out.summary.converged) break;
+    }
+    out.x = x;
+    if (out.summary.converged) {
+      const Eigen::MatrixX3d reached = sim->deformed_nodes(x);
+      for (const auto& [node, position] : moved)
+        out.surface_error = std::max(out.surface_error, (reached.row(node).transpose() - position).norm());
+    }
+  } else {
+    sim = std::make_unique<Simulation>(mesh, simulation_options(d, mesh));
+    if (t.kind == TargetKind::forces) sim->add_energy(std::make_unique<ExternalForces>(target_forces(d, t, *sim)));
+    if (t.kind == TargetKind::fibers) muscles = add_muscles(*sim, d, model, target_actuations(d, t));
+    out.x = sim->rest();
+    out.summary = sim->solve(out.x, ctx.progress);
+  }
+  if (!out.summary.converged)
+    throw std::runtime_error(fmt::format("target {}: the simulation did not reach equilibrium: {} ({})", t.name,
+                                         out.summary.brief(), out.summary.message));
+  deformed = sim->deformed_nodes(out.x);
+  return out;
+}
+
+} // namespace
+
+std::vector<std::filesystem::path> TargetsStage::input_files(const Design& d) const
+{
+  std::vector<std::filesystem::path> files;
+  for (const Target& t : d.targets)
+    if (t.kind == TargetKind::surface)
+      for (const auto& f : surface_files(t.surface)) files.push_back(f);
+  return files;
+}
+
+void TargetsStage::run(StageContext& ctx) const
+{
+  const Design& d = ctx.design;
+  const TetMesh mesh = load_tet_mesh(ctx.upstream("mesh", "body.tetmesh"));
+  const MuscleModel model(d.muscle.model);
+  const LameParameters lame = LameParameters::from_young_poisson(d.material.youngs_modulus, d.material.poisson_ratio);
+  nlohmann::ordered_json report = nlohmann::ordered_json::object();
+  for (std::size_t k = 0; k < d.targets.size(); ++k) {
+    const Target& t = d.targets[k];
+    ctx.progress.checkpoint(static_cast<double>(k) / d.targets.size(), "target " + t.name);
+    std::vector<const MuscleEnergy*> muscles;
+    Eigen::MatrixX3d deformed;
+    std::unique_ptr<Simulation> sim;
+    const Solved solved = solve_target(d, t, mesh, model, ctx, muscles, deformed, sim);
+    save_array(ctx.output_dir / (t.name + ".positions"), "positions", solved.x);
+    write_deformed(ctx.output_dir / (t.name + ".vtu"), *sim, solved.x, muscles, lame);
+    const double max_mm = (deformed - mesh.nodes).rowwise().norm().maxCoeff() / units::mm;
+    report[t.name] = {{"kind", choice_name(t.kind)},
+                      {"max_displacement_mm", max_mm},
+                      {"newton_iterations", solved.summary.iterations},
+                      {"residual_N", solved.summary.residual}};
+    if (t.kind == TargetKind::surface) report[t.name]["max_surface_error_mm"] = solved.surface_error / units::mm;
+    ctx.log.info("target {} ({}): max displacement {:.3f} mm; {}", t.name, choice_name(t.kind), max_mm, solved.summary.brief());
+  }
+  write_json_atomic(ctx.output_dir / "report.json", report);
+}
+
+} // namespace fibermold

@@ -1,0 +1,151 @@
+// The rules of the house that the source tree itself must keep (docs/architecture.md): the module
+// order, no folder holding the bulk of the code, short functions, third-party headers out of the
+// public ones, and nothing cited from outside the repository.
+
+#include <filesystem>
+#include <fstream>
+#include <map>
+#include <regex>
+#include <set>
+#include <sstream>
+
+#include <fmt/format.h>
+#include <gtest/gtest.h>
+
+namespace fibermold {
+namespace {
+
+namespace fs = std::filesystem;
+
+const fs::path kSource = FIBERMOLD_SOURCE_DIR;
+
+/// The module folders and what each may include (docs/architecture.md, "Modules").
+const std::map<std::string, std::set<std::string>>& allowed()
+{
+  static const std::map<std::string, std::set<std::string>> deps{
+      {"core", {}},
+      {"mesh", {"core"}},
+      {"sim", {"core", "mesh"}},
+      {"optimize", {"core", "mesh", "sim"}},
+      {"molds", {"core", "mesh"}},
+      {"export", {"core", "mesh"}},
+      {"design", {"core", "mesh", "sim", "optimize", "molds"}},
+      {"make", {"core", "mesh", "sim", "optimize", "molds", "design"}},
+      {"stages", {"core", "mesh", "sim", "optimize", "molds", "export", "design", "make"}},
+      {"sweep", {"core", "mesh", "sim", "optimize", "molds", "design", "make"}},
+      {"cli", {"core", "mesh", "sim", "optimize", "molds", "export", "design", "make", "stages", "sweep"}},
+  };
+  return deps;
+}
+
+std::string text_of(const fs::path& p)
+{
+  std::ifstream in(p);
+  std::stringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+
+/// Every .cpp and .hpp of the module folders.
+std::vector<fs::path> module_sources()
+{
+  std::vector<fs::path> out;
+  for (const auto& [module, deps] : allowed())
+    for (const auto& e : fs::recursive_directory_iterator(kSource / module))
+      if (e.path().extension() == ".cpp" || e.path().extension() == ".hpp") out.push_back(e.path());
+  return out;
+}
+
+std::string module_of(const fs::path& p) { return fs::relative(p, kSource).begin()->string(); }
+
+TEST(Architecture, IncludesFollowTheModuleOrder)
+{
+  const std::regex include(R"re(#include "([a-z_]+)/)re");
+  int checked = 0;
+  for (const fs::path& file : module_sources()) {
+    const std::string module = module_of(file), text = text_of(file);
+    for (auto it = std::sregex_iterator(text.begin(), text.end(), include); it != std::sregex_iterator(); ++it) {
+      const std::string to = (*it)[1];
+      if (to == module) continue;
+      ++checked;
+      EXPECT_TRUE(allowed().at(module).contains(to)) << fs::relative(file, kSource) << " includes " << to << "/: against the module order";
+    }
+  }
+  EXPECT_GT(checked, 200);
+}
+
+TEST(Architecture, NoFolderHoldsAQuarterOfTheCode)
+{
+  std::map<std::string, int> lines;
+  int total = 0;
+  for (const fs::path& file : module_sources()) {
+    const std::string text = text_of(file);
+    const int n = static_cast<int>(std::count(text.begin(), text.end(), '\n'));
+    lines[module_of(file)] += n;
+    total += n;
+  }
+  ASSERT_GT(total, 10000);
+  for (const auto& [module, n] : lines)
+    EXPECT_LE(n, total / 4) << module << "/ holds " << n << " of " << total << " lines (" << 100.0 * n / total << " %)";
+}
+
+/// Functions defined at namespace scope open with "{" and close with "}" alone on a line (the
+/// house's clang-format style): the lines between them, counted.
+TEST(Architecture, NoFunctionIsLongerThanAHundredLines)
+{
+  int functions = 0;
+  for (const fs::path& file : module_sources()) {
+    std::ifstream in(file);
+    std::string line, signature, previous;
+    int start = 0, number = 0;
+    while (std::getline(in, line)) {
+      ++number;
+      if (line == "{") start = number, signature = previous;
+      else if (line == "}" && start > 0) {
+        ++functions;
+        EXPECT_LE(number - start + 1, 100) << fs::relative(file, kSource) << ":" << start << ": " << signature << " is "
+                                           << number - start + 1 << " lines";
+        start = 0;
+      }
+      previous = line;
+    }
+  }
+  EXPECT_GT(functions, 300);
+}
+
+/// CGAL, OpenVDB, TetGen and assimp stay inside the .cpp files that need them.
+TEST(Architecture, PublicHeadersIncludeNoGeometryLibrary)
+{
+  const std::regex third_party(R"re(#include <(CGAL|openvdb|tetgen|assimp)[/.>])re");
+  for (const fs::path& file : module_sources()) {
+    if (file.extension() != ".hpp") continue;
+    const std::string text = text_of(file);
+    std::smatch m;
+    EXPECT_FALSE(std::regex_search(text, m, third_party)) << fs::relative(file, kSource) << " includes " << m.str();
+  }
+}
+
+TEST(Architecture, NothingCitesFilesOutsideTheRepository)
+{
+  int files = 0;
+  for (auto it = fs::recursive_directory_iterator(kSource); it != fs::recursive_directory_iterator(); ++it) {
+    const std::string name = it->path().filename().string();
+    if (it->is_directory() && (name.starts_with(".") || name == "build" || name == "out")) {
+      it.disable_recursion_pending();
+      continue;
+    }
+    const std::string ext = it->path().extension().string();
+    if (!it->is_regular_file() || !(ext == ".cpp" || ext == ".hpp" || ext == ".md" || ext == ".txt" || ext == ".cmake" || ext == ".toml"))
+      continue;
+    ++files;
+    const std::string text = text_of(it->path());
+    // Spelt in pieces, so that this file does not cite them itself.
+    for (const std::string& outside : {std::string("DESIGN") + ".md", std::string("STYLE") + ".md", std::string("../") + "shared",
+                                      std::string("DEPENDENCIES") + ".md"})
+      EXPECT_EQ(text.find(outside), std::string::npos) << fs::relative(it->path(), kSource) << " cites " << outside;
+  }
+  EXPECT_GT(files, 200);
+}
+
+} // namespace
+} // namespace fibermold
