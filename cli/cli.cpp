@@ -156,6 +156,11 @@ int run_simulate(const Design& design, const Runner& runner, const fs::path& bui
              r.name, r.max_displacement / 1e-3, r.summary.iterations, r.summary.residual, r.summary.seconds_total,
              r.summary.seconds_assembly, r.summary.seconds_factorization, r.summary.seconds_solve, r.vtu.string());
   if (!r.conditioning.empty()) fmt::print("  warning: {}\n", r.conditioning);
+  if (const auto& f = r.refinement)
+    fmt::print("refined: {} nodes, {} tets, mean edge {:.2f} mm; max displacement {:.3f} mm\n"
+               "  difference: surface max {:.3f} mm, RMS {:.3f} mm; tracking curves max {:.3f} mm, RMS {:.3f} mm ({} samples)\n",
+               f->nodes, f->tets, f->edge_length / 1e-3, f->max_displacement / 1e-3, f->surface_max / 1e-3, f->surface_rms / 1e-3,
+               f->curves_max / 1e-3, f->curves_rms / 1e-3, f->curve_samples);
   return kExitDone;
 }
 
@@ -252,6 +257,8 @@ int fibermold_main(int argc, char** argv)
   simulate->add_option("DESIGN", words, "DESIGN")->expected(0, 1);
   simulate->add_option("--target", target, "Simulate this target's loads");
   simulate->add_option("--pressure", pressures, "FIBER=kPa, repeatable");
+  bool refine = false;
+  simulate->add_flag("--refine", refine, "Solve again at half the edge length and report the difference (the discretization error)");
   simulate->add_option("--build-dir", build_dir_option, "Build folder (default: out/<design name>)");
 
   SweepRequest sweep_request;
@@ -289,7 +296,7 @@ int fibermold_main(int argc, char** argv)
         split_arguments(words, FIBERMOLD_DEFAULT_DESIGN,
                         check->parsed() || simulate->parsed() ? std::vector<std::string>{} : runner.stage_names());
     const Design design = load_design(args.design);
-    if (simulate->parsed()) return run_simulate(design, runner, build_dir_for(design, build_dir_option), {target, pressures});
+    if (simulate->parsed()) return run_simulate(design, runner, build_dir_for(design, build_dir_option), {target, pressures, refine});
     if (check->parsed()) return run_check(design);
     const fs::path build_dir = build_dir_for(design, build_dir_option);
     if (status->parsed()) {

@@ -138,6 +138,18 @@ double target_edge_length(const Design& design, double body_volume)
   return design.mesh.edge_length ? *design.mesh.edge_length : default_edge_length(body_volume);
 }
 
+TetMesh scaled_design_mesh(const Design& d, double edge_factor, Progress& progress)
+{
+  SurfaceCheck check;
+  RepairReport repair;
+  nlohmann::json seconds;
+  const SurfaceMesh surface = prepared_surface(d, check, repair, seconds);
+  const double edge = edge_factor * target_edge_length(d, check.volume);
+  require_mesh_size(d, check.volume, edge);
+  return tetrahedralize(surface, {edge, d.mesh.radius_edge_ratio, d.mesh.min_dihedral_deg, d.sim.basis == BasisKind::fem_p2, false},
+                        progress);
+}
+
 SurfaceCheck check_design_surface(const Design& design, std::vector<std::string>& repairs)
 {
   SurfaceCheck check;

@@ -7,6 +7,7 @@
 
 #include "make/stage.hpp"
 #include "mesh/surface_check.hpp"
+#include "mesh/tet_mesh.hpp"
 
 namespace fibermold {
 
@@ -28,5 +29,9 @@ SurfaceCheck check_design_surface(const Design& design, std::vector<std::string>
 
 /// Target edge length: [mesh] edge_length, or one that fits about 5,000 regular tets in the body.
 double target_edge_length(const Design& design, double body_volume);
+
+/// The body meshed as the mesh stage meshes it, at `edge_factor` × its edge length, the surface's
+/// triangles split to that length (`fibermold simulate --refine`). Throws InputError as the stage.
+TetMesh scaled_design_mesh(const Design& design, double edge_factor, Progress& progress);
 
 } // namespace fibermold

@@ -1,6 +1,7 @@
 #include "stages/simulate_command.hpp"
 
 #include "stages/design_simulation.hpp"
+#include "stages/mesh_stage.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -9,7 +10,9 @@
 
 #include "core/input_error.hpp"
 #include "core/units.hpp"
+#include "mesh/mesh_quality.hpp"
 #include "mesh/tet_mesh.hpp"
+#include "optimize/tracking_curve.hpp"
 #include "sim/external_forces.hpp"
 #include "sim/mls_basis.hpp"
 #include "sim/muscle_energy.hpp"
@@ -56,6 +59,62 @@ std::vector<Actuation> requested_actuations(const Design& d, const SimulateReque
   return out;
 }
 
+/// The design's body on `mesh` under the request's load, at equilibrium.
+struct Solved {
+  std::unique_ptr<MuscleModel> model;  ///< before sim: its muscles hold a reference to it
+  std::unique_ptr<Simulation> sim;
+  std::vector<const MuscleEnergy*> muscles;
+  Eigen::VectorXd x;
+  NewtonSummary summary;
+};
+
+Solved solve(const Design& d, const TetMesh& mesh, const Target* target, const std::vector<Actuation>& actuations, Progress& progress)
+{
+  Solved out;
+  out.sim = std::make_unique<Simulation>(mesh, simulation_options(d, mesh));
+  if (target && target->kind == TargetKind::forces)
+    out.sim->add_energy(std::make_unique<ExternalForces>(target_forces(d, *target, *out.sim)));
+  out.model = std::make_unique<MuscleModel>(d.muscle.model);
+  out.muscles = add_muscles(*out.sim, d, *out.model, actuations);
+  out.x = out.sim->rest();
+  out.summary = out.sim->solve(out.x, progress);
+  if (!out.summary.converged)
+    throw std::runtime_error(fmt::format("the simulation did not reach equilibrium on {} tets: {} ({})", mesh.num_tets(),
+                                         out.summary.brief(), out.summary.message));
+  return out;
+}
+
+/// The displacements of two solutions of the same load compared at the input surface's vertices
+/// and the tracking curves' samples.
+Refinement compare(const Design& d, const TetMesh& coarse_mesh, const Solved& coarse, const TetMesh& fine_mesh, const Solved& fine)
+{
+  Refinement r;
+  r.nodes = fine_mesh.nodes.rows();
+  r.tets = fine_mesh.num_tets();
+  r.max_displacement = (fine.sim->deformed_nodes(fine.x) - fine_mesh.nodes).rowwise().norm().maxCoeff();
+  const auto difference = [&](const Eigen::Vector3d& X) {
+    return (coarse.sim->basis().at(X, 0).position(coarse.x) - fine.sim->basis().at(X, 0).position(fine.x)).norm();
+  };
+  double sum = 0;
+  for (Eigen::Index v = 0; v < coarse_mesh.surface_to_node.size(); ++v) {
+    const double e = difference(coarse_mesh.nodes.row(coarse_mesh.surface_to_node(v)).transpose());
+    sum += e * e;
+    r.surface_max = std::max(r.surface_max, e);
+  }
+  r.surface_rms = std::sqrt(sum / static_cast<double>(std::max<Eigen::Index>(1, coarse_mesh.surface_to_node.size())));
+  sum = 0;
+  for (const TrackingCurve& c : d.tracking_curves)
+    for (const Eigen::Vector3d& q : sample_tracking_curve(c.points, c.samples, c.weight_position, c.weight_orientation).points) {
+      const double e = difference(q);
+      sum += e * e;
+      r.curves_max = std::max(r.curves_max, e);
+      ++r.curve_samples;
+    }
+  r.curves_rms = r.curve_samples > 0 ? std::sqrt(sum / r.curve_samples) : 0;
+  r.edge_length = mesh_quality(fine_mesh).mean_edge_length;
+  return r;
+}
+
 } // namespace
 
 SimulateResult simulate(const Design& d, const Runner& runner, const fs::path& build_dir, const SimulateRequest& request,
@@ -74,31 +133,32 @@ SimulateResult simulate(const Design& d, const Runner& runner, const fs::path& b
 
   runner.make(d, {build_dir, {"mesh"}, false}, progress);
   const TetMesh mesh = load_tet_mesh(build_dir / "mesh" / "body.tetmesh");
-  Simulation sim(mesh, simulation_options(d, mesh));
-  if (target && target->kind == TargetKind::forces) sim.add_energy(std::make_unique<ExternalForces>(target_forces(d, *target, sim)));
-
-  const MuscleModel model(d.muscle.model);
-  const std::vector<const MuscleEnergy*> muscles = add_muscles(sim, d, model, actuations);
+  std::unique_ptr<Progress> reporter = progress ? progress("simulate") : nullptr;
+  NullProgress silent;
+  Progress& p = reporter ? *reporter : silent;
+  const Solved coarse = solve(d, mesh, target, actuations, p);
 
   SimulateResult result;
   result.name = target ? target->name : "pressures";
-  Eigen::VectorXd x = sim.rest();
-  std::unique_ptr<Progress> reporter = progress ? progress("simulate") : nullptr;
-  NullProgress silent;
-  result.summary = sim.solve(x, reporter ? *reporter : silent);
-  if (!result.summary.converged)
-    throw std::runtime_error(fmt::format("the simulation did not reach equilibrium: {} ({})", result.summary.brief(),
-                                         result.summary.message));
-  result.max_displacement = (sim.deformed_nodes(x) - mesh.nodes).rowwise().norm().maxCoeff();
-  if (const auto* mls = dynamic_cast<const MlsBasis*>(&sim.basis()); mls && mls->conditioning().widened > 0) {
+  result.summary = coarse.summary;
+  result.max_displacement = (coarse.sim->deformed_nodes(coarse.x) - mesh.nodes).rowwise().norm().maxCoeff();
+  if (const auto* mls = dynamic_cast<const MlsBasis*>(&coarse.sim->basis()); mls && mls->conditioning().widened > 0) {
     const MlsConditioning c = mls->conditioning();
     result.conditioning = fmt::format("MLS radius widened at {} points (too few or co-planar nodes), e.g. at {}, up to "
                                       "{:.3g} mm; consider a finer mesh there or a larger [sim] mls_radius",
                                       c.widened, format_mm(c.example), c.largest_radius / units::mm);
   }
   result.vtu = build_dir / "simulate" / fmt::format("deformed-{}.vtu", result.name);
-  write_deformed(result.vtu, sim, x, muscles,
+  write_deformed(result.vtu, *coarse.sim, coarse.x, coarse.muscles,
                  LameParameters::from_young_poisson(d.material.youngs_modulus, d.material.poisson_ratio));
+  if (request.refine) {
+    p.checkpoint(-1, "meshing at half the edge length");
+    const TetMesh fine_mesh = scaled_design_mesh(d, 0.5, p);
+    const Solved fine = solve(d, fine_mesh, target, actuations, p);
+    result.refinement = compare(d, mesh, coarse, fine_mesh, fine);
+    write_deformed(build_dir / "simulate" / fmt::format("deformed-{}-refined.vtu", result.name), *fine.sim, fine.x, fine.muscles,
+                   LameParameters::from_young_poisson(d.material.youngs_modulus, d.material.poisson_ratio));
+  }
   return result;
 }
 
