@@ -45,7 +45,7 @@ double radius_edge_ratio(const Eigen::Vector3d& a, const Eigen::Vector3d& b, con
   return centre.norm() / shortest;
 }
 
-MeshQuality mesh_quality(const TetMesh& mesh)
+MeshQuality mesh_quality(const TetMesh& mesh, double max_ratio, double min_dihedral_deg)
 {
   MeshQuality q;
   q.min_dihedral_deg = 180;
@@ -60,12 +60,15 @@ MeshQuality mesh_quality(const TetMesh& mesh)
       ++q.inverted_tets;
       continue;
     }
-    for (double angle : dihedral_angles(p)) {
-      q.min_dihedral_deg = std::min(q.min_dihedral_deg, angle);
-      q.max_dihedral_deg = std::max(q.max_dihedral_deg, angle);
-    }
+    const std::array<double, 6> angles = dihedral_angles(p);
+    const auto [smallest, largest] = std::minmax_element(angles.begin(), angles.end());
+    q.min_dihedral_deg = std::min(q.min_dihedral_deg, *smallest);
+    q.max_dihedral_deg = std::max(q.max_dihedral_deg, *largest);
+    if (*smallest < min_dihedral_deg) ++q.under_dihedral;
     const double ratio = radius_edge_ratio(p[0], p[1], p[2], p[3]);
     ratio_sum += ratio;
+    if (ratio > max_ratio) ++q.over_ratio;
+    if (ratio > q.max_radius_edge_ratio) q.worst_at = (p[0] + p[1] + p[2] + p[3]) / 4;
     q.max_radius_edge_ratio = std::max(q.max_radius_edge_ratio, ratio);
     for (const auto& e : kEdges) {
       const int a = mesh.tets(t, e[0]), b = mesh.tets(t, e[1]);
@@ -84,23 +87,6 @@ MeshQuality mesh_quality(const TetMesh& mesh)
   const auto good = mesh.num_tets() - q.inverted_tets;
   q.mean_radius_edge_ratio = good > 0 ? ratio_sum / static_cast<double>(good) : 0;
   return q;
-}
-
-QualityMisses quality_misses(const TetMesh& mesh, double max_ratio, double min_dihedral_deg)
-{
-  QualityMisses m;
-  double worst = 0;
-  for (Eigen::Index t = 0; t < mesh.num_tets(); ++t) {
-    std::array<Eigen::Vector3d, 4> p;
-    for (int k = 0; k < 4; ++k) p[k] = mesh.nodes.row(mesh.tets(t, k)).transpose();
-    if (mesh.tet_volume(t) <= 0) continue;
-    const double ratio = radius_edge_ratio(p[0], p[1], p[2], p[3]);
-    if (ratio > max_ratio) ++m.over_ratio;
-    const std::array<double, 6> angles = dihedral_angles(p);
-    if (*std::min_element(angles.begin(), angles.end()) < min_dihedral_deg) ++m.under_dihedral;
-    if (ratio > worst) worst = ratio, m.worst_at = (p[0] + p[1] + p[2] + p[3]) / 4;
-  }
-  return m;
 }
 
 } // namespace fibermold

@@ -85,6 +85,12 @@ SurfaceMesh prepared_surface(const Design& d, SurfaceCheck& check, RepairReport&
   return surface;
 }
 
+/// TetGen's options for the design at `edge`.
+TetOptions tet_options(const Design& d, double edge, bool keep_surface)
+{
+  return {edge, d.mesh.radius_edge_ratio, d.mesh.min_dihedral_deg, d.sim.basis == BasisKind::fem_p2, keep_surface};
+}
+
 /// The share of tets outside the quality bounds above which the mesh stage warns.
 constexpr double kQualityMissWarning = 0.01;
 
@@ -146,8 +152,7 @@ TetMesh scaled_design_mesh(const Design& d, double edge_factor, Progress& progre
   const SurfaceMesh surface = prepared_surface(d, check, repair, seconds);
   const double edge = edge_factor * target_edge_length(d, check.volume);
   require_mesh_size(d, check.volume, edge);
-  return tetrahedralize(surface, {edge, d.mesh.radius_edge_ratio, d.mesh.min_dihedral_deg, d.sim.basis == BasisKind::fem_p2, false},
-                        progress);
+  return tetrahedralize(surface, tet_options(d, edge, false), progress);
 }
 
 SurfaceCheck check_design_surface(const Design& design, std::vector<std::string>& repairs)
@@ -192,20 +197,19 @@ void MeshStage::run(StageContext& ctx) const
   auto t = Clock::now();
   ctx.progress.checkpoint(0.1, "tetrahedralizing");
   const TetMesh mesh =
-      tetrahedralize(surface, {edge, d.mesh.radius_edge_ratio, d.mesh.min_dihedral_deg, d.sim.basis == BasisKind::fem_p2, !split}, ctx.progress);
+      tetrahedralize(surface, tet_options(d, edge, !split), ctx.progress);
   seconds["tetrahedralize"] = since(t);
   const SurfaceFollowing following = surface_following(surface, mesh);
   ctx.progress.checkpoint(0.8, "measuring quality");
-  const MeshQuality q = mesh_quality(mesh);
+  const MeshQuality q = mesh_quality(mesh, d.mesh.radius_edge_ratio, d.mesh.min_dihedral_deg);
   if (q.inverted_tets > 0) throw std::runtime_error(fmt::format("TetGen produced {} inverted tets", q.inverted_tets));
-  const QualityMisses misses = quality_misses(mesh, d.mesh.radius_edge_ratio, d.mesh.min_dihedral_deg);
   // TetGen's dihedral bound is best effort: a few slivers (0.04–0.5 % of the examples' tets) are
   // reported, not warned about; more than 1 % is a mesh to look at.
-  if (misses.over_ratio + misses.under_dihedral > kQualityMissWarning * static_cast<double>(mesh.num_tets()))
+  if (q.over_ratio + q.under_dihedral > kQualityMissWarning * static_cast<double>(mesh.num_tets()))
     ctx.log.warn("mesh: {} of {} tets exceed the radius-edge ratio bound {} (up to {:.3g}, near {}) and {} have a dihedral angle "
                  "under {}°{}",
-                 misses.over_ratio, mesh.num_tets(), d.mesh.radius_edge_ratio, q.max_radius_edge_ratio, format_mm(misses.worst_at),
-                 misses.under_dihedral, d.mesh.min_dihedral_deg,
+                 q.over_ratio, mesh.num_tets(), d.mesh.radius_edge_ratio, q.max_radius_edge_ratio, format_mm(q.worst_at),
+                 q.under_dihedral, d.mesh.min_dihedral_deg,
                  split ? "" : ": TetGen cannot meet its bounds beside the input's triangles, kept exactly; [mesh] surface_triangles = "
                               "\"split\" lets it add points on the surface");
   const double volume_error = std::abs(q.volume - check.volume) / check.volume;
@@ -244,9 +248,9 @@ void MeshStage::run(StageContext& ctx) const
                                            {"input_longest_edge_mm", longest / units::mm},
                                            {"points_added", following.points_added},
                                            {"deviation_mm", following.deviation / units::mm}}},
-                    {"quality_bounds_met", misses.over_ratio + misses.under_dihedral == 0},
-                    {"tets_over_radius_edge_bound", misses.over_ratio},
-                    {"tets_under_dihedral_bound", misses.under_dihedral},
+                    {"quality_bounds_met", q.over_ratio + q.under_dihedral == 0},
+                    {"tets_over_radius_edge_bound", q.over_ratio},
+                    {"tets_under_dihedral_bound", q.under_dihedral},
                     {"min_dihedral_deg", q.min_dihedral_deg},
                     {"max_dihedral_deg", q.max_dihedral_deg},
                     {"radius_edge_ratio", {{"mean", q.mean_radius_edge_ratio}, {"max", q.max_radius_edge_ratio},
