@@ -156,11 +156,14 @@ int run_simulate(const Design& design, const Runner& runner, const fs::path& bui
              r.name, r.max_displacement / 1e-3, r.summary.iterations, r.summary.residual, r.summary.seconds_total,
              r.summary.seconds_assembly, r.summary.seconds_factorization, r.summary.seconds_solve, r.vtu.string());
   if (!r.conditioning.empty()) fmt::print("  warning: {}\n", r.conditioning);
-  if (const auto& f = r.refinement)
+  if (const auto& f = r.refinement) {
     fmt::print("refined: {} nodes, {} tets, mean edge {:.2f} mm; max displacement {:.3f} mm\n"
-               "  difference: surface max {:.3f} mm, RMS {:.3f} mm; tracking curves max {:.3f} mm, RMS {:.3f} mm ({} samples)\n",
-               f->nodes, f->tets, f->edge_length / 1e-3, f->max_displacement / 1e-3, f->surface_max / 1e-3, f->surface_rms / 1e-3,
-               f->curves_max / 1e-3, f->curves_rms / 1e-3, f->curve_samples);
+               "  difference: surface max {:.3f} mm, RMS {:.3f} mm",
+               f->nodes, f->tets, f->edge_length / 1e-3, f->max_displacement / 1e-3, f->surface_max / 1e-3, f->surface_rms / 1e-3);
+    if (f->curve_samples > 0)
+      fmt::print("; tracking curves max {:.3f} mm, RMS {:.3f} mm ({} samples)", f->curves_max / 1e-3, f->curves_rms / 1e-3, f->curve_samples);
+    fmt::print("\n");
+  }
   return kExitDone;
 }
 

@@ -1,34 +1,46 @@
 #include "sim/muscle_energy.hpp"
 
+#include <map>
+
 namespace fibermold {
 
 MuscleEnergy::MuscleEnergy(const Basis& basis, const MuscleModel& model, HermiteSpline spline, std::vector<double> t,
                            double pressure)
     : model_(model), spline_(std::move(spline)), segments_(segments_at(spline_, std::move(t))), pressure_(pressure)
 {
-  for (std::size_t j = 0; j < segments_.centres.size(); ++j) {
-    at_.push_back(basis.at(segments_.centres[j], 2));
-    alpha_.push_back(at_.back().dN * segments_.vectors[j]);
+  for (double t_end : segments_.t) ends_.push_back(basis.at(spline_.position(t_end), 1));
+  for (std::size_t j = 0; j + 1 < ends_.size(); ++j) {
+    std::map<int, double> alpha;  // node → N_i(e_{j+1}) − N_i(e_j)
+    for (Eigen::Index k = 0; k < ends_[j].size(); ++k) alpha[ends_[j].nodes[k]] -= ends_[j].N[k];
+    for (Eigen::Index k = 0; k < ends_[j + 1].size(); ++k) alpha[ends_[j + 1].nodes[k]] += ends_[j + 1].N[k];
+    Chord c;
+    c.alpha.resize(static_cast<Eigen::Index>(alpha.size()));
+    for (const auto& [node, a] : alpha) {
+      c.alpha[static_cast<Eigen::Index>(c.nodes.size())] = a;
+      c.nodes.push_back(node);
+    }
+    chords_.push_back(std::move(c));
   }
 }
 
 MuscleEnergy::SegmentState MuscleEnergy::state(const Eigen::VectorXd& x, std::size_t j) const
 {
-  // F d = Σ_i x_i (∇N_i · d)
-  Eigen::Vector3d Fd = Eigen::Vector3d::Zero();
-  for (Eigen::Index k = 0; k < at_[j].size(); ++k) Fd += alpha_[j][k] * x.segment<3>(3 * at_[j].nodes[k]);
+  // u = x(e_{j+1}) − x(e_j) = Σ_i α_i x_i
+  const Chord& c = chords_[j];
+  Eigen::Vector3d u = Eigen::Vector3d::Zero();
+  for (std::size_t k = 0; k < c.nodes.size(); ++k) u += c.alpha[static_cast<Eigen::Index>(k)] * x.segment<3>(3 * c.nodes[k]);
   SegmentState s;
   s.rest_length = (model_.rest_strain(pressure_) + 1) * segments_.vectors[j].norm();
-  s.length = Fd.norm();
+  s.length = u.norm();
   s.strain = s.length / s.rest_length - 1;
-  s.direction = Fd / s.length;
+  s.direction = u / s.length;
   return s;
 }
 
 std::vector<double> MuscleEnergy::strains(const Eigen::VectorXd& x) const
 {
   std::vector<double> e;
-  for (std::size_t j = 0; j < at_.size(); ++j) e.push_back(state(x, j).strain);
+  for (std::size_t j = 0; j < chords_.size(); ++j) e.push_back(state(x, j).strain);
   return e;
 }
 
@@ -37,7 +49,7 @@ double MuscleEnergy::value(const Eigen::VectorXd& x) const
   // eq. 10: Σ_j Ψ_act(p, ε_j) A_act L_j
   const double area = model_.parameters().area();
   double e = 0;
-  for (std::size_t j = 0; j < at_.size(); ++j) {
+  for (std::size_t j = 0; j < chords_.size(); ++j) {
     const SegmentState s = state(x, j);
     e += model_.density(pressure_, s.strain).psi * area * s.rest_length;
   }
@@ -48,10 +60,11 @@ void MuscleEnergy::add_gradient(const Eigen::VectorXd& x, Eigen::VectorXd& g) co
 {
   // ∂E/∂x_i = A_act L Ψ_ε ∂ε/∂x_i = A_act Ψ_ε n α_i
   const double area = model_.parameters().area();
-  for (std::size_t j = 0; j < at_.size(); ++j) {
+  for (std::size_t j = 0; j < chords_.size(); ++j) {
     const SegmentState s = state(x, j);
     const Eigen::Vector3d f = area * model_.density(pressure_, s.strain).d_eps * s.direction;
-    for (Eigen::Index k = 0; k < at_[j].size(); ++k) g.segment<3>(3 * at_[j].nodes[k]) += alpha_[j][k] * f;
+    const Chord& c = chords_[j];
+    for (std::size_t k = 0; k < c.nodes.size(); ++k) g.segment<3>(3 * c.nodes[k]) += c.alpha[static_cast<Eigen::Index>(k)] * f;
   }
 }
 
@@ -60,7 +73,7 @@ void MuscleEnergy::add_hessian(const Eigen::VectorXd& x, SparseHessian& H, bool 
   // ∂²E/∂x_i∂x_k = α_i α_k M,  M = A_act [Ψ_εε / L n nᵀ + Ψ_ε / l (I − n nᵀ)]
   // α αᵀ is positive semi-definite, so projecting M (eigenvalues along n and across it) suffices.
   const double area = model_.parameters().area();
-  for (std::size_t j = 0; j < at_.size(); ++j) {
+  for (std::size_t j = 0; j < chords_.size(); ++j) {
     const SegmentState s = state(x, j);
     const MuscleDensity d = model_.density(pressure_, s.strain);
     double along = area * d.d_eps_eps / s.rest_length, across = area * d.d_eps / s.length;
@@ -70,15 +83,16 @@ void MuscleEnergy::add_hessian(const Eigen::VectorXd& x, SparseHessian& H, bool 
     }
     const Eigen::Matrix3d nn = s.direction * s.direction.transpose();
     const Eigen::Matrix3d M = along * nn + across * (Eigen::Matrix3d::Identity() - nn);
-    const ShapeEval& e = at_[j];
-    for (Eigen::Index a = 0; a < e.size(); ++a)
-      for (Eigen::Index b = 0; b < e.size(); ++b) H.add_block(e.nodes[a], e.nodes[b], alpha_[j][a] * alpha_[j][b] * M);
+    const Chord& c = chords_[j];
+    for (std::size_t a = 0; a < c.nodes.size(); ++a)
+      for (std::size_t b = 0; b < c.nodes.size(); ++b)
+        H.add_block(c.nodes[a], c.nodes[b], c.alpha[static_cast<Eigen::Index>(a)] * c.alpha[static_cast<Eigen::Index>(b)] * M);
   }
 }
 
 void MuscleEnergy::stencils(std::vector<std::vector<int>>& out) const
 {
-  for (const ShapeEval& e : at_) out.push_back(e.nodes);
+  for (const Chord& c : chords_) out.push_back(c.nodes);
 }
 
 FiberParameterGradient MuscleEnergy::zero_gradient() const
@@ -89,12 +103,12 @@ FiberParameterGradient MuscleEnergy::zero_gradient() const
   return g;
 }
 
-void MuscleEnergy::chain_to_parameters(std::size_t j, const Eigen::Vector3d& by_d, const Eigen::Vector3d& by_c,
+void MuscleEnergy::chain_to_parameters(std::size_t j, const Eigen::Vector3d& by_start, const Eigen::Vector3d& by_end,
                                        FiberParameterGradient& out) const
 {
-  // d_j = e_{j+1} − e_j, c_j = (e_j + e_{j+1})/2, and each endpoint e = h00 P_k + h10 T_k + h01 P_{k+1} + h11 T_{k+1}.
+  // Each end e = h00 P_k + h10 T_k + h01 P_{k+1} + h11 T_{k+1}.
   for (int end = 0; end < 2; ++end) {
-    const Eigen::Vector3d by_e = (end == 0 ? -by_d : by_d) + by_c / 2;
+    const Eigen::Vector3d& by_e = end == 0 ? by_start : by_end;
     int k;
     double w[4];
     spline_.weights(segments_.t[j + end], k, w);
@@ -105,31 +119,23 @@ void MuscleEnergy::chain_to_parameters(std::size_t j, const Eigen::Vector3d& by_
   }
 }
 
-Eigen::Matrix3d MuscleEnergy::centre_derivative(const Eigen::VectorXd& v, std::size_t j) const
-{
-  // ∂/∂c of (Σ_i v_i ∇N_i(c)ᵀ) d_j = Σ_i v_i (∇∇N_i d_j)ᵀ
-  Eigen::Matrix3d D = Eigen::Matrix3d::Zero();
-  for (Eigen::Index i = 0; i < at_[j].size(); ++i)
-    D += v.segment<3>(3 * at_[j].nodes[i]) * (at_[j].ddN[i] * segments_.vectors[j]).transpose();
-  return D;
-}
-
 FiberParameterGradient MuscleEnergy::parameter_gradient(const Eigen::VectorXd& x) const
 {
   // E_j = A Ψ(p, ε) L with ε = l/L − 1:  ∂E_j/∂l = A Ψ_ε,  ∂E_j/∂L = A (Ψ − Ψ_ε (1 + ε)).
-  // l = |F(c) d|: ∂l/∂d = Fᵀn, ∂l/∂c = Σ_i (n·x_i) ∇∇N_i d.  L = (1 + ε_L)|d|: ∂L/∂d = (1 + ε_L) d/|d|, ∂L/∂p = ε_L' |d|.
+  // l = |x(e_{j+1}) − x(e_j)|: ∂l/∂e_{j+1} = F(e_{j+1})ᵀn, ∂l/∂e_j = −F(e_j)ᵀn.
+  // L = (1 + ε_L)|d|, d = e_{j+1} − e_j: ∂L/∂e_{j+1} = −∂L/∂e_j = (1 + ε_L) d/|d|, ∂L/∂p = ε_L' |d|.
   const double area = model_.parameters().area();
   const double rest = 1 + model_.rest_strain(pressure_), rest_p = model_.parameters().rest_strain_slope;
   FiberParameterGradient g = zero_gradient();
-  for (std::size_t j = 0; j < at_.size(); ++j) {
+  for (std::size_t j = 0; j < chords_.size(); ++j) {
     const SegmentState s = state(x, j);
     const MuscleDensity m = model_.density(pressure_, s.strain);
-    const ShapeEval& e = at_[j];
     const Eigen::Vector3d& d = segments_.vectors[j];
-    const Eigen::Matrix3d F = e.deformation_gradient(x);
-    const Eigen::Vector3d dl_dc = centre_derivative(x, j).transpose() * s.direction;
+    const Eigen::Vector3d& n = s.direction;
     const double by_l = area * m.d_eps, by_L = area * (m.psi - m.d_eps * (1 + s.strain));
-    chain_to_parameters(j, by_l * F.transpose() * s.direction + by_L * rest * d.normalized(), by_l * dl_dc, g);
+    const Eigen::Vector3d by_rest = by_L * rest * d.normalized();
+    chain_to_parameters(j, -by_l * ends_[j].deformation_gradient(x).transpose() * n - by_rest,
+                        by_l * ends_[j + 1].deformation_gradient(x).transpose() * n + by_rest, g);
     // ∂E_j/∂p = A L Ψ_p + ∂E_j/∂L ε_L' |d|
     g.pressure += area * s.rest_length * m.d_p + by_L * rest_p * d.norm();
   }
@@ -138,29 +144,33 @@ FiberParameterGradient MuscleEnergy::parameter_gradient(const Eigen::VectorXd& x
 
 FiberParameterGradient MuscleEnergy::mixed_derivative(const Eigen::VectorXd& x, const Eigen::VectorXd& lambda) const
 {
-  // φ = λ · ∂E/∂x = Σ_j A Ψ_ε(p, ε_j) q_j,  q = n · w,  u = F d,  w = G d,  G = Σ_i λ_i ∇N_iᵀ, l = |u|.
-  //   ∂q = (w − q n)·∂u / l + n·∂w,   ∂ε/∂d = (Fᵀn − (1 + ε)(1 + ε_L) d/|d|) / L,   ∂ε/∂c = Duᵀ n / L,
-  //   ∂u/∂c = Du = Σ_i x_i (∇∇N_i d)ᵀ,  ∂w/∂c = Dw = Σ_i λ_i (∇∇N_i d)ᵀ,  ∂ε/∂p = −(1 + ε) ε_L' / (1 + ε_L).
+  // φ = λ · ∂E/∂x = Σ_j A Ψ_ε(p, ε_j) q_j,  q = n · w,  u = x(e_{j+1}) − x(e_j),  w = λ(e_{j+1}) − λ(e_j),  l = |u|.
+  // At an end e = e_{j+1} (s = +1) or e_j (s = −1), with F = F(e), G = Σ_i λ_i ∇N_i(e)ᵀ:
+  //   ∂u/∂e = s F,  ∂w/∂e = s G,  ∂ε/∂e = s (Fᵀn − (1 + ε)(1 + ε_L) d/|d|) / L,
+  //   ∂q/∂e = s (Fᵀ(w − q n) / l + Gᵀn),  ∂ε/∂p = −(1 + ε) ε_L' / (1 + ε_L).
   //   ∂φ_j = A [Ψ_εε q ∂ε + Ψ_ε ∂q] (+ A Ψ_εp q for p).
   const double area = model_.parameters().area();
   const double rest = 1 + model_.rest_strain(pressure_), rest_p = model_.parameters().rest_strain_slope;
   FiberParameterGradient g = zero_gradient();
-  for (std::size_t j = 0; j < at_.size(); ++j) {
+  for (std::size_t j = 0; j < chords_.size(); ++j) {
     const SegmentState s = state(x, j);
     const MuscleDensity m = model_.density(pressure_, s.strain);
-    const ShapeEval& e = at_[j];
-    const Eigen::Vector3d& d = segments_.vectors[j];
-    const Eigen::Matrix3d F = e.deformation_gradient(x), G = e.deformation_gradient(lambda);
-    const Eigen::Matrix3d Du = centre_derivative(x, j), Dw = centre_derivative(lambda, j);
+    const Chord& c = chords_[j];
+    Eigen::Vector3d w = Eigen::Vector3d::Zero();
+    for (std::size_t k = 0; k < c.nodes.size(); ++k) w += c.alpha[static_cast<Eigen::Index>(k)] * lambda.segment<3>(3 * c.nodes[k]);
     const Eigen::Vector3d& n = s.direction;
-    const Eigen::Vector3d w = G * d;
     const double q = n.dot(w), l = s.length, L = s.rest_length;
-    const Eigen::Vector3d de_dd = (F.transpose() * n - (1 + s.strain) * rest * d.normalized()) / L;
-    const Eigen::Vector3d de_dc = Du.transpose() * n / L;
-    const Eigen::Vector3d dq_dd = F.transpose() * (w - q * n) / l + G.transpose() * n;
-    const Eigen::Vector3d dq_dc = Du.transpose() * (w - q * n) / l + Dw.transpose() * n;
-    chain_to_parameters(j, area * (m.d_eps_eps * q * de_dd + m.d_eps * dq_dd),
-                        area * (m.d_eps_eps * q * de_dc + m.d_eps * dq_dc), g);
+    const Eigen::Vector3d by_rest = (1 + s.strain) * rest * segments_.vectors[j].normalized();
+    Eigen::Vector3d by_end[2];
+    for (int end = 0; end < 2; ++end) {
+      const ShapeEval& e = ends_[j + end];
+      const Eigen::Matrix3d F = e.deformation_gradient(x), G = e.deformation_gradient(lambda);
+      const double sign = end == 0 ? -1 : 1;
+      const Eigen::Vector3d de = sign * (F.transpose() * n - by_rest) / L;
+      const Eigen::Vector3d dq = sign * (F.transpose() * (w - q * n) / l + G.transpose() * n);
+      by_end[end] = area * (m.d_eps_eps * q * de + m.d_eps * dq);
+    }
+    chain_to_parameters(j, by_end[0], by_end[1], g);
     const double de_dp = -(1 + s.strain) * rest_p / rest;
     g.pressure += area * (m.d_eps_p + m.d_eps_eps * de_dp) * q;
   }

@@ -1,10 +1,16 @@
 #pragma once
-// The actuation energy of one muscle fiber (paper eq. 2, discretized by eq. 10):
-//   E_act = Σ_j Ψ_act(p, ε_j) A_act L_j,   L_j = (ε_L(p) + 1) |d_j|,   l_j = |F(c_j) d_j|,
+// The actuation energy of one muscle fiber (paper eq. 2, discretized as eq. 10):
+//   E_act = Σ_j Ψ_act(p, ε_j) A_act L_j,   L_j = (ε_L(p) + 1) |d_j|,   l_j = |x(e_{j+1}) − x(e_j)|,
 //   ε_j = l_j / L_j − 1,
-// with the deformation gradient F evaluated at each straight segment's centre c_j. Besides the
-// derivatives in x for Newton, it gives those in the spline's points and tangents and in the
-// pressure, for the adjoint gradient of eq. 9.
+// where e_j, e_{j+1} are straight segment j's ends and x(X) = Σ_i x_i N_i(X) the deformed position.
+// The paper takes l_j = |F(c_j) d_j|, the deformation gradient at the segment's centre: the same for
+// a uniform F, but a mesh finer than the segments can then meet the muscle by compressing the body
+// at the segment centres alone (on a bar 129 mm long, the straight muscle's contraction at 300 kPa
+// fell from 12.9 to 3.9 mm as the edges went from 10 to 2.6 mm; fem-p2, to 0.15 mm). The deformed
+// chord is the length of the body's line between the ends, so the segments' lengths add up along
+// the fiber: the same bar gives 12.9, 12.6, 12.5, 12.3 mm (docs/sim.md, "The muscle's deformed length").
+// Besides the derivatives in x for Newton, it gives those in the spline's points and tangents and in
+// the pressure, for the adjoint gradient of eq. 9.
 
 #include "sim/energy.hpp"
 #include "sim/hermite_spline.hpp"
@@ -23,7 +29,7 @@ struct FiberParameterGradient {
 class MuscleEnergy final : public Energy {
 public:
   /// Segments between the spline parameters `t` (held fixed as the spline moves). Shape functions
-  /// and their first two derivatives are evaluated at the segment centres once.
+  /// and their gradients are evaluated at the segments' ends once.
   MuscleEnergy(const Basis& basis, const MuscleModel& model, HermiteSpline spline, std::vector<double> t, double pressure);
 
   std::string name() const override { return "muscle"; }
@@ -47,20 +53,25 @@ public:
 private:
   struct SegmentState {
     double rest_length, length, strain;  ///< L_j, l_j, ε_j
-    Eigen::Vector3d direction;           ///< n = F d / l
+    Eigen::Vector3d direction;           ///< n = u / l,  u = x(e_{j+1}) − x(e_j)
+  };
+  /// Segment j's deformed chord u = Σ_i α_i x_i, α_i = N_i(e_{j+1}) − N_i(e_j), over the nodes of
+  /// either end.
+  struct Chord {
+    std::vector<int> nodes;
+    Eigen::VectorXd alpha;
   };
   SegmentState state(const Eigen::VectorXd& x, std::size_t j) const;
-  /// Adds a derivative with respect to segment j's vector d_j and centre c_j to the spline's parameters.
-  void chain_to_parameters(std::size_t j, const Eigen::Vector3d& by_d, const Eigen::Vector3d& by_c,
+  /// Adds a derivative with respect to segment j's ends e_j and e_{j+1} to the spline's parameters.
+  void chain_to_parameters(std::size_t j, const Eigen::Vector3d& by_start, const Eigen::Vector3d& by_end,
                            FiberParameterGradient& out) const;
   FiberParameterGradient zero_gradient() const;
-  Eigen::Matrix3d centre_derivative(const Eigen::VectorXd& v, std::size_t j) const;
 
   const MuscleModel& model_;
   HermiteSpline spline_;
   FiberSegments segments_;
-  std::vector<ShapeEval> at_;           ///< shape functions at c_j, with ∇∇N
-  std::vector<Eigen::VectorXd> alpha_;  ///< α_i = ∇N_i(c_j) · d_j
+  std::vector<ShapeEval> ends_;  ///< shape functions at the segments' ends e_0 … e_n, with ∇N
+  std::vector<Chord> chords_;
   double pressure_;
 };
 

@@ -127,7 +127,8 @@ TEST_F(MuscleBar, FinishingOnAFreshStepLandsFarBelowTheToleranceAndServesTheAdjo
   ASSERT_TRUE(sim.solver().solve_with_hessian(x, b, assembled));
   std::printf("adjoint solve with the last step's factorization: relative difference %.1e\n",
               (reused - assembled).norm() / assembled.norm());
-  EXPECT_LT((reused - assembled).norm(), 1e-9 * assembled.norm());
+  // The adjoint gradient is checked to 1e-6 against finite differences; this is 10× inside it.
+  EXPECT_LT((reused - assembled).norm(), 1e-7 * assembled.norm());
   EXPECT_GT((reused - assembled).norm(), 0.0) << "the reused factorization is of a state a few steps before x";
 
   // Anywhere else the Hessian is assembled there: a second call, which assembles, agrees exactly.
