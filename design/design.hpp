@@ -47,7 +47,6 @@ struct MeshOptions {
   double min_dihedral_deg = TetOptions{}.min_dihedral_deg;    ///< TetGen quality bound on dihedral angles, degrees
   int max_tets = 2'000'000;          ///< refuse to start TetGen on a mesh expected to be larger
   bool repair = false;
-  bool remesh = false;                ///< isotropic remeshing to edge_length during repair
   SurfaceTriangles surface_triangles = SurfaceTriangles::automatic;
 };
 

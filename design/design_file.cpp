@@ -487,7 +487,9 @@ MeshOptions read_mesh(Section s)
   o.min_dihedral_deg = s.number("min_dihedral_deg", o.min_dihedral_deg, closed(0, 18), {1.0, "°"});
   o.max_tets = s.integer("max_tets", o.max_tets, 1000, 100'000'000);
   o.repair = s.boolean("repair", o.repair);
-  o.remesh = s.boolean("remesh", o.remesh);
+  if (const toml::node* n = s.node("remesh"))
+    s.error(n, "remesh", "replaced by surface_triangles = \"remesh\" (and \"auto\", the default, remeshes a surface much denser "
+                         "than edge_length by itself)");
   o.surface_triangles = s.choice_of("surface_triangles", o.surface_triangles, kSurfaceTrianglesNames);
   s.finish();
   return o;

@@ -39,7 +39,6 @@ const std::vector<Part>& parts()
       FIBERMOLD_PART("mesh.min_dihedral_deg", mesh.min_dihedral_deg),
       FIBERMOLD_PART("mesh.max_tets", mesh.max_tets),
       FIBERMOLD_PART("mesh.repair", mesh.repair),
-      FIBERMOLD_PART("mesh.remesh", mesh.remesh),
       FIBERMOLD_PART("mesh.surface_triangles", mesh.surface_triangles),
       FIBERMOLD_PART("sim.basis", sim.basis),
       FIBERMOLD_PART("sim.mls_radius", sim.mls_radius),

@@ -1,5 +1,6 @@
 #include "mesh/surface_distance.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <iterator>
 #include <vector>
@@ -28,6 +29,7 @@ struct SurfaceDistance::Impl {
   Mesh mesh;
   Tree tree;
   std::unique_ptr<Side> side;
+  std::vector<Eigen::Index> face_row;  ///< Surface_mesh face index → row of the input's faces
 };
 
 SurfaceDistance::SurfaceDistance(const Eigen::MatrixX3d& vertices, const Eigen::MatrixX3i& faces)
@@ -39,8 +41,12 @@ SurfaceDistance::SurfaceDistance(const Eigen::MatrixX3d& vertices, const Eigen::
     for (int c = 0; c < 3; ++c) used[faces(f, c)] = true;
   for (std::size_t v = 0; v < index.size(); ++v)
     if (used[v]) index[v] = impl_->mesh.add_vertex(Point(vertices(v, 0), vertices(v, 1), vertices(v, 2)));
-  for (Eigen::Index f = 0; f < faces.rows(); ++f)
-    impl_->mesh.add_face(index[faces(f, 0)], index[faces(f, 1)], index[faces(f, 2)]);
+  for (Eigen::Index f = 0; f < faces.rows(); ++f) {
+    const Mesh::Face_index added = impl_->mesh.add_face(index[faces(f, 0)], index[faces(f, 1)], index[faces(f, 2)]);
+    if (added == Mesh::null_face()) continue;
+    impl_->face_row.resize(std::max<std::size_t>(impl_->face_row.size(), added.idx() + 1), -1);
+    impl_->face_row[added.idx()] = f;
+  }
   impl_->tree.insert(CGAL::faces(impl_->mesh).first, CGAL::faces(impl_->mesh).second, impl_->mesh);
   impl_->tree.accelerate_distance_queries();
   impl_->side = std::make_unique<Side>(impl_->tree);
@@ -51,9 +57,10 @@ SurfaceDistance::~SurfaceDistance() = default;
 SurfaceDistance::Closest SurfaceDistance::closest(const Eigen::Vector3d& p) const
 {
   const Point q(p.x(), p.y(), p.z());
-  const Point c = impl_->tree.closest_point(q);
+  const auto [c, face] = impl_->tree.closest_point_and_primitive(q);
   Closest out;
   out.point = {c.x(), c.y(), c.z()};
+  out.face = impl_->face_row[face.idx()];
   out.distance = (out.point - p).norm();
   out.inside = (*impl_->side)(q) == CGAL::ON_BOUNDED_SIDE;
   return out;

@@ -22,6 +22,7 @@ public:
     double distance;        ///< unsigned, to the nearest surface point
     Eigen::Vector3d point;  ///< the nearest surface point
     bool inside;            ///< strictly inside the enclosed volume
+    Eigen::Index face;      ///< the face (row of `faces`) the nearest point lies on
   };
   Closest closest(const Eigen::Vector3d& p) const;
   /// Distance along the ray from `origin` in unit `direction` to the first surface point farther

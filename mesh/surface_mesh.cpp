@@ -1,5 +1,6 @@
 #include "mesh/surface_mesh.hpp"
 
+#include <algorithm>
 #include <numeric>
 
 #include <Eigen/Geometry>
@@ -39,6 +40,22 @@ std::vector<int> face_shells(const SurfaceMesh& s)
     shells[f] = shell;
   }
   return shells;
+}
+
+double longest_edge(const SurfaceMesh& s)
+{
+  double longest = 0;
+  for (Eigen::Index f = 0; f < s.num_faces(); ++f)
+    for (int c = 0; c < 3; ++c) longest = std::max(longest, (s.vertices.row(s.faces(f, c)) - s.vertices.row(s.faces(f, (c + 1) % 3))).norm());
+  return longest;
+}
+
+double mean_edge_length(const SurfaceMesh& s)
+{
+  double sum = 0;
+  for (Eigen::Index f = 0; f < s.num_faces(); ++f)
+    for (int c = 0; c < 3; ++c) sum += (s.vertices.row(s.faces(f, c)) - s.vertices.row(s.faces(f, (c + 1) % 3))).norm();
+  return s.num_faces() > 0 ? sum / (3.0 * static_cast<double>(s.num_faces())) : 0.0;
 }
 
 } // namespace fibermold

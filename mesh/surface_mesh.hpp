@@ -21,6 +21,10 @@ struct SurfaceMesh {
 /// the faces point inward.
 double signed_volume(const SurfaceMesh& surface);
 
+/// The longest and the mean edge of the surface's triangles (each edge counted once per face).
+double longest_edge(const SurfaceMesh& surface);
+double mean_edge_length(const SurfaceMesh& surface);
+
 /// The connected component ("shell") of each face, numbered 0, 1, ... in the order of their first
 /// face: faces sharing a vertex are in the same shell.
 std::vector<int> face_shells(const SurfaceMesh& surface);

@@ -3,11 +3,9 @@
 #include <numeric>
 
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
-#include <CGAL/Polygon_mesh_processing/detect_features.h>
 #include <CGAL/Polygon_mesh_processing/orient_polygon_soup.h>
 #include <CGAL/Polygon_mesh_processing/orientation.h>
 #include <CGAL/Polygon_mesh_processing/polygon_soup_to_polygon_mesh.h>
-#include <CGAL/Polygon_mesh_processing/remesh.h>
 #include <CGAL/Polygon_mesh_processing/self_intersections.h>
 #include <CGAL/Polygon_mesh_processing/repair_polygon_soup.h>
 #include <CGAL/Polygon_mesh_processing/stitch_borders.h>
@@ -60,7 +58,6 @@ std::vector<std::string> RepairReport::changes() const
   if (reoriented) lines.push_back("flipped faces to agree with their neighbours");
   if (stitched_edges) lines.push_back(fmt::format("stitched {} pairs of border edges", stitched_edges));
   if (turned_outward) lines.push_back("turned shells to point away from the material (outer outward, cavities inward)");
-  if (remeshed) lines.push_back(fmt::format("remeshed isotropically: {} → {} faces", faces_before, faces_after));
   return lines;
 }
 
@@ -111,16 +108,6 @@ SurfaceMesh repair_surface(const SurfaceMesh& surface, const RepairOptions& opti
       ++k;
     }
   }
-  if (options.remesh_edge_length && CGAL::is_closed(mesh)) {
-    // Sharp edges (dihedral angle beyond 60°) stay on their polylines, so corners are kept.
-    auto sharp = mesh.add_property_map<Mesh::Edge_index, bool>("e:sharp", false).first;
-    PMP::detect_sharp_edges(mesh, 60.0, sharp);
-    PMP::isotropic_remeshing(faces(mesh), *options.remesh_edge_length, mesh,
-                             CGAL::parameters::number_of_iterations(3).edge_is_constrained_map(sharp));
-    mesh.collect_garbage();
-    report.remeshed = true;
-  }
-
   SurfaceMesh repaired;
   repaired.source = surface.source;
   repaired.vertices.resize(static_cast<Eigen::Index>(mesh.number_of_vertices()), 3);

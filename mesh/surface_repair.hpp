@@ -1,9 +1,8 @@
 #pragma once
 // Repairing a surface on request ([mesh] repair = true), never silently: merge vertices closer than
 // a tolerance, drop degenerate and duplicate faces and unused vertices, make the orientation
-// consistent, stitch borders, orient outward, and optionally remesh isotropically (CGAL).
+// consistent, stitch borders, orient outward (CGAL). Remeshing is mesh/surface_remesh.hpp.
 
-#include <optional>
 #include <string>
 #include <vector>
 
@@ -13,7 +12,6 @@ namespace fibermold {
 
 struct RepairOptions {
   double merge_tolerance = 1e-6;             ///< × bounding-box diagonal
-  std::optional<double> remesh_edge_length;  ///< m; isotropic remeshing when set
 };
 
 struct RepairReport {
@@ -23,7 +21,6 @@ struct RepairReport {
   bool reoriented = false;           ///< some faces flipped to agree with their neighbours
   std::size_t stitched_edges = 0;
   bool turned_outward = false;       ///< the whole surface was inside out
-  bool remeshed = false;
   std::size_t faces_before = 0, faces_after = 0;
 
   /// What changed, one line per change; empty when nothing did.

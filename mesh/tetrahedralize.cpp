@@ -12,6 +12,7 @@
 
 #include <Eigen/Geometry>
 
+#include "mesh/surface_places.hpp"
 
 namespace fibermold {
 
@@ -115,13 +116,12 @@ double default_edge_length(double volume) { return std::cbrt(volume / 5000.0 * 6
 
 double expected_tets(double volume, double edge_length) { return 1.2 * volume / regular_tet_volume(edge_length); }
 
-double longest_edge(const SurfaceMesh& surface)
+SurfaceTriangles surface_treatment(SurfaceTriangles policy, const SurfaceMesh& surface, double edge_length)
 {
-  double longest = 0;
-  for (Eigen::Index f = 0; f < surface.num_faces(); ++f)
-    for (int c = 0; c < 3; ++c)
-      longest = std::max(longest, (surface.vertices.row(surface.faces(f, c)) - surface.vertices.row(surface.faces(f, (c + 1) % 3))).norm());
-  return longest;
+  if (policy != SurfaceTriangles::automatic) return policy;
+  if (longest_edge(surface) > kSplitEdgeFactor * edge_length) return SurfaceTriangles::split;
+  if (mean_edge_length(surface) < kCoarsenEdgeFactor * edge_length) return SurfaceTriangles::remesh;
+  return SurfaceTriangles::keep;
 }
 
 TetMesh tetrahedralize(const SurfaceMesh& surface, const TetOptions& options, Progress& progress)
@@ -184,14 +184,13 @@ TetMesh tetrahedralize(const SurfaceMesh& surface, const TetOptions& options, Pr
   if (corners == 10) order_edge_nodes(mesh);
 
   // The input points come first, in order (TetGen adds its points after them); check rather than trust.
-  mesh.surface_to_node.resize(surface.num_vertices());
   for (Eigen::Index v = 0; v < surface.num_vertices(); ++v) {
     if (v >= mesh.nodes.rows() || (mesh.nodes.row(v) - surface.vertices.row(v)).norm() > 1e-12 * diagonal)
       throw std::runtime_error(fmt::format("TetGen moved or dropped surface vertex {}", v));
     mesh.nodes.row(v) = surface.vertices.row(v);  // bit-identical, not round-tripped through mm
-    mesh.surface_to_node(v) = static_cast<int>(v);
   }
   mesh.boundary_faces = boundary_faces(mesh);
+  attach_to_surface(mesh, surface);
   if (progress.interrupted()) throw Interrupted();
   return mesh;
 }

@@ -21,20 +21,25 @@ struct TetOptions {
   bool keep_surface = true;        ///< no points added on the surface (-Y)
 };
 
-/// What the mesh stage does with the input surface's triangles ([mesh] surface_triangles): split
-/// them when they are too large for the edge length (auto), always let TetGen split them (split),
-/// or keep them exactly (keep).
-enum class SurfaceTriangles { automatic, keep, split };
-inline constexpr std::array<Named<SurfaceTriangles>, 3> kSurfaceTrianglesNames{
-    {{SurfaceTriangles::automatic, "auto"}, {SurfaceTriangles::keep, "keep"}, {SurfaceTriangles::split, "split"}}};
+/// What the mesh stage does with the input surface's triangles ([mesh] surface_triangles): keep them
+/// exactly (keep), let TetGen split them to the edge length (split), remesh the surface to the edge
+/// length (remesh, mesh/surface_remesh.hpp), or choose by their size (auto: surface_treatment).
+enum class SurfaceTriangles { automatic, keep, split, remesh };
+inline constexpr std::array<Named<SurfaceTriangles>, 4> kSurfaceTrianglesNames{{{SurfaceTriangles::automatic, "auto"},
+                                                                                 {SurfaceTriangles::keep, "keep"},
+                                                                                 {SurfaceTriangles::split, "split"},
+                                                                                 {SurfaceTriangles::remesh, "remesh"}}};
 inline std::string_view choice_name(SurfaceTriangles s) { return name_in(kSurfaceTrianglesNames, s); }
 
-/// Whether the input's triangles are too large for `edge_length`: an edge longer than
-/// kSplitEdgeFactor × edge_length makes the mesh stage (at [mesh] surface_triangles = "auto") let
-/// TetGen split the surface. The examples' surfaces, made for their edge lengths, have edges up to
-/// 1.6 × theirs.
+/// At "auto": an input edge longer than kSplitEdgeFactor × edge_length (a CAD export's few large
+/// triangles) makes TetGen split the surface; a mean input edge under kCoarsenEdgeFactor ×
+/// edge_length (a dense scan) makes the stage remesh it; else the triangles are kept. The
+/// examples' surfaces, made for their edge lengths, have edges up to 1.63 × theirs and means of
+/// 0.79–1.31 × theirs: all kept.
 inline constexpr double kSplitEdgeFactor = 2.0;
-double longest_edge(const SurfaceMesh& surface);
+inline constexpr double kCoarsenEdgeFactor = 0.5;
+/// The treatment `policy` asks for `surface` at `edge_length`: keep, split or remesh, never auto.
+SurfaceTriangles surface_treatment(SurfaceTriangles policy, const SurfaceMesh& surface, double edge_length);
 
 /// The surface must have passed check_surface(). Throws std::runtime_error when TetGen fails.
 TetMesh tetrahedralize(const SurfaceMesh& surface, const TetOptions& options, Progress& progress);

@@ -9,6 +9,7 @@
 #include "core/input_error.hpp"
 #include "core/units.hpp"
 #include "export/vtu_writer.hpp"
+#include "mesh/surface_places.hpp"
 #include "sim/external_forces.hpp"
 #include "sim/fem_basis.hpp"
 
@@ -37,11 +38,11 @@ std::vector<int> region_nodes(const Region& r, const TetMesh& mesh, const Design
 {
   std::vector<int> nodes;
   if (r.box) nodes = nodes_in_box(mesh.nodes, (*r.box)[0], (*r.box)[1]);
-  for (int v : r.vertices) {
+  for (int v : r.vertices)
     if (v >= mesh.surface_to_node.size())
       bad(d, key, fmt::format("vertex {} does not exist: the surface has {} vertices", v, mesh.surface_to_node.size()));
-    nodes.push_back(mesh.surface_to_node(v));
-  }
+  if (!r.vertices.empty())
+    for (int n : nodes_of_vertices(mesh, r.vertices)) nodes.push_back(n);
   std::sort(nodes.begin(), nodes.end());
   nodes.erase(std::unique(nodes.begin(), nodes.end()), nodes.end());
   return nodes;

@@ -12,11 +12,11 @@
 #include "core/json_file.hpp"
 #include "core/units.hpp"
 #include "export/vtu_writer.hpp"
+#include "mesh/body_mesh.hpp"
 #include "mesh/mesh_quality.hpp"
 #include "mesh/surface_distance.hpp"
 #include "mesh/surface_import.hpp"
 #include "mesh/surface_repair.hpp"
-#include "mesh/tetrahedralize.hpp"
 #include "stages/molds_stage.hpp"
 #include "stages/optimize_stage.hpp"
 
@@ -67,17 +67,6 @@ SurfaceMesh prepared_surface(const Design& d, SurfaceCheck& check, RepairReport&
     t = Clock::now();
     surface = repair_surface(surface, {}, repair);
     check = check_surface(surface);
-    if (d.mesh.remesh && check.ok()) {
-      const double edge = target_edge_length(d, check.volume);
-      require_mesh_size(d, check.volume, edge);
-      RepairOptions options;
-      options.remesh_edge_length = edge;
-      RepairReport remeshing;
-      surface = repair_surface(surface, options, remeshing);
-      repair.remeshed = remeshing.remeshed;
-      repair.faces_after = remeshing.faces_after;
-      check = check_surface(surface);
-    }
     seconds["repair"] = since(t);
   }
   require_valid_surface(check, surface, d.mesh.repair);
@@ -85,24 +74,37 @@ SurfaceMesh prepared_surface(const Design& d, SurfaceCheck& check, RepairReport&
   return surface;
 }
 
-/// TetGen's options for the design at `edge`.
-TetOptions tet_options(const Design& d, double edge, bool keep_surface)
+/// TetGen's options for the design at `edge` (mesh_body sets whether the surface is kept).
+TetOptions tet_options(const Design& d, double edge)
 {
-  return {edge, d.mesh.radius_edge_ratio, d.mesh.min_dihedral_deg, d.sim.basis == BasisKind::fem_p2, keep_surface};
+  return {edge, d.mesh.radius_edge_ratio, d.mesh.min_dihedral_deg, d.sim.basis == BasisKind::fem_p2, true};
 }
 
 /// The share of tets outside the quality bounds above which the mesh stage warns.
 constexpr double kQualityMissWarning = 0.01;
 
-/// How the mesh's surface follows the input's: the points TetGen added on it, and their largest
-/// distance from the input surface (0 up to round-off: they lie on its triangles).
+nlohmann::json point_mm(const Eigen::Vector3d& p)
+{
+  return {p.x() / units::mm, p.y() / units::mm, p.z() / units::mm};
+}
+
+/// How far the mesh's surface is from the input's. Split: the points TetGen added on it (they lie
+/// on its triangles, 0 up to round-off). Remeshed: both ways, and the input vertices farther than
+/// kFeatureLoss × the edge length from the mesh's surface (a feature the edge length cannot hold).
 struct SurfaceFollowing {
   Eigen::Index points_added = 0;
-  double deviation = 0;  ///< m
+  double deviation = 0;  ///< m, the largest distance either way
+  SurfaceDeviation remeshed;
 };
-SurfaceFollowing surface_following(const SurfaceMesh& input, const TetMesh& mesh)
+constexpr double kFeatureLoss = 0.25;
+SurfaceFollowing surface_following(const SurfaceMesh& input, const MeshedSurface& meshed, const TetMesh& mesh, double edge)
 {
   SurfaceFollowing f;
+  if (meshed.treatment == SurfaceTriangles::remesh) {
+    f.remeshed = surface_deviation(input, meshed.surface, kFeatureLoss * edge);
+    f.deviation = std::max(f.remeshed.remeshed_from_input, f.remeshed.input_from_remeshed);
+    return f;
+  }
   std::vector<bool> on_surface(static_cast<std::size_t>(mesh.nodes.rows()), false);
   for (Eigen::Index i = 0; i < mesh.boundary_faces.size(); ++i) on_surface[static_cast<std::size_t>(mesh.boundary_faces(i))] = true;
   const SurfaceDistance distance(input.vertices, input.faces);
@@ -112,6 +114,77 @@ SurfaceFollowing surface_following(const SurfaceMesh& input, const TetMesh& mesh
     f.deviation = std::max(f.deviation, distance.closest(mesh.nodes.row(v).transpose()).distance);
   }
   return f;
+}
+
+/// The surface's part of the mesh report: the policy, what was done, and how far from the input.
+nlohmann::ordered_json surface_triangles_report(const Design& d, const SurfaceMesh& input, const MeshedSurface& meshed,
+                                                const SurfaceFollowing& f)
+{
+  nlohmann::ordered_json r = {{"policy", choice_name(d.mesh.surface_triangles)},
+                              {"treatment", choice_name(meshed.treatment)},
+                              {"split", meshed.treatment == SurfaceTriangles::split},
+                              {"input_longest_edge_mm", longest_edge(input) / units::mm},
+                              {"input_mean_edge_mm", mean_edge_length(input) / units::mm},
+                              {"points_added", f.points_added},
+                              {"deviation_mm", f.deviation / units::mm}};
+  if (meshed.treatment == SurfaceTriangles::remesh)
+    r["remeshed"] = {{"input_faces", input.num_faces()},
+                     {"faces", meshed.surface.num_faces()},
+                     {"mean_edge_mm", mean_edge_length(meshed.surface) / units::mm},
+                     {"sharp_edges_kept", meshed.remeshing.sharp_edges},
+                     {"volume_change", signed_volume(meshed.surface) / signed_volume(input) - 1},
+                     {"mesh_from_input_mm", f.remeshed.remeshed_from_input / units::mm},
+                     {"input_from_mesh_mm", f.remeshed.input_from_remeshed / units::mm},
+                     {"input_vertices_off", f.remeshed.input_vertices_beyond},
+                     {"worst_at_mm", point_mm(f.remeshed.worst_at)}};
+  return r;
+}
+
+void log_treatment(StageContext& ctx, const SurfaceMesh& input, const MeshedSurface& meshed, double edge)
+{
+  if (meshed.treatment == SurfaceTriangles::split)
+    ctx.log.info("surface: its longest edge is {:.3g} mm, {:.2g}× the edge length: TetGen splits its triangles to the edge length",
+                 longest_edge(input) / units::mm, longest_edge(input) / edge);
+  if (meshed.treatment == SurfaceTriangles::remesh)
+    ctx.log.info("surface: its mean edge is {:.3g} mm, {:.2g}× the edge length: remeshed to it, {} → {} faces ({} sharp edges kept)",
+                 mean_edge_length(input) / units::mm, mean_edge_length(input) / edge, input.num_faces(),
+                 meshed.surface.num_faces(), meshed.remeshing.sharp_edges);
+}
+
+/// A remeshing that moved the surface by more than kFeatureLoss × the edge length somewhere: a
+/// feature (a thin web, a notch, a small hole) the edge length cannot hold, named by place.
+void warn_lost_features(StageContext& ctx, const MeshedSurface& meshed, const SurfaceFollowing& f, double edge)
+{
+  if (meshed.treatment != SurfaceTriangles::remesh || f.remeshed.input_vertices_beyond == 0) return;
+  ctx.log.warn("surface: remeshed at {:.3g} mm edges, {} input vertices lie more than {:.3g} mm from the mesh's surface (up to "
+               "{:.3g} mm, near {}): features smaller than the edge length are lost there; a smaller [mesh] edge_length keeps "
+               "them, or surface_triangles = \"split\" meshes the input's own triangles",
+               edge / units::mm, f.remeshed.input_vertices_beyond, kFeatureLoss * edge / units::mm,
+               f.remeshed.input_from_remeshed / units::mm, format_mm(f.remeshed.worst_at));
+}
+
+/// TetGen's mesh checked: no inverted tet, the volume of the surface it was given, and a warning
+/// when more than kQualityMissWarning of the tets miss the quality bounds.
+void require_sound_mesh(const Design& d, StageContext& ctx, const TetMesh& mesh, const MeshQuality& q, const MeshedSurface& meshed)
+{
+  if (q.inverted_tets > 0) throw std::runtime_error(fmt::format("TetGen produced {} inverted tets", q.inverted_tets));
+  const bool split = meshed.treatment == SurfaceTriangles::split;
+  // TetGen's dihedral bound is best effort: a few slivers (0.04–0.5 % of the examples' tets) are
+  // reported, not warned about; more than 1 % is a mesh to look at.
+  if (q.over_ratio + q.under_dihedral > kQualityMissWarning * static_cast<double>(mesh.num_tets()))
+    ctx.log.warn("mesh: {} of {} tets exceed the radius-edge ratio bound {} (up to {:.3g}, near {}) and {} have a dihedral angle "
+                 "under {}°{}",
+                 q.over_ratio, mesh.num_tets(), d.mesh.radius_edge_ratio, q.max_radius_edge_ratio, format_mm(q.worst_at),
+                 q.under_dihedral, d.mesh.min_dihedral_deg,
+                 split ? "" : ": TetGen cannot meet its bounds beside the surface's triangles, kept exactly; [mesh] surface_triangles = "
+                              "\"split\" lets it add points on the surface");
+  const double expected = signed_volume(meshed.surface);
+  const double volume_error = std::abs(q.volume - expected) / expected;
+  // Kept exactly, the tets fill the surface to round-off; points TetGen adds on the input's
+  // triangles lie on them to round-off of their coordinates, which the volume sees at ~1e-8.
+  if (volume_error > (split ? 1e-6 : 1e-9))
+    throw std::runtime_error(fmt::format("tet volume {:.9g} mm³ differs from the surface's {:.9g} mm³ (relative {:.2e})",
+                                         q.volume / 1e-9, expected / 1e-9, volume_error));
 }
 
 /// The tets for ParaView, with each one's radius-edge ratio and volume.
@@ -128,11 +201,6 @@ void write_mesh_vtu(const std::filesystem::path& path, const TetMesh& mesh)
   grid.add_cell_field("radius_edge_ratio", ratio);
   grid.add_cell_field("volume_mm3", volume);
   grid.write(path);
-}
-
-nlohmann::json point_mm(const Eigen::Vector3d& p)
-{
-  return {p.x() / units::mm, p.y() / units::mm, p.z() / units::mm};
 }
 
 } // namespace
@@ -152,7 +220,11 @@ TetMesh scaled_design_mesh(const Design& d, double edge_factor, Progress& progre
   const SurfaceMesh surface = prepared_surface(d, check, repair, seconds);
   const double edge = edge_factor * target_edge_length(d, check.volume);
   require_mesh_size(d, check.volume, edge);
-  return tetrahedralize(surface, tet_options(d, edge, false), progress);
+  // The surface follows the new edge length: remeshed where the design remeshes it or it is dense
+  // for it, split otherwise (its own triangles kept would hold the mesh at their size).
+  SurfaceTriangles policy = d.mesh.surface_triangles == SurfaceTriangles::remesh ? SurfaceTriangles::remesh : SurfaceTriangles::automatic;
+  if (surface_treatment(policy, surface, edge) == SurfaceTriangles::keep) policy = SurfaceTriangles::split;
+  return mesh_body(surface, surface_for_mesh(surface, policy, edge), tet_options(d, edge), progress);
 }
 
 SurfaceCheck check_design_surface(const Design& design, std::vector<std::string>& repairs)
@@ -162,8 +234,11 @@ SurfaceCheck check_design_surface(const Design& design, std::vector<std::string>
   nlohmann::json seconds;
   const SurfaceMesh surface = prepared_surface(design, check, repair, seconds);
   repairs = repair.changes();
-  // What the stages would refuse later for their size, refused now.
-  require_mesh_size(design, check.volume, target_edge_length(design, check.volume));
+  // What the stages would refuse later for their size, refused now; and a remeshing that the
+  // body's features cannot take.
+  const double edge = target_edge_length(design, check.volume);
+  require_mesh_size(design, check.volume, edge);
+  surface_for_mesh(surface, design.mesh.surface_triangles, edge);
   std::vector<std::vector<Eigen::Vector3d>> fibers;
   for (const Fiber& f : design.fibers) fibers.push_back(f.points);
   require_mold_grids(design, surface, fibers);
@@ -188,36 +263,19 @@ void MeshStage::run(StageContext& ctx) const
   require_mesh_size(d, check.volume, edge);
   ctx.log.info("surface: {} vertices, {} faces, volume {:.6g} mm³; target edge {:.4g} mm", surface.num_vertices(),
                surface.num_faces(), check.volume / 1e-9, edge / units::mm);
-  const double longest = longest_edge(surface);
-  const bool split = d.mesh.surface_triangles == SurfaceTriangles::split ||
-                     (d.mesh.surface_triangles == SurfaceTriangles::automatic && longest > kSplitEdgeFactor * edge);
-  if (split)
-    ctx.log.info("surface: its longest edge is {:.3g} mm, {:.2g}× the edge length: TetGen splits its triangles to the edge length",
-                 longest / units::mm, longest / edge);
   auto t = Clock::now();
+  const MeshedSurface meshed = surface_for_mesh(surface, d.mesh.surface_triangles, edge);
+  log_treatment(ctx, surface, meshed, edge);
+  seconds["remesh"] = since(t);
+  t = Clock::now();
   ctx.progress.checkpoint(0.1, "tetrahedralizing");
-  const TetMesh mesh =
-      tetrahedralize(surface, tet_options(d, edge, !split), ctx.progress);
+  const TetMesh mesh = mesh_body(surface, meshed, tet_options(d, edge), ctx.progress);
   seconds["tetrahedralize"] = since(t);
-  const SurfaceFollowing following = surface_following(surface, mesh);
+  const SurfaceFollowing following = surface_following(surface, meshed, mesh, edge);
+  warn_lost_features(ctx, meshed, following, edge);
   ctx.progress.checkpoint(0.8, "measuring quality");
   const MeshQuality q = mesh_quality(mesh, d.mesh.radius_edge_ratio, d.mesh.min_dihedral_deg);
-  if (q.inverted_tets > 0) throw std::runtime_error(fmt::format("TetGen produced {} inverted tets", q.inverted_tets));
-  // TetGen's dihedral bound is best effort: a few slivers (0.04–0.5 % of the examples' tets) are
-  // reported, not warned about; more than 1 % is a mesh to look at.
-  if (q.over_ratio + q.under_dihedral > kQualityMissWarning * static_cast<double>(mesh.num_tets()))
-    ctx.log.warn("mesh: {} of {} tets exceed the radius-edge ratio bound {} (up to {:.3g}, near {}) and {} have a dihedral angle "
-                 "under {}°{}",
-                 q.over_ratio, mesh.num_tets(), d.mesh.radius_edge_ratio, q.max_radius_edge_ratio, format_mm(q.worst_at),
-                 q.under_dihedral, d.mesh.min_dihedral_deg,
-                 split ? "" : ": TetGen cannot meet its bounds beside the input's triangles, kept exactly; [mesh] surface_triangles = "
-                              "\"split\" lets it add points on the surface");
-  const double volume_error = std::abs(q.volume - check.volume) / check.volume;
-  // Kept exactly, the tets fill the surface to round-off; points TetGen adds on the input's
-  // triangles lie on them to round-off of their coordinates, which the volume sees at ~1e-8.
-  if (volume_error > (split ? 1e-6 : 1e-9))
-    throw std::runtime_error(fmt::format("tet volume {:.9g} mm³ differs from the surface's {:.9g} mm³ (relative {:.2e})",
-                                         q.volume / 1e-9, check.volume / 1e-9, volume_error));
+  require_sound_mesh(d, ctx, mesh, q, meshed);
 
   ctx.progress.checkpoint(0.9, "writing");
   save_tet_mesh(mesh, ctx.output_dir / "body.tetmesh");
@@ -243,11 +301,7 @@ void MeshStage::run(StageContext& ctx) const
                     {"mean_edge_length_mm", q.mean_edge_length / units::mm},
                     {"edge_length_mm", {{"mean", q.mean_edge_length / units::mm}, {"min", q.min_edge_length / units::mm},
                                         {"max", q.max_edge_length / units::mm}}},
-                    {"surface_triangles", {{"policy", choice_name(d.mesh.surface_triangles)},
-                                           {"split", split},
-                                           {"input_longest_edge_mm", longest / units::mm},
-                                           {"points_added", following.points_added},
-                                           {"deviation_mm", following.deviation / units::mm}}},
+                    {"surface_triangles", surface_triangles_report(d, surface, meshed, following)},
                     {"quality_bounds_met", q.over_ratio + q.under_dihedral == 0},
                     {"tets_over_radius_edge_bound", q.over_ratio},
                     {"tets_under_dihedral_bound", q.under_dihedral},

@@ -19,7 +19,7 @@ public:
     return {"design.surface", "design.units", "mesh", "sim.basis"};
   }
   std::vector<std::filesystem::path> input_files(const Design& d) const override;
-  int version() const override { return 2; }  ///< 2: the surface's triangles split where too large; edge lengths, quality bounds and the surface's deviation in the report
+  int version() const override { return 3; }  ///< 2: the surface's triangles split where too large; edge lengths, quality bounds and the surface's deviation in the report; 3: dense surfaces remeshed, surface places in body.tetmesh
   void run(StageContext& ctx) const override;
 };
 

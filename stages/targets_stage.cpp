@@ -14,6 +14,7 @@
 #include "core/json_file.hpp"
 #include "core/units.hpp"
 #include "mesh/surface_import.hpp"
+#include "mesh/surface_places.hpp"
 #include "sim/external_forces.hpp"
 #include "stages/design_simulation.hpp"
 
@@ -24,20 +25,19 @@ namespace {
 using Triangle = std::array<int, 3>;
 
 /// Faces as rotation-normalised node triples, to compare connectivity whatever the starting corner.
-std::set<Triangle> face_set(const Eigen::MatrixX3i& faces, const Eigen::VectorXi* map)
+std::set<Triangle> face_set(const Eigen::MatrixX3i& faces)
 {
   std::set<Triangle> out;
   for (Eigen::Index f = 0; f < faces.rows(); ++f) {
     Triangle t{faces(f, 0), faces(f, 1), faces(f, 2)};
-    if (map)
-      for (int& v : t) v = (*map)(v);
     std::rotate(t.begin(), std::min_element(t.begin(), t.end()), t.end());
     out.insert(t);
   }
   return out;
 }
 
-/// Surface vertex positions of a `kind = "surface"` target, checked against the body's surface.
+/// Where the surface nodes go under a `kind = "surface"` target: a deformed copy of the body's
+/// input surface, carried to the mesh through each node's place on it.
 std::vector<std::pair<int, Eigen::Vector3d>> target_surface(const Design& d, const Target& t, const TetMesh& mesh)
 {
   const std::string key = fmt::format("[target.{}].surface", t.name);
@@ -47,14 +47,12 @@ std::vector<std::pair<int, Eigen::Vector3d>> target_surface(const Design& d, con
                                 fmt::format("{} has {} vertices, the body's surface {}: a target surface must be a "
                                             "deformed copy of the body's surface (same vertices, same order)",
                                             t.surface.filename().string(), s.num_vertices(), mesh.surface_to_node.size())));
-  if (face_set(s.faces, &mesh.surface_to_node) != face_set(mesh.boundary_faces, nullptr))
+  if (face_set(s.faces) != face_set(mesh.surface_faces))
     throw InputError(design_problem(d, key,
                                 fmt::format("{} connects its vertices differently from the body's surface: the vertex "
                                             "order changed (export it from the same mesh without reordering)",
                                             t.surface.filename().string())));
-  std::vector<std::pair<int, Eigen::Vector3d>> moved;
-  for (Eigen::Index v = 0; v < s.num_vertices(); ++v) moved.emplace_back(mesh.surface_to_node(v), s.vertices.row(v).transpose());
-  return moved;
+  return carried_surface(mesh, s.vertices);
 }
 
 struct Solved {

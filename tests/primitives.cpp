@@ -45,6 +45,44 @@ void write_with(const std::filesystem::path& path, const std::function<void(std:
 
 } // namespace
 
+SurfaceMesh voxel_body(const Eigen::Vector3d& lo, double cell, const Eigen::Vector3i& cells,
+                       const std::function<bool(int, int, int)>& filled)
+{
+  Builder b;
+  std::vector<int> id((cells.x() + 1) * (cells.y() + 1) * (cells.z() + 1), -1);
+  const auto at = [&](const Eigen::Vector3i& g) {
+    int& slot = id[(g.x() * (cells.y() + 1) + g.y()) * (cells.z() + 1) + g.z()];
+    if (slot < 0) slot = b.add(lo + cell * g.cast<double>());
+    return slot;
+  };
+  const auto inside = [&](const Eigen::Vector3i& g) {
+    return (g.array() >= 0).all() && (g.array() < cells.array()).all() && filled(g.x(), g.y(), g.z());
+  };
+  for (int i = 0; i < cells.x(); ++i)
+    for (int j = 0; j < cells.y(); ++j)
+      for (int k = 0; k < cells.z(); ++k) {
+        const Eigen::Vector3i g(i, j, k);
+        if (!inside(g)) continue;
+        for (int axis = 0; axis < 3; ++axis)
+          for (int side = 0; side < 2; ++side) {
+            const Eigen::Vector3i n = g + (side == 0 ? -1 : 1) * Eigen::Vector3i::Unit(axis);
+            if (inside(n)) continue;
+            const int u = (axis + 1) % 3, w = (axis + 2) % 3;
+            const auto p = [&](int du, int dw) {
+              Eigen::Vector3i c = g;
+              c[axis] += side;
+              c[u] += du;
+              c[w] += dw;
+              return at(c);
+            };
+            // (u, w, axis) is right-handed: p00 → p10 → p11 turns about +axis.
+            if (side == 1) b.quad(p(0, 0), p(1, 0), p(1, 1), p(0, 1));
+            else b.quad(p(0, 0), p(0, 1), p(1, 1), p(1, 0));
+          }
+      }
+  return b.mesh();
+}
+
 SurfaceMesh box(const Eigen::Vector3d& lo, const Eigen::Vector3d& hi, int n) { return box(lo, hi, Eigen::Vector3i(n, n, n)); }
 
 SurfaceMesh box(const Eigen::Vector3d& lo, const Eigen::Vector3d& hi, const Eigen::Vector3i& cells)

@@ -2,6 +2,7 @@
 // Closed, outward-oriented triangle surfaces for tests (metres), and ways to break them.
 
 #include <filesystem>
+#include <functional>
 #include <string>
 
 #include "mesh/surface_mesh.hpp"
@@ -18,6 +19,13 @@ SurfaceMesh cylinder(double radius, double height, int segments = 24, int rings 
 SurfaceMesh sphere(double radius, int segments = 24, int stacks = 12);
 /// Torus about z: tube radius `r` around a circle of radius `R`.
 SurfaceMesh torus(double R, double r, int segments = 32, int sides = 12);
+
+/// The skin of a body made of cubes of edge `cell` on a grid of `cells` from `lo`: the faces
+/// between a filled cube and an empty one (or the grid's outside), each two triangles. The filled
+/// cubes must not meet along an edge or a corner only. Notches, slots and thin webs for tests; a
+/// dense, scan-like skin at a small `cell`.
+SurfaceMesh voxel_body(const Eigen::Vector3d& lo, double cell, const Eigen::Vector3i& cells,
+                       const std::function<bool(int, int, int)>& filled);
 
 /// Both surfaces in one (their vertices and faces appended).
 SurfaceMesh combine(const SurfaceMesh& a, const SurfaceMesh& b);

@@ -1,4 +1,5 @@
 // The mesh stage as a user runs it: `fibermold make DESIGN mesh` on good and bad surfaces.
+#include <cmath>
 #include <cstdint>
 #include <random>
 
@@ -316,8 +317,72 @@ TEST_F(MeshStageE2E, GltfExternalBufferIsAnInput)
 TEST_F(MeshStageE2E, RemeshingIsRefusedBeforeItCouldExhaustMemory)
 {
   write_stl(dir_ / "box.stl", box_);
-  design("box.stl", "edge_length = 0.01\nrepair = true\nremesh = true");
+  design("box.stl", "edge_length = 0.01\nsurface_triangles = \"remesh\"");
   expect_rejected("more than [mesh].max_tets");
+}
+
+TEST_F(MeshStageE2E, TheOldRemeshKeyNamesItsReplacement)
+{
+  write_stl(dir_ / "box.stl", box_);
+  design("box.stl", "repair = true\nremesh = true");
+  expect_rejected("[mesh].remesh: replaced by surface_triangles = \"remesh\"");
+}
+
+/// A scan-like skin of the same bar: 0.5 mm triangles (51,600), asked for 3 mm. At "auto" the stage
+/// remeshes it to the edge length, and the bar sags as the converged solver says.
+TEST_F(MeshStageE2E, ADenseScanCoarsensToTheAskedEdgeLengthAndSagsAsAConvergedSolverSays)
+{
+  constexpr double kConverged = 58.9e-3;
+  const SurfaceMesh scan = test::box({0, -7.5e-3, -7.5e-3}, {0.1, 7.5e-3, 7.5e-3}, Eigen::Vector3i(200, 30, 30));
+  write_stl(dir_ / "scan.stl", scan);
+  design("scan.stl", "edge_length = 3");
+  const auto r = make();
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_THAT(test::read_text(dir_ / "build" / "logs" / "mesh.log"), HasSubstr("remeshed to it, 51600 →"));
+  const auto report = nlohmann::json::parse(test::read_text(dir_ / "build" / "mesh" / "report.json"))["mesh"];
+  const auto& triangles = report["surface_triangles"];
+  EXPECT_EQ(triangles["treatment"], "remesh");
+  EXPECT_NEAR(triangles["input_mean_edge_mm"].get<double>(), 0.57, 0.01);
+  EXPECT_NEAR(triangles["remeshed"]["mean_edge_mm"].get<double>(), 3.0, 0.25 * 3.0);
+  EXPECT_LT(triangles["deviation_mm"].get<double>(), 1e-6);  // flat faces, sharp edges kept
+  EXPECT_EQ(triangles["remeshed"]["input_vertices_off"].get<int>(), 0);
+  const double mean = report["edge_length_mm"]["mean"].get<double>();
+  std::printf("dense scan: %d → %d faces; mesh mean edge %.2f mm (asked 3)\n", triangles["remeshed"]["input_faces"].get<int>(),
+              triangles["remeshed"]["faces"].get<int>(), mean);
+  EXPECT_NEAR(mean, 3.0, 0.25 * 3.0);
+  const TetMesh mesh = load_tet_mesh(dir_ / "build" / "mesh" / "body.tetmesh");
+  EXPECT_LT(mesh.nodes.rows(), scan.num_vertices() / 3);
+  EXPECT_NEAR(mesh.volume(), 22.5e-6, 1e-6 * 22.5e-6);
+
+  SimulationOptions o;  // the design file's defaults: EcoFlex, gravity −z, mls-linear
+  o.fixed_nodes = {nodes_in_box(mesh.nodes, {-1e-3, -1, -1}, {1e-9, 1, 1})};
+  Simulation sim(mesh, o);
+  Eigen::VectorXd x = sim.rest();
+  NullProgress progress;
+  ASSERT_TRUE(sim.solve(x, progress).converged);
+  const Eigen::Vector3d tip(0.1, 0, 0);
+  const double sag = -(sim.basis().at(tip, 0).position(x) - tip).z();
+  std::printf("dense scan: tip %.2f mm down (converged: 58.9 mm, %.1f %%)\n", sag * 1e3, 100 * (sag / kConverged - 1));
+  EXPECT_NEAR(sag, kConverged, 0.03 * kConverged);
+}
+
+/// A smooth bump 3 mm high and 1.5 mm wide on a block's dense top, at 6 mm edges: remeshing cannot
+/// keep it, and the stage says where.
+TEST_F(MeshStageE2E, AFeatureTheEdgeLengthCannotHoldIsWarnedAboutWhereItIs)
+{
+  SurfaceMesh s = test::box({0, 0, 0}, {0.04, 0.02, 0.01}, Eigen::Vector3i(80, 40, 20));
+  for (Eigen::Index v = 0; v < s.num_vertices(); ++v)
+    if (s.vertices(v, 2) > 0.01 - 1e-12)
+      s.vertices(v, 2) += 0.003 * std::exp(-(std::pow(s.vertices(v, 0) - 0.03, 2) + std::pow(s.vertices(v, 1) - 0.01, 2)) / 4.5e-6);
+  write_stl(dir_ / "bumped.stl", s);
+  design("bumped.stl", "edge_length = 6");
+  const auto r = make();
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_THAT(r.err, ContainsRegex("input vertices lie more than 1.5 mm from the mesh's surface \\(up to 2\\.[0-9]+ mm, near "
+                                   "\\((29|30)\\.[0-9], (9|10)\\.[0-9], 1[23]\\.[0-9]\\) mm\\): features smaller than the edge length"));
+  const auto report = nlohmann::json::parse(test::read_text(dir_ / "build" / "mesh" / "report.json"))["mesh"];
+  EXPECT_GT(report["surface_triangles"]["remeshed"]["input_vertices_off"].get<int>(), 0);
+  EXPECT_GT(report["surface_triangles"]["deviation_mm"].get<double>(), 1.5);
 }
 
 TEST_F(MeshStageE2E, RerunWithSameInputsWritesIdenticalOutputs)

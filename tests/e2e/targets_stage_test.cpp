@@ -1,6 +1,9 @@
 // The targets stage as a user runs it: forces, fibers and surface targets on a small bar.
 #include <cmath>
 
+#include <fmt/format.h>
+#include <fmt/ranges.h>
+
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
@@ -97,6 +100,71 @@ TEST_F(TargetsE2E, SurfaceTargetIsFilledInAndFollowed)
   std::printf("surface target: surface error %.4f mm, centre error %.4f mm\n", surface_error * 1e3, inside_error * 1e3);
   EXPECT_LT(surface_error, 0.05e-3);
   EXPECT_LT(inside_error, 0.2e-3);
+}
+
+/// The same bar given as a skin ten times denser (0.6 mm triangles, 24,516 of them) than the mesh's
+/// 6 mm edges: the mesh stage remeshes it, and the target, a bent copy of that dense skin, reaches
+/// the mesh's nodes through their places on it. It bends the bar as the coarse skin's target does.
+TEST_F(TargetsE2E, ASurfaceTargetOnASkinTenTimesDenserThanTheMeshBendsTheSame)
+{
+  const auto bend = [](const Eigen::Vector3d& X) -> Eigen::Vector3d { return X + Eigen::Vector3d(0, 0, 0.05 * X.x() * X.x() / 0.06); };
+  const SurfaceMesh dense = test::box({0, -0.008, -0.008}, {0.06, 0.008, 0.008}, Eigen::Vector3i(100, 27, 27));
+  SurfaceMesh bent = dense;
+  for (Eigen::Index v = 0; v < bent.num_vertices(); ++v) bent.vertices.row(v) = bend(dense.vertices.row(v).transpose()).transpose();
+  write_stl(dir_ / "bar.stl", dense);
+  write_stl(dir_ / "bent.stl", bent);
+  design("[[target]]\nname = \"bend\"\nkind = \"surface\"\nsurface = \"bent.stl\"\n");
+  const auto r = make();
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const auto mesh_report = nlohmann::json::parse(test::read_text(dir_ / "build" / "mesh" / "report.json"))["mesh"];
+  ASSERT_EQ(mesh_report["surface_triangles"]["treatment"], "remesh");
+  EXPECT_NEAR(report()["bend"]["max_displacement_mm"].get<double>(), 3.0, 0.05);
+  EXPECT_LT(report()["bend"]["max_surface_error_mm"].get<double>(), 0.05);
+
+  const TetMesh mesh = load_tet_mesh(dir_ / "build" / "mesh" / "body.tetmesh");
+  EXPECT_LT(mesh.nodes.rows(), dense.num_vertices() / 5);
+  const Eigen::VectorXd x = load_array(dir_ / "build" / "targets" / "bend.positions", "positions");
+  const MlsBasis basis(mesh.nodes, {false, 1.7 * mesh_quality(mesh).mean_edge_length});
+  double surface_error = 0;
+  for (Eigen::Index v = 0; v < dense.num_vertices(); ++v) {
+    const Eigen::Vector3d X = dense.vertices.row(v).transpose();
+    surface_error = std::max(surface_error, (basis.at(X, 0).position(x) - bend(X)).norm());
+  }
+  const Eigen::Vector3d inside(0.045, 0.002, -0.001);
+  const double inside_error = (basis.at(inside, 0).position(x) - bend(inside)).norm();
+  std::printf("surface target on a dense skin: %ld nodes for %ld skin vertices; error at the skin's vertices %.4f mm, inside %.4f mm\n",
+              static_cast<long>(mesh.nodes.rows()), static_cast<long>(dense.num_vertices()), surface_error * 1e3, inside_error * 1e3);
+  EXPECT_LT(surface_error, 0.1e-3);
+  EXPECT_LT(inside_error, 0.2e-3);
+}
+
+/// On the dense skin, `[[fixed]] vertices` (the 784 at x = 0) hold the nodes at those places: the
+/// bar droops under a tip load as it does held by a box around that face.
+TEST_F(TargetsE2E, FixedVerticesOfADenseSkinHoldTheNodesAtTheirPlaces)
+{
+  const SurfaceMesh dense = test::box({0, -0.008, -0.008}, {0.06, 0.008, 0.008}, Eigen::Vector3i(100, 27, 27));
+  write_stl(dir_ / "bar.stl", dense);
+  std::vector<int> clamp;
+  for (Eigen::Index v = 0; v < dense.num_vertices(); ++v)
+    if (dense.vertices(v, 0) < 1e-12) clamp.push_back(static_cast<int>(v));
+  ASSERT_EQ(clamp.size(), 28u * 28u);
+  const std::string droop = "[[target]]\nname = \"droop\"\nkind = \"forces\"\n"
+                            "load = [{ box = { min = [59, -9, -9], max = [61, 9, 9] }, force = [0, 0, -0.05] }]\n";
+  double tip[2];
+  for (int by_vertices = 0; by_vertices < 2; ++by_vertices) {
+    std::string text = std::string(kDesign) + droop;
+    if (by_vertices) {
+      const std::string box = "box = { min = [-1, -9, -9], max = [0.5, 9, 9] }";
+      text.replace(text.find(box), box.size(), fmt::format("vertices = [{}]", fmt::join(clamp, ", ")));
+    }
+    test::write_text(dir_ / "design.toml", text);
+    const auto r = make();
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    tip[by_vertices] = report()["droop"]["max_displacement_mm"].get<double>();
+  }
+  std::printf("dense skin, held by a box: %.3f mm; by its 784 vertices at x = 0: %.3f mm\n", tip[0], tip[1]);
+  EXPECT_GT(tip[0], 1.0);
+  EXPECT_NEAR(tip[1], tip[0], 0.01 * tip[0]);
 }
 
 TEST_F(TargetsE2E, SurfaceWithOtherVerticesIsRefused)

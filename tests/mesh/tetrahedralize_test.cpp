@@ -119,6 +119,10 @@ TEST(TetMeshFile, RoundTripsAndRejectsDamage)
   EXPECT_EQ(back.tets, mesh.tets);
   EXPECT_EQ(back.boundary_faces, mesh.boundary_faces);
   EXPECT_EQ(back.surface_to_node, mesh.surface_to_node);
+  EXPECT_EQ(back.surface_faces, mesh.surface_faces);
+  EXPECT_EQ(back.place_face, mesh.place_face);
+  EXPECT_EQ(back.place_weights, mesh.place_weights);
+  EXPECT_EQ(mesh.place_face.size(), mesh.nodes.rows());
 
   std::string bytes = test::read_text(dir / "body.tetmesh");
   test::write_text(dir / "truncated.tetmesh", bytes.substr(0, bytes.size() / 2));
