@@ -218,7 +218,8 @@ constexpr const char* kViewer = R"JS(
 } // namespace
 
 std::string report_html(const std::string& title, const std::vector<ReportMesh>& meshes, const std::vector<ReportLine>& lines,
-                        const std::vector<ReportTable>& tables, const std::vector<ReportPlot>& plots)
+                        const std::vector<ReportTable>& tables, const std::vector<ReportPlot>& plots,
+                        const std::vector<std::string>& warnings)
 {
   nlohmann::json scene{{"meshes", nlohmann::json::array()}, {"lines", nlohmann::json::array()}};
   for (const ReportMesh& m : meshes) scene["meshes"].push_back(mesh_json(m));
@@ -226,8 +227,15 @@ std::string report_html(const std::string& title, const std::vector<ReportMesh>&
   std::string html = "<!DOCTYPE html>\n<html lang=\"en\">\n<head>\n<meta charset=\"utf-8\">\n<title>" + escaped(title) + "</title>\n";
   html += "<style>body{font-family:sans-serif;margin:1.5em;max-width:70em}#view{width:100%;height:32em;border:1px solid #ccc}"
           "table{border-collapse:collapse;margin-bottom:1em}td,th{border:1px solid #ccc;padding:0.2em 0.6em;text-align:left}"
-          "#items label{margin-right:1em;white-space:nowrap}#status{color:#666}</style>\n</head>\n<body>\n";
-  html += "<h1>" + escaped(title) + "</h1>\n<canvas id=\"view\"></canvas>\n<p id=\"items\"></p>\n<p id=\"status\">loading</p>\n";
+          "#items label{margin-right:1em;white-space:nowrap}#status{color:#666}"
+          "#warnings{background:#fff3cd;border:1px solid #e0b400;padding:0.4em 1em;margin-bottom:1em}</style>\n</head>\n<body>\n";
+  html += "<h1>" + escaped(title) + "</h1>\n";
+  if (!warnings.empty()) {
+    html += "<div id=\"warnings\"><strong>Warnings</strong>\n<ul>\n";
+    for (const std::string& w : warnings) html += "<li>" + escaped(w) + "</li>\n";
+    html += "</ul>\n</div>\n";
+  }
+  html += "<canvas id=\"view\"></canvas>\n<p id=\"items\"></p>\n<p id=\"status\">loading</p>\n";
   html += "<p>Drag to turn, scroll to zoom; lengths in mm.</p>\n";
   for (const ReportTable& t : tables) html += table_html(t);
   for (const ReportPlot& p : plots) html += plot_svg(p);

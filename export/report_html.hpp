@@ -42,10 +42,12 @@ struct ReportTable {
   std::vector<std::vector<std::string>> rows;
 };
 
-/// The page. Once the 3D view has drawn, the element #status says "drawn N of M triangles, P of Q
+/// The page; `warnings` (what a user must not miss: a target far from reached, a muscle at its
+/// limit) as a banner under the title. Once the 3D view has drawn, the element #status says "drawn N of M triangles, P of Q
 /// pixels painted" (the visible meshes' triangles, and the pixels of the first view that are not
 /// background), or why it could not draw, so that a headless browser can check it.
 std::string report_html(const std::string& title, const std::vector<ReportMesh>& meshes, const std::vector<ReportLine>& lines,
-                        const std::vector<ReportTable>& tables, const std::vector<ReportPlot>& plots = {});
+                        const std::vector<ReportTable>& tables, const std::vector<ReportPlot>& plots = {},
+                        const std::vector<std::string>& warnings = {});
 
 } // namespace fibermold

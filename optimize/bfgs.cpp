@@ -69,13 +69,13 @@ std::optional<std::string> stalled(const std::vector<double>& values, double fx,
 }
 
 /// `result` ending at the best point `tracked` saw.
-BfgsResult finished(BfgsResult& result, const Tracked& tracked, bool converged, std::string message)
+BfgsResult finished(BfgsResult& result, const Tracked& tracked, Termination termination, std::string message)
 {
   result.x = tracked.best_x;
   result.value = tracked.best;
   result.gradient_norm = tracked.best_g.norm();
   result.evaluations = tracked.evaluations;
-  result.converged = converged;
+  result.termination = termination;
   result.message = std::move(message);
   return result;
 }
@@ -96,6 +96,7 @@ BfgsResult minimize_bfgs(const Objective& f, Eigen::VectorXd x, const BfgsOption
     result.x = x;  // nothing better seen yet
     result.value = HUGE_VAL;
     result.interrupted = true;
+    result.termination = Termination::interrupted;
     result.message = "interrupted";
     return result;
   }
@@ -113,13 +114,13 @@ BfgsResult minimize_bfgs(const Objective& f, Eigen::VectorXd x, const BfgsOption
   // search's step where that one needed many trials (near a design where f jumps up, the walking
   // robot's last line searches each spent their 20 evaluations halving from 1).
   double first_trial = 1;
-  auto finish = [&](bool converged, std::string message) { return finished(result, tracked, converged, std::move(message)); };
+  auto finish = [&](Termination why, std::string message) { return finished(result, tracked, why, std::move(message)); };
   try {
     for (;;) {
       const double gnorm = g.norm();
-      if (gnorm <= options.gradient_tolerance) return finish(true, fmt::format("|∇f| = {:.3g} below tolerance", gnorm));
+      if (gnorm <= options.gradient_tolerance) return finish(Termination::gradient_tolerance, fmt::format("|∇f| = {:.3g} below tolerance", gnorm));
       if (result.iterations == options.max_iterations)
-        return finish(false, fmt::format("{} iterations, the limit", options.max_iterations));
+        return finish(Termination::iteration_limit, fmt::format("{} iterations, the limit", options.max_iterations));
       if (progress.interrupted()) throw Interrupted();
 
       Eigen::VectorXd d = -H * g;
@@ -143,7 +144,7 @@ BfgsResult minimize_bfgs(const Objective& f, Eigen::VectorXd x, const BfgsOption
       } catch (const std::exception& e) {
         // No Wolfe step (e.g. against a region where f is +∞); a sufficient decrease still counts.
         const bool decreased = tracked.best < fp;
-        if (!decreased && !scaled) return finish(false, fmt::format("the line search found no decrease ({})", e.what()));
+        if (!decreased && !scaled) return finish(Termination::line_search, fmt::format("the line search found no decrease ({})", e.what()));
         x = tracked.best_x;
         g = tracked.best_g;
         fx = tracked.best;
@@ -166,15 +167,15 @@ BfgsResult minimize_bfgs(const Objective& f, Eigen::VectorXd x, const BfgsOption
       // there. Steepest descent gets one try, then the run stops.
       if (exhausted && fp - fx <= options.relative_tolerance / options.window * std::abs(fp)) {
         if (!along_bfgs)
-          return finish(true, fmt::format("the line search used all {} evaluations and f fell by only {:.3g} of its value",
+          return finish(Termination::line_search, fmt::format("the line search used all {} evaluations and f fell by only {:.3g} of its value",
                                           options.max_line_search, (fp - fx) / std::abs(fp)));
         H.setIdentity();
         scaled = false;
       }
-      if (auto message = stalled(values, fx, options)) return finish(true, std::move(*message));
+      if (auto message = stalled(values, fx, options)) return finish(Termination::stalled, std::move(*message));
     }
   } catch (const Interrupted&) {
-    finish(false, "interrupted");
+    finish(Termination::interrupted, "interrupted");
     result.interrupted = true;
     return result;
   }

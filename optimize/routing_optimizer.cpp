@@ -27,7 +27,8 @@ void absorb(RoutingResult& out, RoutingProblem& problem, const BfgsResult& r)
   out.value = r.value;
   out.iterations += r.iterations;
   out.evaluations += r.evaluations;
-  out.converged = out.converged && r.converged;
+  out.termination = r.termination;
+  out.converged = out.converged && r.converged();
   out.interrupted = r.interrupted;
   out.message = r.message;
 }

@@ -191,6 +191,32 @@ std::vector<ReportTable> behaviour_tables(const StageContext& ctx)
   return out;
 }
 
+/// How the optimization ended, from optimize/report.json: per target the error at the start and at
+/// the end, how much of it was reached and each fiber's pressure; and its warnings, for the banner.
+std::optional<ReportTable> optimization_table(const StageContext& ctx, std::vector<std::string>& warnings)
+{
+  const auto report = json_if_any(ctx.upstream("optimize", "report.json"));
+  if (!report || !report->value("optimized", false) || !(*report)["targets"].is_object() || (*report)["targets"].empty())
+    return std::nullopt;
+  for (const Json& w : (*report)["warnings"]) warnings.push_back(w.get<std::string>());
+  ReportTable t{fmt::format("Optimization: {} after {} iterations ({})", (*report)["termination"].get<std::string>(),
+                            (*report)["iterations"].get<int>(), (*report)["message"].get<std::string>()),
+                {"target", "RMSE at the start (mm)", "RMSE at the end (mm)", "reached"},
+                {}};
+  std::vector<std::string> fibers;  // every target's report names every fiber's pressure
+  for (const auto& [fiber, p] : (*report)["targets"].begin()->at("pressure_kPa").items()) {
+    fibers.push_back(fiber);
+    t.header.push_back(fiber + " (kPa)");
+  }
+  for (const auto& [name, target] : (*report)["targets"].items()) {
+    std::vector<std::string> row{name, fixed(target["start"]["rmse_mm"].get<double>(), 3), fixed(target["rmse_mm"].get<double>(), 3),
+                                 fixed(target["reached_percent"].get<double>(), 0) + " %"};
+    for (const std::string& f : fibers) row.push_back(fixed(target["pressure_kPa"].value(f, 0.0), 1));
+    t.rows.push_back(std::move(row));
+  }
+  return t;
+}
+
 /// The optimizer's objective and distance term per iteration, from optimize/history.csv.
 std::optional<ReportPlot> optimization_history(const StageContext& ctx)
 {
@@ -262,11 +288,14 @@ std::string report(const StageContext& ctx, const Json& molds, const Json& parts
                              fmt::format("{} from {}", f["sprues"].size(), f["sprues"].empty() ? "" : f["sprues"][0]["from"].get<std::string>()),
                              std::to_string(f["vents"].size()), fixed(f["reachable_percent"], 1) + " %", fixed(f["trapped_air_mm3"], 2)});
   }
-  std::vector<ReportTable> tables = behaviour_tables(ctx);
+  std::vector<std::string> warnings;
+  std::vector<ReportTable> tables;
+  if (auto optimized = optimization_table(ctx, warnings)) tables.push_back(std::move(*optimized));
+  for (ReportTable& t : behaviour_tables(ctx)) tables.push_back(std::move(t));
   tables.insert(tables.end(), {checks, silicone});
   std::vector<ReportPlot> plots;
   if (auto history = optimization_history(ctx)) plots.push_back(std::move(*history));
-  return report_html("fibermold: " + d.design.name, meshes, lines, tables, plots);
+  return report_html("fibermold: " + d.design.name, meshes, lines, tables, plots, warnings);
 }
 
 } // namespace

@@ -15,7 +15,7 @@ public:
   std::vector<std::string> upstream() const override { return {"mesh", "optimize", "collide", "molds"}; }
   /// The report shows the tracking curves and names the targets.
   std::vector<std::string> design_keys() const override { return {"design.name", "export", "tracking_curve", "target"}; }
-  int version() const override { return 3; }  ///< 2: the fill in the manifest and README.txt, parts' transforms; 3: no timings in report.html
+  int version() const override { return 4; }  ///< 2: the fill in the manifest and README.txt, parts' transforms; 3: no timings in report.html; 4: the optimization table and the warnings banner
   void run(StageContext& ctx) const override;
 };
 

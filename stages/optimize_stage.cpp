@@ -13,6 +13,7 @@
 #include "core/json_file.hpp"
 #include "core/units.hpp"
 #include "optimize/clearance_barrier.hpp"
+#include "optimize/optimization_ending.hpp"
 #include "optimize/routing_optimizer.hpp"
 #include "stages/design_simulation.hpp"
 #include "stages/fibers_file.hpp"
@@ -105,12 +106,11 @@ RoutingResult optimize(const Design& d, RoutingProblem& problem, const BfgsOptio
 /// of the optimized routing `r` against those at the start, the pressures, and the errors of a
 /// solve from rest.
 nlohmann::ordered_json target_report(StageContext& ctx, DesignRouting& dr, const Routing& r, int t, const Eigen::VectorXd& x,
-                                     const TargetErrors& before)
+                                     const TargetErrors& before, const TargetErrors& after, const TargetReach& reach)
 {
   const Design& d = ctx.design;
   RoutingProblem& problem = *dr.problem;
   const std::string& name = dr.target_names[t];
-  const TargetErrors after = target_errors(problem, dr.mesh, t, x);
   // A robot starts from rest: where that leads elsewhere, the body has more than one equilibrium.
   // Its time is the paper's "sim (s)" of Table II.
   const auto rest_started = Clock::now();
@@ -128,6 +128,7 @@ nlohmann::ordered_json target_report(StageContext& ctx, DesignRouting& dr, const
   nlohmann::ordered_json entry = errors_json(after);
   entry["pressure_kPa"] = pressures;
   entry["start"] = errors_json(before);
+  entry["reached_percent"] = 100 * reach.reached;
   entry["from_rest"] = errors_json(from_rest);
   entry["from_rest"]["seconds"] = rest_seconds;
   entry["from_rest"]["newton_iterations"] = problem.newton().iterations - rest_newton;
@@ -135,6 +136,32 @@ nlohmann::ordered_json target_report(StageContext& ctx, DesignRouting& dr, const
                name, after.rmse / units::mm, before.rmse / units::mm, after.max / units::mm, before.max / units::mm,
                after.surface_rmse / units::mm, after.surface_max / units::mm);
   return entry;
+}
+
+/// Each target's report entry (and deformed state) for the optimized routing, and how the
+/// optimization ended, its warnings logged.
+OptimizationEnding report_targets(StageContext& ctx, DesignRouting& dr, const RoutingResult& result,
+                                  const std::vector<TargetErrors>& before, nlohmann::ordered_json& per_target)
+{
+  const Design& d = ctx.design;
+  RoutingProblem& problem = *dr.problem;
+  std::vector<Eigen::VectorXd> optimized;  // the equilibria the optimizer scored (warm-started)
+  std::vector<TargetErrors> after;
+  for (int t = 0; t < problem.num_targets(); ++t) {
+    optimized.push_back(problem.equilibrium(result.routing, t));
+    after.push_back(target_errors(problem, dr.mesh, t, optimized[t]));
+  }
+  problem.forget_states();
+  std::vector<std::string> fiber_names;
+  for (const Fiber& f : d.fibers) fiber_names.push_back(f.name);
+  OptimizationEnding ending =
+      optimization_ending(result, actuator_mask(d), routing_settings(d), before, after, dr.target_names, fiber_names);
+  for (int t = 0; t < problem.num_targets(); ++t) {
+    ctx.progress.checkpoint(1, "writing target " + dr.target_names[t]);
+    per_target[dr.target_names[t]] = target_report(ctx, dr, result.routing, t, optimized[t], before[t], after[t], ending.targets[t]);
+  }
+  for (const std::string& w : ending.warnings) ctx.log.warn("{}", w);
+  return ending;
 }
 
 /// A starting route the skin barrier refuses (InputError at the fiber).
@@ -231,22 +258,19 @@ void OptimizeStage::run(StageContext& ctx) const
                  result.value, kept.string());
     throw Interrupted();
   }
-  ctx.log.info("{} after {} iterations, {} evaluations", result.message, result.iterations, result.evaluations);
+  ctx.log.info("{}: {} after {} iterations, {} evaluations", choice_name(result.termination), result.message, result.iterations,
+               result.evaluations);
 
   nlohmann::ordered_json per_target = nlohmann::ordered_json::object();
-  std::vector<Eigen::VectorXd> optimized;  // the equilibria the optimizer scored (warm-started)
-  for (int t = 0; t < problem.num_targets(); ++t) optimized.push_back(problem.equilibrium(result.routing, t));
-  problem.forget_states();
-  for (int t = 0; t < problem.num_targets(); ++t) {
-    ctx.progress.checkpoint(1, "writing target " + names[t]);
-    per_target[names[t]] = target_report(ctx, dr, result.routing, t, optimized[t], before[t]);
-  }
+  const OptimizationEnding ending = report_targets(ctx, dr, result, before, per_target);
   const nlohmann::ordered_json report{
       {"optimized", true},
       {"strategy", choice_name(d.optimize.strategy)},
+      {"termination", choice_name(result.termination)},
       {"converged", result.converged},
-      {"fibers_kept_apart", kept_apart},
       {"message", result.message},
+      {"warnings", ending.warnings},
+      {"fibers_kept_apart", kept_apart},
       {"iterations", result.iterations},
       {"evaluations", result.evaluations},
       {"objective", result.value},

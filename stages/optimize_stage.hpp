@@ -26,7 +26,7 @@ public:
     return {"design.units", "material", "sim", "fixed", "muscle", "fiber", "tracking_curve", "target", "optimize",
             "collide.clearance", "collide.samples_per_mm", "collide.smoothness"};  // smoothness: optimization_start
   }
-  int version() const override { return 2; }  ///< 2: fibers moved apart before optimizing, kept apart throughout
+  int version() const override { return 3; }  ///< 2: fibers moved apart before optimizing, kept apart throughout; 3: termination, warnings and reach in the report
   void run(StageContext& ctx) const override;
 };
 

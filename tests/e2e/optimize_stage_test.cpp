@@ -76,6 +76,34 @@ TEST_F(OptimizeE2E, RecoversTheTargetAndWritesItsOutputs)
   EXPECT_THAT(status(), HasSubstr("optimize  stale"));
 }
 
+/// The target is made by the muscle at 200 kPa, and 200 kPa is all it may have: the optimizer ends
+/// with the pressure against its limit, and says so, with why it stopped and how much it reached.
+TEST_F(OptimizeE2E, ARunThatEndsAtThePressureLimitSaysSo)
+{
+  std::string text = kDesign + "[muscle]\nmax_pressure = 200\n[optimize]\nmax_iterations = 60\n";
+  text.replace(text.find("pressure = 300"), 14, "pressure = 200");
+  test::write_text(dir_ / "design.toml", text);
+  const auto r = make();
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_THAT(r.err, ContainsRegex("warning: target s: fiber m1 ends at 19[6-9]\\.[0-9] kPa, at its limit, \\[muscle\\] max_pressure = "
+                                   "200 kPa"));
+  const auto report = json("report.json");
+  const double p = report["targets"]["s"]["pressure_kPa"]["m1"].get<double>();
+  EXPECT_GT(p, 0.98 * 200);
+  ASSERT_GE(report["warnings"].size(), 1u);
+  bool named = false;
+  for (const auto& w : report["warnings"]) named = named || w.get<std::string>().find("at its limit") != std::string::npos;
+  EXPECT_TRUE(named) << report["warnings"].dump();
+  // Why it stopped, and "converged" only for a vanishing gradient.
+  const std::string why = report["termination"].get<std::string>();
+  EXPECT_THAT(why, ContainsRegex("^(gradient tolerance met|stalled|line search failed|iteration limit)$"));
+  EXPECT_EQ(report["converged"].get<bool>(), why == "gradient tolerance met");
+  if (why != "gradient tolerance met") {
+    EXPECT_THAT(r.err, HasSubstr("the optimizer stopped before converging (" + why));
+  }
+  EXPECT_GT(report["targets"]["s"]["reached_percent"].get<double>(), 90);
+}
+
 TEST_F(OptimizeE2E, DisabledPassesTheFibersThrough)
 {
   design("[optimize]\nenabled = false\n");

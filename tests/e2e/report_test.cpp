@@ -44,6 +44,17 @@ TEST(ReportE2E, ShowsTheDeformedBodyTheErrorsAndTheOptimizationHistory)
   EXPECT_THAT(html, HasSubstr(row));
   EXPECT_THAT(html, HasSubstr("none: every fiber was clear"));
 
+  // The optimization: start and end errors, how much was reached, the pressure; its warnings (3
+  // iterations: stopped at the limit) as the banner.
+  const auto optimize = nlohmann::json::parse(test::read_text(build / "optimize" / "report.json"));
+  const auto& o = optimize["targets"]["s"];
+  EXPECT_THAT(html, HasSubstr("Optimization: iteration limit after 3 iterations"));
+  EXPECT_THAT(html, HasSubstr(fmt::format("<tr><td>s</td><td>{:.3f}</td><td>{:.3f}</td><td>{:.0f} %</td><td>{:.1f}</td></tr>",
+                                          o["start"]["rmse_mm"].get<double>(), o["rmse_mm"].get<double>(),
+                                          o["reached_percent"].get<double>(), o["pressure_kPa"]["m1"].get<double>())));
+  EXPECT_THAT(html, HasSubstr("<div id=\"warnings\"><strong>Warnings</strong>"));
+  EXPECT_THAT(html, HasSubstr("<li>the optimizer stopped before converging (iteration limit: 3 iterations, the limit)"));
+
   // One plot point per optimizer iteration, for both series.
   const std::string history = test::read_text(build / "optimize" / "history.csv");
   const long iterations = std::count(history.begin(), history.end(), '\n') - 1;

@@ -1,0 +1,45 @@
+#pragma once
+// How an optimization ended, in the terms a user acts on: why it stopped (and whether that is
+// convergence), the muscles that ended at a limit of their pressure, and how much of each target
+// was reached, with what to try when a target is far from reached. The optimize stage logs these
+// and writes them into its report, whose warnings report.html shows as a banner.
+
+#include <string>
+#include <vector>
+
+#include <Eigen/Core>
+
+#include "optimize/routing_optimizer.hpp"
+#include "optimize/target_errors.hpp"
+
+namespace fibermold {
+
+/// A target whose tracking-curve RMSE kept more than this share of its starting value is far from
+/// reached.
+inline constexpr double kFarFromReached = 1.0 / 3;
+
+struct TargetReach {
+  double start_rmse = 0, end_rmse = 0;  ///< m, on the tracking curves
+  double reached = 0;                   ///< 1 − end/start: the share of the way from the start to the target
+};
+
+struct PressureLimit {
+  int target = 0, fiber = 0;
+  double pressure = 0;  ///< Pa
+  bool at_max = false;  ///< at max_pressure; else at 0
+};
+
+struct OptimizationEnding {
+  std::vector<TargetReach> targets;
+  std::vector<PressureLimit> limits;
+  std::vector<std::string> warnings;  ///< sentences naming the target, the fiber, the figures and what to try
+};
+
+/// `actuators` (targets × fibers): which fibers the optimizer could pressurize for which target;
+/// the others are not reported at 0. A pressure within `settings.pressure_margin` of 0 or of
+/// max_pressure is at that limit: there the pressure barrier, not the target, holds it.
+OptimizationEnding optimization_ending(const RoutingResult& result, const ActuatorMask& actuators, const RoutingSettings& settings,
+                                       const std::vector<TargetErrors>& before, const std::vector<TargetErrors>& after,
+                                       const std::vector<std::string>& target_names, const std::vector<std::string>& fiber_names);
+
+} // namespace fibermold
