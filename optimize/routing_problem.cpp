@@ -29,6 +29,12 @@ constexpr double kPressureUnit = 10e3;  // Pa per optimizer unit
 constexpr int kSkinSamplesPerSegment = 1;
 } // namespace
 
+SkinBarrier route_skin_barrier(const SurfaceDistance& skin, const RoutingSettings& settings, const Route& route)
+{
+  const HermiteSpline s(route.points, route.tangents);
+  return SkinBarrier(skin, settings.skin_distance, settings.skin_band, s, kSkinSamplesPerSegment * segment_count(s, settings.segments_per_length));
+}
+
 RoutingProblem::RoutingProblem(Simulation& sim, const MuscleModel& model, const SurfaceDistance& skin,
                                std::vector<Eigen::VectorXd> targets, const std::vector<TrackingSamples>& curves,
                                Routing start, RoutingSettings settings)
@@ -46,9 +52,8 @@ RoutingProblem::RoutingProblem(Simulation& sim, const MuscleModel& model, const 
   warm_.assign(targets_.size(), sim_.rest());
   for (const Route& r : base_.routes) {
     const HermiteSpline s(r.points, r.tangents);
-    const int count = segment_count(s, settings_.segments_per_length);
-    segment_t_.push_back(segment_parameters(s, count));
-    skin_barriers_.emplace_back(skin_, settings_.skin_distance, settings_.skin_band, s, kSkinSamplesPerSegment * count);
+    segment_t_.push_back(segment_parameters(s, segment_count(s, settings_.segments_per_length)));
+    skin_barriers_.push_back(route_skin_barrier(skin_, settings_, r));
     start_length_.push_back(s.length());
   }
   if (!fibers_inside(base_))

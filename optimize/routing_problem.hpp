@@ -47,6 +47,11 @@ struct RoutingSettings {
   double pressure_margin = 0.02;      ///< of max_pressure
 };
 
+/// The skin barrier of eq. 4 on `route` as the routing problem builds it (its distance, band and
+/// samples from `settings`; the stretches at exits on the skin left out), so that a check before the
+/// optimizer asks what the optimizer will.
+SkinBarrier route_skin_barrier(const SurfaceDistance& skin, const RoutingSettings& settings, const Route& route);
+
 /// The value of each term at a routing.
 struct RoutingTerms {
   double total = 0, distance = 0, curvature = 0, skin = 0, pressure = 0, clearance = 0;

@@ -19,6 +19,7 @@
 #include "mesh/surface_repair.hpp"
 #include "stages/molds_stage.hpp"
 #include "stages/optimize_stage.hpp"
+#include "stages/routing_evaluation.hpp"
 
 namespace fibermold {
 
@@ -242,7 +243,10 @@ SurfaceCheck check_design_surface(const Design& design, std::vector<std::string>
   std::vector<std::vector<Eigen::Vector3d>> fibers;
   for (const Fiber& f : design.fibers) fibers.push_back(f.points);
   require_mold_grids(design, surface, fibers);
-  require_optimizable(design, SurfaceDistance(surface.vertices, surface.faces));
+  const SurfaceDistance skin(surface.vertices, surface.faces);
+  require_optimizable(design, skin);
+  // Unoptimized, the routes go to the molds as given: their grooves must fit now.
+  if (!design.optimize.enabled) require_grooves_fit(design, skin, starting_routing(design).routes);
   return check;
 }
 

@@ -159,6 +159,18 @@ void require_mold_grids(const Design& d, const SurfaceMesh& body, const std::vec
     bad(d, "[mold].voxel", *problem);
 }
 
+std::vector<std::vector<Eigen::Vector3d>> require_grooves_fit(const Design& d, const SurfaceDistance& skin, const std::vector<Route>& routes)
+{
+  const double radius = groove_radius(d.muscle.model.diameter, d.mold);
+  std::vector<std::vector<Eigen::Vector3d>> lines;
+  for (const Route& r : routes) {
+    lines.push_back(mold_fiber(r, mold_line_step(d.mold)).line);
+    if (auto problem = groove_problem(lines.back(), skin, radius, d.collide.clearance, d.mold.pull, skin_end_stretch(d)))
+      bad(d, fmt::format("[fiber.{}]", r.name), *problem);
+  }
+  return lines;
+}
+
 void MoldsStage::run(StageContext& ctx) const
 {
   const Design& d = ctx.design;
@@ -173,15 +185,9 @@ void MoldsStage::run(StageContext& ctx) const
   job.min_wall = d.export_.min_wall;
   job.printer_volume = d.export_.printer_volume;
   const SurfaceDistance skin(job.body.vertices, job.body.faces);
-  const double radius = groove_radius(d.muscle.model.diameter, m);
-  std::vector<std::vector<Eigen::Vector3d>> lines;
-  for (const Route& r : read_fibers_json(ctx.upstream("collide", "fibers.json")).routing.routes) {
-    job.fibers.push_back(mold_fiber(r, mold_line_step(m)));
-    if (auto problem = groove_problem(job.fibers.back().line, skin, radius, d.collide.clearance, m.pull, job.end_stretch))
-      bad(d, fmt::format("[fiber.{}]", r.name), *problem);
-    lines.push_back(job.fibers.back().line);
-  }
-  require_mold_grids(d, job.body, lines);
+  const std::vector<Route> routes = read_fibers_json(ctx.upstream("collide", "fibers.json")).routing.routes;
+  for (const Route& r : routes) job.fibers.push_back(mold_fiber(r, mold_line_step(m)));
+  require_mold_grids(d, job.body, require_grooves_fit(d, skin, routes));
 
   const MoldLog log{[&](const std::string& s) { ctx.log.info("{}", s); }, [&](const std::string& s) { ctx.log.warn("{}", s); }};
   const TwoShotMolds molds = two_shot_molds(job, m, ctx.progress, log);

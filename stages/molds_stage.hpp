@@ -9,13 +9,18 @@
 // groove-body.stl, report.json.
 
 #include "make/stage.hpp"
+#include "mesh/surface_distance.hpp"
 #include "mesh/surface_mesh.hpp"
+#include "optimize/routing_problem.hpp"
 
 namespace fibermold {
 
 /// Refuses (InputError on [mold].voxel) a voxel too fine for the body and its grooves along the
 /// polylines `fibers` (molds/grid_budget.hpp), before any carving; `check` asks it too.
 void require_mold_grids(const Design& d, const SurfaceMesh& body, const std::vector<std::vector<Eigen::Vector3d>>& fibers);
+/// InputError at the fiber when a route's groove does not fit inside the body (molds' rule:
+/// groove_problem); the routes' lines as the molds sample them.
+std::vector<std::vector<Eigen::Vector3d>> require_grooves_fit(const Design& d, const SurfaceDistance& skin, const std::vector<Route>& routes);
 
 class MoldsStage final : public Stage {
 public:

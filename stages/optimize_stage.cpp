@@ -164,16 +164,24 @@ OptimizationEnding report_targets(StageContext& ctx, DesignRouting& dr, const Ro
   return ending;
 }
 
+/// What is wrong with a starting route `closest` from the skin at `where`, and how to mend it.
+std::string too_near_the_skin(const Design& d, double closest, const Eigen::Vector3d& where)
+{
+  const double need = routing_settings(d).skin_distance;
+  return fmt::format("the starting route passes {:.3f} mm from the skin at {}, where the optimizer keeps a fiber's centre line "
+                     "more than {:.3f} mm inside ([muscle] diameter/2 = {:.3g} mm + [collide] clearance = {:.3g} mm): move the "
+                     "route {:.3f} mm or more inward there, or give a thinner muscle or a smaller clearance",
+                     closest / units::mm, format_mm(where), need / units::mm, d.muscle.model.diameter / 2 / units::mm,
+                     d.collide.clearance / units::mm, (need - closest) / units::mm);
+}
+
 /// A starting route the skin barrier refuses (InputError at the fiber).
 void require_start_inside(const Design& d, RoutingProblem& problem, const Routing& start)
 {
   double closest = 0;
   Eigen::Vector3d where;
   if (const int f = problem.skin_violation(start, closest, where); f >= 0)
-    bad(d, fmt::format("[fiber.{}]", d.fibers[f].name),
-        fmt::format("the starting route passes {:.2f} mm from the skin at {}; the optimizer keeps fibers at least {:.2f} mm "
-                    "inside ([muscle] diameter/2 + [collide] clearance)",
-                    closest / units::mm, format_mm(where), routing_settings(d).skin_distance / units::mm));
+    bad(d, fmt::format("[fiber.{}]", d.fibers[f].name), too_near_the_skin(d, closest, where));
 }
 
 } // namespace
@@ -193,6 +201,14 @@ void require_optimizable(const Design& d, const SurfaceDistance& skin)
     const HermiteSpline s(f.points, f.tangents);
     for (const Eigen::Vector3d& c : split_into_segments(s, segment_count(s, d.muscle.segments_per_length)).centres)
       if (!skin.closest(c).inside) bad(d, fmt::format("[fiber.{}]", f.name), fmt::format("the fiber leaves the body at {}", format_mm(c)));
+  }
+  const Routing start = starting_routing(d);
+  const RoutingSettings settings = routing_settings(d);
+  for (std::size_t f = 0; f < start.routes.size(); ++f) {
+    Eigen::Vector3d where;
+    const double closest = route_skin_barrier(skin, settings, start.routes[f]).closest_approach(
+        HermiteSpline(start.routes[f].points, start.routes[f].tangents), where);
+    if (closest <= settings.skin_distance) bad(d, fmt::format("[fiber.{}]", d.fibers[f].name), too_near_the_skin(d, closest, where));
   }
   tracking_samples(d, skin);
 }

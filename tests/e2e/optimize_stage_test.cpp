@@ -104,6 +104,30 @@ TEST_F(OptimizeE2E, ARunThatEndsAtThePressureLimitSaysSo)
   EXPECT_GT(report["targets"]["s"]["reached_percent"].get<double>(), 90);
 }
 
+/// A 3 mm muscle routed 1.5 mm from the bar's skin (y = 6.5 of 8 mm): `check` refuses it, naming
+/// the fiber, the distance, the rule and the fix, before any stage runs. The optimizer's rule
+/// (radius + clearance) when it is on; the molds' groove rule when the routes go to the molds as given.
+TEST_F(OptimizeE2E, AFiberTooNearTheSkinIsRefusedByCheckWithTheFix)
+{
+  std::string text = kDesign;
+  const std::string route = "points = [[0, 0, 0], [20, 3, -3], [40, -3, 2], [60, 0, 0]]";
+  text.replace(text.find(route), route.size(), "points = [[0, 6.5, 0], [20, 6.5, 0], [40, 6.5, 0], [60, 6.5, 0]]");
+  test::write_text(dir_ / "design.toml", text);
+  const auto checked = test::run_fibermold("check design.toml", dir_.path());
+  EXPECT_EQ(checked.exit_code, 2) << checked.err;
+  EXPECT_THAT(checked.err, ContainsRegex("design.toml:[0-9]+:[0-9]+: \\[fiber.m1\\]: the starting route passes 1\\.[0-9]{3} mm from "
+                                         "the skin at \\([0-9.]+, 6\\.[0-9], -?[0-9.]+\\) mm, where the optimizer keeps a fiber's "
+                                         "centre line more than 2\\.500 mm inside \\(\\[muscle\\] diameter/2 = 1\\.5 mm \\+ "
+                                         "\\[collide\\] clearance = 1 mm\\): move the route 1\\.000 mm or more inward there"));
+  EXPECT_FALSE(fs::exists(dir_ / "build"));
+
+  test::write_text(dir_ / "design.toml", text + "[optimize]\nenabled = false\n");
+  const auto unoptimized = test::run_fibermold("check design.toml", dir_.path());
+  EXPECT_EQ(unoptimized.exit_code, 2) << unoptimized.err;
+  EXPECT_THAT(unoptimized.err, ContainsRegex("\\[fiber.m1\\]: the fiber passes 1\\.50 mm from the skin at .*: its groove "
+                                             "\\(radius 1\\.80 mm\\) needs 2\\.30 mm"));
+}
+
 TEST_F(OptimizeE2E, DisabledPassesTheFibersThrough)
 {
   design("[optimize]\nenabled = false\n");
