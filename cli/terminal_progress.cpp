@@ -19,7 +19,8 @@ TerminalProgress::~TerminalProgress()
 
 void TerminalProgress::update(double fraction, std::string_view what)
 {
-  const std::string percent = fraction >= 0 ? fmt::format(" {:3.0f}%", 100 * std::min(fraction, 1.0)) : "";
+  std::string percent = fraction >= 0 ? fmt::format(" {:3.0f}%", 100 * std::min(fraction, 1.0)) : "";
+  if (const auto left = time_left_.seconds(fraction)) percent += fmt::format(" (~{} left)", TimeLeft::format(*left));
   if (tty_) {
     const auto now = std::chrono::steady_clock::now();
     if (what == last_what_ && now - last_draw_ < std::chrono::milliseconds(100)) return;

@@ -1,12 +1,14 @@
 #pragma once
 // Progress of a stage on the terminal: one redrawn line on a TTY, plain lines otherwise
-// (when the message changes or another tenth of the work is done).
+// (when the message changes or another tenth of the work is done), with the time left once it
+// can be estimated (core/time_left.hpp).
 
 #include <chrono>
 #include <cstdio>
 #include <string>
 
 #include "core/progress.hpp"
+#include "core/time_left.hpp"
 
 namespace fibermold {
 
@@ -24,6 +26,7 @@ private:
   std::string last_what_;
   int last_tenth_ = -1;
   std::chrono::steady_clock::time_point last_draw_{};
+  TimeLeft time_left_;
 };
 
 } // namespace fibermold

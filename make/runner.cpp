@@ -2,9 +2,11 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cmath>
 #include <ctime>
 #include <fstream>
 #include <map>
+#include <optional>
 #include <set>
 
 #include <fmt/format.h>
@@ -14,6 +16,7 @@
 
 #include "core/atomic_file.hpp"
 #include "core/input_error.hpp"
+#include "core/time_left.hpp"
 #include "design/design_file.hpp"
 #include "design/design_view.hpp"
 #include "design/did_you_mean.hpp"
@@ -29,6 +32,30 @@ namespace fibermold {
 namespace fs = std::filesystem;
 
 namespace {
+
+/// A stage's progress, passed on to the terminal's and written to the stage's log at each tenth of
+/// the work, with the time left once it can be estimated (core/time_left.hpp).
+class LoggedProgress final : public Progress {
+public:
+  LoggedProgress(Progress& inner, spdlog::logger& log) : inner_(inner), log_(log) {}
+  void update(double fraction, std::string_view what) override
+  {
+    inner_.update(fraction, what);
+    const std::optional<double> left = time_left_.seconds(fraction);
+    if (!(fraction >= 0) || what == "done") return;
+    const int tenth = static_cast<int>(std::floor(10 * std::min(fraction, 1.0)));
+    if (tenth <= last_tenth_) return;
+    last_tenth_ = tenth;
+    log_.info("progress {:.0f} %{}: {}", 100 * std::min(fraction, 1.0), left ? " (~" + TimeLeft::format(*left) + " left)" : "", what);
+  }
+  bool interrupted() const override { return inner_.interrupted(); }
+
+private:
+  Progress& inner_;
+  spdlog::logger& log_;
+  TimeLeft time_left_;
+  int last_tenth_ = -1;
+};
 
 std::string utc_now()
 {
@@ -306,7 +333,7 @@ StageRun Runner::run_stage(const Stage& stage, const Design& design, const fs::p
   record.flush_on(spdlog::level::info);
   std::unique_ptr<Progress> reporter = progress ? progress(name) : nullptr;
   NullProgress silent;
-  Progress& p = reporter ? *reporter : silent;
+  LoggedProgress p(reporter ? *reporter : silent, record);
 
   const Stamp inputs = current_inputs(stage, design, build_dir);
   const auto start = std::chrono::steady_clock::now();

@@ -117,6 +117,9 @@ TEST(Demonstrators, TwistingBarTwistsItsFreeEndAndMakesMolds)
   EXPECT_LT(t["surface_max_error_mm"].get<double>(), 4.8);
   // The muscle stays on: without the route-only start BFGS turned it down to 0 kPa (docs/optimize.md).
   EXPECT_GT(t["pressure_kPa"]["m1"].get<double>(), 20.0);
+  // Its log follows the optimization with the time left (to the iteration limit).
+  EXPECT_THAT(test::read_text(dir / "build" / "logs" / "optimize.log"),
+              ::testing::ContainsRegex("progress [0-9]+ % \\(~[0-9]+ (s|min [0-9]+ s|min) left\\): iteration"));
 }
 
 TEST(Demonstrators, ContinuumRobotBendsInSpaceMakesMoldsAndRerunsOnlyMoldsAfterAMoldEdit)
