@@ -202,7 +202,11 @@ constexpr const char* kViewer = R"JS(
   for (const item of items) {
     const label = document.createElement('label'), box = document.createElement('input');
     box.type = 'checkbox'; box.checked = item.visible; box.onchange = () => { item.visible = box.checked; draw(); };
-    label.appendChild(box); label.appendChild(document.createTextNode(' ' + item.name + ' ')); list.appendChild(label);
+    // The legend: the item's colour, a square for a surface, a dash for a line.
+    const swatch = document.createElement('span');
+    swatch.className = item.mode === gl.TRIANGLES ? 'swatch surface' : 'swatch line';
+    swatch.style.background = 'rgb(' + item.colour.map(c => Math.round(255 * c)).join(',') + ')';
+    label.appendChild(box); label.appendChild(swatch); label.appendChild(document.createTextNode(item.name + ' ')); list.appendChild(label);
   }
   let drag = null;
   canvas.onmousedown = e => { drag = [e.clientX, e.clientY]; };
@@ -228,6 +232,8 @@ std::string report_html(const std::string& title, const std::vector<ReportMesh>&
   html += "<style>body{font-family:sans-serif;margin:1.5em;max-width:70em}#view{width:100%;height:32em;border:1px solid #ccc}"
           "table{border-collapse:collapse;margin-bottom:1em}td,th{border:1px solid #ccc;padding:0.2em 0.6em;text-align:left}"
           "#items label{margin-right:1em;white-space:nowrap}#status{color:#666}"
+          ".swatch{display:inline-block;width:1.1em;margin:0 0.3em;vertical-align:middle}.swatch.surface{height:0.8em}"
+          ".swatch.line{height:0.2em}"
           "#warnings{background:#fff3cd;border:1px solid #e0b400;padding:0.4em 1em;margin-bottom:1em}</style>\n</head>\n<body>\n";
   html += "<h1>" + escaped(title) + "</h1>\n";
   if (!warnings.empty()) {

@@ -35,7 +35,7 @@ OptimizationEnding optimization_ending(const RoutingResult& result, const Actuat
   for (std::size_t t = 0; t < before.size(); ++t) {
     TargetReach r{before[t].rmse, after[t].rmse, before[t].rmse > 0 ? 1 - after[t].rmse / before[t].rmse : 1.0};
     e.targets.push_back(r);
-    if (after[t].rmse <= kFarFromReached * before[t].rmse) continue;
+    if (!(before[t].rmse > 0) || after[t].rmse <= kFarFromReached * before[t].rmse) continue;  // nothing to reach, or reached
     bool limited = false;
     for (const PressureLimit& l : e.limits) limited = limited || (l.target == static_cast<int>(t) && l.at_max);
     e.warnings.push_back(fmt::format(

@@ -21,16 +21,20 @@ BfgsResult run(RoutingProblem& problem, int stage, const BfgsOptions& options, c
   return minimize_bfgs(f, problem.variables(problem.base()), options, cb, progress);
 }
 
-void absorb(RoutingResult& out, RoutingProblem& problem, const BfgsResult& r)
+/// `prefix` names the run in the message (a sequential stage's fiber).
+void absorb(RoutingResult& out, RoutingProblem& problem, const BfgsResult& r, const std::string& prefix = {})
 {
   out.routing = problem.routing(r.x);
   out.value = r.value;
   out.iterations += r.iterations;
   out.evaluations += r.evaluations;
-  out.termination = r.termination;
+  // The ending reported is the first that was not convergence, else the last run's.
+  if (out.converged || r.interrupted) {
+    out.termination = r.termination;
+    out.message = prefix + r.message;
+  }
   out.converged = out.converged && r.converged();
   out.interrupted = r.interrupted;
-  out.message = r.message;
 }
 
 } // namespace
@@ -55,8 +59,7 @@ RoutingResult optimize_routing(RoutingProblem& problem, Strategy strategy, const
     for (int j = 0; j <= k; ++j) route[j] = target[j] = pressure(j, j) = true;
     problem.set_base(out.routing);
     problem.set_free(route, pressure, target);
-    absorb(out, problem, run(problem, k, options, on_iteration, progress));
-    if (!out.interrupted) out.message = fmt::format("fiber {}: {}", k + 1, out.message);
+    absorb(out, problem, run(problem, k, options, on_iteration, progress), fmt::format("fiber {}: ", k + 1));
   }
   problem.set_base(out.routing);
   return out;

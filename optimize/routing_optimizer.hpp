@@ -20,7 +20,8 @@ struct RoutingResult {
   Routing routing;
   double value = 0;  ///< objective at the end (of the last stage for sequential)
   int iterations = 0, evaluations = 0;
-  /// Why the last run stopped; `converged` only when every run met the gradient tolerance.
+  /// Why it stopped: the first run (of a sequential one's stages) that did not converge, else the
+  /// last; `converged` only when every run met the gradient tolerance.
   Termination termination = Termination::iteration_limit;
   bool converged = true, interrupted = false;
   std::string message;

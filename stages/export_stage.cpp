@@ -196,22 +196,29 @@ std::vector<ReportTable> behaviour_tables(const StageContext& ctx)
 std::optional<ReportTable> optimization_table(const StageContext& ctx, std::vector<std::string>& warnings)
 {
   const auto report = json_if_any(ctx.upstream("optimize", "report.json"));
-  if (!report || !report->value("optimized", false) || !(*report)["targets"].is_object() || (*report)["targets"].empty())
+  if (!report || !report->value("optimized", false) || !report->contains("targets") || !(*report)["targets"].is_object() ||
+      (*report)["targets"].empty())
     return std::nullopt;
-  for (const Json& w : (*report)["warnings"]) warnings.push_back(w.get<std::string>());
-  ReportTable t{fmt::format("Optimization: {} after {} iterations ({})", (*report)["termination"].get<std::string>(),
-                            (*report)["iterations"].get<int>(), (*report)["message"].get<std::string>()),
+  for (const Json& w : report->value("warnings", Json::array()))
+    if (w.is_string()) warnings.push_back(w.get<std::string>());
+  const auto number = [](const Json& j, const char* key, int digits, const std::string& unit = "") {
+    return j.is_object() && j.contains(key) && j[key].is_number() ? fixed(j[key].get<double>(), digits) + unit : std::string("–");
+  };
+  ReportTable t{fmt::format("Optimization: {} after {} iterations ({})", report->value("termination", std::string("?")),
+                            report->value("iterations", 0), report->value("message", std::string())),
                 {"target", "RMSE at the start (mm)", "RMSE at the end (mm)", "reached"},
                 {}};
   std::vector<std::string> fibers;  // every target's report names every fiber's pressure
-  for (const auto& [fiber, p] : (*report)["targets"].begin()->at("pressure_kPa").items()) {
-    fibers.push_back(fiber);
-    t.header.push_back(fiber + " (kPa)");
-  }
+  const Json& first = (*report)["targets"].begin().value();
+  if (first.contains("pressure_kPa") && first["pressure_kPa"].is_object())
+    for (const auto& [fiber, p] : first["pressure_kPa"].items()) {
+      fibers.push_back(fiber);
+      t.header.push_back(fiber + " (kPa)");
+    }
   for (const auto& [name, target] : (*report)["targets"].items()) {
-    std::vector<std::string> row{name, fixed(target["start"]["rmse_mm"].get<double>(), 3), fixed(target["rmse_mm"].get<double>(), 3),
-                                 fixed(target["reached_percent"].get<double>(), 0) + " %"};
-    for (const std::string& f : fibers) row.push_back(fixed(target["pressure_kPa"].value(f, 0.0), 1));
+    std::vector<std::string> row{name, number(target.value("start", Json::object()), "rmse_mm", 3), number(target, "rmse_mm", 3),
+                                 number(target, "reached_percent", 0, " %")};
+    for (const std::string& f : fibers) row.push_back(number(target.value("pressure_kPa", Json::object()), f.c_str(), 1));
     t.rows.push_back(std::move(row));
   }
   return t;

@@ -19,7 +19,6 @@
 #include "mesh/surface_repair.hpp"
 #include "stages/molds_stage.hpp"
 #include "stages/optimize_stage.hpp"
-#include "stages/routing_evaluation.hpp"
 
 namespace fibermold {
 
@@ -239,14 +238,12 @@ SurfaceCheck check_design_surface(const Design& design, std::vector<std::string>
   // body's features cannot take.
   const double edge = target_edge_length(design, check.volume);
   require_mesh_size(design, check.volume, edge);
-  surface_for_mesh(surface, design.mesh.surface_triangles, edge);
+  const MeshedSurface meshed = surface_for_mesh(surface, design.mesh.surface_triangles, edge);
   std::vector<std::vector<Eigen::Vector3d>> fibers;
   for (const Fiber& f : design.fibers) fibers.push_back(f.points);
   require_mold_grids(design, surface, fibers);
-  const SurfaceDistance skin(surface.vertices, surface.faces);
-  require_optimizable(design, skin);
-  // Unoptimized, the routes go to the molds as given: their grooves must fit now.
-  if (!design.optimize.enabled) require_grooves_fit(design, skin, starting_routing(design).routes);
+  // The fibers against the skin the optimizer will see: the mesh's (remeshed, when it is).
+  require_optimizable(design, SurfaceDistance(meshed.surface.vertices, meshed.surface.faces));
   return check;
 }
 

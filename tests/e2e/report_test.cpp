@@ -104,6 +104,19 @@ TEST(ReportE2E, ShowsTheDeformedBodyTheErrorsAndTheOptimizationHistory)
   EXPECT_EQ(std::stol(status[1]), shown);
   EXPECT_EQ(std::stol(status[2]), all);
   EXPECT_THAT(dom, ::testing::Not(HasSubstr("Uncaught")));
+  // A legend: every item of the 3D view has its colour beside its name, a square for a surface,
+  // a dash for a line (the fiber m1 and the tracking curve among them).
+  const std::regex swatch(R"re(<label><input type="checkbox"><span class="swatch (surface|line)" style="background: rgb\((\d+), (\d+), (\d+)\);"></span>([^<]+)</label>)re");
+  int surfaces = 0, lines = 0;
+  std::string names;
+  for (auto it = std::sregex_iterator(dom.begin(), dom.end(), swatch); it != std::sregex_iterator(); ++it) {
+    ((*it)[1] == "surface" ? surfaces : lines) += 1;
+    names += (*it)[5].str() + "|";
+  }
+  std::printf("report legend: %d surfaces, %d lines: %s\n", surfaces, lines, names.c_str());
+  EXPECT_EQ(surfaces, 1 + static_cast<int>(molds["parts"].size()) + 2);  // groove body, parts, deformed body, body at rest
+  EXPECT_GE(lines, 2);
+  EXPECT_THAT(names, HasSubstr("m1 |"));
   EXPECT_EQ(test::read_text(dir / "report.png").substr(1, 3), "PNG");
 }
 
