@@ -78,8 +78,10 @@ void attach_to_surface(TetMesh& mesh, const SurfaceMesh& input)
   for (Eigen::Index v = 0; v < vertices; ++v) all_nodes = all_nodes && v < nodes && mesh.nodes.row(v) == input.vertices.row(v);
   if (all_nodes) {
     for (Eigen::Index v = 0; v < vertices; ++v) mesh.surface_to_node(v) = static_cast<int>(v);
+    mesh.surface_vertices.resize(0, 3);
     return;
   }
+  mesh.surface_vertices = input.vertices;  // the body as given, for what is made of its shape (the molds)
   // Remeshed: each input vertex's nearest surface node.
   std::vector<int> surface_index;
   for (Eigen::Index i = 0; i < nodes; ++i)

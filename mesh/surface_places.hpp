@@ -14,7 +14,7 @@
 namespace fibermold {
 
 /// Fills mesh.surface_faces, mesh.place_face, mesh.place_weights and mesh.surface_to_node against
-/// `input`. A node that is an input vertex gets that vertex's exact place; any other surface node
+/// `input`, and mesh.surface_vertices with its vertices when they are not all nodes (remeshed). A node that is an input vertex gets that vertex's exact place; any other surface node
 /// the nearest point of the input surface; an input vertex that is no node, the nearest surface node.
 void attach_to_surface(TetMesh& mesh, const SurfaceMesh& input);
 

@@ -85,6 +85,7 @@ void save_tet_mesh(const TetMesh& mesh, const std::filesystem::path& path)
   put_matrix(payload, mesh.boundary_faces);
   put_matrix(payload, mesh.surface_to_node);
   put_matrix(payload, mesh.surface_faces);
+  put_matrix(payload, mesh.surface_vertices);
   put_matrix(payload, mesh.place_face);
   put_matrix(payload, mesh.place_weights);
   std::string out(kMagic, sizeof kMagic);
@@ -114,6 +115,7 @@ TetMesh load_tet_mesh(const std::filesystem::path& path)
   r.get_matrix(mesh.boundary_faces);
   r.get_matrix(mesh.surface_to_node);
   r.get_matrix(mesh.surface_faces);
+  r.get_matrix(mesh.surface_vertices);
   r.get_matrix(mesh.place_face);
   r.get_matrix(mesh.place_weights);
   const bool placed = mesh.place_face.size() == mesh.nodes.rows() && mesh.place_weights.rows() == mesh.nodes.rows();

@@ -14,6 +14,7 @@ struct TetMesh {
   Eigen::MatrixX3i boundary_faces;                                 ///< corner nodes, outward
   Eigen::VectorXi surface_to_node;                                 ///< input surface vertex → the node at it (or nearest it)
   Eigen::MatrixX3i surface_faces;                                  ///< the input surface's faces (its vertex indices)
+  Eigen::MatrixX3d surface_vertices;                               ///< m, the input's vertices when they are not all nodes (remeshed); else empty
   Eigen::VectorXi place_face;                                      ///< node → the input face its place is on; −1 inside
   Eigen::MatrixX3d place_weights;                                  ///< node → barycentric weights of its place on that face
 

@@ -30,10 +30,17 @@ using Json = nlohmann::ordered_json;
   throw InputError(design_problem(d, key, message));
 }
 
-/// The body's skin: the tet mesh's boundary with only the vertices it uses.
+/// The body's skin the molds are made of: the input surface where the mesh remeshed it (the molds
+/// keep the shape as given, not its remeshing at the edge length), else the tet mesh's boundary with
+/// only the vertices it uses (the input's own triangles, or them split on their planes).
 SurfaceMesh body_surface(const TetMesh& mesh)
 {
   SurfaceMesh s;
+  if (mesh.surface_vertices.rows() > 0) {
+    s.vertices = mesh.surface_vertices;
+    s.faces = mesh.surface_faces;
+    return s;
+  }
   Eigen::VectorXi index = Eigen::VectorXi::Constant(mesh.nodes.rows(), -1);
   int used = 0;
   for (Eigen::Index f = 0; f < mesh.boundary_faces.rows(); ++f)

@@ -31,7 +31,7 @@ public:
     return {"design.units", "material.density", "muscle.diameter", "collide.clearance", "mold", "export.min_wall",
             "export.printer_volume"};
   }
-  int version() const override { return 2; }  ///< 2: sprues and vents from the fill simulation, its report, the silicone's thickness
+  int version() const override { return 3; }  ///< 2: sprues and vents from the fill simulation, its report, the silicone's thickness; 3: a remeshed body molded as given
   void run(StageContext& ctx) const override;
 };
 

@@ -352,6 +352,7 @@ TEST_F(MeshStageE2E, ADenseScanCoarsensToTheAskedEdgeLengthAndSagsAsAConvergedSo
   EXPECT_NEAR(mean, 3.0, 0.25 * 3.0);
   const TetMesh mesh = load_tet_mesh(dir_ / "build" / "mesh" / "body.tetmesh");
   EXPECT_LT(mesh.nodes.rows(), scan.num_vertices() / 3);
+  EXPECT_EQ(mesh.surface_vertices.rows(), scan.num_vertices());  // the scan as given, for the molds
   EXPECT_NEAR(mesh.volume(), 22.5e-6, 1e-6 * 22.5e-6);
 
   SimulationOptions o;  // the design file's defaults: EcoFlex, gravity −z, mls-linear

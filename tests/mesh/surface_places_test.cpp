@@ -67,6 +67,7 @@ TEST(SurfacePlaces, KeptTrianglesPlaceEachVertexNodeOnItself)
 {
   const Placed p = placed(test::box({0, 0, 0}, {0.03, 0.01, 0.01}, Eigen::Vector3i(6, 2, 2)), SurfaceTriangles::automatic, 0.005);
   ASSERT_EQ(p.treatment, SurfaceTriangles::keep);
+  EXPECT_EQ(p.mesh.surface_vertices.rows(), 0);  // the input's vertices are the first nodes
   for (Eigen::Index v = 0; v < p.input.num_vertices(); ++v) {
     ASSERT_EQ(p.mesh.surface_to_node(v), v);
     EXPECT_EQ(p.mesh.place_weights.row(v).maxCoeff(), 1.0);
@@ -89,6 +90,8 @@ TEST(SurfacePlaces, ARemeshedDenseSurfaceIsPlacedOnTheInput)
   const Placed p = placed(test::box({0, 0, 0}, {0.03, 0.01, 0.01}, Eigen::Vector3i(60, 20, 20)), SurfaceTriangles::automatic, 0.004);
   ASSERT_EQ(p.treatment, SurfaceTriangles::remesh);
   EXPECT_LT(p.mesh.nodes.rows(), p.input.num_vertices());
+  EXPECT_EQ(p.mesh.surface_vertices, p.input.vertices);  // kept for the molds: the body as given
+  EXPECT_EQ(p.mesh.surface_faces, p.input.faces);
   expect_affine_carried(p);
   expect_face_selected(p);
   // Each input vertex's node is the surface node nearest it: within an edge length.

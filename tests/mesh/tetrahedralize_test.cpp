@@ -120,6 +120,7 @@ TEST(TetMeshFile, RoundTripsAndRejectsDamage)
   EXPECT_EQ(back.boundary_faces, mesh.boundary_faces);
   EXPECT_EQ(back.surface_to_node, mesh.surface_to_node);
   EXPECT_EQ(back.surface_faces, mesh.surface_faces);
+  EXPECT_EQ(back.surface_vertices, mesh.surface_vertices);
   EXPECT_EQ(back.place_face, mesh.place_face);
   EXPECT_EQ(back.place_weights, mesh.place_weights);
   EXPECT_EQ(mesh.place_face.size(), mesh.nodes.rows());
