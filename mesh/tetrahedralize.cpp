@@ -119,8 +119,10 @@ double expected_tets(double volume, double edge_length) { return 1.2 * volume / 
 SurfaceTriangles surface_treatment(SurfaceTriangles policy, const SurfaceMesh& surface, double edge_length)
 {
   if (policy != SurfaceTriangles::automatic) return policy;
-  if (longest_edge(surface) > kSplitEdgeFactor * edge_length) return SurfaceTriangles::split;
+  // Dense first: a scan with a few long triangles (a planar cut) is remeshed, which also splits
+  // them; split, it would keep every one of its vertices.
   if (mean_edge_length(surface) < kCoarsenEdgeFactor * edge_length) return SurfaceTriangles::remesh;
+  if (longest_edge(surface) > kSplitEdgeFactor * edge_length) return SurfaceTriangles::split;
   return SurfaceTriangles::keep;
 }
 

@@ -31,9 +31,10 @@ inline constexpr std::array<Named<SurfaceTriangles>, 4> kSurfaceTrianglesNames{{
                                                                                  {SurfaceTriangles::remesh, "remesh"}}};
 inline std::string_view choice_name(SurfaceTriangles s) { return name_in(kSurfaceTrianglesNames, s); }
 
-/// At "auto": an input edge longer than kSplitEdgeFactor × edge_length (a CAD export's few large
-/// triangles) makes TetGen split the surface; a mean input edge under kCoarsenEdgeFactor ×
-/// edge_length (a dense scan) makes the stage remesh it; else the triangles are kept. The
+/// At "auto": a mean input edge under kCoarsenEdgeFactor × edge_length (a dense scan, even with a
+/// few long triangles) makes the stage remesh the surface; else an edge longer than
+/// kSplitEdgeFactor × edge_length (a CAD export's few large triangles) makes TetGen split it; else
+/// the triangles are kept. The
 /// examples' surfaces, made for their edge lengths, have edges up to 1.63 × theirs and means of
 /// 0.79–1.31 × theirs: all kept.
 inline constexpr double kSplitEdgeFactor = 2.0;

@@ -85,6 +85,21 @@ TEST(SurfacePlaces, SplitTrianglesPlaceTheAddedPointsOnThem)
   expect_face_selected(p);
 }
 
+TEST(SurfacePlaces, AutoRemeshesDenseSurfacesSplitsLargeTrianglesAndKeepsTheRest)
+{
+  const Eigen::Vector3d lo(0, 0, 0), hi(0.03, 0.01, 0.01);
+  const auto treatment = [](const SurfaceMesh& s) { return surface_treatment(SurfaceTriangles::automatic, s, 0.004); };
+  EXPECT_EQ(treatment(test::box(lo, hi, 1)), SurfaceTriangles::split);                           // 12 triangles, 30 mm edges
+  EXPECT_EQ(treatment(test::box(lo, hi, Eigen::Vector3i(8, 3, 3))), SurfaceTriangles::keep);    // 3.3–3.75 mm edges
+  SurfaceMesh dense = test::box(lo, hi, Eigen::Vector3i(60, 20, 20));                             // 0.5 mm grid
+  EXPECT_EQ(treatment(dense), SurfaceTriangles::remesh);
+  // A dense scan with a few long triangles (a corner pulled 20 mm out): remeshed, which splits
+  // them too; split, it would keep every one of its vertices.
+  dense.vertices(0, 0) = -0.02;
+  ASSERT_GT(longest_edge(dense), 2 * 0.004);
+  EXPECT_EQ(treatment(dense), SurfaceTriangles::remesh);
+}
+
 TEST(SurfacePlaces, ARemeshedDenseSurfaceIsPlacedOnTheInput)
 {
   const Placed p = placed(test::box({0, 0, 0}, {0.03, 0.01, 0.01}, Eigen::Vector3i(60, 20, 20)), SurfaceTriangles::automatic, 0.004);
