@@ -100,11 +100,22 @@ struct FiberActuation {
   double pressure = 0;         ///< Pa
 };
 
-/// What a target gives (docs/targets.md): loads, a deformed surface, or actuated fibers.
-enum class TargetKind { forces, surface, fibers };
-inline constexpr std::array<Named<TargetKind>, 3> kTargetKindNames{{{TargetKind::forces, "forces"},
+/// A region moved by a rigid motion: turned by `angle` about the line through `about` along
+/// `axis`, then moved by `translation`.
+struct Pose {
+  Region region;
+  Vec3 axis = Vec3::UnitZ();          ///< unit
+  double angle = 0;                   ///< rad
+  std::optional<Vec3> about;          ///< m; absent: the centroid of the region's nodes
+  Vec3 translation = Vec3::Zero();    ///< m
+};
+
+/// What a target gives (docs/targets.md): loads, a deformed surface, actuated fibers, or regions' poses.
+enum class TargetKind { forces, surface, fibers, pose };
+inline constexpr std::array<Named<TargetKind>, 4> kTargetKindNames{{{TargetKind::forces, "forces"},
                                                                     {TargetKind::surface, "surface"},
-                                                                    {TargetKind::fibers, "fibers"}}};
+                                                                    {TargetKind::fibers, "fibers"},
+                                                                    {TargetKind::pose, "pose"}}};
 inline std::string_view choice_name(TargetKind k) { return name_in(kTargetKindNames, k); }
 
 struct Target {
@@ -114,6 +125,7 @@ struct Target {
   std::filesystem::path surface;           ///< kind = surface; absolute
   double strain_penalty = 0;               ///< kind = surface; weight of the large-strain penalty
   std::vector<FiberActuation> fibers;      ///< kind = fibers
+  std::vector<Pose> poses;                 ///< kind = pose
   std::vector<std::string> actuators;      ///< the [[fiber]]s the optimizer may pressurize for it; empty: all
 };
 

@@ -37,6 +37,7 @@ constexpr Unit kMm{units::mm, " mm"};
 constexpr Unit kKPa{units::kPa, " kPa"};
 constexpr Unit kNone{1.0, ""};
 constexpr Unit kPa{1.0, " Pa"};
+constexpr Unit kDegree{units::degree, "°"};
 
 /// An interval of admissible values, in design-file units.
 struct Range {
@@ -689,12 +690,26 @@ Load read_load(Section s)
   return l;
 }
 
+Pose read_pose(Section s)
+{
+  Pose p;
+  p.region = read_region(s, false);
+  p.axis = s.vec3("axis", p.axis, kNone, kMaxCoordinate, true);
+  p.angle = s.number("angle_deg", 0.0, closed(-180, 180), kDegree);
+  p.about = s.optional_vec3("about", kMm, kMaxCoordinate);
+  p.translation = s.vec3("translation", p.translation, kMm, kMaxCoordinate);
+  if (!s.node("angle_deg") && !s.node("translation"))
+    s.context().error(s.where(), s.display(), "give angle_deg (with axis, about) and/or translation = [x, y, z] (mm)");
+  s.finish();
+  return p;
+}
+
 Target read_target(Section s, std::size_t index, const MuscleOptions& muscle, const std::vector<Fiber>& fibers)
 {
   Target t;
   t.name = entry_name(s, "target", index, true);
   const std::string kind_name = s.choice("kind", "", names_of(kTargetKindNames));
-  if (kind_name.empty() && !s.node("kind")) s.missing("kind", "forces | surface | fibers");
+  if (kind_name.empty() && !s.node("kind")) s.missing("kind", "forces | surface | fibers | pose");
   const std::optional<TargetKind> kind = value_in(kTargetKindNames, kind_name);
   if (kind) t.kind = *kind;
 
@@ -706,6 +721,17 @@ Target read_target(Section s, std::size_t index, const MuscleOptions& muscle, co
       for (std::size_t i = 0; i < a->size(); ++i) {
         const toml::table& lt = *(*a)[i].as_table();
         t.loads.push_back(read_load(Section(s.context(), &lt, fmt::format("{}.load[{}]", s.display(), i + 1), lt.source())));
+      }
+    }
+  }
+  if (const toml::node* n = s.node("pose")) {
+    const toml::array* a = n->as_array();
+    if (!a || !a->is_array_of_tables() || a->empty()) {
+      s.error(n, "pose", "expected a list of poses [{ box = {...}, axis = [0, 0, 1], angle_deg = 60, about = [...] }, ...]");
+    } else {
+      for (std::size_t i = 0; i < a->size(); ++i) {
+        const toml::table& pt = *(*a)[i].as_table();
+        t.poses.push_back(read_pose(Section(s.context(), &pt, fmt::format("{}.pose[{}]", s.display(), i + 1), pt.source())));
       }
     }
   }
@@ -755,16 +781,18 @@ Target read_target(Section s, std::size_t index, const MuscleOptions& muscle, co
   };
   if (kind == TargetKind::forces) {
     if (t.loads.empty() && !s.node("load")) s.missing("load", "the loads that make this target");
-    forbid(!t.surface.empty(), "surface");
-    forbid(!t.fibers.empty(), "fibers");
   } else if (kind == TargetKind::surface) {
     if (!s.node("surface")) s.missing("surface", "the deformed copy of the body's surface");
-    forbid(!t.loads.empty(), "load");
-    forbid(!t.fibers.empty(), "fibers");
   } else if (kind == TargetKind::fibers) {
     if (!s.node("fibers")) s.missing("fibers", "the fibers and pressures that make this target");
-    forbid(!t.loads.empty(), "load");
-    forbid(!t.surface.empty(), "surface");
+  } else if (kind == TargetKind::pose) {
+    if (!s.node("pose")) s.missing("pose", "the regions and the rigid motions they are moved by");
+  }
+  if (kind) {
+    forbid(kind != TargetKind::forces && !t.loads.empty(), "load");
+    forbid(kind != TargetKind::surface && !t.surface.empty(), "surface");
+    forbid(kind != TargetKind::fibers && !t.fibers.empty(), "fibers");
+    forbid(kind != TargetKind::pose && !t.poses.empty(), "pose");
   }
   s.finish();
   return t;

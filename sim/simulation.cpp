@@ -54,13 +54,24 @@ Simulation::Simulation(const TetMesh& mesh, SimulationOptions options)
       targets.push_back(mesh_.nodes.row(i).transpose());
     }
   }
+  fixed_points_ = held.size();
   for (const auto& [i, position] : options_.moved_nodes) {
     held.push_back(at_nodes_[i]);
     targets.push_back(position);
   }
   if (held.empty()) throw std::invalid_argument("the body is held nowhere: give at least one [[fixed]] region");
   const double k = options_.dirichlet_penalty * options_.youngs_modulus * mean_edge_;
-  energies_.push_back(std::make_unique<SoftDirichlet>(std::move(held), std::move(targets), k));
+  auto dirichlet = std::make_unique<SoftDirichlet>(std::move(held), std::move(targets), k);
+  dirichlet_ = dirichlet.get();
+  energies_.push_back(std::move(dirichlet));
+}
+
+void Simulation::move_nodes(const std::vector<Eigen::Vector3d>& positions)
+{
+  if (positions.size() != options_.moved_nodes.size())
+    throw std::invalid_argument(fmt::format("move_nodes: {} positions for {} moved nodes", positions.size(),
+                                            options_.moved_nodes.size()));
+  dirichlet_->move_targets(fixed_points_, positions);
 }
 
 Simulation::~Simulation() = default;

@@ -11,6 +11,7 @@
 #include "sim/newton_solver.hpp"
 #include "sim/quadrature_points.hpp"
 #include "sim/shape_functions.hpp"
+#include "sim/soft_dirichlet.hpp"
 
 namespace fibermold {
 
@@ -64,6 +65,9 @@ public:
   /// variable terms and factorization, so that solves alternating between loads (the optimizer's
   /// targets) each start on the factorization their own last solve ended with.
   void use_solver(int slot);
+  /// Moves the nodes of SimulationOptions::moved_nodes (same order) to `positions` (m) for the
+  /// next solves, keeping every factorization: a target reached in steps.
+  void move_nodes(const std::vector<Eigen::Vector3d>& positions);
   /// Equilibrium from x (warm start), in place.
   NewtonSummary solve(Eigen::VectorXd& x, Progress& progress);
   NewtonSolver& solver();
@@ -85,6 +89,8 @@ private:
   std::vector<std::unique_ptr<NewtonSolver>> solvers_;
   std::size_t slot_ = 0;
   std::vector<ShapeEval> at_nodes_;
+  SoftDirichlet* dirichlet_ = nullptr;
+  std::size_t fixed_points_ = 0;  ///< the held points before the moved ones in dirichlet_
 };
 
 } // namespace fibermold

@@ -1,10 +1,19 @@
 #include "sim/soft_dirichlet.hpp"
 
+#include <algorithm>
+#include <stdexcept>
+
 namespace fibermold {
 
 SoftDirichlet::SoftDirichlet(std::vector<ShapeEval> at_nodes, std::vector<Eigen::Vector3d> targets, double stiffness)
     : at_(std::move(at_nodes)), targets_(std::move(targets)), k_(stiffness)
 {
+}
+
+void SoftDirichlet::move_targets(std::size_t first, const std::vector<Eigen::Vector3d>& targets)
+{
+  if (first + targets.size() > targets_.size()) throw std::out_of_range("SoftDirichlet::move_targets: past the held points");
+  std::copy(targets.begin(), targets.end(), targets_.begin() + static_cast<std::ptrdiff_t>(first));
 }
 
 double SoftDirichlet::value(const Eigen::VectorXd& x) const

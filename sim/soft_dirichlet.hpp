@@ -21,6 +21,9 @@ public:
   void add_hessian(const Eigen::VectorXd& x, SparseHessian& H, bool project) const override;
   void stencils(std::vector<std::vector<int>>& out) const override;
 
+  /// Holds points first, first + 1, … at `targets` instead (the Hessian, k N_i N_j I, is unchanged).
+  void move_targets(std::size_t first, const std::vector<Eigen::Vector3d>& targets);
+
 private:
   std::vector<ShapeEval> at_;
   std::vector<Eigen::Vector3d> targets_;

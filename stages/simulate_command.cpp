@@ -128,6 +128,9 @@ SimulateResult simulate(const Design& d, const Runner& runner, const fs::path& b
   if (!request.target.empty() && !target) bad(d, "--target", fmt::format("no [[target]] named \"{}\"", request.target));
   if (target && target->kind == TargetKind::surface)
     bad(d, "--target", fmt::format("target \"{}\" is a deformed surface, not a load: nothing to simulate", target->name));
+  if (target && target->kind == TargetKind::pose)
+    bad(d, "--target", fmt::format("target \"{}\" is a pose, not a load: `fibermold make DESIGN targets` fills it in "
+                                   "(targets/{}.vtu)", target->name, target->name));
   std::vector<Actuation> actuations = requested_actuations(d, request);
   if (target && target->kind == TargetKind::fibers) actuations = target_actuations(d, *target);
 

@@ -2,6 +2,8 @@
 
 #include <algorithm>
 #include <array>
+#include <cmath>
+#include <functional>
 #include <set>
 
 #include <fmt/format.h>
@@ -17,6 +19,7 @@
 #include "mesh/surface_places.hpp"
 #include "sim/external_forces.hpp"
 #include "stages/design_simulation.hpp"
+#include "stages/target_poses.hpp"
 
 namespace fibermold {
 
@@ -58,11 +61,30 @@ std::vector<std::pair<int, Eigen::Vector3d>> target_surface(const Design& d, con
 struct Solved {
   Eigen::VectorXd x;
   NewtonSummary summary;
-  double surface_error = 0;  ///< surface targets: largest distance of the field from the prescribed surface, m
+  double held_error = 0;  ///< surface and pose targets: largest distance of a prescribed node from its place, m
+  std::vector<PosedRegion> poses;
 };
 
-/// Equilibrium of the body for one target; a surface target is reached in steps so that each
-/// Newton solve starts close to its answer.
+/// Holds `moved` nodes at places(s) for s = 1/steps, 2/steps, …, 1, each solve starting from the
+/// last: a target far from the rest shape reached in steps, on one simulation (one factorization).
+void solve_in_steps(Simulation& sim, Solved& out, const std::vector<int>& moved, int steps,
+                    const std::function<std::vector<Eigen::Vector3d>(double)>& places, Progress& progress)
+{
+  out.x = sim.rest();
+  std::vector<Eigen::Vector3d> at;
+  for (int step = 1; step <= steps; ++step) {
+    at = places(static_cast<double>(step) / steps);
+    sim.move_nodes(at);
+    out.summary = sim.solve(out.x, progress);
+    if (!out.summary.converged) return;
+  }
+  const Eigen::MatrixX3d reached = sim.deformed_nodes(out.x);
+  for (std::size_t k = 0; k < moved.size(); ++k)
+    out.held_error = std::max(out.held_error, (reached.row(moved[k]).transpose() - at[k]).norm());
+}
+
+/// Equilibrium of the body for one target; surface and pose targets are reached in steps so that
+/// each Newton solve starts close to its answer.
 Solved solve_target(const Design& d, const Target& t, const TetMesh& mesh, const MuscleModel& model, StageContext& ctx,
                     std::vector<const MuscleEnergy*>& muscles, Eigen::MatrixX3d& deformed,
                     std::unique_ptr<Simulation>& sim)
@@ -75,25 +97,41 @@ Solved solve_target(const Design& d, const Target& t, const TetMesh& mesh, const
     const auto moved = target_surface(d, t, mesh);
     SimulationOptions o = simulation_options(d, mesh, false);  // the whole surface is prescribed
     o.gravity = Eigen::Vector3d::Zero();
-    constexpr int kSteps = 4;
-    Eigen::VectorXd x;
-    for (int step = 1; step <= kSteps; ++step) {
-      SimulationOptions stepped = o;
+    o.moved_nodes = moved;
+    sim = std::make_unique<Simulation>(mesh, o);
+    std::vector<int> nodes;
+    for (const auto& [node, position] : moved) nodes.push_back(node);
+    solve_in_steps(*sim, out, nodes, 4, [&](double s) {
+      std::vector<Eigen::Vector3d> at;
       for (const auto& [node, position] : moved) {
         const Eigen::Vector3d rest = mesh.nodes.row(node).transpose();
-        stepped.moved_nodes.emplace_back(node, rest + (position - rest) * step / kSteps);
+        at.push_back(rest + (position - rest) * s);
       }
-      sim = std::make_unique<Simulation>(mesh, stepped);
-      if (x.size() == 0) x = sim->rest();
-      out.summary = sim->solve(x, ctx.progress);
-      if (!out.summary.converged) break;
+      return at;
+    }, ctx.progress);
+  } else if (t.kind == TargetKind::pose) {
+    out.poses = target_poses(d, t, mesh);
+    SimulationOptions o = simulation_options(d, mesh);  // under gravity, held by [[fixed]]
+    std::vector<int> nodes;
+    double largest_angle = 0;
+    for (const PosedRegion& r : out.poses) {
+      for (int n : r.nodes) {
+        nodes.push_back(n);
+        o.moved_nodes.emplace_back(n, mesh.nodes.row(n).transpose());
+      }
+      largest_angle = std::max(largest_angle, std::abs(r.angle));
     }
-    out.x = x;
-    if (out.summary.converged) {
-      const Eigen::MatrixX3d reached = sim->deformed_nodes(x);
-      for (const auto& [node, position] : moved)
-        out.surface_error = std::max(out.surface_error, (reached.row(node).transpose() - position).norm());
-    }
+    sim = std::make_unique<Simulation>(mesh, o);
+    // A step per 10° of the largest turn, at least 4.
+    const int steps = std::max(4, static_cast<int>(std::ceil(largest_angle / (10 * units::degree))));
+    solve_in_steps(*sim, out, nodes, steps, [&](double s) {
+      std::vector<Eigen::Vector3d> at;
+      for (const PosedRegion& r : out.poses) {
+        const RigidMotion m = r.at(s);
+        for (int n : r.nodes) at.push_back(m.apply(mesh.nodes.row(n).transpose()));
+      }
+      return at;
+    }, ctx.progress);
   } else {
     sim = std::make_unique<Simulation>(mesh, simulation_options(d, mesh));
     if (t.kind == TargetKind::forces) sim->add_energy(std::make_unique<ExternalForces>(target_forces(d, t, *sim)));
@@ -140,8 +178,16 @@ void TargetsStage::run(StageContext& ctx) const
                       {"max_displacement_mm", max_mm},
                       {"newton_iterations", solved.summary.iterations},
                       {"residual_N", solved.summary.residual}};
-    if (t.kind == TargetKind::surface) report[t.name]["max_surface_error_mm"] = solved.surface_error / units::mm;
+    if (t.kind == TargetKind::surface) report[t.name]["max_surface_error_mm"] = solved.held_error / units::mm;
+    if (t.kind == TargetKind::pose) report[t.name]["max_pose_error_mm"] = solved.held_error / units::mm;
     ctx.log.info("target {} ({}): max displacement {:.3f} mm; {}", t.name, choice_name(t.kind), max_mm, solved.summary.brief());
+    nlohmann::ordered_json poses = nlohmann::ordered_json::array();
+    for (const ReachedPose& p : reached_poses(d, t, *sim, solved.x, solved.poses)) {
+      poses.push_back(pose_report(p));
+      ctx.log.info("  {}: moved {:.2f} mm, turned {:.2f}° about ({:.3f}, {:.3f}, {:.3f})", p.place, p.displacement.norm() / units::mm,
+                   p.motion.angle() / units::degree, p.motion.axis().x(), p.motion.axis().y(), p.motion.axis().z());
+    }
+    report[t.name]["poses"] = std::move(poses);
   }
   write_json_atomic(ctx.output_dir / "report.json", report);
 }

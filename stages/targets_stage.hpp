@@ -3,7 +3,10 @@
 //   forces:  forward simulation under the loads;
 //   fibers:  forward simulation with the given fibers and pressures (a known solution);
 //   surface: a deformed copy of the body's surface, filled in volumetrically by a simulation with
-//            soft Dirichlet conditions on every surface vertex (Fig. 4).
+//            soft Dirichlet conditions on every surface vertex (Fig. 4);
+//   pose:    regions moved by rigid motions, the rest following under gravity and [[fixed]].
+// Every target's report gives the pose (translation, rotation) its regions and the tracking
+// curves' ends reach.
 // Outputs: targets/<name>.vtu (ParaView), targets/<name>.positions (nodal state for optimize),
 // targets/report.json.
 
@@ -15,9 +18,10 @@ class TargetsStage final : public Stage {
 public:
   std::string name() const override { return "targets"; }
   std::vector<std::string> upstream() const override { return {"mesh"}; }
+  int version() const override { return 2; }  ///< 2: pose targets; each target's reached poses in the report
   std::vector<std::string> design_keys() const override
   {
-    return {"design.units", "material", "sim", "fixed", "muscle", "fiber", "target"};
+    return {"design.units", "material", "sim", "fixed", "muscle", "fiber", "tracking_curve", "target"};
   }
   std::vector<std::filesystem::path> input_files(const Design& d) const override;
   void run(StageContext& ctx) const override;

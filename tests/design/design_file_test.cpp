@@ -347,7 +347,7 @@ TEST_F(DesignFileTest, CoordinatesStringsAndNamesHaveLimits)
   // A wrong value of a required choice is reported once, as wrong, not also as missing.
   const auto kind = problems(std::string(kMinimal) + "[[target]]\nname = \"t\"\nkind = \"Forces\"\nload = [{ point = [0, 0, 0], force = [1, 0, 0] }]\n");
   ASSERT_EQ(kind.size(), 1u);
-  EXPECT_THAT(kind.front().to_string(), HasSubstr("unknown value \"Forces\"; expected one of: forces, surface, fibers (did you mean \"forces\"?)"));
+  EXPECT_THAT(kind.front().to_string(), HasSubstr("unknown value \"Forces\"; expected one of: forces, surface, fibers, pose (did you mean \"forces\"?)"));
 }
 
 TEST(DesignKeyMatches, SectionAndKeyPrefixes)

@@ -184,6 +184,87 @@ TEST_F(TargetsE2E, SurfaceWithOtherVerticesIsRefused)
   EXPECT_THAT(r.err, HasSubstr("connects its vertices differently"));
 }
 
+/// A pose target curls the bar's end 30° about z along a circular arc (the end face moved to the
+/// arc's end and turned with it, about its own centroid): the report gives the angle reached, and
+/// the deformed end face itself turned by 30° within 1°.
+TEST_F(TargetsE2E, APoseTargetOfAKnownRotationIsReachedWithinADegree)
+{
+  const double L = 60, theta = 30 * M_PI / 180, R = L / theta;  // mm; the arc of a uniform curl
+  const Eigen::Vector3d shift(R * std::sin(theta) - L, R * (1 - std::cos(theta)), 0);
+  design(fmt::format("[[target]]\nname = \"curl\"\nkind = \"pose\"\n"
+                     "pose = [{{ box = {{ min = [59, -9, -9], max = [61, 9, 9] }}, axis = [0, 0, 1], angle_deg = 30, "
+                     "translation = [{:.4f}, {:.4f}, 0] }}]\n"
+                     "[[tracking_curve]]\nname = \"axis\"\npoints = [[0, 0, 0], [60, 0, 0]]\n",
+                     shift.x(), shift.y()));
+  const auto r = make();
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const auto rep = report()["curl"];
+  EXPECT_EQ(rep["kind"], "pose");
+  EXPECT_LT(rep["max_pose_error_mm"].get<double>(), 0.05);
+  const auto& pose = rep["poses"][0];
+  EXPECT_EQ(pose["place"], "pose[1]");
+  EXPECT_NEAR(pose["asked_rotation_deg"].get<double>(), 30, 1e-9);
+  EXPECT_NEAR(pose["rotation_about_asked_axis_deg"].get<double>(), 30, 1.0);
+  EXPECT_NEAR(pose["rotation_reached_percent"].get<double>(), 100, 100.0 / 30);
+  for (int k = 0; k < 3; ++k)
+    EXPECT_NEAR(pose["translation_mm"][k].get<double>(), pose["asked_translation_mm"][k].get<double>(), 0.1) << k;
+  EXPECT_NEAR(pose["asked_translation_mm"][1].get<double>(), shift.y(), 1e-3);
+  // The centre line's last point turned with the end (the material's rotation there), its first held.
+  const auto& last = rep["poses"][2];
+  EXPECT_EQ(last["place"], "axis, last point");
+  EXPECT_NEAR(last["rotation_deg"].get<double>(), 30, 2.0);
+  EXPECT_LT(rep["poses"][1]["rotation_deg"].get<double>(), 1.0);
+
+  // Independently of the report: the deformed end face's y edge turned by 30° about z.
+  const TetMesh mesh = load_tet_mesh(dir_ / "build" / "mesh" / "body.tetmesh");
+  const Eigen::VectorXd x = load_array(dir_ / "build" / "targets" / "curl.positions", "positions");
+  const MlsBasis basis(mesh.nodes, {false, 1.7 * mesh_quality(mesh).mean_edge_length});
+  const Eigen::Vector3d a = basis.at({0.06, -0.008, 0}, 0).position(x), b = basis.at({0.06, 0.008, 0}, 0).position(x);
+  const double turned = std::atan2(-(b - a).x(), (b - a).y()) * 180 / M_PI;
+  std::printf("pose target: asked 30°, reached %.3f° (report), the end face's edge %.3f°; end moved (%.2f, %.2f) mm of (%.2f, %.2f)\n",
+              pose["rotation_about_asked_axis_deg"].get<double>(), turned, pose["translation_mm"][0].get<double>(),
+              pose["translation_mm"][1].get<double>(), shift.x(), shift.y());
+  EXPECT_NEAR(turned, 30, 1.0);
+}
+
+/// A forces target's report gives the rotation a user would otherwise measure with a script: a
+/// torque T about the bar's axis twists its free end by about T L / (G J) (Saint-Venant, a
+/// square section: J = 0.1406 a⁴).
+TEST_F(TargetsE2E, AForcesTargetReportsTheTwistItsTorqueCauses)
+{
+  design("[[target]]\nname = \"twist\"\nkind = \"forces\"\n"
+         "load = [{ box = { min = [59, -9, -9], max = [61, 9, 9] }, torque = [2e-4, 0, 0] }]\n"
+         "[[tracking_curve]]\nname = \"axis\"\npoints = [[0, 0, 0], [60, 0, 0]]\n");
+  const auto r = make();
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const auto rep = report()["twist"];
+  const double G = 86.4e3 / (2 * 1.47), J = 0.1406 * std::pow(0.016, 4);
+  const double expected = 2e-4 * 0.06 / (G * J) * 180 / M_PI;
+  const auto& load = rep["poses"][0];
+  EXPECT_EQ(load["place"], "load[1]");
+  std::printf("torque 2e-4 N·m: the end region turned %.3f° about (%.3f, %.3f, %.3f), the centre line's end %.3f°; "
+              "Saint-Venant %.3f°\n",
+              load["rotation_deg"].get<double>(), load["rotation_axis"][0].get<double>(), load["rotation_axis"][1].get<double>(),
+              load["rotation_axis"][2].get<double>(), rep["poses"][2]["rotation_deg"].get<double>(), expected);
+  EXPECT_NEAR(load["rotation_deg"].get<double>(), expected, 0.15 * expected);
+  EXPECT_GT(load["rotation_axis"][0].get<double>(), 0.99);
+  EXPECT_NEAR(rep["poses"][2]["rotation_deg"].get<double>(), expected, 0.15 * expected);
+}
+
+TEST_F(TargetsE2E, APoseRegionThatIsAlsoHeldIsRefused)
+{
+  design("[[target]]\nname = \"curl\"\nkind = \"pose\"\n"
+         "pose = [{ box = { min = [-1, -9, -9], max = [3, 9, 9] }, axis = [0, 0, 1], angle_deg = 10 }]\n");
+  auto r = make();
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_THAT(r.err, HasSubstr("[target.curl].pose[1]"));
+  EXPECT_THAT(r.err, HasSubstr("node(s) with [fixed.fixed1]: a node cannot be held in two places"));
+  design("[[target]]\nname = \"curl\"\nkind = \"pose\"\npose = [{ box = { min = [59, -9, -9], max = [61, 9, 9] } }]\n");
+  r = make();
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_THAT(r.err, HasSubstr("give angle_deg (with axis, about) and/or translation"));
+}
+
 TEST_F(TargetsE2E, EditsRerunExactlyTheStagesThatReadThem)
 {
   const std::string target = "[[target]]\nname = \"droop\"\nkind = \"forces\"\n"
