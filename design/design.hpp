@@ -139,6 +139,7 @@ struct OptimizeOptions {
   double weight_curvature = RoutingSettings{}.weight_curvature;
   double weight_skin_barrier = RoutingSettings{}.weight_skin;
   double weight_pressure_barrier = RoutingSettings{}.weight_pressure;
+  bool refine = false;  ///< solve the optimized robot again at half the edge length: its discretization error
 };
 
 struct CollideOptions {

@@ -810,6 +810,7 @@ OptimizeOptions read_optimize(Section s)
   o.weight_curvature = s.number("weight_curvature", o.weight_curvature, closed(0, 1e9));
   o.weight_skin_barrier = s.number("weight_skin_barrier", o.weight_skin_barrier, closed(0, 1e9));
   o.weight_pressure_barrier = s.number("weight_pressure_barrier", o.weight_pressure_barrier, closed(0, 1e9));
+  o.refine = s.boolean("refine", o.refine);
   s.finish();
   return o;
 }

@@ -64,6 +64,7 @@ const std::vector<Part>& parts()
       FIBERMOLD_PART("optimize.weight_curvature", optimize.weight_curvature),
       FIBERMOLD_PART("optimize.weight_skin_barrier", optimize.weight_skin_barrier),
       FIBERMOLD_PART("optimize.weight_pressure_barrier", optimize.weight_pressure_barrier),
+      FIBERMOLD_PART("optimize.refine", optimize.refine),
       FIBERMOLD_PART("collide.clearance", collide.clearance),
       FIBERMOLD_PART("collide.smoothness", collide.smoothness),
       FIBERMOLD_PART("collide.samples_per_mm", collide.samples_per_length),

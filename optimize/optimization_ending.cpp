@@ -1,5 +1,7 @@
 #include "optimize/optimization_ending.hpp"
 
+#include <algorithm>
+
 #include <fmt/format.h>
 
 #include "core/units.hpp"
@@ -8,6 +10,7 @@ namespace fibermold {
 
 OptimizationEnding optimization_ending(const RoutingResult& result, const ActuatorMask& actuators, const RoutingSettings& settings,
                                        const std::vector<TargetErrors>& before, const std::vector<TargetErrors>& after,
+                                       const std::vector<std::vector<AngleReach>>& angles,
                                        const std::vector<std::string>& target_names, const std::vector<std::string>& fiber_names)
 {
   OptimizationEnding e;
@@ -35,12 +38,21 @@ OptimizationEnding optimization_ending(const RoutingResult& result, const Actuat
   for (std::size_t t = 0; t < before.size(); ++t) {
     TargetReach r{before[t].rmse, after[t].rmse, before[t].rmse > 0 ? 1 - after[t].rmse / before[t].rmse : 1.0};
     e.targets.push_back(r);
-    if (!(before[t].rmse > 0) || after[t].rmse <= kFarFromReached * before[t].rmse) continue;  // nothing to reach, or reached
+    std::string how_far;
+    const std::vector<AngleReach> turns = t < angles.size() ? angles[t] : std::vector<AngleReach>{};
+    for (const AngleReach& a : turns)
+      if (a.asked != 0 && a.reached / a.asked < 1 - kFarFromReached)
+        how_far = fmt::format("{} turned {:.1f}° of the {:.1f}° asked ({:.0f} %)", a.place, a.reached / units::degree,
+                              a.asked / units::degree, 100 * a.reached / a.asked);
+    const bool asks_turns = std::any_of(turns.begin(), turns.end(), [](const AngleReach& a) { return a.asked != 0; });
+    if (!asks_turns && before[t].rmse > 0 && after[t].rmse > kFarFromReached * before[t].rmse)
+      how_far = fmt::format("{:.0f} % of the way (tracking-curve RMSE {:.2f} → {:.2f} mm)", 100 * r.reached,
+                            r.start_rmse / units::mm, r.end_rmse / units::mm);
+    if (how_far.empty()) continue;  // nothing to reach, or reached
     bool limited = false;
     for (const PressureLimit& l : e.limits) limited = limited || (l.target == static_cast<int>(t) && l.at_max);
     e.warnings.push_back(fmt::format(
-        "target {} is far from reached: {:.0f} % of the way (tracking-curve RMSE {:.2f} → {:.2f} mm); {}", target_names[t],
-        100 * r.reached, r.start_rmse / units::mm, r.end_rmse / units::mm,
+        "target {} is far from reached: {}; {}", target_names[t], how_far,
         limited ? "its muscles are at max_pressure: raise [muscle] max_pressure if the muscle takes it, add a muscle, or use a "
                   "softer material"
                 : "add a muscle, start the routes elsewhere, or use a softer material; raise [optimize] max_iterations if the "

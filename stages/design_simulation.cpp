@@ -9,7 +9,9 @@
 #include "core/input_error.hpp"
 #include "core/units.hpp"
 #include "export/vtu_writer.hpp"
+#include "mesh/mesh_quality.hpp"
 #include "mesh/surface_places.hpp"
+#include "optimize/tracking_curve.hpp"
 #include "sim/external_forces.hpp"
 #include "sim/fem_basis.hpp"
 
@@ -202,5 +204,37 @@ void write_deformed(const fs::path& path, const Simulation& sim, const Eigen::Ve
   grid.write(path);
 }
 
+
+Refinement compare_refined(const Design& d, const Simulation& coarse, const Eigen::VectorXd& coarse_x, const Simulation& fine,
+                           const Eigen::VectorXd& fine_x)
+{
+  const TetMesh& coarse_mesh = coarse.mesh();
+  const TetMesh& fine_mesh = fine.mesh();
+  Refinement r;
+  r.nodes = fine_mesh.nodes.rows();
+  r.tets = fine_mesh.num_tets();
+  r.max_displacement = (fine.deformed_nodes(fine_x) - fine_mesh.nodes).rowwise().norm().maxCoeff();
+  const auto difference = [&](const Eigen::Vector3d& X) {
+    return (coarse.basis().at(X, 0).position(coarse_x) - fine.basis().at(X, 0).position(fine_x)).norm();
+  };
+  double sum = 0;
+  for (Eigen::Index v = 0; v < coarse_mesh.surface_to_node.size(); ++v) {
+    const double e = difference(coarse_mesh.nodes.row(coarse_mesh.surface_to_node(v)).transpose());
+    sum += e * e;
+    r.surface_max = std::max(r.surface_max, e);
+  }
+  r.surface_rms = std::sqrt(sum / static_cast<double>(std::max<Eigen::Index>(1, coarse_mesh.surface_to_node.size())));
+  sum = 0;
+  for (const TrackingCurve& c : d.tracking_curves)
+    for (const Eigen::Vector3d& q : sample_tracking_curve(c.points, c.samples, c.weight_position, c.weight_orientation).points) {
+      const double e = difference(q);
+      sum += e * e;
+      r.curves_max = std::max(r.curves_max, e);
+      ++r.curve_samples;
+    }
+  r.curves_rms = r.curve_samples > 0 ? std::sqrt(sum / r.curve_samples) : 0;
+  r.edge_length = mesh_quality(fine_mesh).mean_edge_length;
+  return r;
+}
 
 } // namespace fibermold

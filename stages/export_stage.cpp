@@ -117,20 +117,39 @@ std::optional<Json> json_if_any(const std::filesystem::path& file)
   return j.is_discarded() ? std::nullopt : std::optional<Json>(std::move(j));
 }
 
+/// The body's surface with its nodes where `state` (a deformed-*.json or targets/<name>.json) puts them.
+std::optional<SurfaceMesh> deformed_body(const TetMesh& body, const std::optional<Json>& state)
+{
+  if (!state || !state->contains("nodes_mm") || !(*state)["nodes_mm"].is_array() ||
+      (*state)["nodes_mm"].size() != static_cast<std::size_t>(body.nodes.rows()))
+    return std::nullopt;
+  SurfaceMesh deformed{Eigen::MatrixX3d(body.nodes.rows(), 3), body.boundary_faces, {}};
+  for (Eigen::Index i = 0; i < body.nodes.rows(); ++i) {
+    const Json& p = (*state)["nodes_mm"][static_cast<std::size_t>(i)];
+    if (!p.is_array() || p.size() != 3) return std::nullopt;
+    for (int k = 0; k < 3; ++k) {
+      if (!p[static_cast<std::size_t>(k)].is_number()) return std::nullopt;
+      deformed.vertices(i, k) = p[static_cast<std::size_t>(k)].get<double>() * units::mm;
+    }
+  }
+  return deformed;
+}
+
 /// The body at rest and, per target, deformed under the final routing (collide/deformed-*.json),
-/// with its fibers, at `offset`; the first target's shown, the rest switched off; the tracking
-/// curves at rest.
-void add_bodies(const StageContext& ctx, const Eigen::Vector3d& offset, std::vector<ReportMesh>& meshes, std::vector<ReportLine>& lines)
+/// with its fibers, at `offset`, and the target's own deformation (targets/<name>.json) beside it,
+/// `beside` further; the first target's shown, the rest switched off; the tracking curves at rest.
+void add_bodies(const StageContext& ctx, const Eigen::Vector3d& offset, const Eigen::Vector3d& beside, std::vector<ReportMesh>& meshes,
+                std::vector<ReportLine>& lines)
 {
   const TetMesh body = load_tet_mesh(ctx.upstream("mesh", "body.tetmesh"));
   bool first = true;
   for (const Target& target : ctx.design.targets) {
-    const auto state = json_if_any(ctx.upstream("collide", "deformed-" + target.name + ".json"));
-    if (!state || !state->contains("nodes_mm") || (*state)["nodes_mm"].size() != static_cast<std::size_t>(body.nodes.rows())) continue;
-    SurfaceMesh deformed{Eigen::MatrixX3d(body.nodes.rows(), 3), body.boundary_faces, {}};
-    for (Eigen::Index i = 0; i < body.nodes.rows(); ++i)
-      for (int k = 0; k < 3; ++k) deformed.vertices(i, k) = (*state)["nodes_mm"][static_cast<std::size_t>(i)][static_cast<std::size_t>(k)].get<double>() * units::mm;
-    meshes.push_back({"body, " + target.name, std::move(deformed), {0.5F, 0.78F, 0.5F}, first, offset});
+    const std::optional<Json> state = json_if_any(ctx.upstream("collide", "deformed-" + target.name + ".json"));
+    std::optional<SurfaceMesh> deformed = deformed_body(body, state);
+    if (!deformed) continue;
+    meshes.push_back({"body, " + target.name, std::move(*deformed), {0.5F, 0.78F, 0.5F}, first, offset});
+    if (std::optional<SurfaceMesh> asked = deformed_body(body, json_if_any(ctx.upstream("targets", target.name + ".json"))))
+      meshes.push_back({"target " + target.name + " (asked)", std::move(*asked), {0.45F, 0.6F, 0.95F}, first, offset + beside});
     for (const auto& [fiber, points] : (*state)["fibers_mm"].items()) {
       ReportLine line{target.name + ": " + fiber, {}, {0.8F, 0.1F, 0.1F}, first};
       for (const Json& p : points) line.points.push_back(offset + Eigen::Vector3d(p[0], p[1], p[2]) * units::mm);
@@ -215,9 +234,24 @@ std::optional<ReportTable> optimization_table(const StageContext& ctx, std::vect
       fibers.push_back(fiber);
       t.header.push_back(fiber + " (kPa)");
     }
+  // A pose target's turns: "54.1° of 60.0° (pose[1])".
+  const auto turns = [](const Json& target) {
+    std::string out;
+    if (target.contains("poses") && target["poses"].is_array())
+      for (const Json& p : target["poses"])
+        if (p.is_object() && p.contains("asked_rotation_deg") && p["asked_rotation_deg"].is_number() &&
+            p.contains("rotation_about_asked_axis_deg") && p["rotation_about_asked_axis_deg"].is_number())
+          out += fmt::format("{}{:.1f}° of {:.1f}° ({})", out.empty() ? "" : "; ", p["rotation_about_asked_axis_deg"].get<double>(),
+                             p["asked_rotation_deg"].get<double>(), p.value("place", std::string("?")));
+    return out;
+  };
+  bool any_turn = false;
+  for (const auto& [name, target] : (*report)["targets"].items()) any_turn = any_turn || !turns(target).empty();
+  if (any_turn) t.header.insert(t.header.begin() + 4, "turn reached");
   for (const auto& [name, target] : (*report)["targets"].items()) {
     std::vector<std::string> row{name, number(target.value("start", Json::object()), "rmse_mm", 3), number(target, "rmse_mm", 3),
                                  number(target, "reached_percent", 0, " %")};
+    if (any_turn) row.push_back(turns(target).empty() ? "–" : turns(target));
     for (const std::string& f : fibers) row.push_back(number(target.value("pressure_kPa", Json::object()), f.c_str(), 1));
     t.rows.push_back(std::move(row));
   }
@@ -277,7 +311,7 @@ std::string report(const StageContext& ctx, const Json& molds, const Json& parts
   }
   const FibersFile fibers = read_fibers_json(ctx.upstream("collide", "fibers.json"));
   std::vector<ReportLine> lines = fiber_lines(fibers);
-  add_bodies(ctx, -1.3 * width * aside, meshes, lines);
+  add_bodies(ctx, -1.3 * width * aside, -1.3 * width * aside, meshes, lines);
 
   ReportTable checks{"Mold parts", {"part", "files", "triangles", "volume (mL)", "thinnest wall (mm)", "fits the printer", "checks"}, {}};
   for (const Json& p : parts) {

@@ -17,7 +17,9 @@
 #include "optimize/routing_optimizer.hpp"
 #include "stages/design_simulation.hpp"
 #include "stages/fibers_file.hpp"
+#include "stages/mesh_stage.hpp"
 #include "stages/routing_evaluation.hpp"
+#include "stages/target_poses.hpp"
 
 namespace fibermold {
 
@@ -106,7 +108,8 @@ RoutingResult optimize(const Design& d, RoutingProblem& problem, const BfgsOptio
 /// of the optimized routing `r` against those at the start, the pressures, and the errors of a
 /// solve from rest.
 nlohmann::ordered_json target_report(StageContext& ctx, DesignRouting& dr, const Routing& r, int t, const Eigen::VectorXd& x,
-                                     const TargetErrors& before, const TargetErrors& after, const TargetReach& reach)
+                                     const TargetErrors& before, const TargetErrors& after, const TargetReach& reach,
+                                     const std::vector<ReachedPose>& reached)
 {
   const Design& d = ctx.design;
   RoutingProblem& problem = *dr.problem;
@@ -132,6 +135,9 @@ nlohmann::ordered_json target_report(StageContext& ctx, DesignRouting& dr, const
   entry["from_rest"] = errors_json(from_rest);
   entry["from_rest"]["seconds"] = rest_seconds;
   entry["from_rest"]["newton_iterations"] = problem.newton().iterations - rest_newton;
+  nlohmann::ordered_json poses = nlohmann::ordered_json::array();
+  for (const ReachedPose& p : reached) poses.push_back(pose_report(p));
+  entry["poses"] = std::move(poses);
   ctx.log.info("target {}: RMSE {:.3f} mm (from {:.3f}), max {:.3f} mm (from {:.3f}) on the tracking curves; surface RMSE {:.3f} mm, max {:.3f} mm",
                name, after.rmse / units::mm, before.rmse / units::mm, after.max / units::mm, before.max / units::mm,
                after.surface_rmse / units::mm, after.surface_max / units::mm);
@@ -145,23 +151,93 @@ OptimizationEnding report_targets(StageContext& ctx, DesignRouting& dr, const Ro
 {
   const Design& d = ctx.design;
   RoutingProblem& problem = *dr.problem;
+  const int targets = problem.num_targets();
   std::vector<Eigen::VectorXd> optimized;  // the equilibria the optimizer scored (warm-started)
   std::vector<TargetErrors> after;
-  for (int t = 0; t < problem.num_targets(); ++t) {
+  // Where the optimized robot's regions and tracking curves' ends went; for a pose target, the angle reached of the angle asked.
+  std::vector<std::vector<PosedRegion>> asked(static_cast<std::size_t>(targets));
+  std::vector<std::vector<ReachedPose>> reached(static_cast<std::size_t>(targets));
+  std::vector<std::vector<AngleReach>> angles(static_cast<std::size_t>(targets));
+  for (int t = 0; t < targets; ++t) {
     optimized.push_back(problem.equilibrium(result.routing, t));
     after.push_back(target_errors(problem, dr.mesh, t, optimized[t]));
+    const Target& target = d.targets[static_cast<std::size_t>(t)];
+    if (target.kind == TargetKind::pose) asked[t] = target_poses(d, target, dr.mesh);
+    reached[t] = reached_poses(d, target, problem.simulation(), optimized[t], asked[t]);
+    for (const ReachedPose& p : reached[t])
+      if (p.asked) {
+        angles[t].push_back({p.place, p.asked->angle, p.motion.angle_about(p.asked->axis)});
+        ctx.log.info("target {}: {} turned {:.2f}° of the {:.2f}° asked about ({:.3f}, {:.3f}, {:.3f})", dr.target_names[t], p.place,
+                     angles[t].back().reached / units::degree, p.asked->angle / units::degree, p.asked->axis.x(),
+                     p.asked->axis.y(), p.asked->axis.z());
+      }
   }
   problem.forget_states();
   std::vector<std::string> fiber_names;
   for (const Fiber& f : d.fibers) fiber_names.push_back(f.name);
   OptimizationEnding ending =
-      optimization_ending(result, actuator_mask(d), routing_settings(d), before, after, dr.target_names, fiber_names);
-  for (int t = 0; t < problem.num_targets(); ++t) {
+      optimization_ending(result, actuator_mask(d), routing_settings(d), before, after, angles, dr.target_names, fiber_names);
+  for (int t = 0; t < targets; ++t) {
     ctx.progress.checkpoint(1, "writing target " + dr.target_names[t]);
-    per_target[dr.target_names[t]] = target_report(ctx, dr, result.routing, t, optimized[t], before[t], after[t], ending.targets[t]);
+    per_target[dr.target_names[t]] =
+        target_report(ctx, dr, result.routing, t, optimized[t], before[t], after[t], ending.targets[t], reached[t]);
   }
   for (const std::string& w : ending.warnings) ctx.log.warn("{}", w);
   return ending;
+}
+
+/// With [optimize] refine: each target's optimized actuation solved from rest on a mesh of half
+/// the edge length, against the same on the design's mesh (docs/optimize.md, "Discretization
+/// error"), into the target's report entry; a warning where the difference exceeds the error to
+/// the target, which the mesh then cannot resolve.
+void report_refinement(StageContext& ctx, DesignRouting& dr, const Routing& r, nlohmann::ordered_json& per_target,
+                       std::vector<std::string>& warnings)
+{
+  const Design& d = ctx.design;
+  RoutingProblem& problem = *dr.problem;
+  ctx.progress.checkpoint(-1, "meshing at half the edge length");
+  const TetMesh fine_mesh = scaled_design_mesh(d, 0.5, ctx.progress);
+  const MuscleModel model(d.muscle.model);
+  for (int t = 0; t < problem.num_targets(); ++t) {
+    const std::string& name = dr.target_names[t];
+    ctx.progress.checkpoint(-1, fmt::format("target {} on {} tets", name, fine_mesh.num_tets()));
+    const auto started = Clock::now();
+    problem.forget_states();
+    const Eigen::VectorXd coarse = problem.equilibrium(r, t);
+    Simulation fine(fine_mesh, simulation_options(d, fine_mesh));
+    std::vector<Actuation> actuations;
+    for (std::size_t f = 0; f < r.routes.size(); ++f)
+      actuations.push_back({r.routes[f].name, r.routes[f].points, r.routes[f].tangents, r.pressures(t, static_cast<Eigen::Index>(f))});
+    add_muscles(fine, d, model, actuations);
+    Eigen::VectorXd x = fine.rest();
+    const NewtonSummary summary = fine.solve(x, ctx.progress);
+    if (!summary.converged) {
+      warnings.push_back(fmt::format("target {}: the refined solve ({} tets) did not reach equilibrium ({}); no discretization figure",
+                                     name, fine_mesh.num_tets(), summary.brief()));
+      continue;
+    }
+    const Refinement f = compare_refined(d, problem.simulation(), coarse, fine, x);
+    const double seconds = since(started);
+    auto& entry = per_target[name];
+    entry["refined"] = {{"edge_length_mm", f.edge_length / units::mm},
+                        {"nodes", f.nodes},
+                        {"tets", f.tets},
+                        {"curves_max_mm", f.curves_max / units::mm},
+                        {"curves_rms_mm", f.curves_rms / units::mm},
+                        {"surface_max_mm", f.surface_max / units::mm},
+                        {"surface_rms_mm", f.surface_rms / units::mm},
+                        {"seconds", seconds}};
+    ctx.log.info("target {}: on half the edge length ({} tets) the optimized robot's tracking curves move {:.3f} mm RMS, "
+                 "{:.3f} mm at most; its surface {:.3f} mm RMS, {:.3f} mm at most ({:.1f} s)",
+                 name, f.tets, f.curves_rms / units::mm, f.curves_max / units::mm, f.surface_rms / units::mm,
+                 f.surface_max / units::mm, seconds);
+    const double error = entry.value("rmse_mm", 0.0) * units::mm;
+    if (f.curves_rms > error)
+      warnings.push_back(fmt::format(
+          "target {}: on a mesh of half the edge length the optimized robot's tracking curves move {:.2f} mm RMS, more than its "
+          "error to the target ({:.2f} mm): that error is not resolved by the mesh; lower [mesh] edge_length",
+          name, f.curves_rms / units::mm, error / units::mm));
+  }
 }
 
 /// What is wrong with a starting route `closest` from the skin at `where`, and how to mend it.
@@ -278,7 +354,13 @@ void OptimizeStage::run(StageContext& ctx) const
                result.evaluations);
 
   nlohmann::ordered_json per_target = nlohmann::ordered_json::object();
-  const OptimizationEnding ending = report_targets(ctx, dr, result, before, per_target);
+  OptimizationEnding ending = report_targets(ctx, dr, result, before, per_target);
+  if (d.optimize.refine) {
+    std::vector<std::string> more;
+    report_refinement(ctx, dr, result.routing, per_target, more);
+    for (const std::string& w : more) ctx.log.warn("{}", w);
+    ending.warnings.insert(ending.warnings.end(), more.begin(), more.end());
+  }
   const nlohmann::ordered_json report{
       {"optimized", true},
       {"strategy", choice_name(d.optimize.strategy)},

@@ -23,10 +23,11 @@ public:
   std::vector<std::string> upstream() const override { return {"mesh", "targets"}; }
   std::vector<std::string> design_keys() const override
   {
-    return {"design.units", "material", "sim", "fixed", "muscle", "fiber", "tracking_curve", "target", "optimize",
-            "collide.clearance", "collide.samples_per_mm", "collide.smoothness"};  // smoothness: optimization_start
+    // smoothness: optimization_start; the surface and [mesh]: [optimize] refine meshes the body again
+    return {"design.surface", "design.units", "mesh", "material", "sim", "fixed", "muscle", "fiber", "tracking_curve", "target",
+            "optimize", "collide.clearance", "collide.samples_per_mm", "collide.smoothness"};
   }
-  int version() const override { return 3; }  ///< 2: fibers moved apart before optimizing, kept apart throughout; 3: termination, warnings and reach in the report
+  int version() const override { return 4; }  ///< 2: fibers moved apart before optimizing, kept apart throughout; 3: termination, warnings and reach in the report; 4: reached poses
   void run(StageContext& ctx) const override;
 };
 

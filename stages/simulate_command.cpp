@@ -84,37 +84,6 @@ Solved solve(const Design& d, const TetMesh& mesh, const Target* target, const s
   return out;
 }
 
-/// The displacements of two solutions of the same load compared at the input surface's vertices
-/// and the tracking curves' samples.
-Refinement compare(const Design& d, const TetMesh& coarse_mesh, const Solved& coarse, const TetMesh& fine_mesh, const Solved& fine)
-{
-  Refinement r;
-  r.nodes = fine_mesh.nodes.rows();
-  r.tets = fine_mesh.num_tets();
-  r.max_displacement = (fine.sim->deformed_nodes(fine.x) - fine_mesh.nodes).rowwise().norm().maxCoeff();
-  const auto difference = [&](const Eigen::Vector3d& X) {
-    return (coarse.sim->basis().at(X, 0).position(coarse.x) - fine.sim->basis().at(X, 0).position(fine.x)).norm();
-  };
-  double sum = 0;
-  for (Eigen::Index v = 0; v < coarse_mesh.surface_to_node.size(); ++v) {
-    const double e = difference(coarse_mesh.nodes.row(coarse_mesh.surface_to_node(v)).transpose());
-    sum += e * e;
-    r.surface_max = std::max(r.surface_max, e);
-  }
-  r.surface_rms = std::sqrt(sum / static_cast<double>(std::max<Eigen::Index>(1, coarse_mesh.surface_to_node.size())));
-  sum = 0;
-  for (const TrackingCurve& c : d.tracking_curves)
-    for (const Eigen::Vector3d& q : sample_tracking_curve(c.points, c.samples, c.weight_position, c.weight_orientation).points) {
-      const double e = difference(q);
-      sum += e * e;
-      r.curves_max = std::max(r.curves_max, e);
-      ++r.curve_samples;
-    }
-  r.curves_rms = r.curve_samples > 0 ? std::sqrt(sum / r.curve_samples) : 0;
-  r.edge_length = mesh_quality(fine_mesh).mean_edge_length;
-  return r;
-}
-
 } // namespace
 
 SimulateResult simulate(const Design& d, const Runner& runner, const fs::path& build_dir, const SimulateRequest& request,
@@ -158,7 +127,7 @@ SimulateResult simulate(const Design& d, const Runner& runner, const fs::path& b
     p.checkpoint(-1, "meshing at half the edge length");
     const TetMesh fine_mesh = scaled_design_mesh(d, 0.5, p);
     const Solved fine = solve(d, fine_mesh, target, actuations, p);
-    result.refinement = compare(d, mesh, coarse, fine_mesh, fine);
+    result.refinement = compare_refined(d, *coarse.sim, coarse.x, *fine.sim, fine.x);
     write_deformed(build_dir / "simulate" / fmt::format("deformed-{}-refined.vtu", result.name), *fine.sim, fine.x, fine.muscles,
                    LameParameters::from_young_poisson(d.material.youngs_modulus, d.material.poisson_ratio));
   }

@@ -172,6 +172,10 @@ void TargetsStage::run(StageContext& ctx) const
     std::unique_ptr<Simulation> sim;
     const Solved solved = solve_target(d, t, mesh, model, ctx, muscles, deformed, sim);
     save_array(ctx.output_dir / (t.name + ".positions"), "positions", solved.x);
+    nlohmann::ordered_json nodes = nlohmann::ordered_json::array();  // for report.html: the target beside the robot
+    for (Eigen::Index i = 0; i < deformed.rows(); ++i)
+      nodes.push_back({deformed(i, 0) / units::mm, deformed(i, 1) / units::mm, deformed(i, 2) / units::mm});
+    write_json_atomic(ctx.output_dir / (t.name + ".json"), nlohmann::ordered_json{{"target", t.name}, {"nodes_mm", std::move(nodes)}});
     write_deformed(ctx.output_dir / (t.name + ".vtu"), *sim, solved.x, muscles, lame);
     const double max_mm = (deformed - mesh.nodes).rowwise().norm().maxCoeff() / units::mm;
     report[t.name] = {{"kind", choice_name(t.kind)},

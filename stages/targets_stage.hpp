@@ -8,7 +8,7 @@
 // Every target's report gives the pose (translation, rotation) its regions and the tracking
 // curves' ends reach.
 // Outputs: targets/<name>.vtu (ParaView), targets/<name>.positions (nodal state for optimize),
-// targets/report.json.
+// targets/<name>.json (the deformed nodes in mm, for report.html), targets/report.json.
 
 #include "make/stage.hpp"
 
@@ -18,7 +18,7 @@ class TargetsStage final : public Stage {
 public:
   std::string name() const override { return "targets"; }
   std::vector<std::string> upstream() const override { return {"mesh"}; }
-  int version() const override { return 2; }  ///< 2: pose targets; each target's reached poses in the report
+  int version() const override { return 3; }  ///< 2: pose targets, each target's reached poses in the report; 3: <name>.json
   std::vector<std::string> design_keys() const override
   {
     return {"design.units", "material", "sim", "fixed", "muscle", "fiber", "tracking_curve", "target"};

@@ -2,6 +2,7 @@
 // from a perturbed start; its outputs, its errors, Ctrl-C, and which edits rerun it.
 #include <cmath>
 
+#include <fmt/format.h>
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
@@ -105,6 +106,73 @@ TEST_F(OptimizeE2E, ARunThatEndsAtThePressureLimitSaysSo)
     EXPECT_THAT(r.err, HasSubstr("the optimizer stopped before converging (" + why));
   }
   EXPECT_GT(report["targets"]["s"]["reached_percent"].get<double>(), 90);
+}
+
+/// A pose of a known rotation: a straight muscle 3 mm above the bar's axis at 300 kPa turns the
+/// free end by some θ about y (the targets stage measures it); a pose target asking that turn and
+/// that translation of the end is met by the optimizer, started at 150 kPa, within 1°, and the
+/// report says how much of the turn it reached.
+TEST_F(OptimizeE2E, APoseTargetOfAKnownTurnIsReachedWithinADegree)
+{
+  const std::string base = std::string(test::kBarDesign) + test::kBarTrackingCurve +
+                           "[[fiber]]\nname = \"m1\"\npoints = [[0, 0, 3], [20, 0, 3], [40, 0, 3], [60, 0, 3]]\n[mold]\nwall = 4.0\n";
+  test::write_text(dir_ / "design.toml", base + "[[target]]\nname = \"made\"\nkind = \"fibers\"\nfibers = [{ name = \"m1\", pressure = 300 }]\n");
+  auto r = test::run_fibermold("make design.toml targets --build-dir made", dir_.path());
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const auto made = nlohmann::json::parse(test::read_text(dir_ / "made" / "targets" / "report.json"))["made"]["poses"];
+  const auto& end = made[1];  // "centre, last point"
+  ASSERT_EQ(end["place"], "centre, last point");
+  const double theta = end["rotation_deg"].get<double>() * (end["rotation_axis"][1].get<double>() < 0 ? -1 : 1);
+  std::printf("the muscle at 300 kPa turns the end %.2f° about y, moves it (%.2f, %.2f, %.2f) mm\n", theta,
+              end["translation_mm"][0].get<double>(), end["translation_mm"][1].get<double>(), end["translation_mm"][2].get<double>());
+  ASSERT_GT(std::abs(theta), 10);
+  test::write_text(dir_ / "design.toml",
+                   base + fmt::format("[[target]]\nname = \"turn\"\nkind = \"pose\"\n"
+                                      "pose = [{{ box = {{ min = [59, -9, -9], max = [61, 9, 9] }}, axis = [0, 1, 0], angle_deg = {:.4f}, "
+                                      "about = [60, 0, 0], translation = [{:.4f}, {:.4f}, {:.4f}] }}]\n[optimize]\nmax_iterations = 60\n",
+                                      theta, end["translation_mm"][0].get<double>(), end["translation_mm"][1].get<double>(),
+                                      end["translation_mm"][2].get<double>()));
+  r = make();
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const auto report = json("report.json");
+  const auto& pose = report["targets"]["turn"]["poses"][0];
+  ASSERT_EQ(pose["place"], "pose[1]");
+  const double reached = pose["rotation_about_asked_axis_deg"].get<double>();
+  std::printf("pose target %.2f°: the optimized robot turns %.2f° (%.1f %%) at %.1f kPa; %s after %d iterations\n", theta, reached,
+              pose["rotation_reached_percent"].get<double>(), report["targets"]["turn"]["pressure_kPa"]["m1"].get<double>(),
+              report["termination"].get<std::string>().c_str(), report["iterations"].get<int>());
+  EXPECT_NEAR(reached, theta, 1.0);
+  EXPECT_NEAR(pose["rotation_reached_percent"].get<double>(), 100 * reached / theta, 0.01);
+  EXPECT_THAT(test::read_text(dir_ / "build" / "logs" / "optimize.log"), ContainsRegex("target turn: pose\\[1\\] turned -?[0-9.]+° of the"));
+}
+
+/// `[optimize] refine = true`: the optimized robot solved again on a mesh of half the edge length,
+/// the difference at the tracking curve and the surface in the report, and a warning when it is
+/// larger than the error to the target.
+TEST_F(OptimizeE2E, RefineStatesTheOptimizedRobotsDiscretizationError)
+{
+  design("[optimize]\nmax_iterations = 30\nrefine = true\n");
+  const auto r = make();
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const auto report = json("report.json");
+  const auto& s = report["targets"]["s"];
+  ASSERT_TRUE(s.contains("refined")) << s.dump();
+  const auto& f = s["refined"];
+  const auto mesh = nlohmann::json::parse(test::read_text(dir_ / "build" / "mesh" / "report.json"))["mesh"];
+  std::printf("refine: %d → %d tets, edge %.2f mm; curves RMS %.3f max %.3f mm, surface RMS %.3f max %.3f mm (error to the target "
+              "%.3f mm), %.1f s\n",
+              mesh["tets"].get<int>(), f["tets"].get<int>(), f["edge_length_mm"].get<double>(), f["curves_rms_mm"].get<double>(),
+              f["curves_max_mm"].get<double>(), f["surface_rms_mm"].get<double>(), f["surface_max_mm"].get<double>(),
+              s["rmse_mm"].get<double>(), f["seconds"].get<double>());
+  EXPECT_GT(f["tets"].get<int>(), 4 * mesh["tets"].get<int>());
+  EXPECT_LT(f["edge_length_mm"].get<double>(), 0.7 * mesh["mean_edge_length_mm"].get<double>());
+  EXPECT_GT(f["curves_rms_mm"].get<double>(), 0.0);
+  EXPECT_LE(f["curves_rms_mm"].get<double>(), f["curves_max_mm"].get<double>());
+  EXPECT_LT(f["curves_max_mm"].get<double>(), 0.5 * s["start"]["max_error_mm"].get<double>());
+  bool warned = false;
+  for (const auto& w : report["warnings"]) warned = warned || w.get<std::string>().find("half the edge length") != std::string::npos;
+  EXPECT_EQ(warned, f["curves_rms_mm"].get<double>() > s["rmse_mm"].get<double>()) << report["warnings"].dump();
+  EXPECT_THAT(test::read_text(dir_ / "build" / "logs" / "optimize.log"), HasSubstr("on half the edge length"));
 }
 
 /// A 3 mm muscle routed 1.5 mm from the bar's skin (y = 6.5 of 8 mm): `check` refuses it, naming

@@ -83,14 +83,14 @@ TEST(ReportE2E, ShowsTheDeformedBodyTheErrorsAndTheOptimizationHistory)
 
   if (std::system("command -v chromium >/dev/null 2>&1") != 0)
     GTEST_SKIP() << "chromium is not installed (scripts/setup installs it)";
-  // Shown: the groove body, shot 1's parts and the deformed body; on the page, also shot 2's parts
-  // and the body at rest.
+  // Shown: the groove body, shot 1's parts, the deformed body and the target beside it; on the
+  // page, also shot 2's parts and the body at rest.
   const auto molds = nlohmann::json::parse(test::read_text(build / "molds" / "report.json"));
   const long body = load_tet_mesh(build / "mesh" / "body.tetmesh").boundary_faces.rows();
   const std::string groove = test::read_text(build / "molds" / "groove-body.stl");
   std::uint32_t groove_triangles = 0;
   std::memcpy(&groove_triangles, groove.data() + 80, sizeof groove_triangles);
-  long shown = groove_triangles + body, all = shown + body;
+  long shown = groove_triangles + 2 * body, all = shown + body;
   for (const auto& [name, part] : molds["parts"].items()) {
     all += part["triangles"].get<long>();
     if (part["shot"] == "shot1") shown += part["triangles"].get<long>();
@@ -114,7 +114,8 @@ TEST(ReportE2E, ShowsTheDeformedBodyTheErrorsAndTheOptimizationHistory)
     names += (*it)[5].str() + "|";
   }
   std::printf("report legend: %d surfaces, %d lines: %s\n", surfaces, lines, names.c_str());
-  EXPECT_EQ(surfaces, 1 + static_cast<int>(molds["parts"].size()) + 2);  // groove body, parts, deformed body, body at rest
+  EXPECT_EQ(surfaces, 1 + static_cast<int>(molds["parts"].size()) + 3);  // groove body, parts, deformed body, target, body at rest
+  EXPECT_THAT(names, HasSubstr("target s (asked) |"));
   EXPECT_GE(lines, 2);
   EXPECT_THAT(names, HasSubstr("m1 |"));
   EXPECT_EQ(test::read_text(dir / "report.png").substr(1, 3), "PNG");
