@@ -231,7 +231,7 @@ std::string report_html(const std::string& title, const std::vector<ReportMesh>&
   std::string html = "<!DOCTYPE html>\n<html lang=\"en\">\n<head>\n<meta charset=\"utf-8\">\n<title>" + escaped(title) + "</title>\n";
   html += "<style>body{font-family:sans-serif;margin:1.5em;max-width:70em}#view{width:100%;height:32em;border:1px solid #ccc}"
           "table{border-collapse:collapse;margin-bottom:1em}td,th{border:1px solid #ccc;padding:0.2em 0.6em;text-align:left}"
-          "#items label{margin-right:1em;white-space:nowrap}#status{color:#666}"
+          "#items{display:flex;flex-wrap:wrap;gap:0.3em 1em}#items label{white-space:nowrap}#status{color:#666}"
           ".swatch{display:inline-block;width:1.1em;margin:0 0.3em;vertical-align:middle}.swatch.surface{height:0.8em}"
           ".swatch.line{height:0.2em}"
           "#warnings{background:#fff3cd;border:1px solid #e0b400;padding:0.4em 1em;margin-bottom:1em}</style>\n</head>\n<body>\n";

@@ -279,9 +279,9 @@ TwoShotMolds Recipe::make()
   const SiliconeThickness& t = out_.thickness;
   log_.info(fmt::format("silicone: {:.2f} mm at the thinnest groove wall near {}, {:.2f} mm over the muscles at the thinnest, near {}; in {:.2f} s",
                         t.groove_web / 1e-3, format_mm(out_.scaled(t.groove_web_at)), t.overmold / 1e-3, format_mm(out_.scaled(t.overmold_at)), since(started)));
-  if (t.groove_web < m_.min_silicone)
-    failures.push_back(fmt::format("shot1: the cast's silicone is {:.2f} mm thin between a groove and the skin near {}, below [mold] "
-                                   "min_silicone = {:.2f} mm: move the fiber away from the skin there",
+  if (t.groove_web < m_.min_silicone - kPlacementTolerance)
+    failures.push_back(fmt::format("shot1: the cast's silicone is {:.3f} mm thin between a groove and the skin near {}, below [mold] "
+                                   "min_silicone = {:.3f} mm: move the fiber away from the skin there",
                                    t.groove_web / 1e-3, format_mm(out_.scaled(t.groove_web_at)), m_.min_silicone / 1e-3));
   if (t.overmold < m_.min_silicone)
     failures.push_back(fmt::format("shot2: the overmold is {:.2f} mm thin over a muscle near {}, below [mold] min_silicone = {:.2f} mm: "
@@ -297,10 +297,9 @@ double groove_radius(double muscle_diameter, const MoldOptions& options) { retur
 
 double mold_line_step(const MoldOptions& options) { return std::min(0.5e-3, options.voxel * 2); }
 
-std::optional<std::string> groove_problem(const std::vector<Eigen::Vector3d>& line, const SurfaceDistance& skin, double groove_radius,
-                                          double clearance, const Eigen::Vector3d& pull, double end_stretch)
+std::optional<std::string> groove_problem(const std::vector<Eigen::Vector3d>& line, const SurfaceDistance& skin, double need,
+                                          const std::string& terms, const Eigen::Vector3d& pull, double end_stretch)
 {
-  const double need = groove_radius + clearance / 2;
   const std::vector<bool> beyond = beyond_skin_ends(line, skin, end_stretch);
   for (std::size_t k = 0; k < line.size(); ++k) {
     const Eigen::Vector3d& p = line[k];
@@ -309,10 +308,9 @@ std::optional<std::string> groove_problem(const std::vector<Eigen::Vector3d>& li
     if (!at.inside && !near_end) return fmt::format("the fiber (as routed in fibers.json) leaves the body at {}", format_mm(p));
     if (near_end) continue;
     const Eigen::Vector3d to_skin = at.point - p;
-    if (at.distance < need && to_skin.dot(pull.normalized()) < 0.7 * at.distance)
-      return fmt::format("the fiber passes {:.2f} mm from the skin at {}: its groove (radius {:.2f} mm) needs {:.2f} mm "
-                         "(the groove's radius + half the [collide] clearance)",
-                         at.distance / 1e-3, format_mm(p), groove_radius / 1e-3, need / 1e-3);
+    if (at.distance < need - kPlacementTolerance && to_skin.dot(pull.normalized()) < 0.7 * at.distance)
+      return fmt::format("the fiber (as routed in fibers.json) passes {:.3f} mm from the skin at {}: its groove needs {:.3f} mm ({})",
+                         at.distance / 1e-3, format_mm(p), need / 1e-3, terms);
   }
   return std::nullopt;
 }

@@ -50,6 +50,11 @@ struct MoldJob {
   Eigen::Vector3d printer_volume{0.25, 0.21, 0.21};  ///< m
 };
 
+/// m: how far short of a distance the molds ask of a fiber (from the skin, of silicone beside its
+/// groove) a fiber may come and pass: the stages that place fibers (optimize, collide) sample
+/// them differently and keep them at the distance within a micrometre.
+inline constexpr double kPlacementTolerance = 10e-6;
+
 /// The radius of a fiber's groove: the muscle's and the clearance around it for laying it in.
 double groove_radius(double muscle_diameter, const MoldOptions& options);
 
@@ -57,12 +62,13 @@ double groove_radius(double muscle_diameter, const MoldOptions& options);
 /// nor than two voxels.
 double mold_line_step(const MoldOptions& options);
 
-/// Why a fiber's groove cannot be cast, or nothing: the fiber must stay in the body, and its
-/// groove away from the skin (other than above it, where the groove opens) by half `clearance`, so
-/// that the groove neither breaks through the skin nor leaves a skin too thin to cast. Near an end
-/// on the skin (`end_stretch`), where the fiber leaves the body by design, it is exempt.
-std::optional<std::string> groove_problem(const std::vector<Eigen::Vector3d>& line, const SurfaceDistance& skin, double groove_radius,
-                                          double clearance, const Eigen::Vector3d& pull, double end_stretch);
+/// Why a fiber's groove cannot be cast, or nothing: the fiber must stay in the body, and its centre
+/// line `need` (m) from the skin (other than below the skin above it, where the groove opens), so
+/// that the groove neither breaks through the skin nor leaves a skin too thin to cast; `terms`
+/// says what `need` is made of. Near an end on the skin (`end_stretch`), where the fiber leaves
+/// the body by design, it is exempt. A fiber short of `need` by less than kPlacementTolerance passes.
+std::optional<std::string> groove_problem(const std::vector<Eigen::Vector3d>& line, const SurfaceDistance& skin, double need,
+                                          const std::string& terms, const Eigen::Vector3d& pull, double end_stretch);
 
 /// One shot's mold.
 struct ShotMold {

@@ -68,8 +68,8 @@ double smallest_clearance(const std::vector<Contact>& contacts)
 }
 
 FiberClearance::FiberClearance(const SurfaceDistance& skin, const std::vector<Route>& routes, double radius,
-                               double clearance, double samples_per_length)
-    : skin_(skin), radius_(radius)
+                               double clearance, double samples_per_length, double skin_margin)
+    : skin_(skin), radius_(radius), skin_margin_(skin_margin)
 {
   for (const Route& r : routes) {
     const HermiteSpline s = spline_of(r);
@@ -101,7 +101,7 @@ Contact FiberClearance::skin_contact(const std::vector<Eigen::Vector3d>& line, i
   c.point_a = line[k];
   const auto at = skin_.closest(line[k]);
   c.point_b = at.point;
-  c.clearance = (at.inside ? at.distance : -at.distance) - radius_;
+  c.clearance = (at.inside ? at.distance : -at.distance) - radius_ - skin_margin_;
   if (at.distance > kEpsilon) {
     c.normal = (at.inside ? 1.0 : -1.0) * (line[k] - at.point) / at.distance;
   } else { // on the skin: the gradient of the signed distance, by central differences

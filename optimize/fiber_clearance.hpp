@@ -34,9 +34,11 @@ class FiberClearance {
 public:
   /// `radius`: the muscle's (m); `clearance`: the clearance asked for, which sets how much of an
   /// end on the skin is not tested (as the optimizer's skin barrier: 2 (2 radius + clearance));
-  /// `samples_per_length`: centre-line samples per m (at least 8 per fiber).
+  /// `samples_per_length`: centre-line samples per m (at least 8 per fiber); `skin_margin` (m):
+  /// how much further than the clearance the skin is kept from the muscle (a groove that needs
+  /// more room): a skin contact's clearance is its distance − radius − skin_margin.
   FiberClearance(const SurfaceDistance& skin, const std::vector<Route>& routes, double radius, double clearance,
-                 double samples_per_length);
+                 double samples_per_length, double skin_margin = 0);
 
   int num_fibers() const { return static_cast<int>(t_.size()); }
   double radius() const { return radius_; }
@@ -63,6 +65,7 @@ private:
 
   const SurfaceDistance& skin_;
   double radius_;
+  double skin_margin_ = 0;
   std::vector<std::vector<double>> t_;
   std::vector<std::vector<bool>> skin_tested_;
 };

@@ -13,6 +13,7 @@
 #include "optimize/clearance_barrier.hpp"
 #include "optimize/collision_resolution.hpp"
 #include "stages/design_simulation.hpp"
+#include "stages/skin_distance.hpp"
 #include "stages/fibers_file.hpp"
 #include "stages/routing_evaluation.hpp"
 
@@ -196,7 +197,7 @@ void CollideStage::run(StageContext& ctx) const
   const SurfaceDistance skin(mesh.nodes, mesh.boundary_faces);
   ctx.progress.update(0.05, "measuring clearances");
   const FiberClearance measure(skin, fibers.routing.routes, d.muscle.model.diameter / 2, d.collide.clearance,
-                               d.collide.samples_per_length);
+                               d.collide.samples_per_length, skin_distance(d).groove_margin);
   const CollisionResolution r = resolve(ctx, measure, fibers);
 
   FibersFile out = fibers;

@@ -19,7 +19,8 @@ public:
   std::vector<std::string> upstream() const override { return {"mesh", "targets", "optimize"}; }
   std::vector<std::string> design_keys() const override
   {
-    return {"design.units", "material", "sim", "fixed", "muscle", "fiber", "tracking_curve", "target", "optimize", "collide"};
+    return {"design.units", "material", "sim", "fixed", "muscle", "fiber", "tracking_curve", "target", "optimize", "collide",
+            "mold.groove_clearance", "mold.min_silicone"};  // the skin distance (skin_distance.hpp)
   }
   int version() const override { return 3; }  ///< 2: writes deformed-<target>.json for the report; 3: no null in report.json
   void run(StageContext& ctx) const override;

@@ -10,6 +10,7 @@
 #include "core/units.hpp"
 #include "export/vtu_writer.hpp"
 #include "mesh/mesh_quality.hpp"
+#include "mesh/surface_distance.hpp"
 #include "mesh/surface_places.hpp"
 #include "optimize/tracking_curve.hpp"
 #include "sim/external_forces.hpp"
@@ -50,6 +51,28 @@ std::vector<int> region_nodes(const Region& r, const TetMesh& mesh, const Design
   return nodes;
 }
 
+
+void require_regions_reach_the_body(const Design& d, const SurfaceMesh& surface)
+{
+  const Eigen::Vector3d lo = surface.vertices.colwise().minCoeff(), hi = surface.vertices.colwise().maxCoeff();
+  const SurfaceDistance skin(surface.vertices, surface.faces);
+  const auto require = [&](const Region& r, const std::string& key, const std::string& what) {
+    for (int v : r.vertices)
+      if (v >= surface.num_vertices())
+        bad(d, key, fmt::format("vertex {} does not exist: the surface has {} vertices", v, surface.num_vertices()));
+    if (r.box && (((*r.box)[1].array() < lo.array()).any() || ((*r.box)[0].array() > hi.array()).any()))
+      bad(d, key, fmt::format("{} no node of the mesh: the box {} to {} misses the body, which spans {} to {}", what,
+                              format_mm((*r.box)[0]), format_mm((*r.box)[1]), format_mm(lo), format_mm(hi)));
+    if (r.point && !skin.closest(*r.point).inside) bad(d, key, fmt::format("the point {} lies outside the body", format_mm(*r.point)));
+  };
+  for (const FixedRegion& f : d.fixed) require(f.region, fmt::format("[fixed.{}]", f.name), "holds");
+  for (const Target& t : d.targets) {
+    for (std::size_t i = 0; i < t.loads.size(); ++i)
+      require(t.loads[i].region, fmt::format("[target.{}].load[{}]", t.name, i + 1), "the load's region holds");
+    for (std::size_t i = 0; i < t.poses.size(); ++i)
+      require(t.poses[i].region, fmt::format("[target.{}].pose[{}]", t.name, i + 1), "the region selects");
+  }
+}
 
 SimulationOptions simulation_options(const Design& d, const TetMesh& mesh, bool held)
 {

@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "design/design.hpp"
+#include "mesh/surface_mesh.hpp"
 #include "mesh/tet_mesh.hpp"
 #include "sim/muscle_energy.hpp"
 #include "sim/neo_hookean.hpp"
@@ -27,6 +28,12 @@ SimulationOptions simulation_options(const Design& d, const TetMesh& mesh, bool 
 
 /// The mesh nodes a region (box or surface vertices) selects; InputError for a vertex that does not exist.
 std::vector<int> region_nodes(const Region& r, const TetMesh& mesh, const Design& d, const std::string& key);
+
+/// What `check` can tell of every region ([[fixed]], loads, poses) from the body's input surface
+/// before any mesh exists, refused with the stage's own words: a vertex the surface does not have,
+/// a box that misses the body's bounding box (it can hold no node), a point load outside the body.
+/// A box that meets the bounding box but catches no node of a coarse mesh is found by the stages.
+void require_regions_reach_the_body(const Design& d, const SurfaceMesh& surface);
 
 /// The nodal forces of a `kind = "forces"` target's loads.
 Eigen::VectorXd target_forces(const Design& d, const Target& t, const Simulation& sim);

@@ -19,6 +19,8 @@
 #include "mesh/surface_repair.hpp"
 #include "stages/molds_stage.hpp"
 #include "stages/optimize_stage.hpp"
+#include "stages/targets_stage.hpp"
+#include "stages/design_simulation.hpp"
 
 namespace fibermold {
 
@@ -244,6 +246,9 @@ SurfaceCheck check_design_surface(const Design& design, std::vector<std::string>
   require_mold_grids(design, surface, fibers);
   // The fibers against the skin the optimizer will see: the mesh's (remeshed, when it is).
   require_optimizable(design, SurfaceDistance(meshed.surface.vertices, meshed.surface.faces));
+  require_regions_reach_the_body(design, surface);
+  for (const Target& t : design.targets)
+    if (t.kind == TargetKind::surface) read_target_surface(design, t, surface.num_vertices(), surface.faces);
   return check;
 }
 

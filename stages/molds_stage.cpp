@@ -18,6 +18,7 @@
 #include "sim/hermite_spline.hpp"
 #include "stages/design_simulation.hpp"
 #include "stages/fibers_file.hpp"
+#include "stages/skin_distance.hpp"
 
 namespace fibermold {
 
@@ -168,11 +169,12 @@ void require_mold_grids(const Design& d, const SurfaceMesh& body, const std::vec
 
 std::vector<std::vector<Eigen::Vector3d>> require_grooves_fit(const Design& d, const SurfaceDistance& skin, const std::vector<Route>& routes)
 {
-  const double radius = groove_radius(d.muscle.model.diameter, d.mold);
+  // The groove's need, as optimize and collide keep it (they keep the fiber at least that far in).
+  const SkinDistance rule = skin_distance(d);
   std::vector<std::vector<Eigen::Vector3d>> lines;
   for (const Route& r : routes) {
     lines.push_back(mold_fiber(r, mold_line_step(d.mold)).line);
-    if (auto problem = groove_problem(lines.back(), skin, radius, d.collide.clearance, d.mold.pull, skin_end_stretch(d)))
+    if (auto problem = groove_problem(lines.back(), skin, rule.groove, rule.groove_terms, d.mold.pull, skin_end_stretch(d)))
       bad(d, fmt::format("[fiber.{}]", r.name), *problem);
   }
   return lines;

@@ -31,7 +31,7 @@ public:
     return {"design.units", "material.density", "muscle.diameter", "collide.clearance", "mold", "export.min_wall",
             "export.printer_volume"};
   }
-  int version() const override { return 3; }  ///< 2: sprues and vents from the fill simulation, its report, the silicone's thickness; 3: a remeshed body molded as given
+  int version() const override { return 4; }  ///< 2: sprues and vents from the fill simulation, its report, the silicone's thickness; 3: a remeshed body molded as given; 4: the groove rule shared (skin_distance.hpp), 10 µm of placement tolerance
   void run(StageContext& ctx) const override;
 };
 

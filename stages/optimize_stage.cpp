@@ -19,6 +19,7 @@
 #include "stages/fibers_file.hpp"
 #include "stages/mesh_stage.hpp"
 #include "stages/routing_evaluation.hpp"
+#include "stages/skin_distance.hpp"
 #include "stages/target_poses.hpp"
 
 namespace fibermold {
@@ -50,7 +51,8 @@ bool keep_fibers_apart(StageContext& ctx, RoutingProblem& problem, const Surface
 {
   const Design& d = ctx.design;
   if (start.routes.size() < 2) return false;
-  measure = std::make_unique<FiberClearance>(skin, start.routes, d.muscle.model.diameter / 2, d.collide.clearance, d.collide.samples_per_length);
+  measure = std::make_unique<FiberClearance>(skin, start.routes, d.muscle.model.diameter / 2, d.collide.clearance, d.collide.samples_per_length,
+                                             skin_distance(d).groove_margin);
   if (!measure->contacts(measure->lines(start.routes), d.collide.clearance, false).empty()) return false;
   barrier = std::make_unique<ClearanceBarrier>(*measure, start.routes, d.collide.clearance, d.muscle.model.diameter / 2);
   problem.set_clearance_barrier(barrier.get(), kClearanceBarrierWeight);
@@ -243,12 +245,11 @@ void report_refinement(StageContext& ctx, DesignRouting& dr, const Routing& r, n
 /// What is wrong with a starting route `closest` from the skin at `where`, and how to mend it.
 std::string too_near_the_skin(const Design& d, double closest, const Eigen::Vector3d& where)
 {
-  const double need = routing_settings(d).skin_distance;
+  const SkinDistance need = skin_distance(d);
   return fmt::format("the starting route passes {:.3f} mm from the skin at {}, where the optimizer keeps a fiber's centre line "
-                     "more than {:.3f} mm inside ([muscle] diameter/2 = {:.3g} mm + [collide] clearance = {:.3g} mm): move the "
-                     "route {:.3f} mm or more inward there, or give a thinner muscle or a smaller clearance",
-                     closest / units::mm, format_mm(where), need / units::mm, d.muscle.model.diameter / 2 / units::mm,
-                     d.collide.clearance / units::mm, (need - closest) / units::mm);
+                     "more than {:.3f} mm inside ({}): move the route {:.3f} mm or more inward there, or give a thinner muscle or a "
+                     "smaller clearance",
+                     closest / units::mm, format_mm(where), need.distance / units::mm, need.terms, (need.distance - closest) / units::mm);
 }
 
 /// A starting route the skin barrier refuses (InputError at the fiber).

@@ -23,9 +23,10 @@ public:
   std::vector<std::string> upstream() const override { return {"mesh", "targets"}; }
   std::vector<std::string> design_keys() const override
   {
-    // smoothness: optimization_start; the surface and [mesh]: [optimize] refine meshes the body again
+    // smoothness: optimization_start; the surface and [mesh]: [optimize] refine meshes the body again;
+    // groove_clearance, min_silicone: the skin distance (skin_distance.hpp)
     return {"design.surface", "design.units", "mesh", "material", "sim", "fixed", "muscle", "fiber", "tracking_curve", "target",
-            "optimize", "collide.clearance", "collide.samples_per_mm", "collide.smoothness"};
+            "optimize", "collide.clearance", "collide.samples_per_mm", "collide.smoothness", "mold.groove_clearance", "mold.min_silicone"};
   }
   int version() const override { return 4; }  ///< 2: fibers moved apart before optimizing, kept apart throughout; 3: termination, warnings and reach in the report; 4: reached poses
   void run(StageContext& ctx) const override;

@@ -11,6 +11,7 @@
 #include "core/units.hpp"
 #include "optimize/collision_resolution.hpp"
 #include "stages/design_simulation.hpp"
+#include "stages/skin_distance.hpp"
 
 namespace fibermold {
 
@@ -51,7 +52,7 @@ RoutingSettings routing_settings(const Design& d)
   RoutingSettings s;
   s.max_pressure = d.muscle.max_pressure;
   s.segments_per_length = d.muscle.segments_per_length;
-  s.skin_distance = d.muscle.model.diameter / 2 + d.collide.clearance;
+  s.skin_distance = skin_distance(d).distance;
   s.skin_band = d.muscle.model.diameter / 2;
   s.weight_curvature = d.optimize.weight_curvature;
   s.weight_skin = d.optimize.weight_skin_barrier;
@@ -89,7 +90,8 @@ OptimizationStart optimization_start(const Design& d, const SurfaceDistance& ski
   OptimizationStart out{starting_routing(d), {}, {}};
   std::vector<Route>& routes = out.routing.routes;
   if (routes.size() < 2) return out;
-  const FiberClearance measure(skin, routes, d.muscle.model.diameter / 2, d.collide.clearance, d.collide.samples_per_length);
+  const FiberClearance measure(skin, routes, d.muscle.model.diameter / 2, d.collide.clearance, d.collide.samples_per_length,
+                               skin_distance(d).groove_margin);
   if (measure.contacts(measure.lines(routes), d.collide.clearance + kBarrierRoom / 2, false).empty()) return out;
   ResolutionSettings settings;
   settings.clearance = d.collide.clearance;

@@ -43,18 +43,7 @@ std::set<Triangle> face_set(const Eigen::MatrixX3i& faces)
 /// input surface, carried to the mesh through each node's place on it.
 std::vector<std::pair<int, Eigen::Vector3d>> target_surface(const Design& d, const Target& t, const TetMesh& mesh)
 {
-  const std::string key = fmt::format("[target.{}].surface", t.name);
-  const SurfaceMesh s = import_surface(t.surface, d.design.surface_scale);
-  if (s.num_vertices() != mesh.surface_to_node.size())
-    throw InputError(design_problem(d, key,
-                                fmt::format("{} has {} vertices, the body's surface {}: a target surface must be a "
-                                            "deformed copy of the body's surface (same vertices, same order)",
-                                            t.surface.filename().string(), s.num_vertices(), mesh.surface_to_node.size())));
-  if (face_set(s.faces) != face_set(mesh.surface_faces))
-    throw InputError(design_problem(d, key,
-                                fmt::format("{} connects its vertices differently from the body's surface: the vertex "
-                                            "order changed (export it from the same mesh without reordering)",
-                                            t.surface.filename().string())));
+  const SurfaceMesh s = read_target_surface(d, t, mesh.surface_to_node.size(), mesh.surface_faces);
   return carried_surface(mesh, s.vertices);
 }
 
@@ -147,6 +136,23 @@ Solved solve_target(const Design& d, const Target& t, const TetMesh& mesh, const
 }
 
 } // namespace
+
+SurfaceMesh read_target_surface(const Design& d, const Target& t, Eigen::Index vertices, const Eigen::MatrixX3i& faces)
+{
+  const std::string key = fmt::format("[target.{}].surface", t.name);
+  const SurfaceMesh s = import_surface(t.surface, d.design.surface_scale);
+  if (s.num_vertices() != vertices)
+    throw InputError(design_problem(d, key,
+                                fmt::format("{} has {} vertices, the body's surface {}: a target surface must be a "
+                                            "deformed copy of the body's surface (same vertices, same order)",
+                                            t.surface.filename().string(), s.num_vertices(), vertices)));
+  if (face_set(s.faces) != face_set(faces))
+    throw InputError(design_problem(d, key,
+                                fmt::format("{} connects its vertices differently from the body's surface: the vertex "
+                                            "order changed (export it from the same mesh without reordering)",
+                                            t.surface.filename().string())));
+  return s;
+}
 
 std::vector<std::filesystem::path> TargetsStage::input_files(const Design& d) const
 {

@@ -11,8 +11,13 @@
 // targets/<name>.json (the deformed nodes in mm, for report.html), targets/report.json.
 
 #include "make/stage.hpp"
+#include "mesh/surface_mesh.hpp"
 
 namespace fibermold {
+
+/// A `kind = "surface"` target's file, held against the body's input surface (its vertex count and
+/// faces): InputError when it is not a deformed copy of it. `check` asks it too.
+SurfaceMesh read_target_surface(const Design& d, const Target& t, Eigen::Index vertices, const Eigen::MatrixX3i& faces);
 
 class TargetsStage final : public Stage {
 public:

@@ -122,6 +122,47 @@ TEST(FuzzE2E, CheckRefusesWhatOptimizeWouldRefuse)
   EXPECT_THAT(out.err, ::testing::ContainsRegex("design\\.toml:[0-9]+:[0-9]+: \\[tracking_curve\\.centre\\]: the curve leaves the body at"));
 }
 
+/// The rule on the designs users start from: mutants of each example's design (made cheap: coarse
+/// meshes and voxels, two optimizer iterations) through check; of those check passes, the first
+/// two per example through every stage of make, which must not refuse them as bad input.
+TEST(FuzzE2E, MutantsOfEveryExampleThatCheckPassesMakeDoesNotRefuse)
+{
+  struct Example {
+    std::string folder, design;
+    std::vector<std::pair<std::string, std::string>> cheap;
+  };
+  const std::vector<Example> examples = {
+      {"twisting-bar", "design.toml", {{"max_iterations = 400", "max_iterations = 2"}, {"route_only_iterations = 30 ", "route_only_iterations = 1 "}, {"voxel = 0.2 ", "voxel = 0.6 "}}},
+      {"hand-routed-twist", "design.toml", {{"voxel = 0.25", "voxel = 0.6"}, {"\"../twisting-bar/bar.stl\"", "\"" + (fs::path(FIBERMOLD_SOURCE_DIR) / "examples" / "twisting-bar" / "bar.stl").string() + "\""}}},
+      {"recovery", "design.toml", {{"edge_length = 5.0", "edge_length = 8.0"}, {"max_iterations = 400", "max_iterations = 2"}}},
+      {"walking-robot", "design.toml", {{"edge_length = 5.0", "edge_length = 6.0"}, {"max_iterations = 300", "max_iterations = 2"}, {"voxel = 0.2 ", "voxel = 0.5 "}}},
+      {"notched-finger", "design.toml", {{"edge_length = 4.0", "edge_length = 6.0"}, {"max_iterations = 200", "max_iterations = 2"}, {"voxel = 0.25", "voxel = 0.6"}}},
+      {"continuum-robot", "design.toml", {{"max_iterations = 200", "max_iterations = 2"}, {"voxel = 0.25", "voxel = 0.8"}}},
+  };
+  std::map<int, int> codes;
+  for (const Example& e : examples) {
+    const fs::path source = fs::path(FIBERMOLD_SOURCE_DIR) / "examples" / e.folder;
+    std::string text = test::read_text(source / e.design);
+    for (const auto& [from, to] : e.cheap) {
+      ASSERT_NE(text.find(from), std::string::npos) << e.folder << ": " << from;
+      text.replace(text.find(from), from.size(), to);
+    }
+    int made = 0;
+    for (const test::Mutant& m : test::design_mutants(text, 20, 31)) {
+      test::TempDir dir;
+      fs::copy(source, dir.path(), fs::copy_options::recursive);
+      test::write_text(dir / "design.toml", m.text);
+      if (e.design != "design.toml") fs::remove(dir / e.design);
+      const test::FuzzRun r = test::fuzz_run(dir.path(), made < 2, 60, 300);
+      ++codes[r.check];
+      if (r.make >= 0) ++codes[100 + r.make], ++made;
+      EXPECT_EQ(r.problem, "") << e.folder << ": " << m.what;
+    }
+    EXPECT_GE(made, 1) << e.folder << ": no mutant passed check";
+  }
+  for (const auto& [code, count] : codes) fmt::print("  {} {}: {}\n", code >= 100 ? "make" : "check", code % 100, count);
+}
+
 TEST(FuzzE2E, ABuildFolderThatIsAFileIsBadInputAndABusyOneHasItsOwnCode)
 {
   test::TempDir dir;

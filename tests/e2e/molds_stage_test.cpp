@@ -300,12 +300,13 @@ TEST_F(MoldsE2E, BadInputsStopWithoutWritingParts)
   EXPECT_FALSE(fs::exists(dir_ / "build" / "molds" / "shot1-lower.stl"));
   EXPECT_FALSE(fs::exists(out("manifest.json")));
 
-  // Collide would move this fiber 1 mm further in; with no clearance asked, molds catches it.
+  // With no clearance asked, collide still keeps the fiber as far in as its groove needs (radius
+  // 1.5 + groove_clearance 0.3 + min_silicone 0.5 mm: stages/skin_distance.hpp), so the molds cast
+  // it; until the rule was shared, collide left it 1.5 mm in and the molds refused it.
   design("[collide]\nclearance = 0\n", "[[fiber]]\nname = \"m1\"\npoints = [[0, 0, 0], [30, 0, -6.5], [60, 0, 0]]\n");
   r = make();
-  EXPECT_EQ(r.exit_code, 2);
-  EXPECT_THAT(r.err, HasSubstr("[fiber.m1]: the fiber passes"));
-  EXPECT_THAT(r.err, HasSubstr("from the skin"));
+  EXPECT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_TRUE(nlohmann::json::parse(test::read_text(dir_ / "build" / "collide" / "report.json"))["changed"].get<bool>());
 
   design("", "[[fiber]]\nname = \"m1\"\npoints = [[0, 0, 0], [30, 0, -12], [60, 0, 0]]\n");
   r = make();

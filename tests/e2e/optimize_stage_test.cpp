@@ -175,6 +175,33 @@ TEST_F(OptimizeE2E, RefineStatesTheOptimizedRobotsDiscretizationError)
   EXPECT_THAT(test::read_text(dir_ / "build" / "logs" / "optimize.log"), HasSubstr("on half the edge length"));
 }
 
+/// One rule for how far a fiber stays from the skin (stages/skin_distance.hpp): where the groove
+/// needs more than radius + clearance (a 2 mm muscle, clearance 0.5 mm, groove_clearance 0.3 mm
+/// and min_silicone 0.5 mm beside it: 1 + 0.3 + 0.5 = 1.8 mm against 1.5), check refuses a route
+/// 1.52 mm from the skin, naming the groove; one 1.85 mm from it passes check and every stage
+/// through the molds (the silicone beside its groove included).
+TEST_F(OptimizeE2E, CheckOptimizeCollideAndMoldsKeepFibersFromTheSkinByOneRule)
+{
+  const std::string route = "points = [[0, 0, 0], [20, 3, -3], [40, -3, 2], [60, 0, 0]]";
+  const auto at = [&](double y) {
+    std::string text = kDesign + "[muscle]\ndiameter = 2.0\n[collide]\nclearance = 0.5\n[optimize]\nmax_iterations = 3\n";
+    text.replace(text.find(route), route.size(), fmt::format("points = [[0, {0}, 0], [20, {0}, 0], [40, {0}, 0], [60, {0}, 0]]", y));
+    text.replace(text.find("wall = 4.0"), 10, "wall = 4.0\ngroove_clearance = 0.3\nvoxel = 0.5\nkeys = 2");
+    test::write_text(dir_ / "design.toml", text);
+  };
+  at(8 - 1.52);
+  const auto refused = test::run_fibermold("check design.toml", dir_.path());
+  EXPECT_EQ(refused.exit_code, 2) << refused.out << refused.err;
+  EXPECT_THAT(refused.err, HasSubstr("[fiber.m1]: the starting route passes 1.520 mm from the skin"));
+  EXPECT_THAT(refused.err, HasSubstr("more than 1.800 mm inside ([muscle] diameter/2 = 1 mm + [mold] groove_clearance = 0.3 mm + "
+                                     "[mold] min_silicone = 0.5 mm, what the groove needs): move the route 0.280 mm"));
+  at(8 - 1.85);
+  const auto passed = test::run_fibermold("check design.toml", dir_.path());
+  ASSERT_EQ(passed.exit_code, 0) << passed.err;
+  const auto made = test::run_fibermold("make design.toml molds --build-dir build", dir_.path());
+  EXPECT_EQ(made.exit_code, 0) << made.err;
+}
+
 /// A 3 mm muscle routed 1.5 mm from the bar's skin (y = 6.5 of 8 mm): `check` refuses it, naming
 /// the fiber, the distance, the rule and the fix, before any stage runs.
 TEST_F(OptimizeE2E, AFiberTooNearTheSkinIsRefusedByCheckWithTheFix)

@@ -265,6 +265,39 @@ TEST_F(TargetsE2E, APoseRegionThatIsAlsoHeldIsRefused)
   EXPECT_THAT(r.err, HasSubstr("give angle_deg (with axis, about) and/or translation"));
 }
 
+/// What the targets stage would refuse of the regions and the target surfaces, `check` refuses
+/// first, before any mesh exists: a design `check` passes is not refused by `make` with exit 2.
+TEST_F(TargetsE2E, CheckRefusesRegionsAndSurfacesTheTargetsStageWouldRefuse)
+{
+  const auto check = [&] { return test::run_fibermold("check design.toml", dir_.path()); };
+  // Without an optimizer, whose own checks (a tracking curve) would come first.
+  const auto design = [&](const std::string& targets) { this->design(targets + "[optimize]\nenabled = false\n"); };
+  design("[[target]]\nname = \"curl\"\nkind = \"pose\"\n"
+         "pose = [{ box = { min = [70, -9, -9], max = [75, 9, 9] }, axis = [0, 0, 1], angle_deg = 10 }]\n");
+  auto r = check();
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_THAT(r.err, HasSubstr("[target.curl].pose[1]: the region selects no node of the mesh: the box (70.0, -9.0, -9.0) mm to "
+                               "(75.0, 9.0, 9.0) mm misses the body, which spans (0.0, -8.0, -8.0) mm to (60.0, 8.0, 8.0) mm"));
+  design("[[target]]\nname = \"droop\"\nkind = \"forces\"\nload = [{ vertices = [9999], force = [0, 0, -0.05] }]\n");
+  r = check();
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_THAT(r.err, HasSubstr("[target.droop].load[1]: vertex 9999 does not exist: the surface has"));
+  design("[[target]]\nname = \"droop\"\nkind = \"forces\"\nload = [{ point = [30, 0, 20], force = [0, 0, -0.05] }]\n");
+  r = check();
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_THAT(r.err, HasSubstr("[target.droop].load[1]: the point (30.0, 0.0, 20.0) mm lies outside the body"));
+  write_stl(dir_ / "other.stl", test::box({0, -0.008, -0.008}, {0.06, 0.008, 0.008}, 2));
+  design("[[target]]\nname = \"bend\"\nkind = \"surface\"\nsurface = \"other.stl\"\n");
+  r = check();
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_THAT(r.err, HasSubstr("[target.bend].surface: other.stl has 26 vertices, the body's surface"));
+  // And a design with regions on the body passes.
+  design("[[target]]\nname = \"curl\"\nkind = \"pose\"\n"
+         "pose = [{ box = { min = [59, -9, -9], max = [61, 9, 9] }, axis = [0, 0, 1], angle_deg = 10 }]\n");
+  r = check();
+  EXPECT_EQ(r.exit_code, 0) << r.err;
+}
+
 TEST_F(TargetsE2E, EditsRerunExactlyTheStagesThatReadThem)
 {
   const std::string target = "[[target]]\nname = \"droop\"\nkind = \"forces\"\n"
