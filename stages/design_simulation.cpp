@@ -66,11 +66,34 @@ void require_regions_reach_the_body(const Design& d, const SurfaceMesh& surface)
     if (r.point && !skin.closest(*r.point).inside) bad(d, key, fmt::format("the point {} lies outside the body", format_mm(*r.point)));
   };
   for (const FixedRegion& f : d.fixed) require(f.region, fmt::format("[fixed.{}]", f.name), "holds");
+  // The surface vertices a region selects (each is a node of a mesh that keeps or splits the surface).
+  const auto selected = [&](const Region& r) {
+    std::vector<bool> in(static_cast<std::size_t>(surface.num_vertices()), false);
+    for (int v : r.vertices) in[static_cast<std::size_t>(v)] = true;
+    if (r.box)
+      for (Eigen::Index v = 0; v < surface.num_vertices(); ++v)
+        if ((surface.vertices.row(v).transpose().array() >= (*r.box)[0].array()).all() &&
+            (surface.vertices.row(v).transpose().array() <= (*r.box)[1].array()).all())
+          in[static_cast<std::size_t>(v)] = true;
+    return in;
+  };
   for (const Target& t : d.targets) {
     for (std::size_t i = 0; i < t.loads.size(); ++i)
       require(t.loads[i].region, fmt::format("[target.{}].load[{}]", t.name, i + 1), "the load's region holds");
-    for (std::size_t i = 0; i < t.poses.size(); ++i)
-      require(t.poses[i].region, fmt::format("[target.{}].pose[{}]", t.name, i + 1), "the region selects");
+    for (std::size_t i = 0; i < t.poses.size(); ++i) {
+      const std::string key = fmt::format("[target.{}].pose[{}]", t.name, i + 1);
+      require(t.poses[i].region, key, "the region selects");
+      const std::vector<bool> moved = selected(t.poses[i].region);
+      for (const FixedRegion& f : d.fixed) {
+        const std::vector<bool> held = selected(f.region);
+        int shared = 0;
+        for (std::size_t v = 0; v < moved.size(); ++v) shared += moved[v] && held[v];
+        if (shared > 0)
+          bad(d, key, fmt::format("the region shares {} surface vertices with [fixed.{}]: a node cannot be held in two places; shrink "
+                                  "one of them",
+                                  shared, f.name));
+      }
+    }
   }
 }
 

@@ -31,13 +31,14 @@ double since(Clock::time_point t) { return std::chrono::duration<double>(Clock::
 
 /// Refuses an edge length that would make more than [mesh] max_tets tets (wrong units, typically),
 /// before any remeshing or TetGen run can take all memory.
-void require_mesh_size(const Design& d, double volume, double edge)
+void require_mesh_size(const Design& d, double volume, double edge, const std::string& key = "[mesh].edge_length")
 {
   const double tets = expected_tets(volume, edge);
   if (tets > d.mesh.max_tets)
-    throw InputError(design_problem(d, "[mesh].edge_length",
-                                fmt::format("{:.4g} mm for a body of {:.4g} mm³ would make about {:.3g} tets, more than "
+    throw InputError(design_problem(d, key,
+                                fmt::format("{}{:.4g} mm for a body of {:.4g} mm³ would make about {:.3g} tets, more than "
                                             "[mesh].max_tets = {}; raise edge_length, or check [design].units",
+                                            key == "[optimize].refine" ? "the refined mesh's edge length, half the mesh's, " : "",
                                             edge / units::mm, volume / 1e-9, tets, d.mesh.max_tets)));
 }
 
@@ -240,6 +241,7 @@ SurfaceCheck check_design_surface(const Design& design, std::vector<std::string>
   // body's features cannot take.
   const double edge = target_edge_length(design, check.volume);
   require_mesh_size(design, check.volume, edge);
+  if (design.optimize.enabled && design.optimize.refine) require_mesh_size(design, check.volume, edge / 2, "[optimize].refine");
   const MeshedSurface meshed = surface_for_mesh(surface, design.mesh.surface_triangles, edge);
   std::vector<std::vector<Eigen::Vector3d>> fibers;
   for (const Fiber& f : design.fibers) fibers.push_back(f.points);

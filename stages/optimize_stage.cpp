@@ -188,10 +188,20 @@ OptimizationEnding report_targets(StageContext& ctx, DesignRouting& dr, const Ro
   return ending;
 }
 
+/// With [optimize] refine: the refined solve's mesh refused before the optimization, not after it.
+void require_refinable(const Design& d, const TetMesh& mesh)
+{
+  if (d.optimize.refine && 8.0 * static_cast<double>(mesh.num_tets()) > d.mesh.max_tets)
+    bad(d, "[optimize].refine",
+        fmt::format("the refined mesh, at half the edge length, would make about {} tets, more than [mesh].max_tets = {}: raise "
+                    "max_tets or turn refine off",
+                    8 * mesh.num_tets(), d.mesh.max_tets));
+}
+
 /// With [optimize] refine: each target's optimized actuation solved from rest on a mesh of half
 /// the edge length, against the same on the design's mesh (docs/optimize.md, "Discretization
-/// error"), into the target's report entry; a warning where the difference exceeds the error to
-/// the target, which the mesh then cannot resolve.
+/// error"), into the target's report entry; a warning (logged and added to `warnings`) where the
+/// difference exceeds the error to the target, which the mesh then cannot resolve.
 void report_refinement(StageContext& ctx, DesignRouting& dr, const Routing& r, nlohmann::ordered_json& per_target,
                        std::vector<std::string>& warnings)
 {
@@ -216,6 +226,7 @@ void report_refinement(StageContext& ctx, DesignRouting& dr, const Routing& r, n
     if (!summary.converged) {
       warnings.push_back(fmt::format("target {}: the refined solve ({} tets) did not reach equilibrium ({}); no discretization figure",
                                      name, fine_mesh.num_tets(), summary.brief()));
+      ctx.log.warn("{}", warnings.back());
       continue;
     }
     const Refinement f = compare_refined(d, problem.simulation(), coarse, fine, x);
@@ -234,11 +245,13 @@ void report_refinement(StageContext& ctx, DesignRouting& dr, const Routing& r, n
                  name, f.tets, f.curves_rms / units::mm, f.curves_max / units::mm, f.surface_rms / units::mm,
                  f.surface_max / units::mm, seconds);
     const double error = entry.value("rmse_mm", 0.0) * units::mm;
-    if (f.curves_rms > error)
+    if (f.curves_rms > error) {
       warnings.push_back(fmt::format(
           "target {}: on a mesh of half the edge length the optimized robot's tracking curves move {:.2f} mm RMS, more than its "
           "error to the target ({:.2f} mm): that error is not resolved by the mesh; lower [mesh] edge_length",
           name, f.curves_rms / units::mm, error / units::mm));
+      ctx.log.warn("{}", warnings.back());
+    }
   }
 }
 
@@ -247,9 +260,9 @@ std::string too_near_the_skin(const Design& d, double closest, const Eigen::Vect
 {
   const SkinDistance need = skin_distance(d);
   return fmt::format("the starting route passes {:.3f} mm from the skin at {}, where the optimizer keeps a fiber's centre line "
-                     "more than {:.3f} mm inside ({}): move the route {:.3f} mm or more inward there, or give a thinner muscle or a "
-                     "smaller clearance",
-                     closest / units::mm, format_mm(where), need.distance / units::mm, need.terms, (need.distance - closest) / units::mm);
+                     "more than {:.3f} mm inside ({}): move the route {:.3f} mm or more inward there, or give a thinner muscle or {}",
+                     closest / units::mm, format_mm(where), need.distance / units::mm, need.terms, (need.distance - closest) / units::mm,
+                     need.groove_margin > 0 ? "a smaller [mold] groove_clearance or min_silicone" : "a smaller clearance");
 }
 
 /// A starting route the skin barrier refuses (InputError at the fiber).
@@ -303,6 +316,7 @@ void OptimizeStage::run(StageContext& ctx) const
   }
   DesignRouting dr(ctx);
   require_optimizable(d, *dr.skin);
+  require_refinable(d, dr.mesh);
   const OptimizationStart begun = optimization_start(d, *dr.skin);
   for (const std::string& line : begun.log) ctx.log.info("{}", line);
   if (!begun.warning.empty()) ctx.log.warn("{}", begun.warning);
@@ -356,12 +370,7 @@ void OptimizeStage::run(StageContext& ctx) const
 
   nlohmann::ordered_json per_target = nlohmann::ordered_json::object();
   OptimizationEnding ending = report_targets(ctx, dr, result, before, per_target);
-  if (d.optimize.refine) {
-    std::vector<std::string> more;
-    report_refinement(ctx, dr, result.routing, per_target, more);
-    for (const std::string& w : more) ctx.log.warn("{}", w);
-    ending.warnings.insert(ending.warnings.end(), more.begin(), more.end());
-  }
+  if (d.optimize.refine) report_refinement(ctx, dr, result.routing, per_target, ending.warnings);
   const nlohmann::ordered_json report{
       {"optimized", true},
       {"strategy", choice_name(d.optimize.strategy)},

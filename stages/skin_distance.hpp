@@ -20,7 +20,8 @@ struct SkinDistance {
   double groove = 0;
   std::string groove_terms;  ///< the groove's terms, for a message
   /// m: `distance` − (radius + clearance): how much more than the clearance the skin is kept
-  /// away from the muscle for the groove's sake (0 unless groove_clearance > clearance / 2).
+  /// away from the muscle for the groove's sake (0 unless groove_clearance + the silicone beside
+  /// the groove exceeds the clearance).
   double groove_margin = 0;
   /// The terms, for a message: "[muscle] diameter/2 = 1.5 mm + [collide] clearance = 1 mm".
   std::string terms;

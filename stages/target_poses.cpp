@@ -7,6 +7,7 @@
 
 #include "core/input_error.hpp"
 #include "core/units.hpp"
+#include "mesh/surface_distance.hpp"
 #include "stages/design_simulation.hpp"
 
 namespace fibermold {
@@ -112,9 +113,15 @@ std::vector<ReachedPose> reached_poses(const Design& d, const Target& t, const S
     out.push_back(region_pose(fmt::format("pose[{}]", i + 1), asked[i].nodes, mesh, deformed));
     out.back().asked = &asked[i];
   }
+  // A curve's end outside the body (curves are held to the body only when the optimizer runs) has no pose.
+  const SurfaceDistance skin(mesh.nodes, mesh.boundary_faces);
+  const auto in_body = [&](const Eigen::Vector3d& p) {
+    const auto at = skin.closest(p);
+    return at.inside || at.distance <= 1e-6;
+  };
   for (const TrackingCurve& c : d.tracking_curves) {
-    out.push_back(point_pose(c.name + ", first point", c.points.front(), sim, x));
-    out.push_back(point_pose(c.name + ", last point", c.points.back(), sim, x));
+    if (in_body(c.points.front())) out.push_back(point_pose(c.name + ", first point", c.points.front(), sim, x));
+    if (in_body(c.points.back())) out.push_back(point_pose(c.name + ", last point", c.points.back(), sim, x));
   }
   return out;
 }

@@ -236,8 +236,8 @@ TEST(Demonstrators, NotchedFingerCurlsTowardItsPoseAndSaysHowMuchAndMakesMolds)
   std::printf("notched finger: the pose target turns the tip %.2f°; the optimized muscle %.2f° of 60° (%.0f %%) at %.0f kPa\n",
               targets["rotation_about_asked_axis_deg"].get<double>(), reached, pose["rotation_reached_percent"].get<double>(),
               report["targets"]["curl"]["pressure_kPa"]["flexor"].get<double>());
-  EXPECT_GT(reached, 40);  // measured 40 iterations on 6 mm edges: see docs/targets.md
-  EXPECT_LT(reached, 66);
+  EXPECT_GT(reached, 50);  // measured 56.9° after 40 iterations on 6 mm edges (docs/targets.md)
+  EXPECT_LT(reached, 62);
   const std::string html = test::read_text(dir / "build" / "export" / "report.html");
   EXPECT_THAT(html, HasSubstr("turn reached"));
   EXPECT_THAT(html, HasSubstr(fmt::format("{:.1f}° of 60.0° (pose[1])", reached)));

@@ -20,6 +20,7 @@
 namespace fibermold {
 namespace {
 
+using ::testing::ContainsRegex;
 using ::testing::HasSubstr;
 namespace fs = std::filesystem;
 
@@ -291,6 +292,12 @@ TEST_F(TargetsE2E, CheckRefusesRegionsAndSurfacesTheTargetsStageWouldRefuse)
   r = check();
   EXPECT_EQ(r.exit_code, 2);
   EXPECT_THAT(r.err, HasSubstr("[target.bend].surface: other.stl has 26 vertices, the body's surface"));
+  design("[[target]]\nname = \"curl\"\nkind = \"pose\"\n"
+         "pose = [{ box = { min = [-1, -9, -9], max = [3, 9, 9] }, axis = [0, 0, 1], angle_deg = 10 }]\n");
+  r = check();
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_THAT(r.err, ContainsRegex("\\[target.curl\\].pose\\[1\\]: the region shares [0-9]+ surface vertices with \\[fixed.fixed1\\]: "
+                                   "a node cannot be held in two places"));
   // And a design with regions on the body passes.
   design("[[target]]\nname = \"curl\"\nkind = \"pose\"\n"
          "pose = [{ box = { min = [59, -9, -9], max = [61, 9, 9] }, axis = [0, 0, 1], angle_deg = 10 }]\n");
