@@ -188,12 +188,15 @@ void MoldsStage::run(StageContext& ctx) const
     bad(d, "[mold].parting", "the parting plane's normal must be parallel to [mold].pull: the halves come apart along pull");
 
   MoldJob job;
-  job.body = body_surface(load_tet_mesh(ctx.upstream("mesh", "body.tetmesh")));
+  const TetMesh mesh = load_tet_mesh(ctx.upstream("mesh", "body.tetmesh"));
+  job.body = body_surface(mesh);
   job.muscle_diameter = d.muscle.model.diameter;
   job.end_stretch = skin_end_stretch(d);
   job.min_wall = d.export_.min_wall;
   job.printer_volume = d.export_.printer_volume;
-  const SurfaceDistance skin(job.body.vertices, job.body.faces);
+  // The route rule against the skin optimize and collide kept it from: the mesh's (remeshed, when
+  // it is; the cast's own silicone, on the body as given, is the thickness check's).
+  const SurfaceDistance skin(mesh.nodes, mesh.boundary_faces);
   const std::vector<Route> routes = read_fibers_json(ctx.upstream("collide", "fibers.json")).routing.routes;
   for (const Route& r : routes) job.fibers.push_back(mold_fiber(r, mold_line_step(m)));
   require_mold_grids(d, job.body, require_grooves_fit(d, skin, routes));
