@@ -11,20 +11,17 @@ its stated body length. Standard library only: python3 make_robot.py [--bend 20]
 
 import argparse
 import math
+import os
+import sys
+
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "common"))
+from cell_surface import boundary, grid_lines, solid_cells, write_obj  # noqa: E402
 
 LENGTH = 42.0
 # The body x [0, 42] y [-10, 10] z [-7, 7] mm; legs 6 x 6 x 8 mm under its corners. The surface is
 # cut on a rectilinear grid through every edge of the shape, each interval split to at most SPACING.
 BREAKS = ([0, 4, 10, 32, 38, 42], [-10, -4, 4, 10], [-15, -7, 7])
 SPACING = 4.5  # mm
-
-
-def grid_lines(breaks):
-    lines = [breaks[0]]
-    for a, b in zip(breaks, breaks[1:]):
-        n = max(1, math.ceil((b - a) / SPACING - 1e-9))
-        lines += [a + (b - a) * i / n for i in range(1, n + 1)]
-    return lines
 
 
 def is_solid(centre):
@@ -34,47 +31,6 @@ def is_solid(centre):
     leg_x = 4 < x < 10 or 32 < x < 38
     leg_y = -10 < y < -4 or 4 < y < 10
     return -15 < z < -7 and leg_x and leg_y
-
-
-def solid_cells(lines):
-    solid = set()
-    for i in range(len(lines[0]) - 1):
-        for j in range(len(lines[1]) - 1):
-            for k in range(len(lines[2]) - 1):
-                centre = tuple((lines[a][c] + lines[a][c + 1]) / 2 for a, c in zip(range(3), (i, j, k)))
-                if is_solid(centre):
-                    solid.add((i, j, k))
-    return solid
-
-
-def boundary(lines, solid):
-    """Outward quads between solid and empty cells, as vertex-index quadruples, and the vertices."""
-    index, vertices, quads = {}, [], []
-
-    def vertex(c):
-        if c not in index:
-            index[c] = len(vertices)
-            vertices.append(tuple(float(lines[a][c[a]]) for a in range(3)))
-        return index[c]
-
-    for v in sorted(solid):
-        for axis in range(3):
-            for side in (-1, 1):
-                n = list(v)
-                n[axis] += side
-                if tuple(n) in solid:
-                    continue
-                u, w = (axis + 1) % 3, (axis + 2) % 3
-                base = list(v)
-                base[axis] += 1 if side > 0 else 0
-                corners = []
-                for du, dw in ((0, 0), (1, 0), (1, 1), (0, 1)):
-                    c = list(base)
-                    c[u] += du
-                    c[w] += dw
-                    corners.append(vertex(tuple(c)))
-                quads.append(corners if side > 0 else corners[::-1])  # (u, w, axis) is right-handed
-    return vertices, quads
 
 
 def bend(p, degrees):
@@ -94,23 +50,13 @@ def twist(p, degrees):
     return (x, c * y - s * z, s * y + c * z)
 
 
-def write_obj(path, vertices, quads, comment):
-    with open(path, "w") as f:
-        f.write(f"# {comment}\n# units: mm\n")
-        for v in vertices:
-            f.write("v {:.6f} {:.6f} {:.6f}\n".format(*v))
-        for q in quads:
-            a, b, c, d = (i + 1 for i in q)
-            f.write(f"f {a} {b} {c}\nf {a} {c} {d}\n")
-
-
 def main():
     parser = argparse.ArgumentParser(description=__doc__)
     parser.add_argument("--bend", type=float, default=20.0, help="front-end bend, degrees")
     parser.add_argument("--twist", type=float, default=15.0, help="front-end twist, degrees")
     args = parser.parse_args()
-    lines = [grid_lines(b) for b in BREAKS]
-    vertices, quads = boundary(lines, solid_cells(lines))
+    lines = [grid_lines(b, SPACING) for b in BREAKS]
+    vertices, quads = boundary(lines, solid_cells(lines, is_solid))
     write_obj("robot.obj", vertices, quads, "fibermold walking robot: 42 mm body with four legs")
     write_obj("bend.obj", [bend(v, args.bend) for v in vertices], quads, f"walking robot bent {args.bend} degrees")
     write_obj("twist.obj", [twist(v, args.twist) for v in vertices], quads, f"walking robot twisted {args.twist} degrees")
