@@ -15,6 +15,7 @@
 #include "optimize/tracking_curve.hpp"
 #include "sim/external_forces.hpp"
 #include "sim/fem_basis.hpp"
+#include "stages/target_poses.hpp"
 
 namespace fibermold {
 
@@ -84,6 +85,19 @@ void require_regions_reach_the_body(const Design& d, const SurfaceMesh& surface)
       const std::string key = fmt::format("[target.{}].pose[{}]", t.name, i + 1);
       require(t.poses[i].region, key, "the region selects");
       const std::vector<bool> moved = selected(t.poses[i].region);
+      std::vector<Eigen::Index> rows;
+      for (std::size_t v = 0; v < moved.size(); ++v)
+        if (moved[v]) rows.push_back(static_cast<Eigen::Index>(v));
+      require_plausible_pose(d, key, t.poses[i], surface.vertices(rows, Eigen::all), surface.vertices);
+      for (std::size_t j = 0; j < i; ++j) {
+        const std::vector<bool> other = selected(t.poses[j].region);
+        int shared = 0;
+        for (std::size_t v = 0; v < moved.size(); ++v) shared += moved[v] && other[v];
+        if (shared > 0)
+          bad(d, key, fmt::format("the region shares {} surface vertices with [target.{}].pose[{}]: a node cannot be held in two "
+                                  "places; shrink one of them",
+                                  shared, t.name, j + 1));
+      }
       for (const FixedRegion& f : d.fixed) {
         const std::vector<bool> held = selected(f.region);
         int shared = 0;

@@ -27,7 +27,11 @@ std::vector<PosedRegion> target_poses(const Design& d, const Target& t, const Te
     if (r.nodes.empty()) {
       const Eigen::Vector3d lo = mesh.nodes.colwise().minCoeff(), hi = mesh.nodes.colwise().maxCoeff();
       throw InputError(design_problem(
-          d, r.key, fmt::format("the region selects no node of the mesh, which spans {} to {}", format_mm(lo), format_mm(hi))));
+          d, r.key,
+          p.region.box ? fmt::format("the box {} to {} selects no node of the mesh, which spans {} to {}: widen it to at least the "
+                                     "mesh's edge length, or give vertices = [...]",
+                                     format_mm((*p.region.box)[0]), format_mm((*p.region.box)[1]), format_mm(lo), format_mm(hi))
+                       : fmt::format("the region selects no node of the mesh, which spans {} to {}", format_mm(lo), format_mm(hi))));
     }
     int shared = 0, with = -1;
     for (int n : r.nodes)
@@ -50,9 +54,27 @@ std::vector<PosedRegion> target_poses(const Design& d, const Target& t, const Te
       for (int n : r.nodes) r.about += mesh.nodes.row(n).transpose();
       r.about /= static_cast<double>(r.nodes.size());
     }
+    require_plausible_pose(d, r.key, p, mesh.nodes(r.nodes, Eigen::all), mesh.nodes);
     out.push_back(std::move(r));
   }
   return out;
+}
+
+void require_plausible_pose(const Design& d, const std::string& key, const Pose& p, const Eigen::MatrixX3d& region,
+                            const Eigen::MatrixX3d& body)
+{
+  if (region.rows() == 0) return;
+  const Eigen::Vector3d about = p.about ? *p.about : Eigen::Vector3d(region.colwise().mean().transpose());
+  const RigidMotion m = rotation_about(p.axis, p.angle, about, p.translation);
+  double farthest = 0;
+  for (Eigen::Index i = 0; i < region.rows(); ++i)
+    farthest = std::max(farthest, (m.apply(region.row(i).transpose()) - region.row(i).transpose()).norm());
+  const double size = (body.colwise().maxCoeff() - body.colwise().minCoeff()).norm();
+  if (farthest > 2 * size)
+    throw InputError(design_problem(d, key,
+                                    fmt::format("the pose moves the region up to {:.4g} mm, more than twice the body's {:.4g} mm "
+                                                "diagonal: no soft body gets there; check `about` and `translation` (mm)",
+                                                farthest / units::mm, size / units::mm)));
 }
 
 namespace {
@@ -137,7 +159,7 @@ nlohmann::ordered_json pose_report(const ReachedPose& p)
     const Eigen::Vector3d a = p.asked->axis;
     const double reached = p.motion.angle_about(a), angle = p.asked->angle;
     j["asked_rotation_deg"] = angle / units::degree;
-    j["asked_axis"] = {a.x(), a.y(), a.z()};
+    if (angle != 0) j["asked_axis"] = {a.x(), a.y(), a.z()};
     j["rotation_about_asked_axis_deg"] = reached / units::degree;
     if (angle != 0) j["rotation_reached_percent"] = 100 * reached / angle;
     j["asked_translation_mm"] = mm(p.asked->at(1).apply(p.rest) - p.rest);

@@ -32,6 +32,11 @@ struct PosedRegion {
 /// nodes with a [[fixed]] region or another pose (a node cannot be held in two places).
 std::vector<PosedRegion> target_poses(const Design& d, const Target& t, const TetMesh& mesh);
 
+/// Refuses a pose that moves a point of its region (rows, m) more than twice the diagonal of the
+/// body (rows, m) away: a wrong unit or a misplaced `about`, which no soft body follows.
+void require_plausible_pose(const Design& d, const std::string& key, const Pose& p, const Eigen::MatrixX3d& region,
+                            const Eigen::MatrixX3d& body);
+
 /// Where a region, a point or a tracking curve's end went: its displacement (of the centroid, m)
 /// and its rotation (fitted to the region's nodes, or the material's at a point).
 struct ReachedPose {

@@ -298,6 +298,25 @@ TEST_F(TargetsE2E, CheckRefusesRegionsAndSurfacesTheTargetsStageWouldRefuse)
   EXPECT_EQ(r.exit_code, 2);
   EXPECT_THAT(r.err, ContainsRegex("\\[target.curl\\].pose\\[1\\]: the region shares [0-9]+ surface vertices with \\[fixed.fixed1\\]: "
                                    "a node cannot be held in two places"));
+  // A translation given in metres instead of mm moves the end 3 m: refused, naming the units.
+  design("[[target]]\nname = \"curl\"\nkind = \"pose\"\n"
+         "pose = [{ box = { min = [59, -9, -9], max = [61, 9, 9] }, translation = [0, 3000, 0] }]\n");
+  r = check();
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_THAT(r.err, HasSubstr("[target.curl].pose[1]: the pose moves the region up to 3000 mm, more than twice the body's"));
+  // Two poses that hold the same vertices.
+  design("[[target]]\nname = \"curl\"\nkind = \"pose\"\n"
+         "pose = [{ box = { min = [59, -9, -9], max = [61, 9, 9] }, angle_deg = 10 }, { box = { min = [55, -9, -9], max = [61, 9, 9] }, angle_deg = 5 }]\n");
+  r = check();
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_THAT(r.err, ContainsRegex("\\[target.curl\\].pose\\[2\\]: the region shares [0-9]+ surface vertices with \\[target.curl\\].pose\\[1\\]"));
+  // A box between the nodes of the mesh: found by the targets stage, which names the box and the fix.
+  design("[[target]]\nname = \"curl\"\nkind = \"pose\"\n"
+         "pose = [{ box = { min = [41.1, -9, -9], max = [41.2, 9, 9] }, angle_deg = 10 }]\n");
+  r = make();
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_THAT(r.err, HasSubstr("the box (41.1, -9.0, -9.0) mm to (41.2, 9.0, 9.0) mm selects no node of the mesh"));
+  EXPECT_THAT(r.err, HasSubstr("widen it to at least the mesh's edge length"));
   // And a design with regions on the body passes.
   design("[[target]]\nname = \"curl\"\nkind = \"pose\"\n"
          "pose = [{ box = { min = [59, -9, -9], max = [61, 9, 9] }, axis = [0, 0, 1], angle_deg = 10 }]\n");
