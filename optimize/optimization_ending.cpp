@@ -42,8 +42,10 @@ OptimizationEnding optimization_ending(const RoutingResult& result, const Actuat
     const std::vector<AngleReach> turns = t < angles.size() ? angles[t] : std::vector<AngleReach>{};
     for (const AngleReach& a : turns)
       if (a.asked != 0 && a.reached / a.asked < 1 - kFarFromReached)
-        how_far += fmt::format("{}{} turned {:.1f}° of the {:.1f}° asked ({:.0f} %)", how_far.empty() ? "" : ", ", a.place,
-                               a.reached / units::degree, a.asked / units::degree, 100 * a.reached / a.asked);
+        how_far += fmt::format("{}{} turned {:.1f}° of the {:.1f}° asked ({:.0f} %{})", how_far.empty() ? "" : ", ", a.place,
+                               a.reached / units::degree, a.asked / units::degree, 100 * a.reached / a.asked,
+                               a.reached / a.asked < 0 ? ": the other way; check the sign of the pose's axis against its translation"
+                                                       : "");
     const bool asks_turns = std::any_of(turns.begin(), turns.end(), [](const AngleReach& a) { return a.asked != 0; });
     if (!asks_turns && before[t].rmse > 0 && after[t].rmse > kFarFromReached * before[t].rmse)
       how_far = fmt::format("{:.0f} % of the way (tracking-curve RMSE {:.2f} → {:.2f} mm)", 100 * r.reached,

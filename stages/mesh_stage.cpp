@@ -152,6 +152,11 @@ void log_treatment(StageContext& ctx, const SurfaceMesh& input, const MeshedSurf
     ctx.log.info("surface: its mean edge is {:.3g} mm, {:.2g}× the edge length: remeshed to it, {} → {} faces ({} sharp edges kept)",
                  mean_edge_length(input) / units::mm, mean_edge_length(input) / edge, input.num_faces(),
                  meshed.surface.num_faces(), meshed.remeshing.sharp_edges);
+  // Kept triangles well under the edge length hold the mesh finer than asked (auto remeshes below 0.5×).
+  if (meshed.treatment == SurfaceTriangles::keep && mean_edge_length(input) < 0.75 * edge)
+    ctx.log.warn("surface: its triangles are kept and their mean edge, {:.3g} mm, is {:.2g}× the edge length: the mesh comes out "
+                 "finer than asked (slower, not less accurate); surface_triangles = \"remesh\" coarsens it to [mesh] edge_length",
+                 mean_edge_length(input) / units::mm, mean_edge_length(input) / edge);
 }
 
 /// A remeshing that moved the surface by more than kFeatureLoss × the edge length somewhere: a

@@ -122,6 +122,22 @@ TEST_F(MeshStageE2E, KeepingLargeTrianglesIsWarnedAbout)
   EXPECT_LT(report["tets"].get<int>(), 50);
 }
 
+/// A surface whose triangles are kept though they are well under the edge length (a 3 mm grid
+/// asked for 5.5 mm edges: 0.64×, above auto's 0.5× remeshing threshold) holds the mesh finer
+/// than asked; the stage says so and how to coarsen it.
+TEST_F(MeshStageE2E, KeptTrianglesFinerThanTheEdgeLengthAreWarnedAbout)
+{
+  write_stl(dir_ / "box.stl", test::box({0, 0, 0}, {0.06, 0.012, 0.012}, Eigen::Vector3i(20, 4, 4)));
+  design("box.stl", "edge_length = 5.5");
+  const auto r = make();
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const auto report = nlohmann::json::parse(test::read_text(dir_ / "build" / "mesh" / "report.json"))["mesh"];
+  ASSERT_EQ(report["surface_triangles"]["treatment"], "keep");
+  EXPECT_LT(report["mean_edge_length_mm"].get<double>(), 0.8 * 5.5);
+  EXPECT_THAT(r.err, HasSubstr("surface: its triangles are kept and their mean edge"));
+  EXPECT_THAT(r.err, HasSubstr("surface_triangles = \"remesh\" coarsens it"));
+}
+
 TEST_F(MeshStageE2E, EditingMeshOptionsRerunsTheStage)
 {
   write_stl(dir_ / "box.stl", box_);

@@ -36,6 +36,10 @@ TEST(OptimizationEnding, APoseTargetIsJudgedByItsTurnNotItsTrackingCurves)
   const OptimizationEnding far = ending(230e3, 4.9e-3, 1e-3, {{"pose[1]", 60 * kDeg, 38 * kDeg}});
   ASSERT_EQ(far.warnings.size(), 1u);
   EXPECT_THAT(far.warnings[0], HasSubstr("target curl is far from reached: pose[1] turned 38.0° of the 60.0° asked (63 %)"));
+  // A turn the other way says what to check.
+  const OptimizationEnding back = ending(230e3, 4.9e-3, 1e-3, {{"pose[1]", 45 * kDeg, -28.7 * kDeg}});
+  ASSERT_EQ(back.warnings.size(), 1u);
+  EXPECT_THAT(back.warnings[0], HasSubstr("pose[1] turned -28.7° of the 45.0° asked (-64 %: the other way; check the sign of the pose's axis"));
   // Two regions short of their turns are both named.
   const OptimizationEnding two = ending(230e3, 4.9e-3, 1e-3, {{"pose[1]", 60 * kDeg, 30 * kDeg}, {"pose[2]", -40 * kDeg, -10 * kDeg}});
   ASSERT_EQ(two.warnings.size(), 1u);
