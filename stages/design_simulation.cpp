@@ -72,11 +72,17 @@ void require_regions_reach_the_body(const Design& d, const SurfaceMesh& surface)
     std::vector<bool> in(static_cast<std::size_t>(surface.num_vertices()), false);
     for (int v : r.vertices) in[static_cast<std::size_t>(v)] = true;
     if (r.box)
-      for (Eigen::Index v = 0; v < surface.num_vertices(); ++v)
-        if ((surface.vertices.row(v).transpose().array() >= (*r.box)[0].array()).all() &&
-            (surface.vertices.row(v).transpose().array() <= (*r.box)[1].array()).all())
-          in[static_cast<std::size_t>(v)] = true;
+      for (int v : nodes_in_box(surface.vertices, (*r.box)[0], (*r.box)[1])) in[static_cast<std::size_t>(v)] = true;
     return in;
+  };
+  // A pose's vertices held by another region too: refused, naming it.
+  const auto refuse_shared = [&](const std::string& key, const std::vector<bool>& moved, const Region& other, const std::string& name) {
+    const std::vector<bool> held = selected(other);
+    int shared = 0;
+    for (std::size_t v = 0; v < moved.size(); ++v) shared += moved[v] && held[v];
+    if (shared > 0)
+      bad(d, key, fmt::format("the region shares {} surface vertices with {}: a node cannot be held in two places; shrink one of them",
+                              shared, name));
   };
   for (const Target& t : d.targets) {
     for (std::size_t i = 0; i < t.loads.size(); ++i)
@@ -89,24 +95,9 @@ void require_regions_reach_the_body(const Design& d, const SurfaceMesh& surface)
       for (std::size_t v = 0; v < moved.size(); ++v)
         if (moved[v]) rows.push_back(static_cast<Eigen::Index>(v));
       require_plausible_pose(d, key, t.poses[i], surface.vertices(rows, Eigen::all), surface.vertices);
-      for (std::size_t j = 0; j < i; ++j) {
-        const std::vector<bool> other = selected(t.poses[j].region);
-        int shared = 0;
-        for (std::size_t v = 0; v < moved.size(); ++v) shared += moved[v] && other[v];
-        if (shared > 0)
-          bad(d, key, fmt::format("the region shares {} surface vertices with [target.{}].pose[{}]: a node cannot be held in two "
-                                  "places; shrink one of them",
-                                  shared, t.name, j + 1));
-      }
-      for (const FixedRegion& f : d.fixed) {
-        const std::vector<bool> held = selected(f.region);
-        int shared = 0;
-        for (std::size_t v = 0; v < moved.size(); ++v) shared += moved[v] && held[v];
-        if (shared > 0)
-          bad(d, key, fmt::format("the region shares {} surface vertices with [fixed.{}]: a node cannot be held in two places; shrink "
-                                  "one of them",
-                                  shared, f.name));
-      }
+      for (std::size_t j = 0; j < i; ++j)
+        refuse_shared(key, moved, t.poses[j].region, fmt::format("[target.{}].pose[{}]", t.name, j + 1));
+      for (const FixedRegion& f : d.fixed) refuse_shared(key, moved, f.region, fmt::format("[fixed.{}]", f.name));
     }
   }
 }
