@@ -71,6 +71,7 @@ struct FixedRegion {
 struct MuscleOptions {
   MuscleParameters model;             ///< diameter and the fitted coefficients (defaults: the paper's)
   double max_pressure = RoutingSettings{}.max_pressure;                ///< Pa
+  double min_bend_radius = kBendRadiusPerDiameter * MuscleParameters{}.diameter;  ///< m (the file's default scales with diameter)
   double segments_per_length = RoutingSettings{}.segments_per_length;  ///< segments per m (0.5 per mm)
 };
 

@@ -591,6 +591,7 @@ MuscleOptions read_muscle(Section s)
   MuscleOptions o;
   o.model.diameter = s.number("diameter", o.model.diameter / units::mm, closed(0.1, 100), kMm);
   o.max_pressure = s.number("max_pressure", o.max_pressure / units::kPa, closed(0.1, 1e4), kKPa);
+  o.min_bend_radius = s.number("min_bend_radius", kBendRadiusPerDiameter * o.model.diameter / units::mm, closed(0, 1e4), kMm);
   o.segments_per_length = s.number("segments_per_mm", o.segments_per_length * units::mm, closed(0.01, 10)) / units::mm;
   auto line = [&](std::string_view key, TwoPieceLine fallback) {
     std::array<double, 4> c{fallback.slope_low, fallback.intercept_low, fallback.slope_high, fallback.intercept_high};

@@ -46,6 +46,7 @@ const std::vector<Part>& parts()
       FIBERMOLD_PART("fixed", fixed),
       FIBERMOLD_PART("muscle.diameter", muscle.model.diameter),
       FIBERMOLD_PART("muscle.max_pressure", muscle.max_pressure),
+      FIBERMOLD_PART("muscle.min_bend_radius", muscle.min_bend_radius),
       FIBERMOLD_PART("muscle.segments_per_mm", muscle.segments_per_length),
       FIBERMOLD_PART("muscle.stiffness", muscle.model.stiffness),
       FIBERMOLD_PART("muscle.taut", muscle.model.taut),

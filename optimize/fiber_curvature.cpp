@@ -9,14 +9,6 @@ namespace {
 constexpr double kX[5] = {0.0469100770306680, 0.2307653449471585, 0.5, 0.7692346550528415, 0.9530899229693320};
 constexpr double kW[5] = {0.1184634425280945, 0.2393143352496832, 0.2844444444444444, 0.2393143352496832, 0.1184634425280945};
 
-/// Weights of P_k, T_k, P_{k+1}, T_{k+1} in p'(u) and p''(u).
-void derivative_weights(double u, double d1[4], double d2[4])
-{
-  const double u2 = u * u;
-  d1[0] = 6 * u2 - 6 * u, d1[1] = 3 * u2 - 4 * u + 1, d1[2] = -6 * u2 + 6 * u, d1[3] = 3 * u2 - 2 * u;
-  d2[0] = 12 * u - 6, d2[1] = 6 * u - 4, d2[2] = -12 * u + 6, d2[3] = 6 * u - 2;
-}
-
 template <typename Visit>
 void for_each_quadrature_point(const HermiteSpline& s, Visit visit)
 {
@@ -25,7 +17,7 @@ void for_each_quadrature_point(const HermiteSpline& s, Visit visit)
   for (int k = 0; k < s.spans(); ++k)
     for (int i = 0; i < 5; ++i) {
       double d1[4], d2[4];
-      derivative_weights(kX[i], d1, d2);
+      hermite_derivative_weights(kX[i], d1, d2);
       const Eigen::Vector3d* c[4] = {&P[k], &T[k], &P[k + 1], &T[k + 1]};
       Eigen::Vector3d a = Eigen::Vector3d::Zero(), b = Eigen::Vector3d::Zero();  // p', p''
       for (int m = 0; m < 4; ++m) {

@@ -65,4 +65,14 @@ RoutingResult optimize_routing(RoutingProblem& problem, Strategy strategy, const
   return out;
 }
 
+RoutingResult optimize_pressures(RoutingProblem& problem, const BfgsOptions& options, const RoutingCallback& on_iteration,
+                                 Progress& progress, const ActuatorMask& actuators)
+{
+  RoutingResult out;
+  out.routing = problem.base();
+  problem.set_free(std::vector<bool>(problem.num_fibers(), false), actuators, std::vector<bool>(problem.num_targets(), true));
+  absorb(out, problem, run(problem, 0, options, on_iteration, progress));
+  return out;
+}
+
 } // namespace fibermold

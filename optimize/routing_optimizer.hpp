@@ -48,4 +48,9 @@ inline std::string_view choice_name(Strategy s) { return name_in(kStrategyNames,
 RoutingResult optimize_routing(RoutingProblem& problem, Strategy strategy, const BfgsOptions& options,
                                const RoutingCallback& on_iteration, Progress& progress, ActuatorMask actuators = {});
 
+/// The first guess's routes at their best pressures: a pressure-only run (the routes held), over
+/// the pressures `actuators` frees. Every optimization is measured against it (docs/optimize.md).
+RoutingResult optimize_pressures(RoutingProblem& problem, const BfgsOptions& options, const RoutingCallback& on_iteration,
+                                 Progress& progress, const ActuatorMask& actuators);
+
 } // namespace fibermold

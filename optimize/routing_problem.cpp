@@ -26,7 +26,7 @@ using Clock = std::chrono::steady_clock;
 double since(Clock::time_point t) { return std::chrono::duration<double>(Clock::now() - t).count(); }
 
 constexpr double kPressureUnit = 10e3;  // Pa per optimizer unit
-constexpr int kSkinSamplesPerSegment = 1;
+constexpr int kSkinSamplesPerSegment = 4;
 } // namespace
 
 SkinBarrier route_skin_barrier(const SurfaceDistance& skin, const RoutingSettings& settings, const Route& route)
@@ -58,6 +58,7 @@ RoutingProblem::RoutingProblem(Simulation& sim, const MuscleModel& model, const 
   }
   if (!fibers_inside(base_))
     throw std::invalid_argument("a fiber of the starting routing leaves the body");
+  if (settings_.min_bend_radius > 0) bend_barrier_.emplace(settings_.min_bend_radius);
   set_free(std::vector<bool>(F, true), Eigen::Matrix<bool, Eigen::Dynamic, Eigen::Dynamic>::Constant(T, F, true),
            std::vector<bool>(T, true));
 }
@@ -91,6 +92,16 @@ void RoutingProblem::set_free(std::vector<bool> routes, Eigen::Matrix<bool, Eige
         pressure_entry_(t, f) = static_cast<int>(entries_.size());
         entries_.push_back({Entry::Pressure, f, t, 0});
       }
+}
+
+int RoutingProblem::bend_violation(const Routing& r, SmallestBend& bend) const
+{
+  if (!(settings_.min_bend_radius > 0)) return -1;
+  for (int f = 0; f < num_fibers(); ++f) {
+    bend = smallest_bend(HermiteSpline(r.routes[f].points, r.routes[f].tangents));
+    if (bend.radius <= settings_.min_bend_radius) return f;
+  }
+  return -1;
 }
 
 int RoutingProblem::skin_violation(const Routing& r, double& distance, Eigen::Vector3d& where) const
@@ -206,9 +217,17 @@ double RoutingProblem::regularizers(const Routing& r, Eigen::VectorXd* gradient,
     terms.curvature += wc * fiber_curvature(s);
     terms.skin += settings_.weight_skin * skin_barriers_[f].value(s);
     if (!std::isfinite(terms.skin)) return HUGE_VAL;
+    Eigen::Vector3d where;  // between the barrier's samples too (a notch's bottom between two)
+    if (skin_barriers_[f].closest_approach(s, where) <= settings_.skin_distance) return HUGE_VAL;
+    if (bend_barrier_) {
+      // The barrier's samples, and between them the spline's exact smallest radius.
+      terms.bend += settings_.weight_bend * bend_barrier_->value(s);
+      if (!std::isfinite(terms.bend) || smallest_bend(s).radius <= settings_.min_bend_radius) return HUGE_VAL;
+    }
     if (gradient) {
       add_fiber_gradient(f, fiber_curvature_gradient(s), wc, -1, *gradient);
       add_fiber_gradient(f, skin_barriers_[f].gradient(s), settings_.weight_skin, -1, *gradient);
+      if (bend_barrier_) add_fiber_gradient(f, bend_barrier_->gradient(s), settings_.weight_bend, -1, *gradient);
     }
   }
   const double pmax = settings_.max_pressure, margin = settings_.pressure_margin;
@@ -231,7 +250,7 @@ double RoutingProblem::regularizers(const Routing& r, Eigen::VectorXd* gradient,
       for (int f = 0; f < num_fibers(); ++f) add_fiber_gradient(f, g[f], weight_clearance_, -1, *gradient);
     }
   }
-  return terms.curvature + terms.skin + terms.pressure + terms.clearance;
+  return terms.curvature + terms.skin + terms.bend + terms.pressure + terms.clearance;
 }
 
 double RoutingProblem::evaluate(const Eigen::VectorXd& z, Eigen::VectorXd* gradient, RoutingTerms* terms_out)
@@ -265,7 +284,7 @@ double RoutingProblem::evaluate(const Eigen::VectorXd& z, Eigen::VectorXd* gradi
     seconds_adjoint_ += since(start);
     for (int f = 0; f < num_fibers(); ++f) add_fiber_gradient(f, by_fiber[f], 1.0, t, g);
   }
-  terms.total = terms.distance + terms.curvature + terms.skin + terms.pressure + terms.clearance;
+  terms.total = terms.distance + terms.curvature + terms.skin + terms.bend + terms.pressure + terms.clearance;
   if (gradient) *gradient = g;
   if (terms_out) *terms_out = terms;
   last_terms_ = terms;

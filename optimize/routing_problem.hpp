@@ -1,22 +1,25 @@
 #pragma once
 // The routing problem of eq. 4: find the fibers' routes s (shared by all targets) and pressures
 // p^t (per target) that bring the body's equilibria x^t(s, p^t) to the targets x̂^t:
-//   min  Σ_t f_dist(x^t, x̂^t) + w_curv Σ_f L_f ∫ κ_f² ds + w_skin Σ_f B_skin(f)
+//   min  Σ_t f_dist(x^t, x̂^t) + w_curv Σ_f L_f ∫ κ_f² ds + w_skin Σ_f B_skin(f) + w_bend Σ_f B_bend(f)
 //        + w_p Σ_{t,f} [b(p/p_max) + b(1 − p/p_max)],
 // with f_dist as in distance_objective.hpp, L_f the fiber's starting length (which makes the
-// curvature term dimensionless), B_skin as in skin_barrier.hpp and b the log barrier acting within
-// `pressure_margin` of either pressure bound. The end points of each route stay fixed. After
+// curvature term dimensionless), B_skin as in skin_barrier.hpp, B_bend as in bend_radius.hpp (the
+// muscle's smallest bend radius) and b the log barrier acting within `pressure_margin` of either
+// pressure bound. The end points of each route stay fixed. After
 // collide, w_clear B_clear (clearance_barrier.hpp) may join, to keep fibers apart.
 //
 // The optimizer sees a flat vector z of the free variables, in mm (points, tangents) and 10 kPa
 // (pressures), so that one unit is a comparable change of the design.
 
+#include <optional>
 #include <string>
 #include <vector>
 
 #include <Eigen/Core>
 
 #include "mesh/surface_distance.hpp"
+#include "optimize/bend_radius.hpp"
 #include "optimize/distance_objective.hpp"
 #include "optimize/skin_barrier.hpp"
 #include "sim/simulation.hpp"
@@ -42,6 +45,8 @@ struct RoutingSettings {
   double skin_distance = 2.5e-3;      ///< d_min of the skin barrier: muscle radius + clearance, m
   double skin_band = 1.5e-3;          ///< w: the barrier acts from d_min to d_min + w, m
   double weight_curvature = 1e-4;
+  double min_bend_radius = 0;         ///< m: the muscle bends no tighter (bend_radius.hpp); 0: no limit
+  double weight_bend = 1;
   double weight_skin = 1;
   double weight_pressure = 1;
   double pressure_margin = 0.02;      ///< of max_pressure
@@ -54,7 +59,7 @@ SkinBarrier route_skin_barrier(const SurfaceDistance& skin, const RoutingSetting
 
 /// The value of each term at a routing.
 struct RoutingTerms {
-  double total = 0, distance = 0, curvature = 0, skin = 0, pressure = 0, clearance = 0;
+  double total = 0, distance = 0, curvature = 0, skin = 0, bend = 0, pressure = 0, clearance = 0;
   std::vector<double> per_target;  ///< f_dist per target (0 for inactive ones)
 };
 
@@ -85,6 +90,8 @@ public:
   /// The first fiber whose samples come closer to the skin than skin_distance (−1: none), its
   /// closest approach (m) and where.
   int skin_violation(const Routing& r, double& distance, Eigen::Vector3d& where) const;
+  /// The first fiber that bends tighter than min_bend_radius anywhere (−1: none), and where.
+  int bend_violation(const Routing& r, SmallestBend& bend) const;
 
   Eigen::Index size() const { return static_cast<Eigen::Index>(entries_.size()); }
   Eigen::VectorXd variables(const Routing& r) const;
@@ -141,6 +148,7 @@ private:
   RoutingSettings settings_;
   std::vector<std::vector<double>> segment_t_;  ///< per fiber, fixed at the start
   std::vector<SkinBarrier> skin_barriers_;
+  std::optional<BendBarrier> bend_barrier_;
   std::vector<double> start_length_;
   std::vector<bool> target_active_;
   std::vector<Entry> entries_;

@@ -1,6 +1,7 @@
 #include "optimize/skin_barrier.hpp"
 
 #include <cmath>
+#include <utility>
 
 #include "optimize/barrier.hpp"
 
@@ -63,16 +64,65 @@ FiberParameterGradient SkinBarrier::gradient(const HermiteSpline& spline) const
   return g;
 }
 
+namespace {
+
+/// Where the spline is within one span: its point, and its distance to the skin (inside positive).
+struct Probe {
+  double t;
+  Eigen::Vector3d p;
+  double d;
+};
+
+/// An upper bound of the arc length between parameters a < b of one span: the length of the cubic
+/// Bézier control polygon of that piece.
+double arc_bound(const HermiteSpline& s, double a, double b)
+{
+  const double h = b - a;
+  const Eigen::Vector3d p0 = s.position(a), p3 = s.position(b);
+  const Eigen::Vector3d p1 = p0 + h / 3 * s.derivative(a), p2 = p3 - h / 3 * s.derivative(b);  // p' is continuous
+  return (p1 - p0).norm() + (p2 - p1).norm() + (p3 - p2).norm();
+}
+
+} // namespace
+
 double SkinBarrier::closest_approach(const HermiteSpline& spline, Eigen::Vector3d& where) const
 {
-  double d = HUGE_VAL;
-  for (double t : t_) {
+  constexpr double kShortest = 1e-6;  // m: a piece this short is as close as its ends
+  if (t_.empty()) return HUGE_VAL;
+  const auto probe = [&](double t) {
     const Eigen::Vector3d p = spline.position(t);
     const auto c = skin_.closest(p);
-    if (const double signed_d = c.inside ? c.distance : -c.distance; signed_d < d) {
-      d = signed_d;
-      where = p;
+    return Probe{t, p, c.inside ? c.distance : -c.distance};
+  };
+  double d = HUGE_VAL;
+  const auto keep = [&](const Probe& q) {
+    if (q.d < d) d = q.d, where = q.p;
+  };
+  // Each piece between consecutive samples, cut at the knots.
+  std::vector<std::pair<Probe, Probe>> pieces;
+  Probe last = probe(t_.front());
+  keep(last);
+  for (std::size_t k = 1; k < t_.size(); ++k) {
+    for (double knot = std::floor(last.t) + 1; knot < t_[k]; knot += 1) {
+      const Probe at_knot = probe(knot);
+      pieces.push_back({last, at_knot});
+      last = at_knot;
     }
+    const Probe next = probe(t_[k]);
+    pieces.push_back({last, next});
+    last = next;
+  }
+  // Branch and bound: a piece whose bound clears d_min (or, once a point within d_min is found,
+  // the closest so far) holds no point that matters.
+  while (!pieces.empty()) {
+    const auto [a, b] = pieces.back();
+    pieces.pop_back();
+    keep(b);
+    const double L = arc_bound(spline, a.t, b.t);
+    if ((a.d + b.d - L) / 2 > std::min(min_, d) || L < kShortest) continue;
+    const Probe m = probe((a.t + b.t) / 2);
+    pieces.push_back({a, m});
+    pieces.push_back({m, b});
   }
   return d;
 }

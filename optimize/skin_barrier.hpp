@@ -7,6 +7,12 @@
 // Samples sit at fixed spline parameters, so p_k is linear in the control points and tangents.
 // Samples near an end point that lies within d_min + w of the skin are left out: the fiber leaves
 // the body there by design.
+// Between samples the spline is held to d_min exactly (closest_approach): the distance to the skin
+// is 1-Lipschitz, so on a piece of arc length ≤ L between points at distances d_a and d_b every
+// point is at least (d_a + d_b − L)/2 from the skin; L is bounded by the piece's Bézier control
+// polygon. Pieces that bound cannot clear d_min are halved until one of their points is found
+// closer than d_min or they are shorter than a micrometre. A route through a notch, whose bottom
+// lies between two samples, is caught there.
 
 #include <vector>
 
@@ -29,7 +35,9 @@ public:
   double value(const HermiteSpline& spline) const;
   /// ∂B/∂(points, tangents); the pressure entry is 0. Zero where B is +∞.
   FiberParameterGradient gradient(const HermiteSpline& spline) const;
-  /// The smallest distance of a sample to the skin (m), negative when outside, and where.
+  /// The smallest distance to the skin (m) of the spline between its first and last sample,
+  /// negative when outside, and where: exact (to a micrometre of arc) where it is d_min or less;
+  /// above d_min, the smallest of the samples and of the points probed between them.
   double closest_approach(const HermiteSpline& spline, Eigen::Vector3d& where) const;
 
 private:

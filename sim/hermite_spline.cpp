@@ -33,6 +33,13 @@ void HermiteSpline::weights(double t, int& span, double w[4]) const
   w[3] = u3 - u2;              // h11
 }
 
+void hermite_derivative_weights(double u, double d1[4], double d2[4])
+{
+  const double u2 = u * u;
+  d1[0] = 6 * u2 - 6 * u, d1[1] = 3 * u2 - 4 * u + 1, d1[2] = -6 * u2 + 6 * u, d1[3] = 3 * u2 - 2 * u;
+  d2[0] = 12 * u - 6, d2[1] = 6 * u - 4, d2[2] = -12 * u + 6, d2[3] = 6 * u - 2;
+}
+
 Eigen::Vector3d HermiteSpline::position(double t) const
 {
   int k;
@@ -44,9 +51,9 @@ Eigen::Vector3d HermiteSpline::position(double t) const
 Eigen::Vector3d HermiteSpline::derivative(double t) const
 {
   const int k = std::clamp(static_cast<int>(std::floor(t)), 0, spans() - 1);
-  const double u = t - k, u2 = u * u;
-  return (6 * u2 - 6 * u) * points_[k] + (3 * u2 - 4 * u + 1) * tangents_[k] + (-6 * u2 + 6 * u) * points_[k + 1] +
-         (3 * u2 - 2 * u) * tangents_[k + 1];
+  double d1[4], d2[4];
+  hermite_derivative_weights(t - k, d1, d2);
+  return d1[0] * points_[k] + d1[1] * tangents_[k] + d1[2] * points_[k + 1] + d1[3] * tangents_[k + 1];
 }
 
 double HermiteSpline::span_length(int k) const

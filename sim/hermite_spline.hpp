@@ -32,6 +32,9 @@ private:
   std::vector<Eigen::Vector3d> points_, tangents_;
 };
 
+/// The weights of P_k, T_k, P_{k+1}, T_{k+1} in p'(u) and p''(u) at u ∈ [0, 1] of a span.
+void hermite_derivative_weights(double u, double d1[4], double d2[4]);
+
 /// Straight segments along a spline: the endpoints' parameters, spread over the spans in
 /// proportion to their lengths, `count` segments in all (at least one per span).
 struct FiberSegments {

@@ -216,6 +216,13 @@ void CollideStage::run(StageContext& ctx) const
       ctx.log.warn("[collide] reoptimize: the routing was not optimized, so it is not optimized again");
     ctx.log.info("the routing was not optimized: nothing to compare against the targets");
   }
+  // Moving fibers apart can bend them: the molds would refuse a route under the muscle's radius.
+  try {
+    require_bend_radius(d, out.routing.routes, "the route as collide left it");
+  } catch (const InputError& e) {
+    throw std::runtime_error(e.diagnostics().front().message + "; or raise [collide] smoothness, which spreads a move along the fiber");
+  }
+  report["bends"] = bends_json(out.routing.routes);
   report["moves_mm"] = moves_json(fibers.routing.routes, out.routing.routes);
   write_file_atomic(ctx.output_dir / "fibers.json", fibers_json(out));
   write_json_atomic(ctx.output_dir / "report.json", report);

@@ -21,6 +21,7 @@
 #include "stages/optimize_stage.hpp"
 #include "stages/targets_stage.hpp"
 #include "stages/design_simulation.hpp"
+#include "stages/routing_evaluation.hpp"
 
 namespace fibermold {
 
@@ -253,6 +254,7 @@ SurfaceCheck check_design_surface(const Design& design, std::vector<std::string>
   require_mold_grids(design, surface, fibers);
   // The fibers against the skin the optimizer will see: the mesh's (remeshed, when it is).
   require_optimizable(design, SurfaceDistance(meshed.surface.vertices, meshed.surface.faces));
+  require_bend_radius(design, starting_routing(design).routes, "the starting route");
   require_regions_reach_the_body(design, surface);
   for (const Target& t : design.targets)
     if (t.kind == TargetKind::surface) read_target_surface(design, t, surface.num_vertices(), surface.faces);

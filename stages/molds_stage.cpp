@@ -18,6 +18,7 @@
 #include "sim/hermite_spline.hpp"
 #include "stages/design_simulation.hpp"
 #include "stages/fibers_file.hpp"
+#include "stages/routing_evaluation.hpp"
 #include "stages/skin_distance.hpp"
 
 namespace fibermold {
@@ -198,6 +199,7 @@ void MoldsStage::run(StageContext& ctx) const
   // it is; the cast's own silicone, on the body as given, is the thickness check's).
   const SurfaceDistance skin(mesh.nodes, mesh.boundary_faces);
   const std::vector<Route> routes = read_fibers_json(ctx.upstream("collide", "fibers.json")).routing.routes;
+  require_bend_radius(d, routes, "the route as collide left it");
   for (const Route& r : routes) job.fibers.push_back(mold_fiber(r, mold_line_step(m)));
   require_mold_grids(d, job.body, require_grooves_fit(d, skin, routes));
 

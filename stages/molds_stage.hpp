@@ -28,10 +28,10 @@ public:
   std::vector<std::string> upstream() const override { return {"mesh", "collide"}; }
   std::vector<std::string> design_keys() const override
   {
-    return {"design.units", "material.density", "muscle.diameter", "collide.clearance", "mold", "export.min_wall",
-            "export.printer_volume"};
+    return {"design.units", "material.density", "muscle.diameter", "muscle.min_bend_radius", "collide.clearance", "mold",
+            "export.min_wall", "export.printer_volume"};
   }
-  int version() const override { return 4; }  ///< 2: sprues and vents from the fill simulation, its report, the silicone's thickness; 3: a remeshed body molded as given; 4: the groove rule shared (skin_distance.hpp), 10 µm of placement tolerance
+  int version() const override { return 5; }  ///< 2: sprues and vents from the fill simulation, its report, the silicone's thickness; 3: a remeshed body molded as given; 4: the groove rule shared (skin_distance.hpp), 10 µm of placement tolerance; 5: routes under [muscle] min_bend_radius refused
   void run(StageContext& ctx) const override;
 };
 

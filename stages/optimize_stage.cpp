@@ -29,6 +29,8 @@ namespace fs = std::filesystem;
 namespace {
 
 using Clock = std::chrono::steady_clock;
+/// Iterations of the pressure-only run at most: a few variables, each a pressure.
+constexpr int kBaselineIterations = 50;
 double since(Clock::time_point t) { return std::chrono::duration<double>(Clock::now() - t).count(); }
 
 [[noreturn]] void bad(const Design& d, const std::string& key, const std::string& message)
@@ -65,14 +67,14 @@ class History {
 public:
   explicit History(const std::vector<std::string>& targets)
   {
-    text_ = "iteration,stage,objective,distance,curvature,skin_barrier,pressure_barrier,clearance_barrier";
+    text_ = "iteration,stage,objective,distance,curvature,skin_barrier,bend_barrier,pressure_barrier,clearance_barrier";
     for (const std::string& t : targets) text_ += ",distance_" + t;
     text_ += ",gradient_norm,step,evaluations,seconds\n";
   }
   void add(int iteration, int stage, const BfgsIteration& it, const RoutingTerms& terms, double seconds)
   {
-    text_ += fmt::format("{},{},{:.9g},{:.9g},{:.9g},{:.9g},{:.9g},{:.9g}", iteration, stage + 1, terms.total,
-                         terms.distance, terms.curvature, terms.skin, terms.pressure, terms.clearance);
+    text_ += fmt::format("{},{},{:.9g},{:.9g},{:.9g},{:.9g},{:.9g},{:.9g},{:.9g}", iteration, stage + 1, terms.total,
+                         terms.distance, terms.curvature, terms.skin, terms.bend, terms.pressure, terms.clearance);
     for (double v : terms.per_target) text_ += fmt::format(",{:.9g}", v);
     text_ += fmt::format(",{:.6g},{:.6g},{},{:.3f}\n", it.gradient_norm, it.step, it.evaluations, seconds);
   }
@@ -104,6 +106,66 @@ RoutingResult optimize(const Design& d, RoutingProblem& problem, const BfgsOptio
   both.iterations += routes.iterations;
   both.evaluations += routes.evaluations;
   return both;
+}
+
+/// The first guess's routes at their best pressures (a pressure-only run): the baseline every
+/// optimization reports beside its own result and must beat or equal.
+struct Baseline {
+  RoutingResult result;
+  nlohmann::ordered_json json;  ///< {objective, iterations, targets: {name: {rmse_mm, max_error_mm, pressure_kPa}}}
+};
+Baseline first_guess_at_best_pressures(StageContext& ctx, DesignRouting& dr, const BfgsOptions& o, const Routing& start)
+{
+  RoutingProblem& problem = *dr.problem;
+  BfgsOptions pressures_only = o;
+  pressures_only.max_iterations = std::min(o.max_iterations, kBaselineIterations);
+  const RoutingCallback log = [&](int, const BfgsIteration& it, const RoutingTerms& terms) {
+    ctx.log.info("first guess, pressures only, iteration {}: objective {:.4g} (distance {:.4g})", it.iteration, terms.total,
+                 terms.distance);
+  };
+  Baseline b{optimize_pressures(problem, pressures_only, log, ctx.progress, actuator_mask(ctx.design)), {}};
+  problem.set_base(start);
+  if (b.result.interrupted) return b;
+  nlohmann::ordered_json targets = nlohmann::ordered_json::object();
+  for (int t = 0; t < problem.num_targets(); ++t) {
+    const TargetErrors e = target_errors(problem, dr.mesh, t, problem.equilibrium(b.result.routing, t));
+    nlohmann::ordered_json pressures = nlohmann::ordered_json::object();
+    for (int f = 0; f < problem.num_fibers(); ++f)
+      pressures[b.result.routing.routes[f].name] = b.result.routing.pressures(t, f) / units::kPa;
+    targets[dr.target_names[t]] = {{"rmse_mm", e.rmse / units::mm}, {"max_error_mm", e.max / units::mm}, {"pressure_kPa", pressures}};
+    ctx.log.info("target {}: the first guess at its best pressures: RMSE {:.3f} mm, max {:.3f} mm", dr.target_names[t],
+                 e.rmse / units::mm, e.max / units::mm);
+  }
+  b.json = {{"objective", b.result.value}, {"iterations", b.result.iterations}, {"termination", choice_name(b.result.termination)},
+            {"targets", targets}};
+  return b;
+}
+
+/// Never worse than the first guess at its best pressures: where the optimizer ended higher, the
+/// first guess becomes the result. The warning that says so, or empty.
+std::string keep_the_better(StageContext& ctx, const Baseline& baseline, RoutingResult& result)
+{
+  if (result.interrupted || !(baseline.result.value < result.value)) return {};
+  const std::string warning = fmt::format(
+      "the optimizer ended at an objective of {:.4g}, above the first guess's at its best pressures ({:.4g}): the first guess is "
+      "kept; start the routes elsewhere or raise [optimize] max_iterations",
+      result.value, baseline.result.value);
+  ctx.log.warn("{}", warning);
+  result.routing = baseline.result.routing;
+  result.value = baseline.result.value;
+  return warning;
+}
+
+/// The Newton solves' counts and times.
+nlohmann::ordered_json newton_json(RoutingProblem& problem)
+{
+  const NewtonTotals& n = problem.newton();
+  return {{"solves", n.solves},
+          {"assemblies", n.assemblies},
+          {"factorizations", n.factorizations},
+          {"symbolic_analyses", problem.simulation().symbolic_analyses()},
+          {"seconds_assembly", n.seconds_assembly},
+          {"seconds_factorization", n.seconds_factorization}};
 }
 
 /// Target t's entry in report.json, with its deformed state written: the errors at equilibrium x
@@ -308,6 +370,7 @@ void OptimizeStage::run(StageContext& ctx) const
   const Design& d = ctx.design;
   const auto started = Clock::now();
   const std::vector<std::string> names = target_names(d);
+  require_bend_radius(d, starting_routing(d).routes, "the starting route");
   if (!d.optimize.enabled) {
     write_file_atomic(ctx.output_dir / "fibers.json", fibers_json({starting_routing(d), names, false}));
     write_json_atomic(ctx.output_dir / "report.json", nlohmann::ordered_json{{"optimized", false}});
@@ -335,6 +398,7 @@ void OptimizeStage::run(StageContext& ctx) const
                  before[t].rmse / units::mm, before[t].max / units::mm);
 
   const BfgsOptions o = bfgs_options(d);
+  const Baseline baseline = first_guess_at_best_pressures(ctx, dr, o, start);
   History history(names);
   int iterations = 0;
   const int stages = d.optimize.strategy == Strategy::sequential ? static_cast<int>(d.fibers.size()) : 1;
@@ -353,7 +417,8 @@ void OptimizeStage::run(StageContext& ctx) const
     ctx.progress.update(done / budget, what);
     ctx.log.info("{}", what);
   };
-  const RoutingResult result = optimize(d, problem, o, on_iteration, ctx.progress);
+  RoutingResult result = baseline.result.interrupted ? baseline.result : optimize(d, problem, o, on_iteration, ctx.progress);
+  const std::string kept_first_guess = keep_the_better(ctx, baseline, result);
   const FibersFile fibers{result.routing, names, true};
 
   if (result.interrupted) {
@@ -361,8 +426,8 @@ void OptimizeStage::run(StageContext& ctx) const
     fs::create_directories(kept);
     write_file_atomic(kept / "fibers.json", fibers_json(fibers));
     write_file_atomic(kept / "history.csv", history.text());
-    ctx.log.warn("interrupted after {} iterations; the best design so far (objective {:.4g}) is in {}", iterations,
-                 result.value, kept.string());
+    ctx.log.warn("interrupted after {} iterations; the best design so far (objective {:.4g}) is in {}",
+                 baseline.result.iterations + iterations, result.value, kept.string());
     throw Interrupted();
   }
   ctx.log.info("{}: {} after {} iterations, {} evaluations", choice_name(result.termination), result.message, result.iterations,
@@ -370,6 +435,7 @@ void OptimizeStage::run(StageContext& ctx) const
 
   nlohmann::ordered_json per_target = nlohmann::ordered_json::object();
   OptimizationEnding ending = report_targets(ctx, dr, result, before, per_target);
+  if (!kept_first_guess.empty()) ending.warnings.push_back(kept_first_guess);
   if (d.optimize.refine) report_refinement(ctx, dr, result.routing, per_target, ending.warnings);
   const nlohmann::ordered_json report{
       {"optimized", true},
@@ -379,17 +445,15 @@ void OptimizeStage::run(StageContext& ctx) const
       {"message", result.message},
       {"warnings", ending.warnings},
       {"fibers_kept_apart", kept_apart},
+      {"first_guess", baseline.json},
+      {"kept", kept_first_guess.empty() ? "optimized" : "first guess"},
+      {"min_bend_radius_mm", d.muscle.min_bend_radius / units::mm},
+      {"bends", {{"start", bends_json(start.routes)}, {"end", bends_json(result.routing.routes)}}},
       {"iterations", result.iterations},
       {"evaluations", result.evaluations},
       {"objective", result.value},
       {"newton_iterations", problem.newton().iterations},
-      {"newton",
-       {{"solves", problem.newton().solves},
-        {"assemblies", problem.newton().assemblies},
-        {"factorizations", problem.newton().factorizations},
-        {"symbolic_analyses", problem.simulation().symbolic_analyses()},
-        {"seconds_assembly", problem.newton().seconds_assembly},
-        {"seconds_factorization", problem.newton().seconds_factorization}}},
+      {"newton", newton_json(problem)},
       {"seconds", {{"total", since(started)}, {"simulation", problem.seconds_simulation()}, {"adjoint", problem.seconds_adjoint()}}},
       {"targets", per_target}};
   write_file_atomic(ctx.output_dir / "fibers.json", fibers_json(fibers));

@@ -47,6 +47,39 @@ RoutingProblem& DesignRouting::start(const Routing& routing)
   return *problem;
 }
 
+void require_bend_radius(const Design& d, const std::vector<Route>& routes, std::string_view whose)
+{
+  const double limit = d.muscle.min_bend_radius;
+  if (!(limit > 0)) return;
+  for (const Route& r : routes) {
+    const SmallestBend b = smallest_bend(HermiteSpline(r.points, r.tangents));
+    if (b.radius > limit) continue;
+    throw InputError(design_problem(
+        d, fmt::format("[fiber.{}]", r.name),
+        fmt::format("{} bends with a radius of {:.2f} mm at {}, {:.1f} mm along it, tighter than [muscle] min_bend_radius = {:g} mm "
+                    "(short by {:.2f} mm): spread its control points or straighten its tangents there, or lower min_bend_radius "
+                    "if the muscle takes a tighter bend",
+                    whose, b.radius / units::mm, format_mm(b.where), b.arc_length / units::mm, limit / units::mm,
+                    (limit - b.radius) / units::mm)));
+  }
+}
+
+nlohmann::ordered_json bends_json(const std::vector<Route>& routes)
+{
+  nlohmann::ordered_json out = nlohmann::ordered_json::object();
+  for (const Route& r : routes) {
+    const SmallestBend b = smallest_bend(HermiteSpline(r.points, r.tangents));
+    nlohmann::ordered_json e = nlohmann::ordered_json::object();
+    if (std::isfinite(b.radius)) {
+      e["min_bend_radius_mm"] = b.radius / units::mm;
+      e["at_mm"] = {b.where.x() / units::mm, b.where.y() / units::mm, b.where.z() / units::mm};
+      e["along_mm"] = b.arc_length / units::mm;
+    }
+    out[r.name] = e;
+  }
+  return out;
+}
+
 RoutingSettings routing_settings(const Design& d)
 {
   RoutingSettings s;
@@ -55,6 +88,7 @@ RoutingSettings routing_settings(const Design& d)
   s.skin_distance = skin_distance(d).distance;
   s.skin_band = d.muscle.model.diameter / 2;
   s.weight_curvature = d.optimize.weight_curvature;
+  s.min_bend_radius = d.muscle.min_bend_radius;
   s.weight_skin = d.optimize.weight_skin_barrier;
   s.weight_pressure = d.optimize.weight_pressure_barrier;
   return s;

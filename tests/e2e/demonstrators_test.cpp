@@ -207,11 +207,14 @@ TEST(Demonstrators, WalkingRobotMusclesAreOptimizedMovedApartAndMolded)
     std::printf("walking robot %s: tracking RMSE %.2f → %.2f mm optimized, %.2f mm after collide\n", target,
                 t["start"]["rmse_mm"].get<double>(), c["before"]["rmse_mm"].get<double>(),
                 c["after"]["rmse_mm"].get<double>());
-    // Measured (30 iterations): bend 7.27 → 4.87 mm, twist 5.27 → 4.15 mm; the full example's 300
-    // reach 0.56 and 1.25 mm (docs/collide.md).
-    EXPECT_LT(c["before"]["rmse_mm"].get<double>(), t["start"]["rmse_mm"].get<double>() * 0.85) << target;
+    // Measured (30 iterations): bend 7.28 → 6.71 mm, twist 5.33 → 1.25 mm: 30 iterations do not beat
+    // the first guess at its best pressures (the bend muscle on, the twist pair off), which is kept;
+    // until session 21 they ended at bend 4.87, twist 4.15 mm, a higher objective. The full
+    // example's 300 reach 0.56 and 1.25 mm (docs/collide.md).
+    EXPECT_LT(c["before"]["rmse_mm"].get<double>(), t["start"]["rmse_mm"].get<double>() * 0.95) << target;
     EXPECT_EQ(c["after"]["rmse_mm"].get<double>(), c["before"]["rmse_mm"].get<double>()) << target;
   }
+  EXPECT_LE(report["objective"].get<double>(), report["first_guess"]["objective"].get<double>());
   EXPECT_TRUE(report["fibers_kept_apart"].get<bool>());
   EXPECT_FALSE(collide["changed"].get<bool>());
   EXPECT_GE(collide["smallest_clearance_mm"]["before"].get<double>(), 1.0 - 1e-3);

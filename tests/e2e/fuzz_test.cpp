@@ -56,9 +56,11 @@ TEST(FuzzE2E, DesignMutantsKeepTheExitCodesAndWriteNoNull)
   const auto mutants = test::design_mutants(kDesign, 240, 28);
   const auto codes = fuzz(mutants, false, 6);
   for (const auto& [code, count] : codes) fmt::print("  {} {}: {}\n", code >= 100 ? "make" : "check", code % 100, count);
-  // The generator is not toothless: it makes both designs check refuses and designs it passes.
+  // The generator is not toothless: it makes both designs check refuses and designs it passes
+  // (24 of 240 pass since [muscle] min_bend_radius: a moved control point of the bar's muscle, whose
+  // tightest bend is 11.4 mm, often bends it under 9 mm; 30 or more passed before).
   EXPECT_GT(codes.count(2) ? codes.at(2) : 0, 60);
-  EXPECT_GT(codes.count(0) ? codes.at(0) : 0, 30);
+  EXPECT_GT(codes.count(0) ? codes.at(0) : 0, 20);
 }
 
 TEST(FuzzE2E, MeshMutantsKeepTheExitCodes)

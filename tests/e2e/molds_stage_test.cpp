@@ -121,8 +121,9 @@ TEST_F(MoldsE2E, AFiberLeavingItsEndFaceAlmostAlongItGetsAChannelSquareToTheFace
   // optimizer left the walking robot's bend fiber like that). Its channel must still run square to
   // the face, along −x: laid along the fiber and then onto the parting plane, it ran diagonally
   // through the body and out of its side, leaving a 0.04 mm wall at (10.1, 8.0, 0) mm.
-  design("", "[[fiber]]\nname = \"m1\"\npoints = [[0, 0, 0], [30, 0, -3], [60, 0, 0]]\n"
-             "tangents = [[-3, -3, -19], [60, 0, 0], [60, 0, 0]]\n");
+  // Its first millimetres bend through a 2.2 mm radius: a thin muscle's, for this test.
+  design("[muscle]\nmin_bend_radius = 2\n", "[[fiber]]\nname = \"m1\"\npoints = [[0, 0, 0], [30, 0, -3], [60, 0, 0]]\n"
+                                            "tangents = [[-3, -3, -19], [60, 0, 0], [60, 0, 0]]\n");
   const auto r = make();
   ASSERT_EQ(r.exit_code, 0) << r.err;
   checked_manifest();

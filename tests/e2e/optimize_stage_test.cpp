@@ -60,12 +60,19 @@ TEST_F(OptimizeE2E, RecoversTheTargetAndWritesItsOutputs)
   EXPECT_EQ(m1["points_mm"][3], nlohmann::json({60.0, 0.0, 0.0}));
   EXPECT_NEAR(m1["pressure_kPa"]["s"].get<double>(), p, 1e-9);
   EXPECT_GT(m1["length_mm"].get<double>(), 60);
+  // The optimized route bends no tighter than the muscle takes (3 diameters: 9 mm), and the report
+  // says where it bends most.
+  EXPECT_EQ(report["min_bend_radius_mm"].get<double>(), 9.0);
+  const auto& bend = report["bends"]["end"]["m1"];
+  EXPECT_GT(bend["min_bend_radius_mm"].get<double>(), 9.0);
+  EXPECT_EQ(bend["at_mm"].size(), 3u);
+  EXPECT_NEAR(report["bends"]["start"]["m1"]["min_bend_radius_mm"].get<double>(), 11.4, 0.1);
 
   // The log follows the run each tenth of the iteration budget (the time left once 2 s have passed:
   // this run is shorter; the demonstrators' test sees it).
   EXPECT_THAT(test::read_text(dir_ / "build" / "logs" / "optimize.log"), ContainsRegex("progress 50 %: iteration 30: objective"));
   const std::string history = test::read_text(dir_ / "build" / "optimize" / "history.csv");
-  EXPECT_THAT(history, HasSubstr("iteration,stage,objective,distance,curvature,skin_barrier,pressure_barrier,clearance_barrier,distance_s,"));
+  EXPECT_THAT(history, HasSubstr("iteration,stage,objective,distance,curvature,skin_barrier,bend_barrier,pressure_barrier,clearance_barrier,distance_s,"));
   EXPECT_EQ(std::count(history.begin(), history.end(), '\n'), report["iterations"].get<int>() + 1);
   EXPECT_TRUE(fs::exists(dir_ / "build" / "optimize" / "deformed-s.vtu"));
 
@@ -110,9 +117,9 @@ TEST_F(OptimizeE2E, ARunThatEndsAtThePressureLimitSaysSo)
 
 /// A pose of a known rotation: a straight muscle 3 mm above the bar's axis at 300 kPa turns the
 /// free end by some θ about y (the targets stage measures it); a pose target asking that turn and
-/// that translation of the end is met by the optimizer, started at 150 kPa, within 1°, and the
-/// report says how much of the turn it reached.
-TEST_F(OptimizeE2E, APoseTargetOfAKnownTurnIsReachedWithinADegree)
+/// that translation of the end is met by the optimizer, started at 150 kPa, better than by the
+/// straight muscle at its best pressure, and the report says how much of the turn it reached.
+TEST_F(OptimizeE2E, APoseTargetOfAKnownTurnIsReachedBetterThanByTheFirstGuess)
 {
   const std::string base = std::string(test::kBarDesign) + test::kBarTrackingCurve +
                            "[[fiber]]\nname = \"m1\"\npoints = [[0, 0, 3], [20, 0, 3], [40, 0, 3], [60, 0, 3]]\n[mold]\nwall = 4.0\n";
@@ -141,7 +148,21 @@ TEST_F(OptimizeE2E, APoseTargetOfAKnownTurnIsReachedWithinADegree)
   std::printf("pose target %.2f°: the optimized robot turns %.2f° (%.1f %%) at %.1f kPa; %s after %d iterations\n", theta, reached,
               pose["rotation_reached_percent"].get<double>(), report["targets"]["turn"]["pressure_kPa"]["m1"].get<double>(),
               report["termination"].get<std::string>().c_str(), report["iterations"].get<int>());
-  EXPECT_NEAR(reached, theta, 1.0);
+  // The pose's deformation (the end held rigidly) is not the muscle's: the straight muscle at its
+  // best pressure (the first guess, 259 kPa) tracks it with an RMSE of 2.04 mm; the optimizer beats
+  // that, turning the end 29.3° (88 %), within the muscle's 9 mm bend radius. (With bends unlimited it
+  // reached 34.0° through a bend tighter than a 3 mm muscle takes.)
+  const auto& first = report["first_guess"];
+  std::printf("first guess at its best pressure: objective %.4g, RMSE %.3f mm at %.1f kPa; optimized: objective %.4g, RMSE %.3f mm\n",
+              first["objective"].get<double>(), first["targets"]["turn"]["rmse_mm"].get<double>(),
+              first["targets"]["turn"]["pressure_kPa"]["m1"].get<double>(), report["objective"].get<double>(),
+              report["targets"]["turn"]["rmse_mm"].get<double>());
+  EXPECT_LE(report["objective"].get<double>(), first["objective"].get<double>());
+  EXPECT_LT(report["targets"]["turn"]["rmse_mm"].get<double>(), 0.75 * first["targets"]["turn"]["rmse_mm"].get<double>());
+  EXPECT_EQ(report["kept"], "optimized");
+  EXPECT_GT(report["bends"]["end"]["m1"]["min_bend_radius_mm"].get<double>(), 9.0);
+  EXPECT_GT(reached / theta, 0.85);
+  EXPECT_LT(reached / theta, 1.1);
   EXPECT_THAT(test::read_text(dir_ / "build" / "logs" / "optimize.log"), ContainsRegex("target turn: pose\\[1\\] turned -?[0-9.]+° of the"));
 }
 
@@ -218,6 +239,27 @@ TEST_F(OptimizeE2E, AFiberTooNearTheSkinIsRefusedByCheckWithTheFix)
                                          "centre line more than 2\\.500 mm inside \\(\\[muscle\\] diameter/2 = 1\\.5 mm \\+ "
                                          "\\[collide\\] clearance = 1 mm\\): move the route 1\\.000 mm or more inward there"));
   EXPECT_FALSE(fs::exists(dir_ / "build"));
+}
+
+/// A route with a 4 mm bump over 10 mm bends with a 0.49 mm radius: check refuses it against the
+/// default [muscle] min_bend_radius (3 diameters, 9 mm), naming the fiber, the radius and where;
+/// so does the optimize stage with the optimizer off (the molds would cast it); a muscle declared
+/// to bend that tight passes.
+TEST_F(OptimizeE2E, ARouteBentTighterThanTheMuscleTakesIsRefused)
+{
+  std::string text = kDesign;
+  const std::string route = "points = [[0, 0, 0], [20, 3, -3], [40, -3, 2], [60, 0, 0]]";
+  text.replace(text.find(route), route.size(), "points = [[0, 0, 0], [20, 0, 0], [25, 4, 0], [30, 0, 0], [60, 0, 0]]");
+  test::write_text(dir_ / "design.toml", text);
+  const auto checked = test::run_fibermold("check design.toml", dir_.path());
+  EXPECT_EQ(checked.exit_code, 2) << checked.err;
+  EXPECT_THAT(checked.err, ContainsRegex("design.toml:[0-9]+:[0-9]+: \\[fiber.m1\\]: the starting route bends with a radius of 0\\.[0-9]{2} "
+                                         "mm at \\((2[0-9])\\.[0-9], [0-9.]+, 0\\.0\\) mm, [0-9.]+ mm along it, tighter than \\[muscle\\] "
+                                         "min_bend_radius = 9 mm"));
+  test::write_text(dir_ / "design.toml", text + "[optimize]\nenabled = false\n");
+  EXPECT_EQ(make().exit_code, 2);
+  test::write_text(dir_ / "design.toml", text + "[muscle]\nmin_bend_radius = 0.4\n");
+  EXPECT_EQ(test::run_fibermold("check design.toml", dir_.path()).exit_code, 0);
 }
 
 TEST_F(OptimizeE2E, DisabledPassesTheFibersThrough)

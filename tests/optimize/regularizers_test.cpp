@@ -4,6 +4,7 @@
 
 #include "finite_differences.hpp"
 #include "optimize/barrier.hpp"
+#include "optimize/bend_radius.hpp"
 #include "optimize/fiber_curvature.hpp"
 
 namespace fibermold {
@@ -55,6 +56,67 @@ TEST(FiberCurvature, CircleAndStraightLineAndGradient)
   };
   ASSERT_GT(test::stacked({g.points, g.tangents}).cwiseAbs().maxCoeff(), 0);
   EXPECT_TRUE(test::matches_fd(test::stacked({g.points, g.tangents}), test::fd_gradient(curvature, test::stacked({P, T}), 1e-8)));
+}
+
+/// A quarter circle of radius r in the xy-plane, as a two-span Hermite spline.
+HermiteSpline quarter_circle(double r)
+{
+  const double a = r * M_PI / 4;
+  return HermiteSpline({{r, 0, 0}, {r / std::sqrt(2.0), r / std::sqrt(2.0), 0}, {0, r, 0}},
+                       {Eigen::Vector3d(0, a, 0), Eigen::Vector3d(-a, a, 0) / std::sqrt(2.0), Eigen::Vector3d(-a, 0, 0)});
+}
+
+TEST(BendRadius, SmallestBendOfACircleAndALineAndWhere)
+{
+  // The cubic Hermite quarter circle bends within 5 % of its radius everywhere (its tightest:
+  // 19.08 mm), as a scan 100x denser finds too.
+  const SmallestBend arc = smallest_bend(quarter_circle(0.02));
+  EXPECT_NEAR(arc.radius, 0.02, 0.05 * 0.02);
+  EXPECT_NEAR(arc.radius, smallest_bend(quarter_circle(0.02), 6400).radius, 1e-9);
+  EXPECT_NEAR(arc.where.norm(), 0.02, 2e-4);
+  EXPECT_EQ(smallest_bend(HermiteSpline({{0, 0, 0}, {0.05, 0, 0}, {0.1, 0, 0}})).radius, HUGE_VAL);
+
+  // A straight 100 mm route with one control point pulled 8 mm sideways: the tightest bend is at
+  // that point (x = 50 mm); the scan's refinement finds the same radius as a 20x denser scan.
+  const HermiteSpline kink({{0, 0, 0}, {0.025, 0, 0}, {0.05, 0.008, 0}, {0.075, 0, 0}, {0.1, 0, 0}});
+  const SmallestBend coarse = smallest_bend(kink, 8), fine = smallest_bend(kink, 2000);
+  EXPECT_NEAR(coarse.radius, fine.radius, 1e-6 * fine.radius);
+  EXPECT_NEAR(coarse.where.x(), 0.05, 1e-3);
+  EXPECT_NEAR(coarse.arc_length, 0.05 + 0.0013, 0.002);  // half the length, a little more for the bump
+  EXPECT_NEAR(1 / curvature(kink, coarse.t), coarse.radius, 1e-12);
+}
+
+TEST(BendRadius, BarrierIsInfiniteAtTheRadiusAndZeroFarAboveIt)
+{
+  const HermiteSpline arc = quarter_circle(0.02);
+  EXPECT_EQ(BendBarrier(0.017).value(arc), 0);         // 19.1 mm ≥ 1.11 × 17 mm: out of the band
+  EXPECT_GT(BendBarrier(0.018).value(arc), 0);         // 19.1 mm < 1.11 × 18 mm: in the band
+  EXPECT_EQ(BendBarrier(0.0195).value(arc), HUGE_VAL); // tighter than asked
+  // Two control points bunched into a near-cusp (the tangents no longer fit the 0.5 mm between
+  // them): the curve bends through a sub-millimetre radius and the barrier is infinite.
+  const HermiteSpline cusp({{0, 0, 0}, {0.05, 0, 0}, {0.0505, 0, 0}, {0.1, 0, 0}},
+                           {Eigen::Vector3d(0.05, 0, 0), Eigen::Vector3d(0.03, 0.02, 0), Eigen::Vector3d(0.03, -0.02, 0),
+                            Eigen::Vector3d(0.05, 0, 0)});
+  EXPECT_LT(smallest_bend(cusp).radius, 1.5e-3);
+  EXPECT_EQ(BendBarrier(0.009).value(cusp), HUGE_VAL);
+}
+
+TEST(BendRadius, BarrierGradientMatchesFiniteDifferences)
+{
+  const std::vector<Eigen::Vector3d> P{{0, 0, 0}, {0.03, 0.01, 0.002}, {0.06, -0.005, 0.01}, {0.1, 0, 0}};
+  const HermiteSpline s(P);
+  const std::vector<Eigen::Vector3d> T = s.tangents();
+  const double R = 0.95 * smallest_bend(s).radius;  // the tightest bend inside the band
+  const BendBarrier barrier(R);
+  ASSERT_GT(barrier.value(s), 0);
+  ASSERT_LT(barrier.value(s), HUGE_VAL);
+  const FiberParameterGradient g = barrier.gradient(s);
+  const test::ScalarFunction f = [&](const Eigen::VectorXd& v) {
+    const auto lists = test::unstacked(v, {P.size(), T.size()});
+    return barrier.value(HermiteSpline(lists[0], lists[1]));
+  };
+  ASSERT_GT(test::stacked({g.points, g.tangents}).cwiseAbs().maxCoeff(), 0);
+  EXPECT_TRUE(test::matches_fd(test::stacked({g.points, g.tangents}), test::fd_gradient(f, test::stacked({P, T}), 1e-9)));
 }
 
 } // namespace

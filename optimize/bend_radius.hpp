@@ -1,0 +1,59 @@
+#pragma once
+// The bend radius of a fiber's centre line and the barrier that keeps it above the muscle's
+// smallest: the curvature of a space curve p(t),
+//   κ = |p' × p''| / |p'|³,   bend radius r = 1/κ,
+// and, with R the smallest bend radius the muscle takes ([muscle] min_bend_radius),
+//   B_bend = Σ_k b(1 − R κ(t_k), ĥ),
+// b the IPC log barrier (barrier.hpp) at fixed spline parameters t_k: +∞ where the bend radius
+// reaches R, zero where it is above R / (1 − ĥ) (1.11 R). A cusp (p' = 0) or a loop has an unbounded
+// curvature, so two control points that bunch into a near-cusp meet the barrier too.
+// Between the barrier's samples the radius is measured exactly by smallest_bend (a scan refined by
+// golden-section search), which the routing problem treats as the constraint itself.
+
+#include <Eigen/Core>
+
+#include "sim/hermite_spline.hpp"
+#include "sim/muscle_energy.hpp"
+
+namespace fibermold {
+
+/// The default smallest bend radius of a muscle, in diameters ([muscle] min_bend_radius): a braided
+/// sleeve over an elastomer tube, as a McKibben muscle is, is bent no tighter than about three outer
+/// diameters before its bore flattens (the rule of thumb for flexible elastomer tubing); 9 mm for
+/// the default 3 mm muscle. docs/optimize.md says how to measure a muscle's own.
+inline constexpr double kBendRadiusPerDiameter = 3;
+
+/// κ(t) of a spline.
+double curvature(const HermiteSpline& spline, double t);
+
+/// Where a spline bends tightest.
+struct SmallestBend {
+  double radius = HUGE_VAL;  ///< m; +∞ for a straight spline
+  double t = 0;              ///< spline parameter
+  Eigen::Vector3d where = Eigen::Vector3d::Zero();
+  double arc_length = 0;     ///< m from the first point
+};
+/// The smallest bend radius along the spline: κ scanned at `per_span` parameters per span, the
+/// largest refined by golden-section search between its neighbours (to 1e-9 of a span).
+SmallestBend smallest_bend(const HermiteSpline& spline, int per_span = 64);
+
+class BendBarrier {
+public:
+  /// `min_radius` R (m), the band ĥ (0 < ĥ < 1) and the samples per span.
+  BendBarrier(double min_radius, double band = kBand, int per_span = kSamplesPerSpan);
+
+  double value(const HermiteSpline& spline) const;
+  /// ∂B/∂(points, tangents); the pressure entry is 0. Zero where B is +∞.
+  FiberParameterGradient gradient(const HermiteSpline& spline) const;
+  double min_radius() const { return min_radius_; }
+
+  /// The barrier acts where the radius is under R / (1 − ĥ): 1.11 R.
+  static constexpr double kBand = 0.1;
+  static constexpr int kSamplesPerSpan = 24;
+
+private:
+  double min_radius_, band_;
+  int per_span_;
+};
+
+} // namespace fibermold

@@ -1,0 +1,70 @@
+// The skin barrier between its samples: a route that passes under a notch's bottom, whose samples
+// straddle the notch, is caught at the notch (optimize/skin_barrier.hpp).
+#include <cmath>
+
+#include <Eigen/Geometry>
+#include <gtest/gtest.h>
+
+#include "core/units.hpp"
+#include "mesh/surface_distance.hpp"
+#include "optimize/skin_barrier.hpp"
+
+namespace fibermold {
+namespace {
+
+using units::mm;
+
+/// A 60 × 16 × 16 mm bar (x from 0 to 60, y and z from −8 to 8) with a V-notch cut across its top
+/// at x = 30: 2 mm wide at the top, its bottom a sharp edge at z = 2 mm. The cross-section in
+/// (x, z), extruded along y.
+SurfaceDistance notched_bar()
+{
+  const std::vector<Eigen::Vector2d> xz{{0, -8}, {60, -8}, {60, 8}, {31, 8}, {30, 2}, {29, 8}, {0, 8}};
+  const int n = static_cast<int>(xz.size());
+  Eigen::MatrixX3d v(2 * n, 3);
+  for (int i = 0; i < n; ++i) {
+    v.row(i) << xz[i].x() * mm, -8 * mm, xz[i].y() * mm;
+    v.row(n + i) << xz[i].x() * mm, 8 * mm, xz[i].y() * mm;
+  }
+  std::vector<Eigen::Vector3i> f;
+  // The caps, ear by ear (the polygon is not convex), and a quad per polygon edge.
+  for (const auto& [a, b, c] : std::vector<std::array<int, 3>>{{0, 1, 4}, {1, 2, 4}, {2, 3, 4}, {0, 4, 6}, {4, 5, 6}}) {
+    f.emplace_back(a, c, b);
+    f.emplace_back(n + a, n + b, n + c);
+  }
+  for (int i = 0; i < n; ++i) {
+    const int j = (i + 1) % n;
+    f.emplace_back(i, j, n + j);
+    f.emplace_back(i, n + j, n + i);
+  }
+  Eigen::MatrixX3i faces(static_cast<Eigen::Index>(f.size()), 3);
+  for (std::size_t k = 0; k < f.size(); ++k) faces.row(static_cast<Eigen::Index>(k)) = f[k].transpose();
+  // Outward: a positive enclosed volume.
+  double volume = 0;
+  for (Eigen::Index k = 0; k < faces.rows(); ++k)
+    volume += v.row(faces(k, 0)).dot(v.row(faces(k, 1)).cross(v.row(faces(k, 2)))) / 6;
+  if (volume < 0) faces.col(1).swap(faces.col(2));
+  return SurfaceDistance(v, faces);
+}
+
+TEST(SkinBarrier, ARouteUnderANotchBetweenSamplesIsCaught)
+{
+  static const SurfaceDistance skin = notched_bar();
+  // A straight route on the axis passes 2 mm under the notch's bottom. Samples every 4 mm sit at
+  // x = 28 and 32 mm, 2.83 mm from it: at a skin distance of 2.5 mm they see nothing wrong.
+  const HermiteSpline route({{0, 0, 0}, {60 * mm, 0, 0}});
+  const SkinBarrier barrier(skin, 2.5 * mm, 1.5 * mm, route, 15);
+  EXPECT_LT(barrier.value(route), HUGE_VAL);
+  for (double x : {28.0, 32.0}) EXPECT_NEAR(skin.closest({x * mm, 0, 0}).distance / mm, std::sqrt(8.0), 1e-9);
+  Eigen::Vector3d where;
+  const double closest = barrier.closest_approach(route, where);
+  EXPECT_NEAR(closest / mm, 2.0, 1e-3);
+  EXPECT_NEAR(where.x() / mm, 30.0, 0.01);
+  // 3 mm below the notch (5 mm from its bottom) the route clears it, and the bound says so
+  // with its samples alone or a few probes between them.
+  const HermiteSpline lower({{0, 0, -3 * mm}, {60 * mm, 0, -3 * mm}});
+  EXPECT_GT(SkinBarrier(skin, 2.5 * mm, 1.5 * mm, lower, 15).closest_approach(lower, where) / mm, 4.99);
+}
+
+} // namespace
+} // namespace fibermold
