@@ -139,6 +139,7 @@ struct OptimizeOptions {
   double relative_tolerance = BfgsOptions{}.relative_tolerance;  ///< over the last BfgsOptions::window iterations
   double weight_curvature = RoutingSettings{}.weight_curvature;
   double weight_skin_barrier = RoutingSettings{}.weight_skin;
+  double weight_bend_barrier = RoutingSettings{}.weight_bend;
   double weight_pressure_barrier = RoutingSettings{}.weight_pressure;
   bool refine = false;  ///< solve the optimized robot again at half the edge length: its discretization error
 };

@@ -810,6 +810,7 @@ OptimizeOptions read_optimize(Section s)
   o.relative_tolerance = s.number("relative_tolerance", o.relative_tolerance, above_zero(1));
   o.weight_curvature = s.number("weight_curvature", o.weight_curvature, closed(0, 1e9));
   o.weight_skin_barrier = s.number("weight_skin_barrier", o.weight_skin_barrier, closed(0, 1e9));
+  o.weight_bend_barrier = s.number("weight_bend_barrier", o.weight_bend_barrier, closed(0, 1e9));
   o.weight_pressure_barrier = s.number("weight_pressure_barrier", o.weight_pressure_barrier, closed(0, 1e9));
   o.refine = s.boolean("refine", o.refine);
   s.finish();

@@ -64,6 +64,7 @@ const std::vector<Part>& parts()
       FIBERMOLD_PART("optimize.relative_tolerance", optimize.relative_tolerance),
       FIBERMOLD_PART("optimize.weight_curvature", optimize.weight_curvature),
       FIBERMOLD_PART("optimize.weight_skin_barrier", optimize.weight_skin_barrier),
+      FIBERMOLD_PART("optimize.weight_bend_barrier", optimize.weight_bend_barrier),
       FIBERMOLD_PART("optimize.weight_pressure_barrier", optimize.weight_pressure_barrier),
       FIBERMOLD_PART("optimize.refine", optimize.refine),
       FIBERMOLD_PART("collide.clearance", collide.clearance),

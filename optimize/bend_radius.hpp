@@ -17,11 +17,11 @@
 
 namespace fibermold {
 
-/// The default smallest bend radius of a muscle, in diameters ([muscle] min_bend_radius): a braided
-/// sleeve over an elastomer tube, as a McKibben muscle is, is bent no tighter than about three outer
-/// diameters before its bore flattens (the rule of thumb for flexible elastomer tubing); 9 mm for
-/// the default 3 mm muscle. docs/optimize.md says how to measure a muscle's own.
-inline constexpr double kBendRadiusPerDiameter = 3;
+/// The default smallest bend radius of a muscle, in diameters ([muscle] min_bend_radius): 6 mm for
+/// the default 3 mm muscle. No bend-radius figure is published for thin McKibben muscles; a tube
+/// bent through less than about its diameter pinches its bore, and two diameters leaves a margin
+/// for the braid. docs/optimize.md says how to measure a muscle's own.
+inline constexpr double kBendRadiusPerDiameter = 2;
 
 /// κ(t) of a spline.
 double curvature(const HermiteSpline& spline, double t);

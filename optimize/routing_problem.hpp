@@ -133,6 +133,8 @@ private:
     int fiber, index, component;  ///< index: the point, or the target for a pressure
   };
   double scale(const Entry& e) const;
+  /// Each skin barrier sample's weight.
+  double skin_weight() const;
   /// Equilibrium x of target t with its muscles' `energies`, warm-started; whether Newton converged.
   bool solve(int t, std::vector<std::unique_ptr<Energy>> energies, Eigen::VectorXd& x);
   double regularizers(const Routing& r, Eigen::VectorXd* gradient, RoutingTerms& terms) const;

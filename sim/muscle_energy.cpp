@@ -72,6 +72,8 @@ void MuscleEnergy::add_hessian(const Eigen::VectorXd& x, SparseHessian& H, bool 
 {
   // ∂²E/∂x_i∂x_k = α_i α_k M,  M = A_act [Ψ_εε / L n nᵀ + Ψ_ε / l (I − n nᵀ)]
   // α αᵀ is positive semi-definite, so projecting M (eigenvalues along n and across it) suffices.
+  // A pair of nodes the Hessian's pattern lacks (the pattern may be kept while the fiber moves:
+  // newton_solver.hpp) is lumped onto their diagonals, which keeps the projected Hessian definite.
   const double area = model_.parameters().area();
   for (std::size_t j = 0; j < chords_.size(); ++j) {
     const SegmentState s = state(x, j);
@@ -83,10 +85,13 @@ void MuscleEnergy::add_hessian(const Eigen::VectorXd& x, SparseHessian& H, bool 
     }
     const Eigen::Matrix3d nn = s.direction * s.direction.transpose();
     const Eigen::Matrix3d M = along * nn + across * (Eigen::Matrix3d::Identity() - nn);
-    const Chord& c = chords_[j];
-    for (std::size_t a = 0; a < c.nodes.size(); ++a)
-      for (std::size_t b = 0; b < c.nodes.size(); ++b)
-        H.add_block(c.nodes[a], c.nodes[b], c.alpha[static_cast<Eigen::Index>(a)] * c.alpha[static_cast<Eigen::Index>(b)] * M);
+    const Chord& c = chords_[j];  // nodes ascending
+    for (std::size_t a = 0; a < c.nodes.size(); ++a) {
+      const double alpha_a = c.alpha[static_cast<Eigen::Index>(a)];
+      H.add_block(c.nodes[a], c.nodes[a], alpha_a * alpha_a * M);
+      for (std::size_t b = a + 1; b < c.nodes.size(); ++b)
+        H.add_coupling(c.nodes[a], c.nodes[b], alpha_a * c.alpha[static_cast<Eigen::Index>(b)], M);
+    }
   }
 }
 

@@ -56,8 +56,9 @@ NewtonTotals& NewtonTotals::operator+=(const NewtonSummary& s)
   return *this;
 }
 
-NewtonSolver::NewtonSolver(std::vector<const Energy*> energies, Eigen::Index num_nodes)
-    : energies_(std::move(energies)), fixed_energies_(energies_.size()), hessian_(make_pattern(energies_, num_nodes))
+NewtonSolver::NewtonSolver(std::vector<const Energy*> energies, Eigen::Index num_nodes, bool keep_pattern)
+    : energies_(std::move(energies)), fixed_energies_(energies_.size()), hessian_(make_pattern(energies_, num_nodes)),
+      keep_pattern_(keep_pattern)
 {
 }
 
@@ -66,9 +67,9 @@ void NewtonSolver::set_variable_energies(const std::vector<const Energy*>& energ
   adjoint_ready_ = false;
   energies_.resize(fixed_energies_);
   energies_.insert(energies_.end(), energies.begin(), energies.end());
-  std::vector<std::vector<int>> stencils;
-  for (const Energy* e : energies) e->stencils(stencils);
-  if (!hessian_.contains(stencils)) hessian_ = SparseHessian(hessian_, stencils);
+  variable_stencils_.clear();
+  for (const Energy* e : energies) e->stencils(variable_stencils_);
+  if (!keep_pattern_ && !hessian_.contains(variable_stencils_)) hessian_ = SparseHessian(hessian_, variable_stencils_);
 }
 
 Eigen::VectorXd NewtonSolver::gradient(const Eigen::VectorXd& x) const
@@ -99,6 +100,16 @@ bool NewtonSolver::solve_with_hessian(const Eigen::VectorXd& x, const Eigen::Vec
   if (adjoint_ready_ && x.size() == adjoint_x_.size() && x == adjoint_x_ && refined_solve(x, b, lambda)) return true;
   adjoint_ready_ = false;
   hessian(x, false);
+  if (hessian_.lumped() > 0) {
+    // The Hessian with lumped pairs preconditions conjugate gradients on the exact one; where that
+    // does not converge, the pattern grows to hold the pairs (a symbolic analysis).
+    if (cholmod_.factorize(hessian_.matrix(), 0) && conjugate_gradient_solve(x, b, lambda)) {
+      kind_ = Factorization::exact;
+      return true;
+    }
+    hessian_ = SparseHessian(hessian_, variable_stencils_);
+    hessian(x, false);
+  }
   kind_ = cholmod_.factorize(hessian_.matrix(), 0) ? Factorization::exact : Factorization::none;
   if (kind_ != Factorization::exact) {
     restart_ready_ = false;
@@ -106,6 +117,39 @@ bool NewtonSolver::solve_with_hessian(const Eigen::VectorXd& x, const Eigen::Vec
   }
   lambda = cholmod_.solve(b);
   return lambda.allFinite();
+}
+
+bool NewtonSolver::conjugate_gradient_solve(const Eigen::VectorXd& x, const Eigen::VectorXd& b, Eigen::VectorXd& lambda) const
+{
+  // Preconditioned conjugate gradients (Nocedal & Wright, Algorithm 5.3) on H(x) λ = b, with the
+  // factorization K as the preconditioner and H(x)v from central differences of ∇E over a
+  // displacement of 1e-6 of the body's extent (as refined_solve); a K close to H(x) converges in a
+  // few products. H(x) must be positive definite (a stable equilibrium).
+  constexpr int kMaxProducts = 50;
+  constexpr double kResidual = 1e-8;  // of |b|
+  const auto nodes = x.reshaped(3, x.size() / 3);
+  const double extent = (nodes.rowwise().maxCoeff() - nodes.rowwise().minCoeff()).maxCoeff();
+  const auto product = [&](const Eigen::VectorXd& v) -> Eigen::VectorXd {
+    const double h = 1e-6 * extent / v.cwiseAbs().maxCoeff();
+    return (gradient(x + h * v) - gradient(x - h * v)) / (2 * h);
+  };
+  lambda = cholmod_.solve(b);
+  Eigen::VectorXd r = b - product(lambda), z = cholmod_.solve(r), p = z;
+  double rz = r.dot(z);
+  for (int k = 0; k < kMaxProducts; ++k) {
+    if (!(r.norm() > kResidual * b.norm())) return lambda.allFinite() && r.allFinite();
+    const Eigen::VectorXd q = product(p);
+    const double pq = p.dot(q);
+    if (!(pq > 0)) return false;  // not definite
+    const double alpha = rz / pq;
+    lambda += alpha * p;
+    r -= alpha * q;
+    z = cholmod_.solve(r);
+    const double next = r.dot(z);
+    p = z + (next / rz) * p;
+    rz = next;
+  }
+  return false;
 }
 
 bool NewtonSolver::refined_solve(const Eigen::VectorXd& x, const Eigen::VectorXd& b, Eigen::VectorXd& lambda) const

@@ -58,11 +58,19 @@ struct NewtonTotals {
 class NewtonSolver {
 public:
   /// The energies must outlive the solver. Builds the Hessian pattern from their stencils.
-  NewtonSolver(std::vector<const Energy*> energies, Eigen::Index num_nodes);
+  /// `keep_pattern`: the variable energies' pairs outside that pattern are lumped onto the
+  /// diagonal (SparseHessian::add_coupling) instead of growing it, so that CHOLMOD's symbolic
+  /// analysis is done once however the muscles move (for MLS bases, whose far pairs are the
+  /// small products of shape functions near the edges of their supports). Newton converges on
+  /// the exact gradient all the same; the adjoint solve refines with the exact Hessian's products
+  /// (conjugate gradients preconditioned by the lumped factorization) and, where that does not
+  /// converge, grows the pattern then (a second analysis).
+  NewtonSolver(std::vector<const Energy*> energies, Eigen::Index num_nodes, bool keep_pattern = false);
 
   /// Replaces the energies given by the last call (none at first) and keeps the others: the
-  /// muscles, whose stencils move with their routes during optimization. The Hessian pattern grows
-  /// to fit them; while it already does, CHOLMOD's symbolic analysis is kept.
+  /// muscles, whose stencils move with their routes during optimization. Without keep_pattern
+  /// the Hessian pattern grows to fit them; while it already does, CHOLMOD's symbolic analysis is
+  /// kept.
   void set_variable_energies(const std::vector<const Energy*>& energies);
   /// Symbolic analyses so far (one per pattern).
   int analyses() const { return cholmod_.analyses(); }
@@ -96,6 +104,9 @@ private:
   /// The adjoint solve with the factorization the last solve ended on; false when it does not
   /// serve (the refinement's correction is too large).
   bool refined_solve(const Eigen::VectorXd& x, const Eigen::VectorXd& b, Eigen::VectorXd& lambda) const;
+  /// The adjoint solve by conjugate gradients on the exact Hessian's products, preconditioned by the
+  /// factorization held (of the Hessian at x with lumped pairs); false when it does not converge.
+  bool conjugate_gradient_solve(const Eigen::VectorXd& x, const Eigen::VectorXd& b, Eigen::VectorXd& lambda) const;
 
   // The steps of solve(), a state machine over SolveState (newton_solver.cpp): each says whether
   // the solve goes on.
@@ -112,6 +123,8 @@ private:
   std::vector<const Energy*> energies_;
   std::size_t fixed_energies_;
   SparseHessian hessian_;
+  bool keep_pattern_;
+  std::vector<std::vector<int>> variable_stencils_;
   CholmodSolver cholmod_;
   Factorization kind_ = Factorization::none;  ///< what cholmod_ holds
   double last_shift_ = 0;       ///< the last τ that served (in any solve): a search starts at a quarter of it

@@ -114,7 +114,9 @@ NewtonSolver& Simulation::solver()
   if (!solvers_[slot_]) {
     std::vector<const Energy*> terms;
     for (const auto& e : energies_) terms.push_back(e.get());
-    solvers_[slot_] = std::make_unique<NewtonSolver>(std::move(terms), mesh_.nodes.rows());
+    // MLS: one pattern (and one symbolic analysis) however the muscles move (newton_solver.hpp).
+    const bool mls = options_.basis == BasisKind::mls_linear || options_.basis == BasisKind::mls_quadratic;
+    solvers_[slot_] = std::make_unique<NewtonSolver>(std::move(terms), mesh_.nodes.rows(), mls);
   }
   return *solvers_[slot_];
 }

@@ -1,6 +1,7 @@
 #include "sim/sparse_hessian.hpp"
 
 #include <algorithm>
+#include <cmath>
 #include <stdexcept>
 
 namespace fibermold {
@@ -97,6 +98,20 @@ void SparseHessian::add_block_at(int k, int j, const Eigen::Matrix3d& block)
     double* column = values + 9 * block_start_[j] + 3 * L * b + 3 * k;
     for (int a = 0; a < 3; ++a) column[a] += block(a, b);
   }
+}
+
+void SparseHessian::add_coupling(int a, int b, double c, const Eigen::Matrix3d& M)
+{
+  const int i = std::min(a, b), j = std::max(a, b);
+  if (const int k = position(i, j); k >= 0) {
+    add_block_at(k, j, c * M);
+    return;
+  }
+  // [[|c| M, c M], [c M, |c| M]] is positive semi-definite: dropping the coupling and adding its
+  // diagonal part keeps the sum so (the fill-free approximation of the pair).
+  add_block_at(position(a, a), a, std::abs(c) * M);
+  add_block_at(position(b, b), b, std::abs(c) * M);
+  ++lumped_;
 }
 
 Eigen::SparseMatrix<double> SparseHessian::full() const

@@ -25,10 +25,21 @@ public:
   Eigen::Index num_nodes() const { return static_cast<Eigen::Index>(neighbours_.size()); }
   const std::vector<int>& neighbours(Eigen::Index j) const { return neighbours_[j]; }
 
-  void set_zero() { matrix_.coeffs().setZero(); }
+  void set_zero()
+  {
+    matrix_.coeffs().setZero();
+    lumped_ = 0;
+  }
   /// Adds `block` at node block (i, j) when i ≤ j; the caller adds (j, i) too, which is dropped.
   /// Not thread-safe across the same column j.
   void add_block(int i, int j, const Eigen::Matrix3d& block);
+  /// Adds c·M at blocks (a, b) and (b, a), a ≠ b, for a symmetric 3×3 M. Where the pattern lacks
+  /// the pair it adds |c|·M to blocks (a, a) and (b, b) instead (diagonal compensation: with M
+  /// positive semi-definite the matrix stays so) and counts the pair in lumped().
+  void add_coupling(int a, int b, double c, const Eigen::Matrix3d& M);
+  /// Pairs added on the diagonal by add_coupling since set_zero(): the matrix is then an
+  /// approximation of the one a pattern with those pairs would hold.
+  int lumped() const { return lumped_; }
   /// Adds `block` at the k-th stored neighbour (i ≤ j) of column j (fast path for parallel assembly).
   void add_block_at(int k, int j, const Eigen::Matrix3d& block);
   /// The values of node column j: 3 scalar columns of 3·|neighbours(j)| rows each, one after the
@@ -48,6 +59,7 @@ private:
   std::vector<std::vector<int>> neighbours_;  ///< sorted, per node column
   std::vector<Eigen::Index> block_start_;
   Eigen::SparseMatrix<double> matrix_;
+  int lumped_ = 0;
 };
 
 } // namespace fibermold

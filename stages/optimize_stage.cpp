@@ -126,6 +126,17 @@ Baseline first_guess_at_best_pressures(StageContext& ctx, DesignRouting& dr, con
   Baseline b{optimize_pressures(problem, pressures_only, log, ctx.progress, actuator_mask(ctx.design)), {}};
   problem.set_base(start);
   if (b.result.interrupted) return b;
+  // The optimization starts from the first guess's best pressures, but for a muscle they turned
+  // off (within the pressure barrier's margin of 0): from there its route would have no effect
+  // (the twisting bar's straight muscle bends the bar, so its best pressure is 0), so it starts
+  // at half max_pressure, as the routes alone would.
+  const RoutingSettings settings = routing_settings(ctx.design);
+  Routing from = start;
+  for (Eigen::Index t = 0; t < from.pressures.rows(); ++t)
+    for (Eigen::Index f = 0; f < from.pressures.cols(); ++f)
+      if (b.result.routing.pressures(t, f) > settings.pressure_margin * settings.max_pressure)
+        from.pressures(t, f) = b.result.routing.pressures(t, f);
+  problem.set_base(from);
   nlohmann::ordered_json targets = nlohmann::ordered_json::object();
   for (int t = 0; t < problem.num_targets(); ++t) {
     const TargetErrors e = target_errors(problem, dr.mesh, t, problem.equilibrium(b.result.routing, t));
@@ -142,17 +153,23 @@ Baseline first_guess_at_best_pressures(StageContext& ctx, DesignRouting& dr, con
 }
 
 /// Never worse than the first guess at its best pressures: where the optimizer ended higher, the
-/// first guess becomes the result. The warning that says so, or empty.
-std::string keep_the_better(StageContext& ctx, const Baseline& baseline, RoutingResult& result)
+/// first guess becomes the result. The warning that says so, or empty. Sets the first guess's
+/// objective in its report to the full one.
+std::string keep_the_better(StageContext& ctx, RoutingProblem& problem, Baseline& baseline, RoutingResult& result)
 {
-  if (result.interrupted || !(baseline.result.value < result.value)) return {};
+  if (result.interrupted) return {};
+  // The first guess scored as the optimization scores: with its routes' terms (curvature, skin,
+  // bend), which the pressure-only run leaves out as constants.
+  const double first_guess = problem.evaluate(problem.variables(baseline.result.routing));
+  baseline.json["objective"] = first_guess;
+  if (!(first_guess < result.value)) return {};
   const std::string warning = fmt::format(
       "the optimizer ended at an objective of {:.4g}, above the first guess's at its best pressures ({:.4g}): the first guess is "
       "kept; start the routes elsewhere or raise [optimize] max_iterations",
-      result.value, baseline.result.value);
+      result.value, first_guess);
   ctx.log.warn("{}", warning);
   result.routing = baseline.result.routing;
-  result.value = baseline.result.value;
+  result.value = first_guess;
   return warning;
 }
 
@@ -398,7 +415,7 @@ void OptimizeStage::run(StageContext& ctx) const
                  before[t].rmse / units::mm, before[t].max / units::mm);
 
   const BfgsOptions o = bfgs_options(d);
-  const Baseline baseline = first_guess_at_best_pressures(ctx, dr, o, start);
+  Baseline baseline = first_guess_at_best_pressures(ctx, dr, o, start);
   History history(names);
   int iterations = 0;
   const int stages = d.optimize.strategy == Strategy::sequential ? static_cast<int>(d.fibers.size()) : 1;
@@ -418,7 +435,7 @@ void OptimizeStage::run(StageContext& ctx) const
     ctx.log.info("{}", what);
   };
   RoutingResult result = baseline.result.interrupted ? baseline.result : optimize(d, problem, o, on_iteration, ctx.progress);
-  const std::string kept_first_guess = keep_the_better(ctx, baseline, result);
+  const std::string kept_first_guess = keep_the_better(ctx, problem, baseline, result);
   const FibersFile fibers{result.routing, names, true};
 
   if (result.interrupted) {

@@ -90,6 +90,7 @@ RoutingSettings routing_settings(const Design& d)
   s.weight_curvature = d.optimize.weight_curvature;
   s.min_bend_radius = d.muscle.min_bend_radius;
   s.weight_skin = d.optimize.weight_skin_barrier;
+  s.weight_bend = d.optimize.weight_bend_barrier;
   s.weight_pressure = d.optimize.weight_pressure_barrier;
   return s;
 }

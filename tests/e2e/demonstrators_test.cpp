@@ -159,11 +159,12 @@ TEST(Demonstrators, ContinuumRobotBendsInSpaceMakesMoldsAndRerunsOnlyMoldsAfterA
 TEST(Demonstrators, TentacleErrorsWithinThePapersTipOnlyMatchesLessOfTheBodyAndFullLengthMakesMolds)
 {
   // Paper, Fig. 13, errors over the whole surface: full length RMSE 20.3 mm, max 29.5; tip only
-  // 24.0, 39.6. Full length to printable molds; tip only up to collide: on this coarse mesh its
-  // optimized groove reaches lower, shot 1's parting plane follows it, and the 6 mm tip is left
-  // a 0.32 mm mold wall (the example's own mesh passes; docs/molds.md).
+  // 24.0, 39.6. Full length to printable molds; tip only up to collide. On the example's own mesh:
+  // on a 12 mm one (until session 21) the optimized groove reached so low near the 6 mm tip that
+  // shot 1's parting plane, following it, left the tip a mold wall of 0.32 mm (tip only) and,
+  // since the optimizer starts from the first guess's best pressure, 0.04 mm (full length).
   test::TempDir dir;
-  const Edits coarse{{"edge_length = 8.0", "edge_length = 12.0"}, {"max_iterations = 300", "max_iterations = 30"}};
+  const Edits coarse{{"max_iterations = 300", "max_iterations = 30"}};
   ASSERT_NO_FATAL_FAILURE(copy_example("tentacle", dir.path(), "full.toml", coarse));
   ASSERT_NO_FATAL_FAILURE(copy_example("tentacle", dir / "tip", "tip.toml", coarse));
   std::map<std::string, nlohmann::json> result;

@@ -60,11 +60,11 @@ TEST_F(OptimizeE2E, RecoversTheTargetAndWritesItsOutputs)
   EXPECT_EQ(m1["points_mm"][3], nlohmann::json({60.0, 0.0, 0.0}));
   EXPECT_NEAR(m1["pressure_kPa"]["s"].get<double>(), p, 1e-9);
   EXPECT_GT(m1["length_mm"].get<double>(), 60);
-  // The optimized route bends no tighter than the muscle takes (3 diameters: 9 mm), and the report
+  // The optimized route bends no tighter than the muscle takes (2 diameters: 6 mm), and the report
   // says where it bends most.
-  EXPECT_EQ(report["min_bend_radius_mm"].get<double>(), 9.0);
+  EXPECT_EQ(report["min_bend_radius_mm"].get<double>(), 6.0);
   const auto& bend = report["bends"]["end"]["m1"];
-  EXPECT_GT(bend["min_bend_radius_mm"].get<double>(), 9.0);
+  EXPECT_GT(bend["min_bend_radius_mm"].get<double>(), 6.0);
   EXPECT_EQ(bend["at_mm"].size(), 3u);
   EXPECT_NEAR(report["bends"]["start"]["m1"]["min_bend_radius_mm"].get<double>(), 11.4, 0.1);
 
@@ -160,7 +160,7 @@ TEST_F(OptimizeE2E, APoseTargetOfAKnownTurnIsReachedBetterThanByTheFirstGuess)
   EXPECT_LE(report["objective"].get<double>(), first["objective"].get<double>());
   EXPECT_LT(report["targets"]["turn"]["rmse_mm"].get<double>(), 0.75 * first["targets"]["turn"]["rmse_mm"].get<double>());
   EXPECT_EQ(report["kept"], "optimized");
-  EXPECT_GT(report["bends"]["end"]["m1"]["min_bend_radius_mm"].get<double>(), 9.0);
+  EXPECT_GT(report["bends"]["end"]["m1"]["min_bend_radius_mm"].get<double>(), 6.0);
   EXPECT_GT(reached / theta, 0.85);
   EXPECT_LT(reached / theta, 1.1);
   EXPECT_THAT(test::read_text(dir_ / "build" / "logs" / "optimize.log"), ContainsRegex("target turn: pose\\[1\\] turned -?[0-9.]+° of the"));
@@ -242,7 +242,7 @@ TEST_F(OptimizeE2E, AFiberTooNearTheSkinIsRefusedByCheckWithTheFix)
 }
 
 /// A route with a 4 mm bump over 10 mm bends with a 0.49 mm radius: check refuses it against the
-/// default [muscle] min_bend_radius (3 diameters, 9 mm), naming the fiber, the radius and where;
+/// default [muscle] min_bend_radius (2 diameters, 6 mm), naming the fiber, the radius and where;
 /// so does the optimize stage with the optimizer off (the molds would cast it); a muscle declared
 /// to bend that tight passes.
 TEST_F(OptimizeE2E, ARouteBentTighterThanTheMuscleTakesIsRefused)
@@ -255,7 +255,7 @@ TEST_F(OptimizeE2E, ARouteBentTighterThanTheMuscleTakesIsRefused)
   EXPECT_EQ(checked.exit_code, 2) << checked.err;
   EXPECT_THAT(checked.err, ContainsRegex("design.toml:[0-9]+:[0-9]+: \\[fiber.m1\\]: the starting route bends with a radius of 0\\.[0-9]{2} "
                                          "mm at \\((2[0-9])\\.[0-9], [0-9.]+, 0\\.0\\) mm, [0-9.]+ mm along it, tighter than \\[muscle\\] "
-                                         "min_bend_radius = 9 mm"));
+                                         "min_bend_radius = 6 mm"));
   test::write_text(dir_ / "design.toml", text + "[optimize]\nenabled = false\n");
   EXPECT_EQ(make().exit_code, 2);
   test::write_text(dir_ / "design.toml", text + "[muscle]\nmin_bend_radius = 0.4\n");

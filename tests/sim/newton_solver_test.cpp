@@ -124,7 +124,11 @@ TEST_F(MuscleBar, FinishingOnAFreshStepLandsFarBelowTheToleranceAndServesTheAdjo
   Eigen::VectorXd reused, assembled;
   ASSERT_TRUE(sim.solver().solve_with_hessian(x, b, reused));
   set_muscle(250e3);  // the same muscle again: the factorization is forgotten
+  // The pattern is kept (MLS), so the muscle's far pairs are lumped, and the assembled solve is
+  // conjugate gradients on the exact Hessian's products, preconditioned by that factorization.
   ASSERT_TRUE(sim.solver().solve_with_hessian(x, b, assembled));
+  EXPECT_GT(sim.solver().hessian(x, false).lumped(), 0);
+  EXPECT_EQ(sim.symbolic_analyses(), 1);
   std::printf("adjoint solve with the last step's factorization: relative difference %.1e\n",
               (reused - assembled).norm() / assembled.norm());
   // The adjoint gradient is checked to 1e-6 against finite differences; this is 10× inside it.
