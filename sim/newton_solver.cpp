@@ -97,7 +97,7 @@ double NewtonSolver::value_and_gradient(const Eigen::VectorXd& x, Eigen::VectorX
 
 bool NewtonSolver::solve_with_hessian(const Eigen::VectorXd& x, const Eigen::VectorXd& b, Eigen::VectorXd& lambda)
 {
-  if (adjoint_ready_ && x.size() == adjoint_x_.size() && x == adjoint_x_ && refined_solve(x, b, lambda)) return true;
+  if (adjoint_ready_ && x.size() == adjoint_x_.size() && x == adjoint_x_ && conjugate_gradient_solve(x, b, lambda)) return true;
   adjoint_ready_ = false;
   hessian(x, false);
   if (hessian_.lumped() > 0) {
@@ -122,9 +122,11 @@ bool NewtonSolver::solve_with_hessian(const Eigen::VectorXd& x, const Eigen::Vec
 bool NewtonSolver::conjugate_gradient_solve(const Eigen::VectorXd& x, const Eigen::VectorXd& b, Eigen::VectorXd& lambda) const
 {
   // Preconditioned conjugate gradients (Nocedal & Wright, Algorithm 5.3) on H(x) λ = b, with the
-  // factorization K as the preconditioner and H(x)v from central differences of ∇E over a
-  // displacement of 1e-6 of the body's extent (as refined_solve); a K close to H(x) converges in a
-  // few products. H(x) must be positive definite (a stable equilibrium).
+  // factorization K held as the preconditioner and H(x)v from central differences of ∇E over a
+  // displacement of 1e-6 of the body's extent. K is of the Hessian a few steps before x (the
+  // last solve's finishing factorization), or at x with lumped pairs: close to H(x), so a few
+  // products do (on the test's bar K⁻¹b is 3e-7 from H(x)⁻¹b, and one product brings it to 8e-10).
+  // H(x) must be positive definite (a stable equilibrium).
   constexpr int kMaxProducts = 50;
   constexpr double kResidual = 1e-8;  // of |b|
   const auto nodes = x.reshaped(3, x.size() / 3);
@@ -148,35 +150,6 @@ bool NewtonSolver::conjugate_gradient_solve(const Eigen::VectorXd& x, const Eige
     const double next = r.dot(z);
     p = z + (next / rz) * p;
     rz = next;
-  }
-  return false;
-}
-
-bool NewtonSolver::refined_solve(const Eigen::VectorXd& x, const Eigen::VectorXd& b, Eigen::VectorXd& lambda) const
-{
-  // The factorization K is of the exact Hessian a few steps before x, at a state within
-  // kNearTolerance of the tolerance. Iterative refinement, with H(x)λ from central
-  // differences of ∇E over a displacement of 1e-6 of the body's extent, takes λ from K⁻¹b
-  // (relative error 3e-7 on the test's bar) to H(x)⁻¹b (8e-10 after one step). The corrections
-  // shrink by the rate ρ = |I − K⁻¹H(x)| (the first one's size estimates it), so what remains after
-  // one of size s is about ρ s: done below 1e-8. A rate above 0.1 means K is too far from H(x) (or
-  // H(x) is not definite): the caller then factorizes H(x) itself.
-  lambda = cholmod_.solve(b);
-  const auto nodes = x.reshaped(3, x.size() / 3);
-  const double extent = (nodes.rowwise().maxCoeff() - nodes.rowwise().minCoeff()).maxCoeff();
-  double last = 0;
-  for (int step = 0; step < 4; ++step) {
-    const double h = 1e-6 * extent / lambda.cwiseAbs().maxCoeff();
-    if (!(std::isfinite(h) && h > 0)) return false;
-    const Eigen::VectorXd Hlambda = (gradient(x + h * lambda) - gradient(x - h * lambda)) / (2 * h);
-    if (!(lambda.dot(Hlambda) > 0)) return false;
-    const Eigen::VectorXd correction = cholmod_.solve(b - Hlambda);
-    const double size = correction.norm() / lambda.norm();
-    const double rate = step == 0 ? size : size / last;
-    if (!(rate <= 0.1)) return false;
-    lambda += correction;
-    if (rate * size <= 1e-8) return lambda.allFinite();
-    last = size;
   }
   return false;
 }

@@ -88,7 +88,7 @@ public:
   /// the adjoint solve of eq. 9. Returns false when H(x) is not positive definite. At the state the
   /// last solve ended on, when its factorization is of the exact Hessian at a state near the
   /// tolerance (so with finish_on_fresh_step where the Hessian there is definite), that
-  /// factorization serves, refined by a few steps with H(x)λ from differences of ∇E: no assembly.
+  /// factorization preconditions conjugate gradients with H(x)λ from differences of ∇E: no assembly.
   bool solve_with_hessian(const Eigen::VectorXd& x, const Eigen::VectorXd& b, Eigen::VectorXd& lambda);
 
 private:
@@ -101,11 +101,9 @@ private:
   /// Factorizes the assembled exact Hessian + τI for the first τ tried that makes it positive
   /// definite (τ in shift); false when none up to a limit does.
   bool factorize_shifted(NewtonSummary& s, double& shift);
-  /// The adjoint solve with the factorization the last solve ended on; false when it does not
-  /// serve (the refinement's correction is too large).
-  bool refined_solve(const Eigen::VectorXd& x, const Eigen::VectorXd& b, Eigen::VectorXd& lambda) const;
   /// The adjoint solve by conjugate gradients on the exact Hessian's products, preconditioned by the
-  /// factorization held (of the Hessian at x with lumped pairs); false when it does not converge.
+  /// factorization held (the last solve's, or of the Hessian at x with lumped pairs); false when it
+  /// does not converge.
   bool conjugate_gradient_solve(const Eigen::VectorXd& x, const Eigen::VectorXd& b, Eigen::VectorXd& lambda) const;
 
   // The steps of solve(), a state machine over SolveState (newton_solver.cpp): each says whether

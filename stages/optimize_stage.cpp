@@ -126,17 +126,6 @@ Baseline first_guess_at_best_pressures(StageContext& ctx, DesignRouting& dr, con
   Baseline b{optimize_pressures(problem, pressures_only, log, ctx.progress, actuator_mask(ctx.design)), {}};
   problem.set_base(start);
   if (b.result.interrupted) return b;
-  // The optimization starts from the first guess's best pressures, but for a muscle they turned
-  // off (within the pressure barrier's margin of 0): from there its route would have no effect
-  // (the twisting bar's straight muscle bends the bar, so its best pressure is 0), so it starts
-  // at half max_pressure, as the routes alone would.
-  const RoutingSettings settings = routing_settings(ctx.design);
-  Routing from = start;
-  for (Eigen::Index t = 0; t < from.pressures.rows(); ++t)
-    for (Eigen::Index f = 0; f < from.pressures.cols(); ++f)
-      if (b.result.routing.pressures(t, f) > settings.pressure_margin * settings.max_pressure)
-        from.pressures(t, f) = b.result.routing.pressures(t, f);
-  problem.set_base(from);
   nlohmann::ordered_json targets = nlohmann::ordered_json::object();
   for (int t = 0; t < problem.num_targets(); ++t) {
     const TargetErrors e = target_errors(problem, dr.mesh, t, problem.equilibrium(b.result.routing, t));
