@@ -99,7 +99,8 @@ SmallestBend smallest_bend(const HermiteSpline& spline, int per_span)
   }
   SmallestBend out;
   out.t = best_k + best_u;
-  out.radius = best > 0 ? 1 / best : HUGE_VAL;
+  // A straight route's κ is round-off (1e-16 of its scale): a radius a million times its length is none.
+  out.radius = best * spline.length() > 1e-6 ? 1 / best : HUGE_VAL;
   out.where = spline.position(out.t);
   out.arc_length = arc_length_to(spline, out.t);
   return out;

@@ -28,7 +28,7 @@ double curvature(const HermiteSpline& spline, double t);
 
 /// Where a spline bends tightest.
 struct SmallestBend {
-  double radius = HUGE_VAL;  ///< m; +∞ for a straight spline
+  double radius = HUGE_VAL;  ///< m; +∞ for a straight spline (a radius over 1e6 × its length)
   double t = 0;              ///< spline parameter
   Eigen::Vector3d where = Eigen::Vector3d::Zero();
   double arc_length = 0;     ///< m from the first point

@@ -225,7 +225,7 @@ double RoutingProblem::regularizers(const Routing& r, Eigen::VectorXd* gradient,
     terms.skin += skin_weight() * skin_barriers_[f].value(s);
     if (!std::isfinite(terms.skin)) return HUGE_VAL;
     Eigen::Vector3d where;  // between the barrier's samples too (a notch's bottom between two)
-    if (skin_barriers_[f].closest_approach(s, where) <= settings_.skin_distance) return HUGE_VAL;
+    if (skin_barriers_[f].closest_approach(s, where, true) <= settings_.skin_distance) return HUGE_VAL;
     if (bend_barrier_) {
       // The barrier's samples, and between them the spline's exact smallest radius.
       terms.bend += settings_.weight_bend * bend_barrier_->value(s);

@@ -85,7 +85,7 @@ double arc_bound(const HermiteSpline& s, double a, double b)
 
 } // namespace
 
-double SkinBarrier::closest_approach(const HermiteSpline& spline, Eigen::Vector3d& where) const
+double SkinBarrier::closest_approach(const HermiteSpline& spline, Eigen::Vector3d& where, bool first_only) const
 {
   constexpr double kShortest = 1e-6;  // m: a piece this short is as close as its ends
   if (t_.empty()) return HUGE_VAL;
@@ -118,6 +118,7 @@ double SkinBarrier::closest_approach(const HermiteSpline& spline, Eigen::Vector3
     const auto [a, b] = pieces.back();
     pieces.pop_back();
     keep(b);
+    if (first_only && d <= min_) return d;
     const double L = arc_bound(spline, a.t, b.t);
     if ((a.d + b.d - L) / 2 > std::min(min_, d) || L < kShortest) continue;
     const Probe m = probe((a.t + b.t) / 2);

@@ -10,8 +10,8 @@
 // Between samples the spline is held to d_min exactly (closest_approach): the distance to the skin
 // is 1-Lipschitz, so on a piece of arc length ≤ L between points at distances d_a and d_b every
 // point is at least (d_a + d_b − L)/2 from the skin; L is bounded by the piece's Bézier control
-// polygon. Pieces that bound cannot clear d_min are halved until one of their points is found
-// closer than d_min or they are shorter than a micrometre. A route through a notch, whose bottom
+// polygon. Pieces that bound cannot clear d_min (or, once a point within d_min is found, the
+// closest so far) are halved until they are shorter than a micrometre. A route through a notch, whose bottom
 // lies between two samples, is caught there.
 
 #include <vector>
@@ -38,7 +38,8 @@ public:
   /// The smallest distance to the skin (m) of the spline between its first and last sample,
   /// negative when outside, and where: exact (to a micrometre of arc) where it is d_min or less;
   /// above d_min, the smallest of the samples and of the points probed between them.
-  double closest_approach(const HermiteSpline& spline, Eigen::Vector3d& where) const;
+  /// `first_only`: stop at the first point found within d_min (a feasibility test).
+  double closest_approach(const HermiteSpline& spline, Eigen::Vector3d& where, bool first_only = false) const;
 
 private:
   const SurfaceDistance& skin_;

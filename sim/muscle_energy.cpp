@@ -73,7 +73,8 @@ void MuscleEnergy::add_hessian(const Eigen::VectorXd& x, SparseHessian& H, bool 
   // ∂²E/∂x_i∂x_k = α_i α_k M,  M = A_act [Ψ_εε / L n nᵀ + Ψ_ε / l (I − n nᵀ)]
   // α αᵀ is positive semi-definite, so projecting M (eigenvalues along n and across it) suffices.
   // A pair of nodes the Hessian's pattern lacks (the pattern may be kept while the fiber moves:
-  // newton_solver.hpp) is lumped onto their diagonals, which keeps the projected Hessian definite.
+  // newton_solver.hpp) is lumped onto their diagonals, which keeps the projected Hessian
+  // positive semi-definite.
   const double area = model_.parameters().area();
   for (std::size_t j = 0; j < chords_.size(); ++j) {
     const SegmentState s = state(x, j);

@@ -99,17 +99,17 @@ bool NewtonSolver::solve_with_hessian(const Eigen::VectorXd& x, const Eigen::Vec
 {
   if (adjoint_ready_ && x.size() == adjoint_x_.size() && x == adjoint_x_ && conjugate_gradient_solve(x, b, lambda)) return true;
   adjoint_ready_ = false;
-  hessian(x, false);
-  if (hessian_.lumped() > 0) {
-    // The Hessian with lumped pairs preconditions conjugate gradients on the exact one; where that
-    // does not converge, the pattern grows to hold the pairs (a symbolic analysis).
+  if (keep_pattern_ && hessian(x, true).lumped() > 0) {
+    // The projected Hessian with lumped pairs (semi-definite as they are) preconditions conjugate
+    // gradients on the exact one; where that does not converge, the pattern grows to hold the
+    // pairs (a symbolic analysis).
     if (cholmod_.factorize(hessian_.matrix(), 0) && conjugate_gradient_solve(x, b, lambda)) {
-      kind_ = Factorization::exact;
+      kind_ = Factorization::projected;  // of the Hessian at x all the same: a solve from x may begin on it
       return true;
     }
     hessian_ = SparseHessian(hessian_, variable_stencils_);
-    hessian(x, false);
   }
+  hessian(x, false);
   kind_ = cholmod_.factorize(hessian_.matrix(), 0) ? Factorization::exact : Factorization::none;
   if (kind_ != Factorization::exact) {
     restart_ready_ = false;
@@ -133,8 +133,13 @@ bool NewtonSolver::conjugate_gradient_solve(const Eigen::VectorXd& x, const Eige
   const double extent = (nodes.rowwise().maxCoeff() - nodes.rowwise().minCoeff()).maxCoeff();
   const auto product = [&](const Eigen::VectorXd& v) -> Eigen::VectorXd {
     const double h = 1e-6 * extent / v.cwiseAbs().maxCoeff();
+    if (!(std::isfinite(h) && h > 0)) return Eigen::VectorXd::Constant(v.size(), NAN);
     return (gradient(x + h * v) - gradient(x - h * v)) / (2 * h);
   };
+  if (b.isZero(0)) {
+    lambda = Eigen::VectorXd::Zero(b.size());
+    return true;
+  }
   lambda = cholmod_.solve(b);
   Eigen::VectorXd r = b - product(lambda), z = cholmod_.solve(r), p = z;
   double rz = r.dot(z);

@@ -85,7 +85,8 @@ public:
   NewtonSummary solve(Eigen::VectorXd& x, const NewtonOptions& options, Progress& progress);
 
   /// Solves H(x) λ = b with the exact Hessian at x (an equilibrium, where it is positive definite):
-  /// the adjoint solve of eq. 9. Returns false when H(x) is not positive definite. At the state the
+  /// the adjoint solve of eq. 9. Returns false when H(x) is not positive definite (its
+  /// factorization fails, or conjugate gradients meet a direction of non-positive curvature). At the state the
   /// last solve ended on, when its factorization is of the exact Hessian at a state near the
   /// tolerance (so with finish_on_fresh_step where the Hessian there is definite), that
   /// factorization preconditions conjugate gradients with H(x)λ from differences of ∇E: no assembly.

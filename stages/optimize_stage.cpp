@@ -112,7 +112,7 @@ RoutingResult optimize(const Design& d, RoutingProblem& problem, const BfgsOptio
 /// optimization reports beside its own result and must beat or equal.
 struct Baseline {
   RoutingResult result;
-  nlohmann::ordered_json json;  ///< {objective, iterations, targets: {name: {rmse_mm, max_error_mm, pressure_kPa}}}
+  nlohmann::ordered_json json;  ///< {objective, iterations, termination, targets: {name: {rmse_mm, max_error_mm, pressure_kPa}}}
 };
 Baseline first_guess_at_best_pressures(StageContext& ctx, DesignRouting& dr, const BfgsOptions& o, const Routing& start)
 {
@@ -126,6 +126,8 @@ Baseline first_guess_at_best_pressures(StageContext& ctx, DesignRouting& dr, con
   Baseline b{optimize_pressures(problem, pressures_only, log, ctx.progress, actuator_mask(ctx.design)), {}};
   problem.set_base(start);
   if (b.result.interrupted) return b;
+  // The optimization's solves start from the start's equilibria again, as without this run.
+  for (int t = 0; t < problem.num_targets(); ++t) problem.equilibrium(start, t);
   nlohmann::ordered_json targets = nlohmann::ordered_json::object();
   for (int t = 0; t < problem.num_targets(); ++t) {
     const TargetErrors e = target_errors(problem, dr.mesh, t, problem.equilibrium(b.result.routing, t));
@@ -148,9 +150,18 @@ std::string keep_the_better(StageContext& ctx, RoutingProblem& problem, Baseline
 {
   if (result.interrupted) return {};
   // The first guess scored as the optimization scores: with its routes' terms (curvature, skin,
-  // bend), which the pressure-only run leaves out as constants.
-  const double first_guess = problem.evaluate(problem.variables(baseline.result.routing));
-  baseline.json["objective"] = first_guess;
+  // bend), which the pressure-only run leaves out as constants; at exactly its routing (the
+  // variables the optimization left unfree taken from it too).
+  const Routing base = problem.base();
+  problem.set_base(baseline.result.routing);
+  double first_guess = HUGE_VAL;
+  try {
+    first_guess = problem.evaluate(problem.variables(baseline.result.routing));
+  } catch (const Interrupted&) {
+    result.interrupted = true;  // the caller keeps the best design so far
+  }
+  problem.set_base(base);
+  if (std::isfinite(first_guess)) baseline.json["objective"] = first_guess;
   if (!(first_guess < result.value)) return {};
   const std::string warning = fmt::format(
       "the optimizer ended at an objective of {:.4g}, above the first guess's at its best pressures ({:.4g}): the first guess is "
@@ -340,6 +351,8 @@ void require_start_inside(const Design& d, RoutingProblem& problem, const Routin
   Eigen::Vector3d where;
   if (const int f = problem.skin_violation(start, closest, where); f >= 0)
     bad(d, fmt::format("[fiber.{}]", d.fibers[f].name), too_near_the_skin(d, closest, where));
+  // The start may differ from the [[fiber]] routes: fibers closer than the clearance are moved apart.
+  require_bend_radius(d, start.routes, "the starting route, as moved apart from the other fibers,");
 }
 
 } // namespace
