@@ -96,16 +96,6 @@ void RoutingProblem::set_free(std::vector<bool> routes, Eigen::Matrix<bool, Eige
       }
 }
 
-int RoutingProblem::bend_violation(const Routing& r, SmallestBend& bend) const
-{
-  if (!(settings_.min_bend_radius > 0)) return -1;
-  for (int f = 0; f < num_fibers(); ++f) {
-    bend = smallest_bend(HermiteSpline(r.routes[f].points, r.routes[f].tangents));
-    if (bend.radius <= settings_.min_bend_radius) return f;
-  }
-  return -1;
-}
-
 int RoutingProblem::skin_violation(const Routing& r, double& distance, Eigen::Vector3d& where) const
 {
   for (int f = 0; f < num_fibers(); ++f) {

@@ -90,8 +90,6 @@ public:
   /// The first fiber that comes closer to the skin than skin_distance anywhere between its first
   /// and last barrier sample (−1: none), its closest approach (m) and where.
   int skin_violation(const Routing& r, double& distance, Eigen::Vector3d& where) const;
-  /// The first fiber that bends tighter than min_bend_radius anywhere (−1: none), and where.
-  int bend_violation(const Routing& r, SmallestBend& bend) const;
 
   Eigen::Index size() const { return static_cast<Eigen::Index>(entries_.size()); }
   Eigen::VectorXd variables(const Routing& r) const;

@@ -126,8 +126,6 @@ Baseline first_guess_at_best_pressures(StageContext& ctx, DesignRouting& dr, con
   Baseline b{optimize_pressures(problem, pressures_only, log, ctx.progress, actuator_mask(ctx.design)), {}};
   problem.set_base(start);
   if (b.result.interrupted) return b;
-  // The optimization's solves start from the start's equilibria again, as without this run.
-  for (int t = 0; t < problem.num_targets(); ++t) problem.equilibrium(start, t);
   nlohmann::ordered_json targets = nlohmann::ordered_json::object();
   for (int t = 0; t < problem.num_targets(); ++t) {
     const TargetErrors e = target_errors(problem, dr.mesh, t, problem.equilibrium(b.result.routing, t));
@@ -138,6 +136,8 @@ Baseline first_guess_at_best_pressures(StageContext& ctx, DesignRouting& dr, con
     ctx.log.info("target {}: the first guess at its best pressures: RMSE {:.3f} mm, max {:.3f} mm", dr.target_names[t],
                  e.rmse / units::mm, e.max / units::mm);
   }
+  // The optimization's solves start from the start's equilibria again, as without this run.
+  for (int t = 0; t < problem.num_targets(); ++t) problem.equilibrium(start, t);
   b.json = {{"objective", b.result.value}, {"iterations", b.result.iterations}, {"termination", choice_name(b.result.termination)},
             {"targets", targets}};
   return b;
