@@ -133,10 +133,12 @@ struct Target {
 struct OptimizeOptions {
   bool enabled = true;
   Strategy strategy = Strategy::simultaneous;
-  int max_iterations = BfgsOptions{}.max_iterations;
+  Method method = MinimizerOptions{}.method;
+  int max_iterations = MinimizerOptions{}.max_iterations;
   int route_only_iterations = 0;  ///< first, the routes alone at their starting pressures
-  double gradient_tolerance = BfgsOptions{}.gradient_tolerance;
-  double relative_tolerance = BfgsOptions{}.relative_tolerance;  ///< over the last BfgsOptions::window iterations
+  double gradient_tolerance = MinimizerOptions{}.gradient_tolerance;
+  double relative_tolerance = MinimizerOptions{}.relative_tolerance;  ///< over the last MinimizerOptions::window iterations
+  double decrease_tolerance = MinimizerOptions{}.decrease_tolerance;  ///< Levenberg-Marquardt's convergence
   double weight_curvature = RoutingSettings{}.weight_curvature;
   double weight_skin_barrier = RoutingSettings{}.weight_skin;
   double weight_bend_barrier = RoutingSettings{}.weight_bend;

@@ -804,10 +804,12 @@ OptimizeOptions read_optimize(Section s)
   OptimizeOptions o;
   o.enabled = s.boolean("enabled", o.enabled);
   o.strategy = s.choice_of("strategy", o.strategy, kStrategyNames);
+  o.method = s.choice_of("method", o.method, kMethodNames);
   o.max_iterations = s.integer("max_iterations", o.max_iterations, 0, 1000000);
   o.route_only_iterations = s.integer("route_only_iterations", o.route_only_iterations, 0, 1000000);
   o.gradient_tolerance = s.number("gradient_tolerance", o.gradient_tolerance, above_zero(1));
   o.relative_tolerance = s.number("relative_tolerance", o.relative_tolerance, above_zero(1));
+  o.decrease_tolerance = s.number("decrease_tolerance", o.decrease_tolerance, above_zero(1));
   o.weight_curvature = s.number("weight_curvature", o.weight_curvature, closed(0, 1e9));
   o.weight_skin_barrier = s.number("weight_skin_barrier", o.weight_skin_barrier, closed(0, 1e9));
   o.weight_bend_barrier = s.number("weight_bend_barrier", o.weight_bend_barrier, closed(0, 1e9));

@@ -56,6 +56,37 @@ double arc_length_to(const HermiteSpline& s, double t)
   return length;
 }
 
+/// Where span k bends tightest: κ scanned at `per_span` + 1 parameters, the largest refined by
+/// golden-section search between its neighbours (to 1e-9 of the span). Returns u ∈ [0, 1], κ.
+std::pair<double, double> span_tightest(const HermiteSpline& spline, int k, int per_span)
+{
+  int i_max = 0;
+  double k_max = -1;
+  for (int i = 0; i <= per_span; ++i)
+    if (const double kappa = span_curvature(spline, k, double(i) / per_span); kappa > k_max) {
+      k_max = kappa;
+      i_max = i;
+    }
+  double lo = std::max(0, i_max - 1) / double(per_span), hi = std::min(per_span, i_max + 1) / double(per_span);
+  const double g = (std::sqrt(5.0) - 1) / 2;
+  double x1 = hi - g * (hi - lo), x2 = lo + g * (hi - lo);
+  double f1 = span_curvature(spline, k, x1), f2 = span_curvature(spline, k, x2);
+  while (hi - lo > 1e-9) {
+    if (f1 > f2) {
+      hi = x2, x2 = x1, f2 = f1;
+      x1 = hi - g * (hi - lo);
+      f1 = span_curvature(spline, k, x1);
+    } else {
+      lo = x1, x1 = x2, f1 = f2;
+      x2 = lo + g * (hi - lo);
+      f2 = span_curvature(spline, k, x2);
+    }
+  }
+  double u = i_max / double(per_span), kappa = k_max;
+  if (const double mid = (lo + hi) / 2, k_mid = span_curvature(spline, k, mid); k_mid > kappa) u = mid, kappa = k_mid;
+  return {u, kappa};
+}
+
 } // namespace
 
 double curvature(const HermiteSpline& spline, double t)
@@ -69,34 +100,8 @@ SmallestBend smallest_bend(const HermiteSpline& spline, int per_span)
   double best = 0;
   int best_k = 0;
   double best_u = 0;
-  for (int k = 0; k < spline.spans(); ++k) {
-    // The scan's largest κ in this span, then golden-section search between its neighbours.
-    int i_max = 0;
-    double k_max = -1;
-    for (int i = 0; i <= per_span; ++i)
-      if (const double kappa = span_curvature(spline, k, double(i) / per_span); kappa > k_max) {
-        k_max = kappa;
-        i_max = i;
-      }
-    double lo = std::max(0, i_max - 1) / double(per_span), hi = std::min(per_span, i_max + 1) / double(per_span);
-    const double g = (std::sqrt(5.0) - 1) / 2;
-    double x1 = hi - g * (hi - lo), x2 = lo + g * (hi - lo);
-    double f1 = span_curvature(spline, k, x1), f2 = span_curvature(spline, k, x2);
-    while (hi - lo > 1e-9) {
-      if (f1 > f2) {
-        hi = x2, x2 = x1, f2 = f1;
-        x1 = hi - g * (hi - lo);
-        f1 = span_curvature(spline, k, x1);
-      } else {
-        lo = x1, x1 = x2, f1 = f2;
-        x2 = lo + g * (hi - lo);
-        f2 = span_curvature(spline, k, x2);
-      }
-    }
-    double u = i_max / double(per_span), kappa = k_max;
-    if (const double mid = (lo + hi) / 2, k_mid = span_curvature(spline, k, mid); k_mid > kappa) u = mid, kappa = k_mid;
-    if (kappa > best) best = kappa, best_k = k, best_u = u;
-  }
+  for (int k = 0; k < spline.spans(); ++k)
+    if (const auto [u, kappa] = span_tightest(spline, k, per_span); kappa > best) best = kappa, best_k = k, best_u = u;
   SmallestBend out;
   out.t = best_k + best_u;
   // A straight route's κ is round-off (1e-16 of its scale): a radius a million times its length is none.
@@ -108,12 +113,20 @@ SmallestBend smallest_bend(const HermiteSpline& spline, int per_span)
 
 BendBarrier::BendBarrier(double min_radius, double band, int per_span) : min_radius_(min_radius), band_(band), per_span_(per_span) {}
 
+std::vector<double> BendBarrier::sample_parameters(const HermiteSpline& spline, int k) const
+{
+  std::vector<double> u;
+  for (int i = 0; i <= per_span_; ++i) u.push_back(double(i) / per_span_);
+  u.push_back(span_tightest(spline, k, kTightestScan).first);
+  return u;
+}
+
 double BendBarrier::value(const HermiteSpline& spline) const
 {
   double B = 0;
   for (int k = 0; k < spline.spans(); ++k)
-    for (int i = 0; i <= per_span_; ++i) {
-      const double kappa = span_curvature(spline, k, double(i) / per_span_);
+    for (double u : sample_parameters(spline, k)) {
+      const double kappa = span_curvature(spline, k, u);
       B += barrier(1 - min_radius_ * kappa, band_);  // +∞ at or under the smallest radius
       if (!std::isfinite(B)) return HUGE_VAL;
     }
@@ -126,8 +139,8 @@ FiberParameterGradient BendBarrier::gradient(const HermiteSpline& spline) const
   g.points.assign(spline.points().size(), Eigen::Vector3d::Zero());
   g.tangents.assign(spline.points().size(), Eigen::Vector3d::Zero());
   for (int k = 0; k < spline.spans(); ++k)
-    for (int i = 0; i <= per_span_; ++i) {
-      const SpanDerivatives d = span_derivatives(spline, k, double(i) / per_span_);
+    for (double u : sample_parameters(spline, k)) {
+      const SpanDerivatives d = span_derivatives(spline, k, u);
       const double kappa = curvature_of(d.a, d.b), h = 1 - min_radius_ * kappa;
       if (h >= band_ || h <= 0) continue;
       // ∂b/∂κ = −R b'(h);  κ = |c| / |a|³, c = a × b:

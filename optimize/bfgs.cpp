@@ -58,18 +58,8 @@ void take_pair(Eigen::MatrixXd& H, bool& scaled, const Eigen::VectorXd& s, const
   bfgs_update(H, s, y);
 }
 
-/// The relative-tolerance rule: f fell by at most relative_tolerance of its value over the last
-/// `window` iterations. `values`: f after each iteration, the last one fx.
-std::optional<std::string> stalled(const std::vector<double>& values, double fx, const BfgsOptions& options)
-{
-  if (static_cast<int>(values.size()) <= options.window) return std::nullopt;
-  const double before = values[values.size() - 1 - options.window];
-  if (before - fx > options.relative_tolerance * std::abs(fx)) return std::nullopt;
-  return fmt::format("f fell by {:.3g} of its value over the last {} iterations", (before - fx) / std::abs(fx), options.window);
-}
-
 /// `result` ending at the best point `tracked` saw.
-BfgsResult finished(BfgsResult& result, const Tracked& tracked, Termination termination, std::string message)
+MinimizerResult finished(MinimizerResult& result, const Tracked& tracked, Termination termination, std::string message)
 {
   result.x = tracked.best_x;
   result.value = tracked.best;
@@ -82,12 +72,12 @@ BfgsResult finished(BfgsResult& result, const Tracked& tracked, Termination term
 
 } // namespace
 
-BfgsResult minimize_bfgs(const Objective& f, Eigen::VectorXd x, const BfgsOptions& options,
+MinimizerResult minimize_bfgs(const Objective& f, Eigen::VectorXd x, const MinimizerOptions& options,
                          const IterationCallback& on_iteration, Progress& progress)
 {
   const Eigen::Index n = x.size();
   Tracked tracked(f);
-  BfgsResult result;
+  MinimizerResult result;
   Eigen::VectorXd g(n);
   double fx;
   try {
@@ -172,7 +162,7 @@ BfgsResult minimize_bfgs(const Objective& f, Eigen::VectorXd x, const BfgsOption
         H.setIdentity();
         scaled = false;
       }
-      if (auto message = stalled(values, fx, options)) return finish(Termination::stalled, std::move(*message));
+      if (auto message = stall_message(values, fx, options)) return finish(Termination::stalled, std::move(*message));
     }
   } catch (const Interrupted&) {
     finish(Termination::interrupted, "interrupted");

@@ -44,6 +44,25 @@ Eigen::VectorXd DistanceObjective::gradient(const Eigen::VectorXd& x) const
   return g;
 }
 
+Eigen::MatrixXd DistanceObjective::gauss_newton_hessian(const Eigen::MatrixXd& S) const
+{
+  Eigen::MatrixXd H = Eigen::MatrixXd::Zero(S.cols(), S.cols());
+  Eigen::MatrixXd P(3, S.cols()), R(9, S.cols());
+  for (const Sample& s : samples_) {
+    P.setZero();
+    R.setZero();
+    for (Eigen::Index k = 0; k < s.at.size(); ++k) {
+      const auto Sk = S.middleRows(3 * s.at.nodes[k], 3);
+      P += s.at.N[k] * Sk;
+      if (s.w_ori != 0)
+        for (int b = 0; b < 3; ++b) R.middleRows(3 * b, 3) += s.at.dN(k, b) * Sk;
+    }
+    H.selfadjointView<Eigen::Lower>().rankUpdate(P.transpose(), s.w_pos);
+    if (s.w_ori != 0) H.selfadjointView<Eigen::Lower>().rankUpdate(R.transpose(), s.w_ori);
+  }
+  return H.selfadjointView<Eigen::Lower>();
+}
+
 double DistanceObjective::rmse(const Eigen::VectorXd& x) const
 {
   double sum = 0;

@@ -23,6 +23,10 @@ public:
   double value(const Eigen::VectorXd& x) const;
   /// ∂f/∂x_i = w_pos (x(q) − x̂(q)) N_i(q) + w_ori (F − F̂) ∇N_i(q), summed over samples.
   Eigen::VectorXd gradient(const Eigen::VectorXd& x) const;
+  /// Sᵀ ∇²f S for the sensitivities S = dx/dz (3n × m): f_dist is quadratic in x, so this is the
+  /// Gauss-Newton Hessian of f_dist(x(z)) in z: Σ_j w_pos PᵀP + w_ori Σ_ab R_abᵀR_ab, with P = Σ_i N_i S_i
+  /// (S_i: node i's 3 rows) and R_ab = Σ_i ∂_b N_i S_{i,a}.
+  Eigen::MatrixXd gauss_newton_hessian(const Eigen::MatrixXd& S) const;
 
   /// Root-mean-square and largest position error over all samples (m).
   double rmse(const Eigen::VectorXd& x) const;

@@ -4,25 +4,33 @@
 
 #include <fmt/format.h>
 
+#include "optimize/levenberg_marquardt.hpp"
+
 namespace fibermold {
 
 namespace {
 
 using Mask = Eigen::Matrix<bool, Eigen::Dynamic, Eigen::Dynamic>;
 
-/// One BFGS run over the problem's current free variables, starting from its base.
-BfgsResult run(RoutingProblem& problem, int stage, const BfgsOptions& options, const RoutingCallback& on_iteration,
+/// One run (BFGS or Levenberg-Marquardt) over the problem's current free variables, starting from its base.
+MinimizerResult run(RoutingProblem& problem, int stage, const MinimizerOptions& options, const RoutingCallback& on_iteration,
                Progress& progress)
 {
-  const Objective f = [&](const Eigen::VectorXd& z, Eigen::VectorXd& g) { return problem.evaluate(z, &g); };
-  const IterationCallback cb = [&](const BfgsIteration& it, const Eigen::VectorXd&) {
+  const IterationCallback cb = [&](const MinimizerIteration& it, const Eigen::VectorXd&) {
     if (on_iteration) on_iteration(stage, it, problem.terms_at(it.value));
   };
+  if (options.method == Method::levenberg_marquardt) {
+    const ModelObjective f = [&](const Eigen::VectorXd& z, Eigen::VectorXd& g, Eigen::MatrixXd& B) {
+      return problem.evaluate(z, &g, nullptr, &B);
+    };
+    return minimize_levenberg_marquardt(f, problem.variables(problem.base()), options, cb, progress);
+  }
+  const Objective f = [&](const Eigen::VectorXd& z, Eigen::VectorXd& g) { return problem.evaluate(z, &g); };
   return minimize_bfgs(f, problem.variables(problem.base()), options, cb, progress);
 }
 
 /// `prefix` names the run in the message (a sequential stage's fiber).
-void absorb(RoutingResult& out, RoutingProblem& problem, const BfgsResult& r, const std::string& prefix = {})
+void absorb(RoutingResult& out, RoutingProblem& problem, const MinimizerResult& r, const std::string& prefix = {})
 {
   out.routing = problem.routing(r.x);
   out.value = r.value;
@@ -39,7 +47,7 @@ void absorb(RoutingResult& out, RoutingProblem& problem, const BfgsResult& r, co
 
 } // namespace
 
-RoutingResult optimize_routing(RoutingProblem& problem, Strategy strategy, const BfgsOptions& options,
+RoutingResult optimize_routing(RoutingProblem& problem, Strategy strategy, const MinimizerOptions& options,
                                const RoutingCallback& on_iteration, Progress& progress, ActuatorMask actuators)
 {
   const int T = problem.num_targets(), F = problem.num_fibers();
@@ -65,7 +73,7 @@ RoutingResult optimize_routing(RoutingProblem& problem, Strategy strategy, const
   return out;
 }
 
-RoutingResult optimize_pressures(RoutingProblem& problem, const BfgsOptions& options, const RoutingCallback& on_iteration,
+RoutingResult optimize_pressures(RoutingProblem& problem, const MinimizerOptions& options, const RoutingCallback& on_iteration,
                                  Progress& progress, const ActuatorMask& actuators)
 {
   RoutingResult out;

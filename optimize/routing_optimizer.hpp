@@ -29,7 +29,7 @@ struct RoutingResult {
 
 /// Called after each accepted step: the stage (0 for simultaneous, fiber k for sequential), the
 /// step, and the terms at the new point.
-using RoutingCallback = std::function<void(int stage, const BfgsIteration&, const RoutingTerms&)>;
+using RoutingCallback = std::function<void(int stage, const MinimizerIteration&, const RoutingTerms&)>;
 
 /// Which fibers may be pressurized for which target (targets × fibers); the others keep the
 /// pressure they start with (0 for an unassigned fiber).
@@ -45,12 +45,12 @@ inline std::string_view choice_name(Strategy s) { return name_in(kStrategyNames,
 /// `actuators` applies to simultaneous (empty: every fiber for every target). Throws
 /// std::invalid_argument for sequential with a number of fibers different from the number of
 /// targets.
-RoutingResult optimize_routing(RoutingProblem& problem, Strategy strategy, const BfgsOptions& options,
+RoutingResult optimize_routing(RoutingProblem& problem, Strategy strategy, const MinimizerOptions& options,
                                const RoutingCallback& on_iteration, Progress& progress, ActuatorMask actuators = {});
 
 /// The first guess's routes at their best pressures: a pressure-only run (the routes held), over
 /// the pressures `actuators` frees. Every optimization is measured against it (docs/optimize.md).
-RoutingResult optimize_pressures(RoutingProblem& problem, const BfgsOptions& options, const RoutingCallback& on_iteration,
+RoutingResult optimize_pressures(RoutingProblem& problem, const MinimizerOptions& options, const RoutingCallback& on_iteration,
                                  Progress& progress, const ActuatorMask& actuators);
 
 } // namespace fibermold

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <stdexcept>
 
+#include <Eigen/Eigenvalues>
 #include <fmt/format.h>
 
 #include "core/units.hpp"
@@ -221,11 +222,7 @@ double RoutingProblem::regularizers(const Routing& r, Eigen::VectorXd* gradient,
       terms.bend += settings_.weight_bend * bend_barrier_->value(s);
       if (!std::isfinite(terms.bend) || smallest_bend(s).radius <= settings_.min_bend_radius) return HUGE_VAL;
     }
-    if (gradient) {
-      add_fiber_gradient(f, fiber_curvature_gradient(s), wc, -1, *gradient);
-      add_fiber_gradient(f, skin_barriers_[f].gradient(s), skin_weight(), -1, *gradient);
-      if (bend_barrier_) add_fiber_gradient(f, bend_barrier_->gradient(s), settings_.weight_bend, -1, *gradient);
-    }
+    if (gradient) add_route_gradient(r, f, *gradient);
   }
   const double pmax = settings_.max_pressure, margin = settings_.pressure_margin;
   for (int t = 0; t < num_targets(); ++t)
@@ -242,20 +239,111 @@ double RoutingProblem::regularizers(const Routing& r, Eigen::VectorXd* gradient,
   if (clearance_barrier_) {
     terms.clearance = weight_clearance_ * clearance_barrier_->value(r.routes);
     if (!std::isfinite(terms.clearance)) return HUGE_VAL;
-    if (gradient) {
-      const std::vector<FiberParameterGradient> g = clearance_barrier_->gradient(r.routes);
-      for (int f = 0; f < num_fibers(); ++f) add_fiber_gradient(f, g[f], weight_clearance_, -1, *gradient);
-    }
+    if (gradient) add_clearance_gradient(r, *gradient);
   }
   return terms.curvature + terms.skin + terms.bend + terms.pressure + terms.clearance;
 }
 
-double RoutingProblem::evaluate(const Eigen::VectorXd& z, Eigen::VectorXd* gradient, RoutingTerms* terms_out)
+void RoutingProblem::add_route_gradient(const Routing& r, int f, Eigen::VectorXd& out) const
 {
+  const HermiteSpline s(r.routes[f].points, r.routes[f].tangents);
+  add_fiber_gradient(f, fiber_curvature_gradient(s), settings_.weight_curvature * start_length_[f], -1, out);
+  add_fiber_gradient(f, skin_barriers_[f].gradient(s), skin_weight(), -1, out);
+  if (bend_barrier_) add_fiber_gradient(f, bend_barrier_->gradient(s), settings_.weight_bend, -1, out);
+}
+
+void RoutingProblem::add_clearance_gradient(const Routing& r, Eigen::VectorXd& out) const
+{
+  const std::vector<FiberParameterGradient> g = clearance_barrier_->gradient(r.routes);
+  for (int f = 0; f < num_fibers(); ++f) add_fiber_gradient(f, g[f], weight_clearance_, -1, out);
+}
+
+Eigen::MatrixXd RoutingProblem::regularizer_hessian(const Eigen::VectorXd& z) const
+{
+  // Variables in mm and 10 kPa: 1e-6 is a nanometre, far inside every barrier's band.
+  constexpr double h = 1e-6;
+  const Eigen::Index n = size();
+  Eigen::MatrixXd H = Eigen::MatrixXd::Zero(n, n);
+  const auto route_gradient = [&](const Eigen::VectorXd& at, int f) {
+    const Routing r = routing(at);
+    Eigen::VectorXd g = Eigen::VectorXd::Zero(n);
+    add_route_gradient(r, f, g);
+    if (clearance_barrier_) add_clearance_gradient(r, g);
+    return g;
+  };
+  const Routing r = routing(z);
+  const double pmax = settings_.max_pressure, margin = settings_.pressure_margin;
+  for (Eigen::Index i = 0; i < n; ++i) {
+    const Entry& e = entries_[i];
+    if (e.kind == Entry::Pressure) {
+      const double u = r.pressures(e.index, e.fiber) / pmax;
+      H(i, i) = settings_.weight_pressure * (barrier_hessian(u, margin) + barrier_hessian(1 - u, margin)) *
+                std::pow(kPressureUnit / pmax, 2);
+      continue;
+    }
+    Eigen::VectorXd up = z, down = z;
+    up[i] += h;
+    down[i] -= h;
+    H.col(i) = (route_gradient(up, e.fiber) - route_gradient(down, e.fiber)) / (2 * h);
+  }
+  // Projected onto the positive semi-definite matrices (negative eigenvalues to zero, as Newton on
+  // an IPC barrier projects its Hessian): the curvature term and a barrier across a concave skin
+  // are not convex, and an indefinite model has no minimum to step to.
+  const Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> eigen((H + H.transpose()) / 2);
+  return eigen.eigenvectors() * eigen.eigenvalues().cwiseMax(0).asDiagonal() * eigen.eigenvectors().transpose();
+}
+
+Eigen::MatrixXd RoutingProblem::mixed_columns(int t, const Eigen::VectorXd& x, const std::vector<const MuscleEnergy*>& muscles,
+                                              std::vector<Eigen::Index>& columns) const
+{
+  columns.clear();
+  std::vector<std::pair<int, int>> source;  // (fiber, column of its mixed_columns)
+  for (int f = 0; f < num_fibers(); ++f) {
+    for (std::size_t c = 0; c < entry_of_[f].size(); ++c)
+      if (entry_of_[f][c] >= 0) {
+        columns.push_back(entry_of_[f][c]);
+        source.emplace_back(f, static_cast<int>(c));
+      }
+    if (pressure_entry_(t, f) >= 0) {
+      columns.push_back(pressure_entry_(t, f));
+      source.emplace_back(f, static_cast<int>(entry_of_[f].size()));
+    }
+  }
+  Eigen::MatrixXd M(x.size(), static_cast<Eigen::Index>(columns.size()));
+  std::vector<Eigen::MatrixXd> by_fiber(muscles.size());
+  for (std::size_t k = 0; k < source.size(); ++k) {
+    const auto [f, c] = source[k];
+    if (by_fiber[f].size() == 0) by_fiber[f] = muscles[f]->mixed_columns(x);
+    M.col(static_cast<Eigen::Index>(k)) = by_fiber[f].col(c) * scale(entries_[columns[k]]);
+  }
+  return M;
+}
+
+Eigen::MatrixXd RoutingProblem::sensitivities(const Routing& r, int t, const Eigen::VectorXd& x)
+{
+  const auto owned = muscles(r, t);
+  std::vector<const MuscleEnergy*> m;
+  for (const auto& e : owned) m.push_back(e.get());
+  std::vector<Eigen::Index> columns;
+  const Eigen::MatrixXd M = mixed_columns(t, x, m, columns);
+  sim_.use_solver(solver_slot(t));
+  Eigen::MatrixXd S;
+  if (!sim_.solver().solve_with_factorization(M, S)) return {};
+  Eigen::MatrixXd out = Eigen::MatrixXd::Zero(x.size(), size());
+  for (std::size_t k = 0; k < columns.size(); ++k) out.col(columns[k]) = -S.col(static_cast<Eigen::Index>(k));
+  return out;
+}
+
+double RoutingProblem::evaluate(const Eigen::VectorXd& z, Eigen::VectorXd* gradient, RoutingTerms* terms_out,
+                                Eigen::MatrixXd* model)
+{
+  if (model && !gradient) throw std::invalid_argument("RoutingProblem::evaluate: a model Hessian needs the gradient");
   const Routing r = routing(z);
   RoutingTerms terms;
   terms.per_target.assign(targets_.size(), 0);
   Eigen::VectorXd g = Eigen::VectorXd::Zero(size());
+  Eigen::MatrixXd B;
+  if (model) B = Eigen::MatrixXd::Zero(size(), size());
   if (!std::isfinite(regularizers(r, gradient ? &g : nullptr, terms)) || !fibers_inside(r)) return HUGE_VAL;
   for (int t = 0; t < num_targets(); ++t) {
     if (!target_active_[t]) continue;
@@ -280,9 +368,25 @@ double RoutingProblem::evaluate(const Eigen::VectorXd& z, Eigen::VectorXd* gradi
     }
     seconds_adjoint_ += since(start);
     for (int f = 0; f < num_fibers(); ++f) add_fiber_gradient(f, by_fiber[f], 1.0, t, g);
+    if (!model) continue;
+    const auto model_start = Clock::now();
+    std::vector<Eigen::Index> columns;
+    const Eigen::MatrixXd M = mixed_columns(t, x, m, columns);
+    Eigen::MatrixXd S;  // −dx/dz over `columns`: the sign drops out of SᵀQS
+    if (!sim_.solver().solve_with_factorization(M, S)) return HUGE_VAL;
+    const Eigen::MatrixXd gn = distances_[t].gauss_newton_hessian(S);
+    for (std::size_t a = 0; a < columns.size(); ++a)
+      for (std::size_t b = 0; b < columns.size(); ++b)
+        B(columns[a], columns[b]) += gn(static_cast<Eigen::Index>(a), static_cast<Eigen::Index>(b));
+    seconds_model_ += since(model_start);
   }
   terms.total = terms.distance + terms.curvature + terms.skin + terms.bend + terms.pressure + terms.clearance;
   if (gradient) *gradient = g;
+  if (model) {
+    const auto model_start = Clock::now();
+    *model = B + regularizer_hessian(z);
+    seconds_model_ += since(model_start);
+  }
   if (terms_out) *terms_out = terms;
   last_terms_ = terms;
   if (terms.total < best_terms_.total) {

@@ -97,7 +97,21 @@ public:
 
   /// The objective at z, and its gradient (adjoint, eq. 9) when asked. +∞ when a fiber leaves the
   /// body, a pressure its bounds, or an equilibrium cannot be found; `gradient` is then untouched.
-  double evaluate(const Eigen::VectorXd& z, Eigen::VectorXd* gradient = nullptr, RoutingTerms* terms = nullptr);
+  /// `model` (with `gradient`): the Gauss-Newton Hessian of the distances, Σ_t S_tᵀ ∇²f_dist S_t with
+  /// the sensitivities S_t = dx^t/dz (sensitivities()), plus the regularizers' Hessian
+  /// (regularizer_hessian()): the model Hessian of levenberg_marquardt.hpp.
+  double evaluate(const Eigen::VectorXd& z, Eigen::VectorXd* gradient = nullptr, RoutingTerms* terms = nullptr,
+                  Eigen::MatrixXd* model = nullptr);
+  /// The forward sensitivities dx/dz = −H⁻¹ ∂²E/∂x∂z (3n × size()) of target t's equilibrium x
+  /// under routing r, one column per free variable, each a back-substitution with the
+  /// factorization the equilibrium's solve (or adjoint solve) left (so accurate to how near that is
+  /// to H(x): the test bar's within 1.0e-3 of central differences). Empty when no factorization is held.
+  Eigen::MatrixXd sensitivities(const Routing& r, int t, const Eigen::VectorXd& x);
+  /// The Hessian of the curvature, skin, bend, pressure and clearance terms at z: central
+  /// differences of their analytic gradient, one route at a time (a route's terms see only its own
+  /// variables; the clearance barrier all), the pressure barrier's exactly; projected to be
+  /// positive semi-definite.
+  Eigen::MatrixXd regularizer_hessian(const Eigen::VectorXd& z) const;
 
   /// The terms of the finite evaluation whose total is `value`: the last one, or the best one
   /// since set_free (the two points a line search can accept).
@@ -124,6 +138,8 @@ public:
   const NewtonTotals& newton() const { return newton_; }
   double seconds_simulation() const { return seconds_simulation_; }
   double seconds_adjoint() const { return seconds_adjoint_; }
+  /// Seconds in the model Hessians' sensitivities and regularizer Hessians.
+  double seconds_model() const { return seconds_model_; }
 
 private:
   struct Entry {
@@ -136,6 +152,13 @@ private:
   /// Equilibrium x of target t with its muscles' `energies`, warm-started; whether Newton converged.
   bool solve(int t, std::vector<std::unique_ptr<Energy>> energies, Eigen::VectorXd& x);
   double regularizers(const Routing& r, Eigen::VectorXd* gradient, RoutingTerms& terms) const;
+  /// Adds the gradient of fiber f's route terms (curvature, skin, bend) to `out`.
+  void add_route_gradient(const Routing& r, int f, Eigen::VectorXd& out) const;
+  void add_clearance_gradient(const Routing& r, Eigen::VectorXd& out) const;
+  /// The free variables whose columns of ∂²E/∂x∂z are not zero for target t (its pressures, the
+  /// free routes' points and tangents), and those columns with `muscles` at x.
+  Eigen::MatrixXd mixed_columns(int t, const Eigen::VectorXd& x, const std::vector<const MuscleEnergy*>& muscles,
+                                std::vector<Eigen::Index>& columns) const;
   void add_fiber_gradient(int f, const FiberParameterGradient& g, double weight, int target, Eigen::VectorXd& out) const;
   bool fibers_inside(const Routing& r) const;
 
@@ -159,7 +182,7 @@ private:
   const ClearanceBarrier* clearance_barrier_ = nullptr;
   double weight_clearance_ = 0;
   NewtonTotals newton_;
-  double seconds_simulation_ = 0, seconds_adjoint_ = 0;
+  double seconds_simulation_ = 0, seconds_adjoint_ = 0, seconds_model_ = 0;
 };
 
 } // namespace fibermold

@@ -79,5 +79,6 @@ bool CholmodSolver::factorize(const Eigen::SparseMatrix<double>& A, double shift
 }
 
 Eigen::VectorXd CholmodSolver::solve(const Eigen::VectorXd& b) const { return impl_->llt.solve(b); }
+Eigen::MatrixXd CholmodSolver::solve(const Eigen::MatrixXd& B) const { return impl_->llt.solve(B); }
 
 } // namespace fibermold

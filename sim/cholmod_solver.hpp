@@ -20,6 +20,8 @@ public:
   /// Returns false when A + shift·I is not positive definite.
   bool factorize(const Eigen::SparseMatrix<double>& A, double shift = 0);
   Eigen::VectorXd solve(const Eigen::VectorXd& b) const;
+  /// All of B's columns in one pass (a block back-substitution).
+  Eigen::MatrixXd solve(const Eigen::MatrixXd& B) const;
 
   int analyses() const { return analyses_; }
 

@@ -183,4 +183,50 @@ FiberParameterGradient MuscleEnergy::mixed_derivative(const Eigen::VectorXd& x, 
   return g;
 }
 
+Eigen::MatrixXd MuscleEnergy::mixed_columns(const Eigen::VectorXd& x) const
+{
+  // mixed_derivative's by_end is linear in λ: at end e of segment j (sign s),
+  //   by_e = A_e w + b_e Σ_{i at e} ∇N_i(e) (n · λ_i),
+  //   A_e = A [Ψ_εε ∂ε nᵀ + Ψ_ε s Fᵀ(I − n nᵀ) / l],  b_e = A Ψ_ε s,  w = Σ_i α_i λ_i,
+  // and the pressure's term is A (Ψ_εp + Ψ_εε ∂ε/∂p) nᵀw. Column (slot, c) of M gathers row c of
+  // ∂by_e/∂λ times the spline weight of e on that slot.
+  const double area = model_.parameters().area();
+  const double rest = 1 + model_.rest_strain(pressure_), rest_p = model_.parameters().rest_strain_slope;
+  const Eigen::Index points = static_cast<Eigen::Index>(spline_.points().size());
+  Eigen::MatrixXd M = Eigen::MatrixXd::Zero(x.size(), 6 * points + 1);
+  for (std::size_t j = 0; j < chords_.size(); ++j) {
+    const SegmentState s = state(x, j);
+    const MuscleDensity m = model_.density(pressure_, s.strain);
+    const Chord& c = chords_[j];
+    const Eigen::Vector3d& n = s.direction;
+    const double l = s.length, L = s.rest_length;
+    const Eigen::Vector3d by_rest = (1 + s.strain) * rest * segments_.vectors[j].normalized();
+    const Eigen::Matrix3d across = Eigen::Matrix3d::Identity() - n * n.transpose();
+    for (int end = 0; end < 2; ++end) {
+      const ShapeEval& e = ends_[j + end];
+      const Eigen::Matrix3d F = e.deformation_gradient(x);
+      const double sign = end == 0 ? -1 : 1;
+      const Eigen::Vector3d de = sign * (F.transpose() * n - by_rest) / L;
+      const Eigen::Matrix3d A = area * (m.d_eps_eps * de * n.transpose() + m.d_eps * sign * F.transpose() * across / l);
+      const double b = area * m.d_eps * sign;
+      int k;
+      double w[4];
+      spline_.weights(segments_.t[j + end], k, w);
+      const Eigen::Index slots[4] = {6 * k, 6 * k + 3, 6 * (k + 1), 6 * (k + 1) + 3};
+      for (int slot = 0; slot < 4; ++slot)
+        for (int r = 0; r < 3; ++r) {
+          auto col = M.col(slots[slot] + r);
+          for (std::size_t i = 0; i < c.nodes.size(); ++i)
+            col.segment<3>(3 * c.nodes[i]) += w[slot] * c.alpha[static_cast<Eigen::Index>(i)] * A.row(r).transpose();
+          for (Eigen::Index i = 0; i < e.size(); ++i) col.segment<3>(3 * e.nodes[i]) += w[slot] * b * e.dN(i, r) * n;
+        }
+    }
+    const double de_dp = -(1 + s.strain) * rest_p / rest;
+    const double by_pressure = area * (m.d_eps_p + m.d_eps_eps * de_dp);
+    for (std::size_t i = 0; i < c.nodes.size(); ++i)
+      M.col(6 * points).segment<3>(3 * c.nodes[i]) += by_pressure * c.alpha[static_cast<Eigen::Index>(i)] * n;
+  }
+  return M;
+}
+
 } // namespace fibermold

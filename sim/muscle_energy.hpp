@@ -49,6 +49,10 @@ public:
   /// ∂/∂(points, tangents, p) of λ · ∂E_act/∂x at fixed x: the mixed term λᵀ ∂²E/∂x∂(s, p) of the
   /// adjoint (eq. 9), without forming the matrix.
   FiberParameterGradient mixed_derivative(const Eigen::VectorXd& x, const Eigen::VectorXd& lambda) const;
+  /// The matrix M = ∂²E_act/∂x∂(s, p) itself (rows: x; columns: 6k + c for point k's component c,
+  /// 6k + 3 + c for tangent k's, 6·(points) for the pressure), so that Mᵀλ is mixed_derivative(x, λ):
+  /// the right-hand sides of the forward sensitivities dx*/d(s, p) = −H⁻¹M.
+  Eigen::MatrixXd mixed_columns(const Eigen::VectorXd& x) const;
 
 private:
   struct SegmentState {

@@ -119,6 +119,13 @@ bool NewtonSolver::solve_with_hessian(const Eigen::VectorXd& x, const Eigen::Vec
   return lambda.allFinite();
 }
 
+bool NewtonSolver::solve_with_factorization(const Eigen::MatrixXd& B, Eigen::MatrixXd& X) const
+{
+  if (kind_ == Factorization::none) return false;
+  X = cholmod_.solve(B);
+  return X.allFinite();
+}
+
 bool NewtonSolver::conjugate_gradient_solve(const Eigen::VectorXd& x, const Eigen::VectorXd& b, Eigen::VectorXd& lambda) const
 {
   // Preconditioned conjugate gradients (Nocedal & Wright, Algorithm 5.3) on H(x) λ = b, with the

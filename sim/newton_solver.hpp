@@ -91,6 +91,11 @@ public:
   /// tolerance (so with finish_on_fresh_step where the Hessian there is definite), that
   /// factorization preconditions conjugate gradients with H(x)λ from differences of ∇E: no assembly.
   bool solve_with_hessian(const Eigen::VectorXd& x, const Eigen::VectorXd& b, Eigen::VectorXd& lambda);
+  /// K⁻¹B with the factorization K held after solve_with_hessian(x, …): of the Hessian at x or a few
+  /// steps before it, or with lumped pairs (keep_pattern), so an approximation of H(x)⁻¹B, not
+  /// refined (what a model needs: the Gauss-Newton Hessian's sensitivities). False when no
+  /// factorization is held.
+  bool solve_with_factorization(const Eigen::MatrixXd& B, Eigen::MatrixXd& X) const;
 
 private:
   enum class Factorization { none, exact, shifted, projected };

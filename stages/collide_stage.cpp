@@ -100,8 +100,8 @@ Routing reoptimize(StageContext& ctx, RoutingProblem& problem, const FiberCleara
   const ClearanceBarrier barrier(measure, resolved.routes, d.collide.clearance, d.muscle.model.diameter / 2);
   problem.set_base(resolved);
   problem.set_clearance_barrier(&barrier, kClearanceBarrierWeight);
-  const BfgsOptions o = bfgs_options(d);
-  const RoutingCallback on_iteration = [&](int, const BfgsIteration& it, const RoutingTerms& terms) {
+  const MinimizerOptions o = minimizer_options(d);
+  const RoutingCallback on_iteration = [&](int, const MinimizerIteration& it, const RoutingTerms& terms) {
     const std::string what = fmt::format("optimizing again, iteration {}: objective {:.4g} (distance {:.4g}, clearance "
                                          "barrier {:.3g})",
                                          it.iteration, terms.total, terms.distance, terms.clearance);

@@ -71,7 +71,7 @@ public:
     for (const std::string& t : targets) text_ += ",distance_" + t;
     text_ += ",gradient_norm,step,evaluations,seconds\n";
   }
-  void add(int iteration, int stage, const BfgsIteration& it, const RoutingTerms& terms, double seconds)
+  void add(int iteration, int stage, const MinimizerIteration& it, const RoutingTerms& terms, double seconds)
   {
     text_ += fmt::format("{},{},{:.9g},{:.9g},{:.9g},{:.9g},{:.9g},{:.9g},{:.9g}", iteration, stage + 1, terms.total,
                          terms.distance, terms.curvature, terms.skin, terms.bend, terms.pressure, terms.clearance);
@@ -88,15 +88,15 @@ private:
 /// their starting pressures (reported as stage −1). At zero pressure a route has no effect, so an optimizer that turns a
 /// muscle down before its route does the job can stop there (the twisting bar: a straight muscle
 /// bends the bar, so the pressure falls to zero before a helix forms).
-RoutingResult optimize(const Design& d, RoutingProblem& problem, const BfgsOptions& o, const RoutingCallback& on_iteration,
+RoutingResult optimize(const Design& d, RoutingProblem& problem, const MinimizerOptions& o, const RoutingCallback& on_iteration,
                        Progress& progress)
 {
   const int route_only = d.optimize.route_only_iterations;
   if (route_only == 0) return optimize_routing(problem, d.optimize.strategy, o, on_iteration, progress, actuator_mask(d));
-  BfgsOptions first = o;
+  MinimizerOptions first = o;
   first.max_iterations = route_only;
   const ActuatorMask none = ActuatorMask::Constant(problem.num_targets(), problem.num_fibers(), false);
-  const RoutingCallback routes_only = [&](int, const BfgsIteration& it, const RoutingTerms& terms) {
+  const RoutingCallback routes_only = [&](int, const MinimizerIteration& it, const RoutingTerms& terms) {
     on_iteration(-1, it, terms);
   };
   const RoutingResult routes = optimize_routing(problem, Strategy::simultaneous, first, routes_only, progress, none);
@@ -114,12 +114,12 @@ struct Baseline {
   RoutingResult result;
   nlohmann::ordered_json json;  ///< {objective, iterations, termination, targets: {name: {rmse_mm, max_error_mm, pressure_kPa}}}
 };
-Baseline first_guess_at_best_pressures(StageContext& ctx, DesignRouting& dr, const BfgsOptions& o, const Routing& start)
+Baseline first_guess_at_best_pressures(StageContext& ctx, DesignRouting& dr, const MinimizerOptions& o, const Routing& start)
 {
   RoutingProblem& problem = *dr.problem;
-  BfgsOptions pressures_only = o;
+  MinimizerOptions pressures_only = o;
   pressures_only.max_iterations = std::min(o.max_iterations, kBaselineIterations);
-  const RoutingCallback log = [&](int, const BfgsIteration& it, const RoutingTerms& terms) {
+  const RoutingCallback log = [&](int, const MinimizerIteration& it, const RoutingTerms& terms) {
     ctx.log.info("first guess, pressures only, iteration {}: objective {:.4g} (distance {:.4g})", it.iteration, terms.total,
                  terms.distance);
   };
@@ -416,7 +416,7 @@ void OptimizeStage::run(StageContext& ctx) const
     ctx.log.info("target {}: at the start, RMSE {:.3f} mm, max {:.3f} mm on the tracking curves", names[t],
                  before[t].rmse / units::mm, before[t].max / units::mm);
 
-  const BfgsOptions o = bfgs_options(d);
+  const MinimizerOptions o = minimizer_options(d);
   Baseline baseline = first_guess_at_best_pressures(ctx, dr, o, start);
   History history(names);
   int iterations = 0;
@@ -424,7 +424,7 @@ void OptimizeStage::run(StageContext& ctx) const
   // Progress over the iteration budget: the route-only ones, then max_iterations per stage.
   const double budget = d.optimize.route_only_iterations + stages * std::max(1, o.max_iterations);
   int route_only_done = 0;
-  const RoutingCallback on_iteration = [&](int stage, const BfgsIteration& it, const RoutingTerms& terms) {
+  const RoutingCallback on_iteration = [&](int stage, const MinimizerIteration& it, const RoutingTerms& terms) {
     ++iterations;
     history.add(iterations, stage, it, terms, since(started));
     if (stage < 0) ++route_only_done;
@@ -459,6 +459,7 @@ void OptimizeStage::run(StageContext& ctx) const
   const nlohmann::ordered_json report{
       {"optimized", true},
       {"strategy", choice_name(d.optimize.strategy)},
+      {"method", choice_name(d.optimize.method)},
       {"termination", choice_name(result.termination)},
       {"converged", result.converged},
       {"message", result.message},
@@ -473,7 +474,8 @@ void OptimizeStage::run(StageContext& ctx) const
       {"objective", result.value},
       {"newton_iterations", problem.newton().iterations},
       {"newton", newton_json(problem)},
-      {"seconds", {{"total", since(started)}, {"simulation", problem.seconds_simulation()}, {"adjoint", problem.seconds_adjoint()}}},
+      {"seconds", {{"total", since(started)}, {"simulation", problem.seconds_simulation()}, {"adjoint", problem.seconds_adjoint()},
+                   {"model", problem.seconds_model()}}},
       {"targets", per_target}};
   write_file_atomic(ctx.output_dir / "fibers.json", fibers_json(fibers));
   write_file_atomic(ctx.output_dir / "history.csv", history.text());

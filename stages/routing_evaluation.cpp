@@ -148,12 +148,14 @@ OptimizationStart optimization_start(const Design& d, const SurfaceDistance& ski
   return out;
 }
 
-BfgsOptions bfgs_options(const Design& d)
+MinimizerOptions minimizer_options(const Design& d)
 {
-  BfgsOptions o;
+  MinimizerOptions o;
   o.max_iterations = d.optimize.max_iterations;
   o.gradient_tolerance = d.optimize.gradient_tolerance;
   o.relative_tolerance = d.optimize.relative_tolerance;
+  o.method = d.optimize.method;
+  o.decrease_tolerance = d.optimize.decrease_tolerance;
   return o;
 }
 

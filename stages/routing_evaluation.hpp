@@ -85,7 +85,7 @@ void require_bend_radius(const Design& d, const std::vector<Route>& routes, std:
 nlohmann::ordered_json bends_json(const std::vector<Route>& routes);
 
 /// The [optimize] stopping rules.
-BfgsOptions bfgs_options(const Design& d);
+MinimizerOptions minimizer_options(const Design& d);
 
 /// {rmse_mm, max_error_mm, surface_rmse_mm, surface_max_error_mm}
 nlohmann::ordered_json errors_json(const TargetErrors& e);

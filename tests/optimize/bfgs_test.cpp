@@ -21,12 +21,12 @@ double rosenbrock(const Eigen::VectorXd& x, Eigen::VectorXd& g)
 TEST(Bfgs, FindsTheRosenbrockMinimum)
 {
   NullProgress progress;
-  BfgsOptions o;
+  MinimizerOptions o;
   o.gradient_tolerance = 1e-8;
   o.relative_tolerance = 0;
   int callbacks = 0;
-  const BfgsResult r = minimize_bfgs(rosenbrock, Eigen::Vector2d(-1.2, 1), o,
-                                     [&](const BfgsIteration& it, const Eigen::VectorXd&) { callbacks = it.iteration; }, progress);
+  const MinimizerResult r = minimize_bfgs(rosenbrock, Eigen::Vector2d(-1.2, 1), o,
+                                     [&](const MinimizerIteration& it, const Eigen::VectorXd&) { callbacks = it.iteration; }, progress);
   EXPECT_TRUE(r.converged()) << r.message;
   EXPECT_LT((r.x - Eigen::Vector2d(1, 1)).norm(), 1e-6);
   EXPECT_LT(r.iterations, 100);
@@ -50,11 +50,11 @@ TEST(Bfgs, BacksAwayFromInfiniteValues)
     return v;
   };
   NullProgress progress;
-  BfgsOptions o;
+  MinimizerOptions o;
   o.max_step = 100;
   o.relative_tolerance = 0;
   o.gradient_tolerance = 1e-8;
-  const BfgsResult r = minimize_bfgs(f, Eigen::Vector2d(-30, 1), o, nullptr, progress);
+  const MinimizerResult r = minimize_bfgs(f, Eigen::Vector2d(-30, 1), o, nullptr, progress);
   EXPECT_TRUE(r.converged()) << r.message;
   EXPECT_GT(infinite, 0) << "the test should reach the undefined region";
   EXPECT_LT((r.x - Eigen::Vector2d(1.5, 0)).norm(), 1e-5);
@@ -73,9 +73,9 @@ TEST(Bfgs, StopsWhereTheObjectiveJumpsUpJustAhead)
     return 10 - x[0] + x[1] * x[1] + (x[0] > 1 ? 10.0 : 0.0);
   };
   NullProgress progress;
-  BfgsOptions o;
+  MinimizerOptions o;
   o.max_iterations = 1000;
-  const BfgsResult r = minimize_bfgs(f, Eigen::Vector2d(-1, 0), o, nullptr, progress);
+  const MinimizerResult r = minimize_bfgs(f, Eigen::Vector2d(-1, 0), o, nullptr, progress);
   EXPECT_EQ(r.termination, Termination::line_search) << r.message;
   EXPECT_FALSE(r.converged());
   EXPECT_NE(r.message.find("used all 20 evaluations"), std::string::npos) << r.message;
@@ -87,16 +87,16 @@ TEST(Bfgs, StopsWhereTheObjectiveJumpsUpJustAhead)
 TEST(Bfgs, SaysWhyItStoppedAndCallsOnlyAVanishingGradientConverged)
 {
   NullProgress progress;
-  BfgsOptions o;
+  MinimizerOptions o;
   o.gradient_tolerance = 1e-12;
   o.relative_tolerance = 1e6;  // any fall over 10 iterations counts as stalling: met at iteration 11
-  const BfgsResult stalled = minimize_bfgs(rosenbrock, Eigen::Vector2d(-1.2, 1), o, nullptr, progress);
+  const MinimizerResult stalled = minimize_bfgs(rosenbrock, Eigen::Vector2d(-1.2, 1), o, nullptr, progress);
   EXPECT_EQ(stalled.termination, Termination::stalled) << stalled.message;
   EXPECT_FALSE(stalled.converged());
   EXPECT_EQ(choice_name(stalled.termination), "stalled");
   o.relative_tolerance = 0;
   o.max_iterations = 3;
-  const BfgsResult limited = minimize_bfgs(rosenbrock, Eigen::Vector2d(-1.2, 1), o, nullptr, progress);
+  const MinimizerResult limited = minimize_bfgs(rosenbrock, Eigen::Vector2d(-1.2, 1), o, nullptr, progress);
   EXPECT_EQ(limited.termination, Termination::iteration_limit) << limited.message;
   EXPECT_EQ(limited.iterations, 3);
   EXPECT_FALSE(limited.converged());

@@ -71,5 +71,44 @@ TEST(RoutingProblem, GradientMatchesFiniteDifferencesAtRandomDesigns)
   EXPECT_TRUE(test::matches_fd(analytic.tail(np), fd.tail(np), 1e-5));
 }
 
+TEST(RoutingProblem, SensitivitiesAndModelHessianMatchFiniteDifferences)
+{
+  // The forward sensitivities dx/dz of Levenberg-Marquardt's model against central differences of
+  // the equilibria, and its Gauss-Newton Hessian Σ SᵀQS against the one built from those differences.
+  test::RoutingFixture fx(kL, kA, 0.004, 12, 0.1, 1e-11);
+  const std::vector<Eigen::VectorXd> targets{fx.actuated({{{0, 0.003, 0}, {0.02, 0.004, -0.003}, {kL, 0.003, 0}}}, {250e3})};
+  Routing start;
+  start.routes = {test::RoutingFixture::route("a", {{0, 0.001, 0}, {0.014, 0.003, 0.001}, {0.027, -0.002, 0.002}, {kL, 0.001, 0}})};
+  start.pressures = Eigen::MatrixXd::Constant(1, 1, 180e3);
+  RoutingProblem problem(*fx.sim, fx.model, *fx.skin, targets, fx.curves, start, {});
+  const Eigen::VectorXd z = problem.variables(start);
+  Eigen::VectorXd g;
+  Eigen::MatrixXd model;
+  ASSERT_TRUE(std::isfinite(problem.evaluate(z, &g, nullptr, &model)));
+  const Eigen::VectorXd x = problem.equilibrium(start, 0);
+  const Eigen::MatrixXd S = problem.sensitivities(start, 0, x);
+  ASSERT_EQ(S.cols(), z.size());
+  Eigen::MatrixXd fd(x.size(), z.size());
+  for (Eigen::Index i = 0; i < z.size(); ++i) {
+    const double h = 1e-3;  // 1 µm or 10 Pa
+    Eigen::VectorXd up = z, down = z;
+    up[i] += h;
+    down[i] -= h;
+    fd.col(i) = (problem.equilibrium(problem.routing(up), 0) - problem.equilibrium(problem.routing(down), 0)) / (2 * h);
+  }
+  const double error = (S - fd).norm() / fd.norm();
+  std::printf("sensitivities dx/dz: relative error %.2e over %ld columns\n", error, static_cast<long>(z.size()));
+  // Not exact: each column is a back-substitution with the factorization the solve ended on, of
+  // the Hessian a step before x (newton_solver.hpp); 1.0e-3 on this bar. A wrong derivative is O(1) off.
+  EXPECT_LT(error, 3e-3);
+  EXPECT_GT(fd.norm(), 0);
+  // The model's distance part from the differences: Σ_j w SᵀNᵀN S, as DistanceObjective builds it.
+  const Eigen::MatrixXd gn = problem.distance(0).gauss_newton_hessian(fd);
+  const Eigen::MatrixXd regularizers = problem.regularizer_hessian(z);
+  const double model_error = (model - regularizers - gn).norm() / gn.norm();
+  std::printf("Gauss-Newton Hessian: relative error %.2e\n", model_error);
+  EXPECT_LT(model_error, 6e-3);  // 1.8e-3: twice the sensitivities' error
+}
+
 } // namespace
 } // namespace fibermold

@@ -1,6 +1,7 @@
 // Optimization of routes and pressures end to end on small meshes:
 //  - recovery (paper section VIII-B, Fig. 8 bottom): an S-shaped fiber makes the target; from a
-//    perturbed start the optimizer recovers the deformation to RMSE ≤ 0.10 mm and max ≤ 0.20 mm;
+//    perturbed start the optimizer (BFGS, and Levenberg-Marquardt) recovers the deformation to
+//    RMSE ≤ 0.10 mm and max ≤ 0.20 mm;
 //  - two targets (bend, twist) and two fibers, both strategies: each target's error drops ≥ 5×.
 #include <cmath>
 
@@ -25,7 +26,7 @@ Errors errors(RoutingProblem& problem, const Routing& r, int t)
   return {problem.distance(t).rmse(x), problem.distance(t).max_error(x)};
 }
 
-TEST(RoutingOptimizer, RecoversAnSShapedFiber)
+void recover_s_shape(Method method)
 {
   constexpr double L = 0.1, a = 0.016;
   test::RoutingFixture fx(L, a, 0.008, 40, 0.1, 1e-9);
@@ -38,17 +39,21 @@ TEST(RoutingOptimizer, RecoversAnSShapedFiber)
 
   const Errors before = errors(problem, start, 0);
   NullProgress progress;
-  BfgsOptions o;
+  MinimizerOptions o;
   o.max_iterations = 400;
+  o.method = method;
   const RoutingResult r = optimize_routing(problem, Strategy::simultaneous, o, nullptr, progress);
   const Errors after = errors(problem, r.routing, 0);
-  std::printf("recovery: RMSE %.3f → %.4f mm, max %.3f → %.4f mm, %d iterations, %d evaluations, p = %.1f kPa (%s)\n",
-              before.rmse / mm, after.rmse / mm, before.max / mm, after.max / mm, r.iterations, r.evaluations,
+  std::printf("recovery (%s): RMSE %.3f → %.4f mm, max %.3f → %.4f mm, %d iterations, %d evaluations, p = %.1f kPa (%s)\n",
+              std::string(choice_name(method)).c_str(), before.rmse / mm, after.rmse / mm, before.max / mm, after.max / mm, r.iterations, r.evaluations,
               r.routing.pressures(0, 0) / 1e3, r.message.c_str());
   EXPECT_GT(before.rmse, 1 * mm) << "the perturbed start should deform the bar visibly differently";
   EXPECT_LE(after.rmse, 0.10 * mm);
   EXPECT_LE(after.max, 0.20 * mm);
 }
+
+TEST(RoutingOptimizer, RecoversAnSShapedFiber) { recover_s_shape(Method::bfgs); }
+TEST(RoutingOptimizer, RecoversAnSShapedFiberByLevenbergMarquardt) { recover_s_shape(Method::levenberg_marquardt); }
 
 /// Two targets, bend and twist, made by known fibers; two straight fibers to start. Tracking
 /// curves on the centre line and along an edge, so that the twist shows in positions.
@@ -73,7 +78,7 @@ void bend_and_twist(Strategy strategy)
 
   const Errors before[2] = {errors(problem, start, 0), errors(problem, start, 1)};
   NullProgress progress;
-  BfgsOptions o;
+  MinimizerOptions o;
   o.max_iterations = 120;
   const RoutingResult r = optimize_routing(problem, strategy, o, nullptr, progress);
   const Errors after[2] = {errors(problem, r.routing, 0), errors(problem, r.routing, 1)};

@@ -90,5 +90,40 @@ TEST(MuscleParameters, MixedDerivativeOfTheForceForTheAdjoint)
   }
 }
 
+TEST(MuscleParameters, MixedColumnsForTheForwardSensitivities)
+{
+  // M = ∂²E/∂x∂(s, p): Mᵀλ is the adjoint's mixed term for every λ, and a column is the change of
+  // the force ∂E/∂x as its parameter moves (central differences).
+  const Fixture fx;
+  for (double p : {50e3, 300e3}) {
+    const MuscleEnergy e = fx.energy(fx.points, fx.tangents, p);
+    const Eigen::MatrixXd M = e.mixed_columns(fx.x);
+    const FiberParameterGradient g = e.mixed_derivative(fx.x, fx.lambda);
+    const Eigen::VectorXd by_columns = M.transpose() * fx.lambda;
+    Eigen::VectorXd by_adjoint(M.cols());
+    for (std::size_t k = 0; k < fx.points.size(); ++k) {
+      by_adjoint.segment<3>(6 * static_cast<Eigen::Index>(k)) = g.points[k];
+      by_adjoint.segment<3>(6 * static_cast<Eigen::Index>(k) + 3) = g.tangents[k];
+    }
+    by_adjoint[M.cols() - 1] = g.pressure;
+    EXPECT_LT((by_columns - by_adjoint).norm(), 1e-10 * by_adjoint.norm()) << "p = " << p;
+    // Tangent 1's y component and the pressure, against differences of the force.
+    const auto force = [&](const MuscleEnergy& m) {
+      Eigen::VectorXd f = Eigen::VectorXd::Zero(fx.x.size());
+      m.add_gradient(fx.x, f);
+      return f;
+    };
+    std::vector<Eigen::Vector3d> up = fx.tangents, down = fx.tangents;
+    const double h = 1e-7;
+    up[1].y() += h;
+    down[1].y() -= h;
+    const Eigen::VectorXd fd = (force(fx.energy(fx.points, up, p)) - force(fx.energy(fx.points, down, p))) / (2 * h);
+    EXPECT_LT((M.col(6 + 3 + 1) - fd).norm(), 1e-5 * fd.norm());
+    const double hp = 1e-3 * p;
+    const Eigen::VectorXd fdp = (force(fx.energy(fx.points, fx.tangents, p + hp)) - force(fx.energy(fx.points, fx.tangents, p - hp))) / (2 * hp);
+    EXPECT_LT((M.col(M.cols() - 1) - fdp).norm(), 1e-5 * fdp.norm());
+  }
+}
+
 } // namespace
 } // namespace fibermold

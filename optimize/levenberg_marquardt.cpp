@@ -1,0 +1,141 @@
+#include "optimize/levenberg_marquardt.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <stdexcept>
+#include <vector>
+
+#include <Eigen/Cholesky>
+#include <fmt/format.h>
+
+namespace fibermold {
+
+namespace {
+
+/// μ at the start, relative to the model's scaled diagonal (Marquardt's choice of a small value).
+constexpr double kInitialDamping = 1e-3;
+
+/// Marquardt's scaling D = diag(B), with entries under 1e-8 of its largest raised to that (a
+/// variable the model does not see yet still gets a bounded step).
+Eigen::VectorXd scaling(const Eigen::MatrixXd& B)
+{
+  const Eigen::VectorXd d = B.diagonal().cwiseAbs();
+  const double largest = d.maxCoeff();
+  return d.cwiseMax(largest > 0 ? 1e-8 * largest : 1.0);
+}
+
+/// The model's whole decrease ½ gᵀB⁻¹g where B is positive definite; +∞ where it is not (the
+/// model has no minimum).
+double model_decrease(const Eigen::MatrixXd& B, const Eigen::VectorXd& g)
+{
+  const Eigen::LLT<Eigen::MatrixXd> llt(B);
+  if (llt.info() != Eigen::Success) return HUGE_VAL;
+  const double d = 0.5 * g.dot(llt.solve(g));
+  return d >= 0 ? d : HUGE_VAL;
+}
+
+/// δ = −(B + μD)⁻¹g, with μ raised (×ν, ν doubling) until B + μD is positive definite.
+Eigen::VectorXd damped_step(const Eigen::MatrixXd& B, const Eigen::VectorXd& D, const Eigen::VectorXd& g, double& mu, double& nu)
+{
+  for (;;) {
+    Eigen::MatrixXd A = B;
+    A.diagonal() += mu * D;
+    const Eigen::LLT<Eigen::MatrixXd> llt(A);
+    if (llt.info() == Eigen::Success) return -llt.solve(g);
+    mu *= nu;
+    nu *= 2;
+  }
+}
+
+} // namespace
+
+MinimizerResult minimize_levenberg_marquardt(const ModelObjective& f, Eigen::VectorXd x, const MinimizerOptions& options,
+                                             const IterationCallback& on_iteration, Progress& progress)
+{
+  MinimizerResult result;
+  Eigen::VectorXd g;
+  Eigen::MatrixXd B;
+  double fx;
+  try {
+    fx = f(x, g, B);
+  } catch (const Interrupted&) {
+    result.x = x;
+    result.value = HUGE_VAL;
+    result.interrupted = true;
+    result.termination = Termination::interrupted;
+    result.message = "interrupted";
+    return result;
+  }
+  result.evaluations = 1;
+  if (!std::isfinite(fx)) throw std::invalid_argument("the objective is not finite at the starting point");
+
+  double mu = kInitialDamping, nu = 2;
+  std::vector<double> values{fx};  // f after each iteration
+  int rejected = 0;                // trial steps rejected in a row
+  auto finish = [&](Termination why, std::string message) {
+    result.x = x;
+    result.value = fx;
+    result.gradient_norm = g.norm();
+    result.termination = why;
+    result.message = std::move(message);
+    return result;
+  };
+  try {
+    for (;;) {
+      const double gnorm = g.norm();
+      if (gnorm <= options.gradient_tolerance) return finish(Termination::gradient_tolerance, fmt::format("|∇f| = {:.3g} below tolerance", gnorm));
+      if (const double decrease = model_decrease(B, g); decrease <= options.decrease_tolerance * std::abs(fx))
+        return finish(Termination::decrease_tolerance,
+                      fmt::format("the model's whole decrease ½gᵀB⁻¹g = {:.3g} is {:.2g} of f", decrease, decrease / std::abs(fx)));
+      if (result.iterations == options.max_iterations)
+        return finish(Termination::iteration_limit, fmt::format("{} iterations, the limit", options.max_iterations));
+      if (progress.interrupted()) throw Interrupted();
+
+      // A step longer than max_step in a variable is a sign that μ is too small for the model to
+      // hold that far: μ doubles until it is not (the constrained model's minimizer, where
+      // shortening the step along the same direction would follow the model's flattest, least
+      // trusted, directions).
+      const Eigen::VectorXd D = scaling(B);
+      Eigen::VectorXd d = damped_step(B, D, g, mu, nu);
+      for (int k = 0; k < 60 && d.cwiseAbs().maxCoeff() > options.max_step; ++k) {
+        mu = std::max(2 * mu, 1e-12);
+        d = damped_step(B, D, g, mu, nu);
+      }
+      if (const double largest = d.cwiseAbs().maxCoeff(); largest > options.max_step) d *= options.max_step / largest;
+      const double predicted = -(g.dot(d) + 0.5 * d.dot(B * d));
+      Eigen::VectorXd trial_g;
+      Eigen::MatrixXd trial_B;
+      double trial = HUGE_VAL;
+      if (predicted > 0) {
+        trial = f(x + d, trial_g, trial_B);
+        ++result.evaluations;
+      }
+      const double rho = (fx - trial) / predicted;
+      if (std::isfinite(trial) && trial < fx && rho > 0) {
+        x += d;
+        fx = trial;
+        g = std::move(trial_g);
+        B = std::move(trial_B);
+        mu *= std::max(1.0 / 3, 1 - std::pow(2 * rho - 1, 3));  // eq. 2.21
+        nu = 2;
+        rejected = 0;
+        ++result.iterations;
+        if (on_iteration) on_iteration({result.iterations, fx, g.norm(), d.norm(), result.evaluations}, x);
+        values.push_back(fx);
+        if (auto message = stall_message(values, fx, options)) return finish(Termination::stalled, std::move(*message));
+        continue;
+      }
+      if (++rejected >= options.max_line_search)
+        return finish(Termination::line_search,
+                      fmt::format("{} trial steps in a row did not lower f (damping μ = {:.3g})", rejected, mu));
+      mu *= nu;
+      nu *= 2;
+    }
+  } catch (const Interrupted&) {
+    finish(Termination::interrupted, "interrupted");
+    result.interrupted = true;
+    return result;
+  }
+}
+
+} // namespace fibermold

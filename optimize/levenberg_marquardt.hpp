@@ -1,0 +1,29 @@
+#pragma once
+// Levenberg-Marquardt minimization of an objective that gives, with its gradient g, a model Hessian
+// B (for the routing problem: the Gauss-Newton Hessian of the tracking distance, from the forward
+// sensitivities of the equilibria, plus the regularizers' Hessian). Each step solves
+//   (B + μI) δ = −g,
+// shortened to max_step in its largest variable, and is taken when f falls; μ follows the gain
+// ratio ρ = (f(x) − f(x + δ)) / (−gᵀδ − ½ δᵀBδ) as in Nielsen's rule (Madsen, Nielsen & Tingleff,
+// Methods for Non-Linear Least Squares Problems, 2004, eq. 2.21 and Algorithm 3.16): ×max(1/3,
+// 1 − (2ρ − 1)³) after a step, ×ν (ν doubling) after a rejected one.
+//
+// Convergence is first-order and stated in the model's own metric (the Newton decrement of Boyd &
+// Vandenberghe, Convex Optimization, §9.5.1): the whole decrease the model predicts from x,
+// ½ gᵀB⁻¹g, is at most decrease_tolerance × f. Barriers raise B where they act, so a minimum held
+// by a barrier converges too. The objective may return +∞ (a failed simulation, a barrier
+// crossed): the step is then rejected. Steps are only taken downhill, so x is always the best point.
+
+#include "optimize/minimizer.hpp"
+
+namespace fibermold {
+
+/// f(x, g, B) returns the value and writes the gradient into g and the model Hessian into B
+/// (symmetric; it need not be positive definite).
+using ModelObjective = std::function<double(const Eigen::VectorXd& x, Eigen::VectorXd& gradient, Eigen::MatrixXd& model)>;
+
+/// Throws std::invalid_argument when f is not finite at x0.
+MinimizerResult minimize_levenberg_marquardt(const ModelObjective& f, Eigen::VectorXd x0, const MinimizerOptions& options,
+                                             const IterationCallback& on_iteration, Progress& progress);
+
+} // namespace fibermold

@@ -1,0 +1,96 @@
+// Levenberg-Marquardt on a Gauss-Newton model: the Rosenbrock valley as the least-squares problem
+// r = (10(x₂ − x₁²), 1 − x₁), which converges by the model's decrease (a first-order criterion,
+// not a stall) with |x − (1, 1)| ≤ 1e-6; a region of +∞ in the way; and a model that cannot
+// reach the minimum (a barrier the objective has and the model lacks) ends by its rejections.
+#include <cmath>
+
+#include <gtest/gtest.h>
+
+#include "optimize/levenberg_marquardt.hpp"
+
+namespace fibermold {
+namespace {
+
+/// ½|r|² with r = (10(x₂ − x₁²), 1 − x₁), g = Jᵀr, B = JᵀJ.
+double rosenbrock(const Eigen::VectorXd& x, Eigen::VectorXd& g, Eigen::MatrixXd& B)
+{
+  const Eigen::Vector2d r(10 * (x[1] - x[0] * x[0]), 1 - x[0]);
+  Eigen::Matrix2d J;
+  J << -20 * x[0], 10, -1, 0;
+  g = J.transpose() * r;
+  B = J.transpose() * J;
+  return 0.5 * r.squaredNorm();
+}
+
+TEST(LevenbergMarquardt, ConvergesOnTheRosenbrockValleyByTheModelsDecrease)
+{
+  NullProgress progress;
+  MinimizerOptions o;
+  o.relative_tolerance = 0;
+  o.gradient_tolerance = 0;
+  o.decrease_tolerance = 1e-14;
+  int callbacks = 0;
+  const MinimizerResult r = minimize_levenberg_marquardt(rosenbrock, Eigen::Vector2d(-1.2, 1), o,
+                                                         [&](const MinimizerIteration& it, const Eigen::VectorXd&) { callbacks = it.iteration; },
+                                                         progress);
+  EXPECT_TRUE(r.converged()) << r.message;  // by the model's decrease, or at a zero gradient
+  EXPECT_LT((r.x - Eigen::Vector2d(1, 1)).norm(), 1e-6);
+  EXPECT_LT(r.iterations, 40);  // BFGS takes 30–40 on it; a zero-residual problem is Gauss-Newton's best case
+  EXPECT_EQ(callbacks, r.iterations);
+}
+
+TEST(LevenbergMarquardt, RejectsStepsIntoInfiniteValuesAndStillConverges)
+{
+  // The same valley, undefined (+∞, a failed simulation) below x₂ = −1: from (−1.2, 1) the
+  // Gauss-Newton step lands at (1, −3.84); it is rejected, μ grows, and the run goes round.
+  int infinite = 0;
+  const ModelObjective f = [&](const Eigen::VectorXd& x, Eigen::VectorXd& g, Eigen::MatrixXd& B) {
+    if (x[1] < -1) {
+      ++infinite;
+      return HUGE_VAL;
+    }
+    return rosenbrock(x, g, B);
+  };
+  NullProgress progress;
+  MinimizerOptions o;
+  o.max_step = 100;
+  o.relative_tolerance = 0;
+  o.gradient_tolerance = 0;
+  o.decrease_tolerance = 1e-14;
+  const MinimizerResult r = minimize_levenberg_marquardt(f, Eigen::Vector2d(-1.2, 1), o, nullptr, progress);
+  EXPECT_TRUE(r.converged()) << r.message;
+  EXPECT_GT(infinite, 0) << "the test should reach the undefined region";
+  EXPECT_LT((r.x - Eigen::Vector2d(1, 1)).norm(), 1e-6);
+}
+
+TEST(LevenbergMarquardt, AWallTheModelDoesNotKnowEndsTheRunAtTheBestPointNotConverged)
+{
+  // f = ½|x − (2, 0)|², +∞ for x₁ > 1: the model keeps pointing into the wall, so steps shrink
+  // until max_line_search of them in a row are rejected. (The routing problem meets this where a
+  // fiber's end, unguarded by the skin barrier, reaches the skin: docs/optimize.md.)
+  const ModelObjective f = [](const Eigen::VectorXd& x, Eigen::VectorXd& g, Eigen::MatrixXd& B) {
+    if (x[0] > 1) return HUGE_VAL;
+    g = x - Eigen::Vector2d(2, 0);
+    B = Eigen::Matrix2d::Identity();
+    return 0.5 * g.squaredNorm();
+  };
+  NullProgress progress;
+  MinimizerOptions o;
+  o.relative_tolerance = 0;
+  const MinimizerResult r = minimize_levenberg_marquardt(f, Eigen::Vector2d(0, 1), o, nullptr, progress);
+  EXPECT_FALSE(r.converged());
+  EXPECT_EQ(r.termination, Termination::line_search) << r.message;
+  EXPECT_LE(r.x[0], 1);
+  EXPECT_GT(r.x[0], 0.99);
+  EXPECT_LT(r.value, 2.5);  // f at the start
+}
+
+TEST(LevenbergMarquardt, ThrowsWhenTheStartIsNotFinite)
+{
+  NullProgress progress;
+  const ModelObjective f = [](const Eigen::VectorXd&, Eigen::VectorXd&, Eigen::MatrixXd&) { return HUGE_VAL; };
+  EXPECT_THROW(minimize_levenberg_marquardt(f, Eigen::Vector2d(0, 0), {}, nullptr, progress), std::invalid_argument);
+}
+
+} // namespace
+} // namespace fibermold
