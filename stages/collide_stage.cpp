@@ -222,6 +222,7 @@ void CollideStage::run(StageContext& ctx) const
   } catch (const InputError& e) {
     throw std::runtime_error(e.diagnostics().front().message + "; or raise [collide] smoothness, which spreads a move along the fiber");
   }
+  report["min_bend_radius_mm"] = d.muscle.min_bend_radius / units::mm;
   report["bends"] = bends_json(out.routing.routes);
   report["moves_mm"] = moves_json(fibers.routing.routes, out.routing.routes);
   write_file_atomic(ctx.output_dir / "fibers.json", fibers_json(out));

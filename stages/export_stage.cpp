@@ -166,6 +166,22 @@ void add_bodies(const StageContext& ctx, const Eigen::Vector3d& offset, const Ei
   }
 }
 
+/// README.txt's paragraph on the muscles' bends, from collide's report: the fibers as cast must not be
+/// bent tighter than the muscle takes where they are laid into their grooves. Empty without it.
+std::string muscle_bends_text(const StageContext& ctx)
+{
+  const auto report = json_if_any(ctx.upstream("collide", "report.json"));
+  if (!report || !report->contains("bends") || !(*report)["min_bend_radius_mm"].is_number()) return {};
+  std::string text = fmt::format("\nThe muscles take bends no tighter than {:.1f} mm in radius ([muscle] min_bend_radius); the grooves\n"
+                                 "follow the routes, so lay each muscle along its groove without kinking it. Each route's tightest bend:\n",
+                                 (*report)["min_bend_radius_mm"].get<double>());
+  for (const auto& [fiber, b] : (*report)["bends"].items())
+    text += b.contains("min_bend_radius_mm")
+                ? fmt::format("  {}: {:.1f} mm, {:.1f} mm along it\n", fiber, b["min_bend_radius_mm"].get<double>(), b["along_mm"].get<double>())
+                : fmt::format("  {}: straight\n", fiber);
+  return text;
+}
+
 /// How well the robot does its job, from collide's report: each target's error before and after the
 /// collisions were resolved, and what collide changed.
 std::vector<ReportTable> behaviour_tables(const StageContext& ctx)
@@ -207,6 +223,20 @@ std::vector<ReportTable> behaviour_tables(const StageContext& ctx)
     moves.rows.push_back({fiber, fixed(point, 3), fixed(tangent, 3)});
   }
   out.push_back(std::move(moves));
+  // Each fiber's tightest bend as it will be cast, against the muscle's limit.
+  ReportTable bends{fmt::format("Bend radius: each fiber's smallest, as built (the muscle takes {} mm)", mm((*report)["min_bend_radius_mm"])),
+                    {"fiber", "smallest bend radius (mm)", "at (mm)", "along the fiber (mm)"},
+                    {}};
+  for (const auto& [fiber, b] : (*report)["bends"].items()) {
+    if (!b.contains("min_bend_radius_mm")) {
+      bends.rows.push_back({fiber, "straight", "", ""});
+      continue;
+    }
+    std::string at;
+    for (const Json& v : b["at_mm"]) at += (at.empty() ? "" : ", ") + mm(v);
+    bends.rows.push_back({fiber, mm(b["min_bend_radius_mm"]), "(" + at + ")", mm(b["along_mm"])});
+  }
+  if (!bends.rows.empty()) out.push_back(std::move(bends));
   return out;
 }
 
@@ -377,7 +407,7 @@ void ExportStage::run(StageContext& ctx) const
     shots[shot] = {{"silicone_volume_mL", info["silicone_volume_mL"]}, {"silicone_mass_g", info["silicone_mass_g"]}, {"fill", info["fill"]}};
   const Json manifest{{"design", d.design.name}, {"units", "mm"}, {"voxel_mm", molds["voxel_mm"]}, {"parts", parts}, {"shots", shots}};
   write_json_atomic(ctx.output_dir / "manifest.json", manifest);
-  write_file_atomic(ctx.output_dir / "README.txt", casting_guide(d.design.name, molds["shots"], d.export_.formats.front()));
+  write_file_atomic(ctx.output_dir / "README.txt", casting_guide(d.design.name, molds["shots"], d.export_.formats.front()) + muscle_bends_text(ctx));
   ctx.progress.checkpoint(-1, "writing the report");
   write_file_atomic(ctx.output_dir / "report.html", report(ctx, molds, parts, shots));
 }

@@ -43,6 +43,23 @@ TEST(ReportE2E, ShowsTheDeformedBodyTheErrorsAndTheOptimizationHistory)
   EXPECT_THAT(html, HasSubstr("Targets: error over the tracking curves and the surface (mm)"));
   EXPECT_THAT(html, HasSubstr(row));
   EXPECT_THAT(html, HasSubstr("none: every fiber was clear"));
+  // Each fiber's smallest bend radius as collide left it, against the muscle's limit.
+  const double limit = collide["min_bend_radius_mm"].get<double>();
+  EXPECT_GT(limit, 0);
+  EXPECT_THAT(html, HasSubstr(fmt::format("Bend radius: each fiber's smallest, as built (the muscle takes {:.3f} mm)", limit)));
+  const auto& bend = collide["bends"]["m1"];
+  if (bend.contains("min_bend_radius_mm")) {
+    EXPECT_GE(bend["min_bend_radius_mm"].get<double>(), limit);
+    EXPECT_THAT(html, HasSubstr(fmt::format("<tr><td>m1</td><td>{:.3f}</td>", bend["min_bend_radius_mm"].get<double>())));
+  } else {
+    EXPECT_THAT(html, HasSubstr("<tr><td>m1</td><td>straight</td>"));
+  }
+  // The casting guide says it too, where the muscles are laid into their grooves.
+  const std::string guide = test::read_text(build / "export" / "README.txt");
+  EXPECT_THAT(guide, HasSubstr(fmt::format("The muscles take bends no tighter than {:.1f} mm in radius", limit)));
+  EXPECT_THAT(guide, HasSubstr(bend.contains("min_bend_radius_mm")
+                                   ? fmt::format("  m1: {:.1f} mm, {:.1f} mm along it", bend["min_bend_radius_mm"].get<double>(), bend["along_mm"].get<double>())
+                                   : std::string("  m1: straight")));
 
   // The optimization: start and end errors, how much was reached, the pressure; its warnings (3
   // iterations: stopped at the limit) as the banner.
