@@ -149,7 +149,8 @@ MinimizerResult minimize_bfgs(const Objective& f, Eigen::VectorXd x, const Minim
       first_trial = along_bfgs && tracked.evaluations - evaluations_before > kManyTrials ? 4 * step : 1;
       ++result.iterations;
       take_pair(H, scaled, x - xp, g - gp);
-      if (on_iteration) on_iteration({result.iterations, fx, g.norm(), step * d.norm(), tracked.evaluations}, x);
+      const double predicted = 0.5 * g.dot(H * g);
+      if (on_iteration) on_iteration({result.iterations, fx, g.norm(), step * d.norm(), tracked.evaluations, predicted}, x);
       values.push_back(fx);
       // All its evaluations for less than a window's tolerance spread over its iterations: where f
       // jumps up within a short step (a body that snaps to another equilibrium just past this

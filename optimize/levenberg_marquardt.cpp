@@ -47,6 +47,32 @@ Eigen::VectorXd damped_step(const Eigen::MatrixXd& B, const Eigen::VectorXd& D, 
   }
 }
 
+/// The secant term S, NL2SOL's update and sizing (Dennis, Gay & Welsch, "An adaptive nonlinear
+/// least-squares algorithm", ACM TOMS 7(3), 1981): what the model B leaves out (the equilibria's
+/// and residuals' second derivatives), so that B + S satisfies the secant equation (B⁺ + S⁺)s = y
+/// of the step s just taken, y the change of the gradient (y# is taken with B at the new point,
+/// where NL2SOL has the old Jacobian with the new residual: B here holds more than JᵀJ):
+///   y# = y − B⁺s,  τ = min(1, |sᵀy#| / |sᵀSs|),  w = y# − τSs,
+///   S⁺ = τS + (w yᵀ + y wᵀ) / (yᵀs) − (wᵀs) y yᵀ / (yᵀs)².
+/// Unchanged when yᵀs ≤ 0 (no curvature along s to learn from).
+void secant_update(Eigen::MatrixXd& S, const Eigen::MatrixXd& B_new, const Eigen::VectorXd& s, const Eigen::VectorXd& y)
+{
+  const double ys = y.dot(s);
+  if (!(ys > 1e-12 * y.norm() * s.norm())) return;
+  const Eigen::VectorXd ysharp = y - B_new * s;
+  const Eigen::VectorXd Ss = S * s;
+  const double sSs = s.dot(Ss);
+  const double tau = sSs != 0 ? std::min(1.0, std::abs(s.dot(ysharp)) / std::abs(sSs)) : 1.0;
+  const Eigen::VectorXd w = ysharp - tau * Ss;
+  S = tau * S + (w * y.transpose() + y * w.transpose()) / ys - (w.dot(s) / (ys * ys)) * (y * y.transpose());
+}
+
+/// The decrease a model (g, B) predicts for a step d.
+double predicted_decrease(const Eigen::VectorXd& g, const Eigen::MatrixXd& B, const Eigen::VectorXd& d)
+{
+  return -(g.dot(d) + 0.5 * d.dot(B * d));
+}
+
 } // namespace
 
 MinimizerResult minimize_levenberg_marquardt(const ModelObjective& f, Eigen::VectorXd x, const MinimizerOptions& options,
@@ -70,6 +96,10 @@ MinimizerResult minimize_levenberg_marquardt(const ModelObjective& f, Eigen::Vec
   if (!std::isfinite(fx)) throw std::invalid_argument("the objective is not finite at the starting point");
 
   double mu = kInitialDamping, nu = 2;
+  Eigen::MatrixXd S = Eigen::MatrixXd::Zero(x.size(), x.size());  // secant term (secant_update)
+  // NL2SOL's choice of model: B + S where it predicted the last step's decrease better than B.
+  bool augmented = false;
+  const auto model = [&]() -> Eigen::MatrixXd { return augmented ? Eigen::MatrixXd(B + S) : B; };
   std::vector<double> values{fx};  // f after each iteration
   int rejected = 0;                // trial steps rejected in a row
   auto finish = [&](Termination why, std::string message) {
@@ -84,9 +114,10 @@ MinimizerResult minimize_levenberg_marquardt(const ModelObjective& f, Eigen::Vec
     for (;;) {
       const double gnorm = g.norm();
       if (gnorm <= options.gradient_tolerance) return finish(Termination::gradient_tolerance, fmt::format("|∇f| = {:.3g} below tolerance", gnorm));
-      if (const double decrease = model_decrease(B, g); decrease <= options.decrease_tolerance * std::abs(fx))
+      const Eigen::MatrixXd M = model();
+      if (const double decrease = model_decrease(M, g); decrease <= options.decrease_tolerance * std::abs(fx))
         return finish(Termination::decrease_tolerance,
-                      fmt::format("the model's whole decrease ½gᵀB⁻¹g = {:.3g} is {:.2g} of f", decrease, decrease / std::abs(fx)));
+                      fmt::format("the model's whole decrease ½gᵀM⁻¹g = {:.3g} is {:.2g} of f", decrease, decrease / std::abs(fx)));
       if (result.iterations == options.max_iterations)
         return finish(Termination::iteration_limit, fmt::format("{} iterations, the limit", options.max_iterations));
       if (progress.interrupted()) throw Interrupted();
@@ -95,14 +126,14 @@ MinimizerResult minimize_levenberg_marquardt(const ModelObjective& f, Eigen::Vec
       // hold that far: μ doubles until it is not (the constrained model's minimizer, where
       // shortening the step along the same direction would follow the model's flattest, least
       // trusted, directions).
-      const Eigen::VectorXd D = scaling(B);
-      Eigen::VectorXd d = damped_step(B, D, g, mu, nu);
+      const Eigen::VectorXd D = scaling(M);
+      Eigen::VectorXd d = damped_step(M, D, g, mu, nu);
       for (int k = 0; k < 60 && d.cwiseAbs().maxCoeff() > options.max_step; ++k) {
         mu = std::max(2 * mu, 1e-12);
-        d = damped_step(B, D, g, mu, nu);
+        d = damped_step(M, D, g, mu, nu);
       }
       if (const double largest = d.cwiseAbs().maxCoeff(); largest > options.max_step) d *= options.max_step / largest;
-      const double predicted = -(g.dot(d) + 0.5 * d.dot(B * d));
+      const double predicted = predicted_decrease(g, M, d);
       Eigen::VectorXd trial_g;
       Eigen::MatrixXd trial_B;
       double trial = HUGE_VAL;
@@ -112,6 +143,9 @@ MinimizerResult minimize_levenberg_marquardt(const ModelObjective& f, Eigen::Vec
       }
       const double rho = (fx - trial) / predicted;
       if (std::isfinite(trial) && trial < fx && rho > 0) {
+        const double by_gauss_newton = predicted_decrease(g, B, d), by_augmented = predicted_decrease(g, B + S, d);
+        augmented = std::abs(fx - trial - by_augmented) < std::abs(fx - trial - by_gauss_newton);
+        secant_update(S, trial_B, d, trial_g - g);
         x += d;
         fx = trial;
         g = std::move(trial_g);
@@ -120,9 +154,14 @@ MinimizerResult minimize_levenberg_marquardt(const ModelObjective& f, Eigen::Vec
         nu = 2;
         rejected = 0;
         ++result.iterations;
-        if (on_iteration) on_iteration({result.iterations, fx, g.norm(), d.norm(), result.evaluations}, x);
+        const double ahead = model_decrease(model(), g);
+        if (on_iteration) on_iteration({result.iterations, fx, g.norm(), d.norm(), result.evaluations, ahead}, x);
         values.push_back(fx);
-        if (auto message = stall_message(values, fx, options)) return finish(Termination::stalled, std::move(*message));
+        // A stall is a model that keeps predicting more than the window's tolerance and does not
+        // deliver it (a wall it does not know); where it predicts less, the run is that close to
+        // converging and goes on (the tentacle stalled 3 iterations short of it).
+        if (auto message = stall_message(values, fx, options); message && ahead > options.relative_tolerance * std::abs(fx))
+          return finish(Termination::stalled, std::move(*message));
         continue;
       }
       if (++rejected >= options.max_line_search)

@@ -1,18 +1,25 @@
 #pragma once
 // Levenberg-Marquardt minimization of an objective that gives, with its gradient g, a model Hessian
 // B (for the routing problem: the Gauss-Newton Hessian of the tracking distance, from the forward
-// sensitivities of the equilibria, plus the regularizers' Hessian). Each step solves
-//   (B + μI) δ = −g,
+// sensitivities of the equilibria, plus the regularizers' Hessian). What B leaves out (the
+// residuals' and equilibria's second derivatives: large where the target is not reachable) is
+// learnt as NL2SOL learns it (Dennis, Gay & Welsch 1981): a secant term S with (B + S)s = y along
+// the last step, used in place of B where it predicted that step's decrease better. With M the
+// model in use (B or B + S), each step solves
+//   (M + μ diag M) δ = −g,
 // shortened to max_step in its largest variable, and is taken when f falls; μ follows the gain
-// ratio ρ = (f(x) − f(x + δ)) / (−gᵀδ − ½ δᵀBδ) as in Nielsen's rule (Madsen, Nielsen & Tingleff,
+// ratio ρ = (f(x) − f(x + δ)) / (−gᵀδ − ½ δᵀMδ) as in Nielsen's rule (Madsen, Nielsen & Tingleff,
 // Methods for Non-Linear Least Squares Problems, 2004, eq. 2.21 and Algorithm 3.16): ×max(1/3,
 // 1 − (2ρ − 1)³) after a step, ×ν (ν doubling) after a rejected one.
 //
 // Convergence is first-order and stated in the model's own metric (the Newton decrement of Boyd &
 // Vandenberghe, Convex Optimization, §9.5.1): the whole decrease the model predicts from x,
-// ½ gᵀB⁻¹g, is at most decrease_tolerance × f. Barriers raise B where they act, so a minimum held
-// by a barrier converges too. The objective may return +∞ (a failed simulation, a barrier
-// crossed): the step is then rejected. Steps are only taken downhill, so x is always the best point.
+// ½ gᵀM⁻¹g, is at most decrease_tolerance × f. Barriers raise B where they act, so a minimum held
+// by a barrier converges too. It stalls where f fell by at most relative_tolerance × f over
+// `window` iterations while the model still predicts more than that (a wall the model does not
+// know); where it predicts less, the run goes on to converge. The objective may return +∞ (a
+// failed simulation, a barrier crossed): the step is then rejected. Steps are only taken
+// downhill, so x is always the best point.
 
 #include "optimize/minimizer.hpp"
 

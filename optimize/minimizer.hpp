@@ -16,12 +16,14 @@
 namespace fibermold {
 
 /// Which minimizer the routing problem runs (docs/optimize.md, "Choosing the optimizer").
-enum class Method { bfgs, levenberg_marquardt };
-inline constexpr std::array<Named<Method>, 2> kMethodNames{{{Method::bfgs, "bfgs"}, {Method::levenberg_marquardt, "levenberg-marquardt"}}};
+/// `hybrid` (hybrid_minimizer.hpp): BFGS until it slows down, then Levenberg-Marquardt from there.
+enum class Method { bfgs, levenberg_marquardt, hybrid };
+inline constexpr std::array<Named<Method>, 3> kMethodNames{
+    {{Method::bfgs, "bfgs"}, {Method::levenberg_marquardt, "levenberg-marquardt"}, {Method::hybrid, "hybrid"}}};
 inline std::string_view choice_name(Method m) { return name_in(kMethodNames, m); }
 
 struct MinimizerOptions {
-  Method method = Method::bfgs;
+  Method method = Method::hybrid;
   int max_iterations = 400;
   double gradient_tolerance = 1e-6;   ///< stop when |∇f| ≤ this
   double relative_tolerance = 1e-3;   ///< stop when f fell by ≤ this × |f| over the last `window` iterations
@@ -29,14 +31,19 @@ struct MinimizerOptions {
   double max_step = 5;                ///< largest change of one variable in a line search's first trial (a
                                       ///< Wolfe extension may try up to 2.1× that once) or an LM step
   int max_line_search = 20;           ///< evaluations per line search (BFGS); trial steps rejected in a row (LM)
-  /// Levenberg-Marquardt converges where its model's whole decrease ½ gᵀB⁻¹g is at most this share of f.
+  /// Levenberg-Marquardt converges where its model's whole decrease ½ gᵀM⁻¹g is at most this share of f.
   double decrease_tolerance = 1e-4;
+  /// hybrid: BFGS hands over to Levenberg-Marquardt where f fell by ≤ this × |f| over `window` iterations.
+  double switch_tolerance = 1e-2;
 };
 
 struct MinimizerIteration {
   int iteration = 0;
   double value = 0, gradient_norm = 0, step = 0;
   int evaluations = 0;  ///< objective evaluations so far
+  /// What the minimizer's model predicts is left to gain from here: ½ gᵀHg with BFGS's inverse
+  /// Hessian H, ½ gᵀB⁻¹g with Levenberg-Marquardt's B (the Newton decrement, squared and halved).
+  double predicted_decrease = 0;
 };
 
 /// Why a minimization stopped. Only the first two are convergence (a first-order point: the gradient,

@@ -4,7 +4,7 @@
 
 #include <fmt/format.h>
 
-#include "optimize/levenberg_marquardt.hpp"
+#include "optimize/hybrid_minimizer.hpp"
 
 namespace fibermold {
 
@@ -12,21 +12,24 @@ namespace {
 
 using Mask = Eigen::Matrix<bool, Eigen::Dynamic, Eigen::Dynamic>;
 
-/// One run (BFGS or Levenberg-Marquardt) over the problem's current free variables, starting from its base.
+/// One run (the method's) over the problem's current free variables, starting from its base.
 MinimizerResult run(RoutingProblem& problem, int stage, const MinimizerOptions& options, const RoutingCallback& on_iteration,
-               Progress& progress)
+                    Progress& progress)
 {
   const IterationCallback cb = [&](const MinimizerIteration& it, const Eigen::VectorXd&) {
     if (on_iteration) on_iteration(stage, it, problem.terms_at(it.value));
   };
-  if (options.method == Method::levenberg_marquardt) {
-    const ModelObjective f = [&](const Eigen::VectorXd& z, Eigen::VectorXd& g, Eigen::MatrixXd& B) {
-      return problem.evaluate(z, &g, nullptr, &B);
-    };
-    return minimize_levenberg_marquardt(f, problem.variables(problem.base()), options, cb, progress);
-  }
   const Objective f = [&](const Eigen::VectorXd& z, Eigen::VectorXd& g) { return problem.evaluate(z, &g); };
-  return minimize_bfgs(f, problem.variables(problem.base()), options, cb, progress);
+  const ModelObjective model = [&](const Eigen::VectorXd& z, Eigen::VectorXd& g, Eigen::MatrixXd& B) {
+    return problem.evaluate(z, &g, nullptr, &B);
+  };
+  const Eigen::VectorXd z0 = problem.variables(problem.base());
+  switch (options.method) {
+  case Method::levenberg_marquardt: return minimize_levenberg_marquardt(model, z0, options, cb, progress);
+  case Method::hybrid: return minimize_hybrid(f, model, z0, options, cb, progress);
+  case Method::bfgs: break;
+  }
+  return minimize_bfgs(f, z0, options, cb, progress);
 }
 
 /// `prefix` names the run in the message (a sequential stage's fiber).

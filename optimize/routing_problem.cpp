@@ -214,13 +214,13 @@ double RoutingProblem::regularizers(const Routing& r, Eigen::VectorXd* gradient,
     const double wc = settings_.weight_curvature * start_length_[f];
     terms.curvature += wc * fiber_curvature(s);
     terms.skin += skin_weight() * skin_barriers_[f].value(s);
-    if (!std::isfinite(terms.skin)) return HUGE_VAL;
+    if (!std::isfinite(terms.skin)) return refuse("skin distance");
     Eigen::Vector3d where;  // between the barrier's samples too (a notch's bottom between two)
-    if (skin_barriers_[f].closest_approach(s, where, true) <= settings_.skin_distance) return HUGE_VAL;
+    if (skin_barriers_[f].closest_approach(s, where, true) <= settings_.skin_distance) return refuse("skin distance");
     if (bend_barrier_) {
       // The barrier's samples, and between them the spline's exact smallest radius.
       terms.bend += settings_.weight_bend * bend_barrier_->value(s);
-      if (!std::isfinite(terms.bend) || smallest_bend(s).radius <= settings_.min_bend_radius) return HUGE_VAL;
+      if (!std::isfinite(terms.bend) || smallest_bend(s).radius <= settings_.min_bend_radius) return refuse("bend radius");
     }
     if (gradient) add_route_gradient(r, f, *gradient);
   }
@@ -231,14 +231,14 @@ double RoutingProblem::regularizers(const Routing& r, Eigen::VectorXd* gradient,
       if (i < 0) continue;
       const double u = r.pressures(t, f) / pmax;
       terms.pressure += settings_.weight_pressure * (barrier(u, margin) + barrier(1 - u, margin));
-      if (!std::isfinite(terms.pressure)) return HUGE_VAL;
+      if (!std::isfinite(terms.pressure)) return refuse("pressure limit");
       if (gradient)
         (*gradient)[i] += settings_.weight_pressure * (barrier_gradient(u, margin) - barrier_gradient(1 - u, margin)) /
                           pmax * kPressureUnit;
     }
   if (clearance_barrier_) {
     terms.clearance = weight_clearance_ * clearance_barrier_->value(r.routes);
-    if (!std::isfinite(terms.clearance)) return HUGE_VAL;
+    if (!std::isfinite(terms.clearance)) return refuse("fibers' clearance");
     if (gradient) add_clearance_gradient(r, *gradient);
   }
   return terms.curvature + terms.skin + terms.bend + terms.pressure + terms.clearance;
@@ -344,7 +344,8 @@ double RoutingProblem::evaluate(const Eigen::VectorXd& z, Eigen::VectorXd* gradi
   Eigen::VectorXd g = Eigen::VectorXd::Zero(size());
   Eigen::MatrixXd B;
   if (model) B = Eigen::MatrixXd::Zero(size(), size());
-  if (!std::isfinite(regularizers(r, gradient ? &g : nullptr, terms)) || !fibers_inside(r)) return HUGE_VAL;
+  if (!std::isfinite(regularizers(r, gradient ? &g : nullptr, terms))) return HUGE_VAL;  // counted where refused
+  if (!fibers_inside(r)) return refuse("outside the body");
   for (int t = 0; t < num_targets(); ++t) {
     if (!target_active_[t]) continue;
     auto owned = muscles(r, t);
@@ -355,7 +356,7 @@ double RoutingProblem::evaluate(const Eigen::VectorXd& z, Eigen::VectorXd* gradi
       energies.push_back(std::move(e));
     }
     Eigen::VectorXd x;
-    if (!solve(t, std::move(energies), x)) return HUGE_VAL;
+    if (!solve(t, std::move(energies), x)) return refuse("no equilibrium");
     terms.per_target[t] = distances_[t].value(x);
     terms.distance += terms.per_target[t];
     if (!gradient) continue;
@@ -364,7 +365,7 @@ double RoutingProblem::evaluate(const Eigen::VectorXd& z, Eigen::VectorXd* gradi
     try {
       by_fiber = adjoint_gradient(sim_, x, distances_[t].gradient(x), m);
     } catch (const std::runtime_error&) {
-      return HUGE_VAL;  // an unstable equilibrium: no gradient to follow
+      return refuse("unstable equilibrium");  // no gradient to follow
     }
     seconds_adjoint_ += since(start);
     for (int f = 0; f < num_fibers(); ++f) add_fiber_gradient(f, by_fiber[f], 1.0, t, g);
@@ -373,7 +374,7 @@ double RoutingProblem::evaluate(const Eigen::VectorXd& z, Eigen::VectorXd* gradi
     std::vector<Eigen::Index> columns;
     const Eigen::MatrixXd M = mixed_columns(t, x, m, columns);
     Eigen::MatrixXd S;  // −dx/dz over `columns`: the sign drops out of SᵀQS
-    if (!sim_.solver().solve_with_factorization(M, S)) return HUGE_VAL;
+    if (!sim_.solver().solve_with_factorization(M, S)) return refuse("unstable equilibrium");
     const Eigen::MatrixXd gn = distances_[t].gauss_newton_hessian(S);
     for (std::size_t a = 0; a < columns.size(); ++a)
       for (std::size_t b = 0; b < columns.size(); ++b)

@@ -12,6 +12,8 @@
 // The optimizer sees a flat vector z of the free variables, in mm (points, tangents) and 10 kPa
 // (pressures), so that one unit is a comparable change of the design.
 
+#include <cmath>
+#include <map>
 #include <optional>
 #include <string>
 #include <vector>
@@ -140,6 +142,8 @@ public:
   double seconds_adjoint() const { return seconds_adjoint_; }
   /// Seconds in the model Hessians' sensitivities and regularizer Hessians.
   double seconds_model() const { return seconds_model_; }
+  /// How many designs evaluate scored +∞, by why (kRefusalNames): the walls the optimizer met.
+  const std::map<std::string, int>& refusals() const { return refusals_; }
 
 private:
   struct Entry {
@@ -182,6 +186,13 @@ private:
   const ClearanceBarrier* clearance_barrier_ = nullptr;
   double weight_clearance_ = 0;
   NewtonTotals newton_;
+  mutable std::map<std::string, int> refusals_;
+  /// Counts a refused design under `why` and returns its score, +∞.
+  double refuse(const char* why) const
+  {
+    ++refusals_[why];
+    return HUGE_VAL;
+  }
   double seconds_simulation_ = 0, seconds_adjoint_ = 0, seconds_model_ = 0;
 };
 

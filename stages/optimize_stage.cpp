@@ -69,14 +69,16 @@ public:
   {
     text_ = "iteration,stage,objective,distance,curvature,skin_barrier,bend_barrier,pressure_barrier,clearance_barrier";
     for (const std::string& t : targets) text_ += ",distance_" + t;
-    text_ += ",gradient_norm,step,evaluations,seconds\n";
+    text_ += ",gradient_norm,predicted_decrease,step,evaluations,seconds\n";
   }
   void add(int iteration, int stage, const MinimizerIteration& it, const RoutingTerms& terms, double seconds)
   {
     text_ += fmt::format("{},{},{:.9g},{:.9g},{:.9g},{:.9g},{:.9g},{:.9g},{:.9g}", iteration, stage + 1, terms.total,
                          terms.distance, terms.curvature, terms.skin, terms.bend, terms.pressure, terms.clearance);
     for (double v : terms.per_target) text_ += fmt::format(",{:.9g}", v);
-    text_ += fmt::format(",{:.6g},{:.6g},{},{:.3f}\n", it.gradient_norm, it.step, it.evaluations, seconds);
+    // Levenberg-Marquardt's model may be indefinite (no decrease predicted): the cell stays empty.
+    const std::string predicted = std::isfinite(it.predicted_decrease) ? fmt::format("{:.6g}", it.predicted_decrease) : "";
+    text_ += fmt::format(",{:.6g},{},{:.6g},{},{:.3f}\n", it.gradient_norm, predicted, it.step, it.evaluations, seconds);
   }
   const std::string& text() const { return text_; }
 
@@ -471,6 +473,7 @@ void OptimizeStage::run(StageContext& ctx) const
       {"bends", {{"start", bends_json(start.routes)}, {"end", bends_json(result.routing.routes)}}},
       {"iterations", result.iterations},
       {"evaluations", result.evaluations},
+      {"refused", problem.refusals()},
       {"objective", result.value},
       {"newton_iterations", problem.newton().iterations},
       {"newton", newton_json(problem)},

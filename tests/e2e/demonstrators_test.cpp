@@ -208,13 +208,18 @@ TEST(Demonstrators, WalkingRobotMusclesAreOptimizedMovedApartAndMolded)
     std::printf("walking robot %s: tracking RMSE %.2f → %.2f mm optimized, %.2f mm after collide\n", target,
                 t["start"]["rmse_mm"].get<double>(), c["before"]["rmse_mm"].get<double>(),
                 c["after"]["rmse_mm"].get<double>());
-    // Measured (30 iterations): bend 7.28 → 6.71 mm, twist 5.33 → 1.25 mm: 30 iterations do not beat
-    // the first guess at its best pressures (the bend muscle on, the twist pair off), which is kept;
-    // until session 21 they ended at bend 4.87, twist 4.15 mm, a higher objective. The full
-    // example's 300 reach 0.56 and 1.25 mm (docs/collide.md).
-    EXPECT_LT(c["before"]["rmse_mm"].get<double>(), t["start"]["rmse_mm"].get<double>() * 0.95) << target;
+    // Measured (30 iterations, session 23): bend 7.29 → 3.80 mm, twist 3.08 → 3.13 mm: the twist
+    // pair (left-handed since session 23: it twists the way the target asks) starts at half of
+    // max_pressure, too much twist, and the first 30 iterations spend the twist's tracking error
+    // on the bend's, which is larger; the objective falls. The full example's 300 reach bend
+    // 0.82 and twist 1.22 mm (docs/optimize.md, "The walking robot's twist").
     EXPECT_EQ(c["after"]["rmse_mm"].get<double>(), c["before"]["rmse_mm"].get<double>()) << target;
   }
+  EXPECT_LT(collide["targets"]["bend"]["before"]["rmse_mm"].get<double>(), optimized["bend"]["start"]["rmse_mm"].get<double>() * 0.6);
+  // The twist pair works: both its muscles end pressurized for the twist (the right-handed pair of
+  // sessions 15-22 ended switched off, at the unactuated error).
+  for (const char* muscle : {"twist-a", "twist-b"})
+    EXPECT_GT(optimized["twist"]["pressure_kPa"][muscle].get<double>(), 0.1 * 425) << muscle;
   EXPECT_LE(report["objective"].get<double>(), report["first_guess"]["objective"].get<double>());
   EXPECT_TRUE(report["fibers_kept_apart"].get<bool>());
   EXPECT_FALSE(collide["changed"].get<bool>());

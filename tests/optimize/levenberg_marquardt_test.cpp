@@ -7,20 +7,12 @@
 #include <gtest/gtest.h>
 
 #include "optimize/levenberg_marquardt.hpp"
+#include "rosenbrock.hpp"
 
 namespace fibermold {
 namespace {
 
-/// ½|r|² with r = (10(x₂ − x₁²), 1 − x₁), g = Jᵀr, B = JᵀJ.
-double rosenbrock(const Eigen::VectorXd& x, Eigen::VectorXd& g, Eigen::MatrixXd& B)
-{
-  const Eigen::Vector2d r(10 * (x[1] - x[0] * x[0]), 1 - x[0]);
-  Eigen::Matrix2d J;
-  J << -20 * x[0], 10, -1, 0;
-  g = J.transpose() * r;
-  B = J.transpose() * J;
-  return 0.5 * r.squaredNorm();
-}
+using test::rosenbrock;
 
 TEST(LevenbergMarquardt, ConvergesOnTheRosenbrockValleyByTheModelsDecrease)
 {
@@ -37,6 +29,59 @@ TEST(LevenbergMarquardt, ConvergesOnTheRosenbrockValleyByTheModelsDecrease)
   EXPECT_LT((r.x - Eigen::Vector2d(1, 1)).norm(), 1e-6);
   EXPECT_LT(r.iterations, 40);  // BFGS takes 30–40 on it; a zero-residual problem is Gauss-Newton's best case
   EXPECT_EQ(callbacks, r.iterations);
+}
+
+/// Dennis & Schnabel's large-residual problem (Numerical Methods for Unconstrained Optimization,
+/// Example 10.2.5): r = (x + 1, λx² + x − 1), minimum at x = 0 with r = (1, −1) for λ < 1. There
+/// f'' = 2 − 2λ while Gauss-Newton's JᵀJ = 2: with λ = 0.9 the model is 10× too stiff, so
+/// Gauss-Newton closes only 10 % of the distance per step, and its decrease ½g²/JᵀJ claims 10×
+/// too little is left.
+double large_residual(const Eigen::VectorXd& x, Eigen::VectorXd& g, Eigen::MatrixXd& B)
+{
+  constexpr double lambda = 0.9;
+  const Eigen::Vector2d r(x[0] + 1, lambda * x[0] * x[0] + x[0] - 1);
+  const Eigen::Vector2d J(1, 2 * lambda * x[0] + 1);
+  g = Eigen::VectorXd::Constant(1, J.dot(r));
+  B = Eigen::MatrixXd::Constant(1, 1, J.squaredNorm());
+  return 0.5 * r.squaredNorm();
+}
+
+TEST(LevenbergMarquardt, LearnsWhatTheGaussNewtonModelLeavesOutOnALargeResidual)
+{
+  NullProgress progress;
+  MinimizerOptions o;
+  o.relative_tolerance = 0;
+  o.gradient_tolerance = 0;
+  o.decrease_tolerance = 1e-12;
+  const MinimizerResult r = minimize_levenberg_marquardt(large_residual, Eigen::VectorXd::Constant(1, 1.0), o, nullptr, progress);
+  EXPECT_TRUE(r.converged()) << r.message;
+  // Gauss-Newton alone: 0.9 of the distance kept per step, about 100 steps to 1e-5, and its
+  // decrease test would pass at |x| ≈ 1e-5 × √10.
+  EXPECT_LT(std::abs(r.x[0]), 1e-5);
+  EXPECT_LT(r.iterations, 25);
+}
+
+TEST(LevenbergMarquardt, ASlowButFaithfulModelIsNotAStall)
+{
+  // f = |x|³/3 + 1000 with its exact Hessian 2|x|: Newton halves x per step, so each step gains a
+  // tiny share of f (under 1e-3 once |x| < 1.5) while the model predicts as little as is left.
+  // The run goes on to converge where a stall rule on f alone would have ended it near x = 1.5.
+  const ModelObjective f = [](const Eigen::VectorXd& x, Eigen::VectorXd& g, Eigen::MatrixXd& B) {
+    const double a = std::abs(x[0]);
+    g = Eigen::VectorXd::Constant(1, x[0] * a);
+    B = Eigen::MatrixXd::Constant(1, 1, 2 * a);
+    return a * a * a / 3 + 1000;
+  };
+  NullProgress progress;
+  MinimizerOptions o;
+  o.window = 1;
+  o.relative_tolerance = 1e-3;
+  o.gradient_tolerance = 0;
+  o.decrease_tolerance = 1e-9;
+  o.max_step = 100;
+  const MinimizerResult r = minimize_levenberg_marquardt(f, Eigen::VectorXd::Constant(1, 10.0), o, nullptr, progress);
+  EXPECT_EQ(r.termination, Termination::decrease_tolerance) << r.message;
+  EXPECT_LT(std::abs(r.x[0]), 0.02);
 }
 
 TEST(LevenbergMarquardt, RejectsStepsIntoInfiniteValuesAndStillConverges)
