@@ -128,6 +128,7 @@ struct Target {
   std::vector<FiberActuation> fibers;      ///< kind = fibers
   std::vector<Pose> poses;                 ///< kind = pose
   std::vector<std::string> actuators;      ///< the [[fiber]]s the optimizer may pressurize for it; empty: all
+  double weight = 1;                       ///< multiplies its distance term f_dist in eq. 4
 };
 
 struct OptimizeOptions {

@@ -738,6 +738,7 @@ Target read_target(Section s, std::size_t index, const MuscleOptions& muscle, co
   }
   t.surface = s.file("surface", false, "");
   t.strain_penalty = s.number("strain_penalty", 0.0, closed(0, 1e9));
+  t.weight = s.number("weight", t.weight, above_zero(1e9));
 
   if (const toml::node* n = s.node("fibers")) {
     const toml::array* a = n->as_array();

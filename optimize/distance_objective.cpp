@@ -6,7 +6,7 @@
 
 namespace fibermold {
 
-DistanceObjective::DistanceObjective(const Basis& basis, std::vector<TrackingSamples> curves, const Eigen::VectorXd& target)
+DistanceObjective::DistanceObjective(const Basis& basis, std::vector<TrackingSamples> curves, const Eigen::VectorXd& target, double weight)
 {
   for (const TrackingSamples& c : curves)
     for (const Eigen::Vector3d& q : c.points) {
@@ -15,8 +15,8 @@ DistanceObjective::DistanceObjective(const Basis& basis, std::vector<TrackingSam
       s.target_gradient = s.at.deformation_gradient(target);
       samples_.push_back(std::move(s));
     }
-  // Per-sample weights carry the normalisation of the header's formula.
-  const double per_sample = samples_.empty() ? 0 : 1.0 / static_cast<double>(samples_.size());
+  // Per-sample weights carry the normalisation of the header's formula, and the target's weight.
+  const double per_sample = samples_.empty() ? 0 : weight / static_cast<double>(samples_.size());
   for (Sample& s : samples_) {
     s.w_pos *= per_sample / (units::mm * units::mm);
     s.w_ori *= per_sample;

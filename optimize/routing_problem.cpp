@@ -47,7 +47,10 @@ RoutingProblem::RoutingProblem(Simulation& sim, const MuscleModel& model, const 
   if (base_.pressures.rows() != T || base_.pressures.cols() != F)
     throw std::invalid_argument(fmt::format("the pressures are {}×{}, expected targets × fibers = {}×{}",
                                             base_.pressures.rows(), base_.pressures.cols(), T, F));
-  for (const Eigen::VectorXd& x : targets_) distances_.emplace_back(sim_.basis(), curves, x);
+  if (!settings_.target_weights.empty() && settings_.target_weights.size() != targets_.size())
+    throw std::invalid_argument(fmt::format("RoutingProblem: {} target weights for {} targets", settings_.target_weights.size(), targets_.size()));
+  for (std::size_t t = 0; t < targets_.size(); ++t)
+    distances_.emplace_back(sim_.basis(), curves, targets_[t], settings_.target_weights.empty() ? 1.0 : settings_.target_weights[t]);
   // Every state the optimizer scores ends on a step with a fresh factorization: it lands far below
   // the tolerance, where a reused factorization stops just under it, and BFGS's line search would
   // compare objective values that differ by that noise. The adjoint solve reuses that factorization.

@@ -52,6 +52,7 @@ struct RoutingSettings {
   double weight_skin = 1;
   double weight_pressure = 1;
   double pressure_margin = 0.02;      ///< of max_pressure
+  std::vector<double> target_weights; ///< per target, multiplies its f_dist in eq. 4; empty: all 1
 };
 
 /// The skin barrier of eq. 4 on `route` as the routing problem builds it (its distance, band and

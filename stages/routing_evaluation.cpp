@@ -92,6 +92,7 @@ RoutingSettings routing_settings(const Design& d)
   s.weight_skin = d.optimize.weight_skin_barrier;
   s.weight_bend = d.optimize.weight_bend_barrier;
   s.weight_pressure = d.optimize.weight_pressure_barrier;
+  for (const Target& t : d.targets) s.target_weights.push_back(t.weight);
   return s;
 }
 

@@ -1,6 +1,6 @@
 // The gradient of the distance to a target through equilibrium (adjoint, eq. 9) against central
 // finite differences that re-solve the equilibrium: relative error ≤ 1e-5 for control points,
-// tangents and pressure.
+// tangents and pressure; a target's weight scales the distance, its gradient and its model.
 #include <cmath>
 
 #include <Eigen/LU>
@@ -105,6 +105,24 @@ TEST(TrackingCurve, SamplesEquallySpacedWithOrthonormalFrames)
     EXPECT_LT((A.transpose() * A - Eigen::Matrix3d::Identity()).norm(), 1e-12);
     EXPECT_NEAR(A.determinant(), 1.0, 1e-12);
   }
+}
+
+TEST(DistanceObjective, ATargetsWeightScalesItsValueGradientAndModel)
+{
+  // [[target]] weight multiplies f_dist in eq. 4, and with it what the optimizers see of it.
+  Problem pr;
+  Simulation sim(pr.mesh, pr.options());
+  const Eigen::VectorXd rest = sim.rest();
+  const Eigen::VectorXd target = rest + 1e-3 * Eigen::VectorXd::Random(rest.size());
+  const Eigen::VectorXd x = rest + 1e-3 * Eigen::VectorXd::Random(rest.size());
+  const Eigen::MatrixXd S = Eigen::MatrixXd::Random(rest.size(), 5);
+  const DistanceObjective one(sim.basis(), pr.curves, target), three(sim.basis(), pr.curves, target, 3.0);
+  ASSERT_GT(one.value(x), 0);
+  EXPECT_NEAR(three.value(x), 3 * one.value(x), 1e-12 * one.value(x));
+  EXPECT_LT((three.gradient(x) - 3 * one.gradient(x)).norm(), 1e-12 * one.gradient(x).norm());
+  EXPECT_LT((three.gauss_newton_hessian(S) - 3 * one.gauss_newton_hessian(S)).norm(), 1e-12 * one.gauss_newton_hessian(S).norm());
+  // The RMSE is the target's error in mm, whatever its weight.
+  EXPECT_EQ(three.rmse(x), one.rmse(x));
 }
 
 } // namespace
