@@ -83,12 +83,7 @@ MinimizerResult minimize_bfgs(const Objective& f, Eigen::VectorXd x, const Minim
   try {
     fx = tracked(x, g);
   } catch (const Interrupted&) {
-    result.x = x;  // nothing better seen yet
-    result.value = HUGE_VAL;
-    result.interrupted = true;
-    result.termination = Termination::interrupted;
-    result.message = "interrupted";
-    return result;
+    return interrupted_at_start(x);
   }
   if (!std::isfinite(fx)) throw std::invalid_argument("the objective is not finite at the starting point");
 
@@ -150,7 +145,8 @@ MinimizerResult minimize_bfgs(const Objective& f, Eigen::VectorXd x, const Minim
       ++result.iterations;
       take_pair(H, scaled, x - xp, g - gp);
       const double predicted = 0.5 * g.dot(H * g);
-      if (on_iteration) on_iteration({result.iterations, fx, g.norm(), step * d.norm(), tracked.evaluations, predicted}, x);
+      if (on_iteration)
+        on_iteration({result.iterations, fx, g.norm(), step * d.norm(), tracked.evaluations, predicted}, x);
       values.push_back(fx);
       // All its evaluations for less than a window's tolerance spread over its iterations: where f
       // jumps up within a short step (a body that snaps to another equilibrium just past this

@@ -6,7 +6,8 @@
 
 namespace fibermold {
 
-DistanceObjective::DistanceObjective(const Basis& basis, std::vector<TrackingSamples> curves, const Eigen::VectorXd& target, double weight)
+DistanceObjective::DistanceObjective(const Basis& basis, std::vector<TrackingSamples> curves,
+                                     const Eigen::VectorXd& target, double weight)
 {
   for (const TrackingSamples& c : curves)
     for (const Eigen::Vector3d& q : c.points) {

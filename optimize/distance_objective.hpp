@@ -18,7 +18,8 @@ namespace fibermold {
 class DistanceObjective {
 public:
   /// `target`: the target's nodal state x̂ (3n); `weight` multiplies f_dist (the target's weight in eq. 4).
-  DistanceObjective(const Basis& basis, std::vector<TrackingSamples> curves, const Eigen::VectorXd& target, double weight = 1);
+  DistanceObjective(const Basis& basis, std::vector<TrackingSamples> curves, const Eigen::VectorXd& target,
+                    double weight = 1);
 
   double value(const Eigen::VectorXd& x) const;
   /// ∂f/∂x_i = w_pos (x(q) − x̂(q)) N_i(q) + w_ori (F − F̂) ∇N_i(q), summed over samples.

@@ -6,8 +6,9 @@
 
 namespace fibermold {
 
-MinimizerResult minimize_hybrid(const Objective& f, const ModelObjective& model, Eigen::VectorXd x0, const MinimizerOptions& options,
-                                const IterationCallback& on_iteration, Progress& progress)
+MinimizerResult minimize_hybrid(const Objective& f, const ModelObjective& model, Eigen::VectorXd x0,
+                                const MinimizerOptions& options, const IterationCallback& on_iteration,
+                                Progress& progress)
 {
   MinimizerOptions first = options;
   first.relative_tolerance = options.switch_tolerance;
@@ -23,15 +24,15 @@ MinimizerResult minimize_hybrid(const Objective& f, const ModelObjective& model,
     if (on_iteration) on_iteration(numbered, x);
   };
   MinimizerResult lm = minimize_levenberg_marquardt(model, bfgs.x, rest, numbered_on, progress);
-  if (lm.interrupted && !(lm.value < bfgs.value)) {  // stopped before it found better
+  if (lm.interrupted && !(lm.value < bfgs.value)) { // stopped before it found better
     lm.x = bfgs.x;
     lm.value = bfgs.value;
     lm.gradient_norm = bfgs.gradient_norm;
   }
   lm.iterations += bfgs.iterations;
   lm.evaluations += bfgs.evaluations;
-  lm.message = fmt::format("BFGS {} after {} iterations (f = {:.6g}); Levenberg-Marquardt from there: {}", choice_name(bfgs.termination),
-                           bfgs.iterations, bfgs.value, lm.message);
+  lm.message = fmt::format("BFGS {} after {} iterations (f = {:.6g}); Levenberg-Marquardt from there: {}",
+                           choice_name(bfgs.termination), bfgs.iterations, bfgs.value, lm.message);
   return lm;
 }
 

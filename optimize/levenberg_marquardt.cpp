@@ -85,18 +85,13 @@ MinimizerResult minimize_levenberg_marquardt(const ModelObjective& f, Eigen::Vec
   try {
     fx = f(x, g, B);
   } catch (const Interrupted&) {
-    result.x = x;
-    result.value = HUGE_VAL;
-    result.interrupted = true;
-    result.termination = Termination::interrupted;
-    result.message = "interrupted";
-    return result;
+    return interrupted_at_start(x);
   }
   result.evaluations = 1;
   if (!std::isfinite(fx)) throw std::invalid_argument("the objective is not finite at the starting point");
 
   double mu = kInitialDamping, nu = 2;
-  Eigen::MatrixXd S = Eigen::MatrixXd::Zero(x.size(), x.size());  // secant term (secant_update)
+  Eigen::MatrixXd S = Eigen::MatrixXd::Zero(x.size(), x.size()); // secant term (secant_update)
   // NL2SOL's choice of model: B + S where it predicted the last step's decrease better than B.
   bool augmented = false;
   const auto model = [&]() -> Eigen::MatrixXd { return augmented ? Eigen::MatrixXd(B + S) : B; };
@@ -117,7 +112,8 @@ MinimizerResult minimize_levenberg_marquardt(const ModelObjective& f, Eigen::Vec
       const Eigen::MatrixXd M = model();
       if (const double decrease = model_decrease(M, g); decrease <= options.decrease_tolerance * std::abs(fx))
         return finish(Termination::decrease_tolerance,
-                      fmt::format("the model's whole decrease ½gᵀM⁻¹g = {:.3g} is {:.2g} of f", decrease, decrease / std::abs(fx)));
+                      fmt::format("the model's whole decrease ½gᵀM⁻¹g = {:.3g} is {:.2g} of f", decrease,
+                                  decrease / std::abs(fx)));
       if (result.iterations == options.max_iterations)
         return finish(Termination::iteration_limit, fmt::format("{} iterations, the limit", options.max_iterations));
       if (progress.interrupted()) throw Interrupted();
@@ -160,7 +156,8 @@ MinimizerResult minimize_levenberg_marquardt(const ModelObjective& f, Eigen::Vec
         // A stall is a model that keeps predicting more than the window's tolerance and does not
         // deliver it (a wall it does not know); where it predicts less, the run is that close to
         // converging and goes on (the tentacle stalled 3 iterations short of it).
-        if (auto message = stall_message(values, fx, options); message && ahead > options.relative_tolerance * std::abs(fx))
+        if (auto message = stall_message(values, fx, options);
+            message && ahead > options.relative_tolerance * std::abs(fx))
           return finish(Termination::stalled, std::move(*message));
         continue;
       }

@@ -6,6 +6,17 @@
 
 namespace fibermold {
 
+MinimizerResult interrupted_at_start(Eigen::VectorXd x)
+{
+  MinimizerResult result;
+  result.x = std::move(x);  // nothing better seen yet
+  result.value = HUGE_VAL;
+  result.interrupted = true;
+  result.termination = Termination::interrupted;
+  result.message = "interrupted";
+  return result;
+}
+
 std::optional<std::string> stall_message(const std::vector<double>& values, double fx, const MinimizerOptions& options)
 {
   if (static_cast<int>(values.size()) <= options.window) return std::nullopt;

@@ -42,7 +42,7 @@ struct MinimizerIteration {
   double value = 0, gradient_norm = 0, step = 0;
   int evaluations = 0;  ///< objective evaluations so far
   /// What the minimizer's model predicts is left to gain from here: ½ gᵀHg with BFGS's inverse
-  /// Hessian H, ½ gᵀB⁻¹g with Levenberg-Marquardt's B (the Newton decrement, squared and halved).
+  /// Hessian H, ½ gᵀM⁻¹g with Levenberg-Marquardt's model M (the Newton decrement, squared and halved).
   double predicted_decrease = 0;
 };
 
@@ -80,6 +80,9 @@ struct MinimizerResult {
 using Objective = std::function<double(const Eigen::VectorXd& x, Eigen::VectorXd& gradient)>;
 /// Called after every accepted step.
 using IterationCallback = std::function<void(const MinimizerIteration&, const Eigen::VectorXd& x)>;
+
+/// The result of a run stopped (Ctrl-C, SIGTERM) during its first evaluation: x is the start, f unknown.
+MinimizerResult interrupted_at_start(Eigen::VectorXd x);
 
 /// The relative-tolerance rule, why a run stalled: f fell by at most relative_tolerance of its
 /// value over the last `window` iterations (`values`: f after each iteration, the last one fx).

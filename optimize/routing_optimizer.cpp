@@ -13,8 +13,8 @@ namespace {
 using Mask = Eigen::Matrix<bool, Eigen::Dynamic, Eigen::Dynamic>;
 
 /// One run (the method's) over the problem's current free variables, starting from its base.
-MinimizerResult run(RoutingProblem& problem, int stage, const MinimizerOptions& options, const RoutingCallback& on_iteration,
-                    Progress& progress)
+MinimizerResult run(RoutingProblem& problem, int stage, const MinimizerOptions& options,
+                    const RoutingCallback& on_iteration, Progress& progress)
 {
   const IterationCallback cb = [&](const MinimizerIteration& it, const Eigen::VectorXd&) {
     if (on_iteration) on_iteration(stage, it, problem.terms_at(it.value));
@@ -25,9 +25,12 @@ MinimizerResult run(RoutingProblem& problem, int stage, const MinimizerOptions& 
   };
   const Eigen::VectorXd z0 = problem.variables(problem.base());
   switch (options.method) {
-  case Method::levenberg_marquardt: return minimize_levenberg_marquardt(model, z0, options, cb, progress);
-  case Method::hybrid: return minimize_hybrid(f, model, z0, options, cb, progress);
-  case Method::bfgs: break;
+  case Method::levenberg_marquardt:
+    return minimize_levenberg_marquardt(model, z0, options, cb, progress);
+  case Method::hybrid:
+    return minimize_hybrid(f, model, z0, options, cb, progress);
+  case Method::bfgs:
+    break;
   }
   return minimize_bfgs(f, z0, options, cb, progress);
 }

@@ -48,9 +48,11 @@ RoutingProblem::RoutingProblem(Simulation& sim, const MuscleModel& model, const 
     throw std::invalid_argument(fmt::format("the pressures are {}×{}, expected targets × fibers = {}×{}",
                                             base_.pressures.rows(), base_.pressures.cols(), T, F));
   if (!settings_.target_weights.empty() && settings_.target_weights.size() != targets_.size())
-    throw std::invalid_argument(fmt::format("RoutingProblem: {} target weights for {} targets", settings_.target_weights.size(), targets_.size()));
+    throw std::invalid_argument(fmt::format("RoutingProblem: {} target weights for {} targets",
+                                            settings_.target_weights.size(), targets_.size()));
   for (std::size_t t = 0; t < targets_.size(); ++t)
-    distances_.emplace_back(sim_.basis(), curves, targets_[t], settings_.target_weights.empty() ? 1.0 : settings_.target_weights[t]);
+    distances_.emplace_back(sim_.basis(), curves, targets_[t],
+                            settings_.target_weights.empty() ? 1.0 : settings_.target_weights[t]);
   // Every state the optimizer scores ends on a step with a fresh factorization: it lands far below
   // the tolerance, where a reused factorization stops just under it, and BFGS's line search would
   // compare objective values that differ by that noise. The adjoint solve reuses that factorization.
@@ -223,7 +225,8 @@ double RoutingProblem::regularizers(const Routing& r, Eigen::VectorXd* gradient,
     if (bend_barrier_) {
       // The barrier's samples, and between them the spline's exact smallest radius.
       terms.bend += settings_.weight_bend * bend_barrier_->value(s);
-      if (!std::isfinite(terms.bend) || smallest_bend(s).radius <= settings_.min_bend_radius) return refuse("bend radius");
+      if (!std::isfinite(terms.bend) || smallest_bend(s).radius <= settings_.min_bend_radius)
+        return refuse("bend radius");
     }
     if (gradient) add_route_gradient(r, f, *gradient);
   }
@@ -347,7 +350,7 @@ double RoutingProblem::evaluate(const Eigen::VectorXd& z, Eigen::VectorXd* gradi
   Eigen::VectorXd g = Eigen::VectorXd::Zero(size());
   Eigen::MatrixXd B;
   if (model) B = Eigen::MatrixXd::Zero(size(), size());
-  if (!std::isfinite(regularizers(r, gradient ? &g : nullptr, terms))) return HUGE_VAL;  // counted where refused
+  if (!std::isfinite(regularizers(r, gradient ? &g : nullptr, terms))) return HUGE_VAL; // counted where refused
   if (!fibers_inside(r)) return refuse("outside the body");
   for (int t = 0; t < num_targets(); ++t) {
     if (!target_active_[t]) continue;
@@ -368,7 +371,7 @@ double RoutingProblem::evaluate(const Eigen::VectorXd& z, Eigen::VectorXd* gradi
     try {
       by_fiber = adjoint_gradient(sim_, x, distances_[t].gradient(x), m);
     } catch (const std::runtime_error&) {
-      return refuse("unstable equilibrium");  // no gradient to follow
+      return refuse("unstable equilibrium"); // no gradient to follow
     }
     seconds_adjoint_ += since(start);
     for (int f = 0; f < num_fibers(); ++f) add_fiber_gradient(f, by_fiber[f], 1.0, t, g);

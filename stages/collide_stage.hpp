@@ -22,7 +22,10 @@ public:
     return {"design.units", "material", "sim", "fixed", "muscle", "fiber", "tracking_curve", "target", "optimize", "collide",
             "mold.groove_clearance", "mold.min_silicone"};  // the skin distance (skin_distance.hpp)
   }
-  int version() const override { return 6; }  ///< 2: writes deformed-<target>.json for the report; 3: no null in report.json; 4: bends in the report, routes under min_bend_radius refused; 5: the bend barrier samples each span's tightest point, min_bend_radius_mm in the report; 6: Levenberg-Marquardt secant term, method hybrid
+  /// 2: writes deformed-<target>.json for the report; 3: no null in report.json; 4: bends in the report, routes
+  /// under min_bend_radius refused; 5: the bend barrier samples each span's tightest point, min_bend_radius_mm in the
+  /// report; 6: Levenberg-Marquardt's secant term, method hybrid (the default)
+  int version() const override { return 6; }
   void run(StageContext& ctx) const override;
 };
 

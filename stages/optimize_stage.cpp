@@ -77,8 +77,10 @@ public:
                          terms.distance, terms.curvature, terms.skin, terms.bend, terms.pressure, terms.clearance);
     for (double v : terms.per_target) text_ += fmt::format(",{:.9g}", v);
     // Levenberg-Marquardt's model may be indefinite (no decrease predicted): the cell stays empty.
-    const std::string predicted = std::isfinite(it.predicted_decrease) ? fmt::format("{:.6g}", it.predicted_decrease) : "";
-    text_ += fmt::format(",{:.6g},{},{:.6g},{},{:.3f}\n", it.gradient_norm, predicted, it.step, it.evaluations, seconds);
+    const std::string predicted =
+        std::isfinite(it.predicted_decrease) ? fmt::format("{:.6g}", it.predicted_decrease) : "";
+    text_ +=
+        fmt::format(",{:.6g},{},{:.6g},{},{:.3f}\n", it.gradient_norm, predicted, it.step, it.evaluations, seconds);
   }
   const std::string& text() const { return text_; }
 

@@ -28,7 +28,11 @@ public:
     return {"design.surface", "design.units", "mesh", "material", "sim", "fixed", "muscle", "fiber", "tracking_curve", "target",
             "optimize", "collide.clearance", "collide.samples_per_mm", "collide.smoothness", "mold.groove_clearance", "mold.min_silicone"};
   }
-  int version() const override { return 7; }  ///< 2: fibers moved apart before optimizing, kept apart throughout; 3: termination, warnings and reach in the report; 4: reached poses; 5: the bend radius barrier, bends in the report; 6: the bend barrier samples each span's tightest point, [optimize] method; 7: history.csv predicted_decrease, Levenberg-Marquardt secant term, method hybrid
+  /// 2: fibers moved apart before optimizing, kept apart throughout; 3: termination, warnings and reach in the
+  /// report; 4: reached poses; 5: the bend radius barrier, bends in the report; 6: the bend barrier samples each
+  /// span's tightest point, [optimize] method; 7: history.csv predicted_decrease, report.json refused,
+  /// Levenberg-Marquardt's secant term, method hybrid (the default)
+  int version() const override { return 7; }
   void run(StageContext& ctx) const override;
 };
 

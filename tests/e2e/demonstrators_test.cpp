@@ -215,7 +215,8 @@ TEST(Demonstrators, WalkingRobotMusclesAreOptimizedMovedApartAndMolded)
     // 0.82 and twist 1.22 mm (docs/optimize.md, "The walking robot's twist").
     EXPECT_EQ(c["after"]["rmse_mm"].get<double>(), c["before"]["rmse_mm"].get<double>()) << target;
   }
-  EXPECT_LT(collide["targets"]["bend"]["before"]["rmse_mm"].get<double>(), optimized["bend"]["start"]["rmse_mm"].get<double>() * 0.6);
+  EXPECT_LT(collide["targets"]["bend"]["before"]["rmse_mm"].get<double>(),
+            optimized["bend"]["start"]["rmse_mm"].get<double>() * 0.6);
   // The twist pair works: both its muscles end pressurized for the twist (the right-handed pair of
   // sessions 15-22 ended switched off, at the unactuated error).
   for (const char* muscle : {"twist-a", "twist-b"})

@@ -120,7 +120,8 @@ TEST(DistanceObjective, ATargetsWeightScalesItsValueGradientAndModel)
   ASSERT_GT(one.value(x), 0);
   EXPECT_NEAR(three.value(x), 3 * one.value(x), 1e-12 * one.value(x));
   EXPECT_LT((three.gradient(x) - 3 * one.gradient(x)).norm(), 1e-12 * one.gradient(x).norm());
-  EXPECT_LT((three.gauss_newton_hessian(S) - 3 * one.gauss_newton_hessian(S)).norm(), 1e-12 * one.gauss_newton_hessian(S).norm());
+  EXPECT_LT((three.gauss_newton_hessian(S) - 3 * one.gauss_newton_hessian(S)).norm(),
+            1e-12 * one.gauss_newton_hessian(S).norm());
   // The RMSE is the target's error in mm, whatever its weight.
   EXPECT_EQ(three.rmse(x), one.rmse(x));
 }

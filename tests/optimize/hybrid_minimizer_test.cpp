@@ -19,14 +19,14 @@ TEST(HybridMinimizer, LevenbergMarquardtCarriesAStalledBfgsRunToTheMinimum)
   NullProgress progress;
   MinimizerOptions o;
   o.window = 2;
-  o.switch_tolerance = 0.3;  // BFGS hands over where two steps gain less than 30 % of f
+  o.switch_tolerance = 0.3; // BFGS hands over where two steps gain less than 30 % of f
   o.relative_tolerance = 0.3;
   o.gradient_tolerance = 0;
   o.decrease_tolerance = 1e-14;
   std::vector<int> numbers;
-  const MinimizerResult r = minimize_hybrid(rosenbrock_value, rosenbrock, Eigen::Vector2d(0.8, 0.64), o,
-                                            [&](const MinimizerIteration& it, const Eigen::VectorXd&) { numbers.push_back(it.iteration); },
-                                            progress);
+  const MinimizerResult r = minimize_hybrid(
+      rosenbrock_value, rosenbrock, Eigen::Vector2d(0.8, 0.64), o,
+      [&](const MinimizerIteration& it, const Eigen::VectorXd&) { numbers.push_back(it.iteration); }, progress);
   EXPECT_TRUE(r.converged()) << r.message;
   EXPECT_LT((r.x - Eigen::Vector2d(1, 1)).norm(), 1e-6) << r.message;
   EXPECT_EQ(r.message.rfind("BFGS stalled after ", 0), 0u) << r.message;

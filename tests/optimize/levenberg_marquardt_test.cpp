@@ -53,7 +53,8 @@ TEST(LevenbergMarquardt, LearnsWhatTheGaussNewtonModelLeavesOutOnALargeResidual)
   o.relative_tolerance = 0;
   o.gradient_tolerance = 0;
   o.decrease_tolerance = 1e-12;
-  const MinimizerResult r = minimize_levenberg_marquardt(large_residual, Eigen::VectorXd::Constant(1, 1.0), o, nullptr, progress);
+  const MinimizerResult r =
+      minimize_levenberg_marquardt(large_residual, Eigen::VectorXd::Constant(1, 1.0), o, nullptr, progress);
   EXPECT_TRUE(r.converged()) << r.message;
   // Gauss-Newton alone: 0.9 of the distance kept per step, about 100 steps to 1e-5, and its
   // decrease test would pass at |x| ≈ 1e-5 × √10.
