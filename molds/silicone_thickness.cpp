@@ -2,10 +2,11 @@
 
 #include <algorithm>
 #include <cmath>
+#include <stdexcept>
 #include <unordered_map>
 
 #include <Eigen/Geometry>
-
+#include <fmt/format.h>
 
 namespace fibermold {
 
@@ -57,20 +58,20 @@ private:
 
 } // namespace
 
-std::vector<bool> beyond_skin_ends(const std::vector<Eigen::Vector3d>& line, const SurfaceDistance& skin, double exempt)
+std::vector<bool> beyond_skin_ends(const std::vector<Eigen::Vector3d>& line, const ExitStretches& exits)
 {
   std::vector<bool> beyond(line.size(), true);
   if (line.empty()) return beyond;
   std::vector<double> s(line.size(), 0);
   for (std::size_t k = 1; k < line.size(); ++k) s[k] = s[k - 1] + (line[k] - line[k - 1]).norm();
-  const bool first_on_skin = skin.closest(line.front()).distance < exempt / 2, last_on_skin = skin.closest(line.back()).distance < exempt / 2;
-  for (std::size_t k = 0; k < line.size(); ++k) beyond[k] = !((first_on_skin && s[k] < exempt) || (last_on_skin && s.back() - s[k] < exempt));
+  for (std::size_t k = 0; k < line.size(); ++k) beyond[k] = s[k] >= exits.first && s.back() - s[k] >= exits.last;
   return beyond;
 }
 
 SiliconeThickness silicone_thickness(const SurfaceMesh& groove_body, const SurfaceMesh& body,
-                                     const std::vector<std::vector<Eigen::Vector3d>>& fibers, double radius, double muscle_radius,
-                                     const Eigen::Vector3d& pull_in, double voxel, double exempt)
+                                     const std::vector<std::vector<Eigen::Vector3d>>& fibers, double radius,
+                                     double muscle_radius, const Eigen::Vector3d& pull_in, double voxel,
+                                     const std::vector<ExitStretches>& exits)
 {
   SiliconeThickness out;
   const Eigen::Vector3d pull = pull_in.normalized();
@@ -80,10 +81,13 @@ SiliconeThickness silicone_thickness(const SurfaceMesh& groove_body, const Surfa
   frame.row(0) = pull.unitOrthogonal().transpose();
   frame.row(1) = pull.cross(pull.unitOrthogonal()).transpose();
 
-  // The points that count: not within `exempt` of an end on the skin.
+  // The points that count: not on an exit stretch.
+  if (exits.size() != fibers.size())
+    throw std::invalid_argument(
+        fmt::format("silicone_thickness: {} exit stretches for {} fibers", exits.size(), fibers.size()));
   const SurfaceDistance skin(body.vertices, body.faces);
   std::vector<std::vector<bool>> kept;
-  for (const auto& line : fibers) kept.push_back(beyond_skin_ends(line, skin, exempt));
+  for (std::size_t f = 0; f < fibers.size(); ++f) kept.push_back(beyond_skin_ends(fibers[f], exits[f]));
 
   // Shot 1: the groove body's faces on a groove's walls (their shadow within a voxel and a half of
   // a groove's edge, at or above its bottom), and the silicone behind them. Not the lip within a

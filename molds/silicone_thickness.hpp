@@ -23,17 +23,23 @@ struct SiliconeThickness {
   Eigen::Vector3d overmold_at = Eigen::Vector3d::Zero();
 };
 
-/// Per point of a fiber's polyline: whether it lies beyond the stretch, `exempt` (m) long along
-/// the fiber, at an end that lies on the skin (within exempt / 2 of it), where the fiber leaves the
-/// body by design. The molds' route check and the silicone's thickness leave that stretch out.
-std::vector<bool> beyond_skin_ends(const std::vector<Eigen::Vector3d>& line, const SurfaceDistance& skin, double exempt);
+/// The arc (m) at each end of a fiber where it leaves the body by design: the stretches the
+/// optimizer's skin barrier left out (0 at an end inside the body), measured along the fiber as
+/// routed. The molds' route check and the silicone's thickness leave them out, as collide does.
+struct ExitStretches {
+  double first = 0, last = 0;
+};
+
+/// Per point of a fiber's polyline: whether it lies beyond its exit stretches.
+std::vector<bool> beyond_skin_ends(const std::vector<Eigen::Vector3d>& line, const ExitStretches& exits);
 
 /// `fibers`: each fiber's centre line as a dense polyline (m); groove `radius`, laid muscles of
-/// `muscle_radius` resting on the grooves' bottoms. Within `exempt` (m, along the fiber) of an end on
-/// the skin, where a fiber leaves the body by design, the overmold is not measured. `voxel`: the
+/// `muscle_radius` resting on the grooves' bottoms. Within a fiber's `exits` (one per fiber), where it
+/// leaves the body by design, neither is measured. `voxel`: the
 /// groove body's, which blurs its walls by about one.
 SiliconeThickness silicone_thickness(const SurfaceMesh& groove_body, const SurfaceMesh& body,
-                                     const std::vector<std::vector<Eigen::Vector3d>>& fibers, double radius, double muscle_radius,
-                                     const Eigen::Vector3d& pull, double voxel, double exempt);
+                                     const std::vector<std::vector<Eigen::Vector3d>>& fibers, double radius,
+                                     double muscle_radius, const Eigen::Vector3d& pull, double voxel,
+                                     const std::vector<ExitStretches>& exits);
 
 } // namespace fibermold

@@ -274,8 +274,8 @@ TwoShotMolds Recipe::make()
   // exempt as in groove_problem.
   progress_.checkpoint(0.9, "measuring the silicone's thickness");
   started = Clock::now();
-  out_.thickness = silicone_thickness(out_.groove.mesh, shot2_cavity, lines_, out_.groove_radius, job_.muscle_diameter / 2, pull_, m_.voxel,
-                                      job_.end_stretch);
+  out_.thickness = silicone_thickness(out_.groove.mesh, shot2_cavity, lines_, out_.groove_radius,
+                                      job_.muscle_diameter / 2, pull_, m_.voxel, job_.exits);
   const SiliconeThickness& t = out_.thickness;
   log_.info(fmt::format("silicone: {:.2f} mm at the thinnest groove wall near {}, {:.2f} mm over the muscles at the thinnest, near {}; in {:.2f} s",
                         t.groove_web / 1e-3, format_mm(out_.scaled(t.groove_web_at)), t.overmold / 1e-3, format_mm(out_.scaled(t.overmold_at)), since(started)));
@@ -297,10 +297,11 @@ double groove_radius(double muscle_diameter, const MoldOptions& options) { retur
 
 double mold_line_step(const MoldOptions& options) { return std::min(0.5e-3, options.voxel * 2); }
 
-std::optional<std::string> groove_problem(const std::vector<Eigen::Vector3d>& line, const SurfaceDistance& skin, double need,
-                                          const std::string& terms, const Eigen::Vector3d& pull, double end_stretch)
+std::optional<std::string> groove_problem(const std::vector<Eigen::Vector3d>& line, const SurfaceDistance& skin,
+                                          double need, const std::string& terms, const Eigen::Vector3d& pull,
+                                          const ExitStretches& exits)
 {
-  const std::vector<bool> beyond = beyond_skin_ends(line, skin, end_stretch);
+  const std::vector<bool> beyond = beyond_skin_ends(line, exits);
   for (std::size_t k = 0; k < line.size(); ++k) {
     const Eigen::Vector3d& p = line[k];
     const auto at = skin.closest(p);

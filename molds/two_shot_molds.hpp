@@ -43,9 +43,9 @@ struct MoldJob {
   SurfaceMesh body;                      ///< the body's skin, m
   std::vector<MoldFiber> fibers;
   double muscle_diameter = 0;            ///< m
-  /// m: the stretch of a fiber at an end on the skin that the thickness checks leave out (the
+  /// Per fiber, the stretches at its ends on the skin that the thickness checks leave out (the
   /// optimizer's skin barrier's; the fiber leaves the body there by design).
-  double end_stretch = 0;
+  std::vector<ExitStretches> exits;
   double min_wall = 1e-3;                ///< m, the printer's thinnest reliable wall
   Eigen::Vector3d printer_volume{0.25, 0.21, 0.21};  ///< m
 };
@@ -65,10 +65,11 @@ double mold_line_step(const MoldOptions& options);
 /// Why a fiber's groove cannot be cast, or nothing: the fiber must stay in the body, and its centre
 /// line `need` (m) from the skin (other than below the skin above it, where the groove opens), so
 /// that the groove neither breaks through the skin nor leaves a skin too thin to cast; `terms`
-/// says what `need` is made of. Near an end on the skin (`end_stretch`), where the fiber leaves
-/// the body by design, it is exempt. A fiber short of `need` by less than kPlacementTolerance passes.
-std::optional<std::string> groove_problem(const std::vector<Eigen::Vector3d>& line, const SurfaceDistance& skin, double need,
-                                          const std::string& terms, const Eigen::Vector3d& pull, double end_stretch);
+/// says what `need` is made of. On its `exits`, where the fiber leaves the body by design, it is
+/// exempt. A fiber short of `need` by less than kPlacementTolerance passes.
+std::optional<std::string> groove_problem(const std::vector<Eigen::Vector3d>& line, const SurfaceDistance& skin,
+                                          double need, const std::string& terms, const Eigen::Vector3d& pull,
+                                          const ExitStretches& exits);
 
 /// One shot's mold.
 struct ShotMold {

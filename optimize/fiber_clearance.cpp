@@ -4,8 +4,10 @@
 #include <cmath>
 #include <map>
 #include <optional>
+#include <stdexcept>
 
 #include <Eigen/Geometry>
+#include <fmt/format.h>
 #include <nanoflann.hpp>
 #include <tbb/parallel_for.h>
 
@@ -68,16 +70,24 @@ double smallest_clearance(const std::vector<Contact>& contacts)
 }
 
 FiberClearance::FiberClearance(const SurfaceDistance& skin, const std::vector<Route>& routes, double radius,
-                               double clearance, double samples_per_length, double skin_margin)
+                               double clearance, double samples_per_length, double skin_margin,
+                               const std::vector<HeldStretch>& held)
     : skin_(skin), radius_(radius), skin_margin_(skin_margin)
 {
-  for (const Route& r : routes) {
-    const HermiteSpline s = spline_of(r);
+  if (!held.empty() && held.size() != routes.size())
+    throw std::invalid_argument(
+        fmt::format("FiberClearance: {} held stretches for {} fibers", held.size(), routes.size()));
+  for (std::size_t f = 0; f < routes.size(); ++f) {
+    const HermiteSpline s = spline_of(routes[f]);
     const int count = std::max(8, static_cast<int>(std::ceil(s.length() * samples_per_length)));
     t_.push_back(segment_parameters(s, count));
-    const std::vector<double> tested = parameters_off_exits(skin, s, t_.back(), 2 * radius + clearance);
     std::vector<bool> is_tested;
-    for (double t : t_.back()) is_tested.push_back(std::binary_search(tested.begin(), tested.end(), t));
+    if (!held.empty()) {
+      for (double t : t_.back()) is_tested.push_back(held[f].holds(t));
+    } else {
+      const std::vector<double> tested = parameters_off_exits(skin, s, t_.back(), 2 * radius + clearance);
+      for (double t : t_.back()) is_tested.push_back(std::binary_search(tested.begin(), tested.end(), t));
+    }
     skin_tested_.push_back(std::move(is_tested));
   }
 }

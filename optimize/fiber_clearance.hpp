@@ -11,6 +11,8 @@
 
 #include <vector>
 
+#include "optimize/skin_barrier.hpp"
+
 #include <Eigen/Core>
 
 #include "mesh/surface_distance.hpp"
@@ -36,9 +38,11 @@ public:
   /// end on the skin is not tested (as the optimizer's skin barrier: 2 (2 radius + clearance));
   /// `samples_per_length`: centre-line samples per m (at least 8 per fiber); `skin_margin` (m):
   /// how much further than the clearance the skin is kept from the muscle (a groove that needs
-  /// more room): a skin contact's clearance is its distance − radius − skin_margin.
+  /// more room): a skin contact's clearance is its distance − radius − skin_margin. `held`: per
+  /// fiber, the parameters the optimizer's skin barrier held (SkinBarrier::held), tested against
+  /// the skin instead of those off 2 (2 radius + clearance) of each end on the skin.
   FiberClearance(const SurfaceDistance& skin, const std::vector<Route>& routes, double radius, double clearance,
-                 double samples_per_length, double skin_margin = 0);
+                 double samples_per_length, double skin_margin = 0, const std::vector<HeldStretch>& held = {});
 
   int num_fibers() const { return static_cast<int>(t_.size()); }
   double radius() const { return radius_; }

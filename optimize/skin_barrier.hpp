@@ -27,6 +27,12 @@ namespace fibermold {
 std::vector<double> parameters_off_exits(const SurfaceDistance& skin, const HermiteSpline& spline,
                                          const std::vector<double>& t, double reach);
 
+/// The spline parameters [first, last] a skin barrier holds off the skin; first > last: none.
+struct HeldStretch {
+  double first = 0, last = 0;
+  bool holds(double t) const { return first <= t && t <= last; }
+};
+
 class SkinBarrier {
 public:
   /// `samples` parameters spread by arc length over `initial`, which fixes the excluded ends.
@@ -40,6 +46,10 @@ public:
   /// above d_min, the smallest of the samples and of the points probed between them.
   /// `first_only`: stop at the first point found within d_min (a feasibility test).
   double closest_approach(const HermiteSpline& spline, Eigen::Vector3d& where, bool first_only = false) const;
+  /// Where along the spline the barrier holds: from its first sample to its last. Collide tests
+  /// the skin over the same parameters (FiberClearance), so the two agree on where an end's
+  /// stretch leaves the body by design, however the route has moved since.
+  HeldStretch held() const { return t_.empty() ? HeldStretch{1, 0} : HeldStretch{t_.front(), t_.back()}; }
 
 private:
   const SurfaceDistance& skin_;

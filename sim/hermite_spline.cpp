@@ -56,13 +56,28 @@ Eigen::Vector3d HermiteSpline::derivative(double t) const
   return d1[0] * points_[k] + d1[1] * tangents_[k] + d1[2] * points_[k + 1] + d1[3] * tangents_[k + 1];
 }
 
-double HermiteSpline::span_length(int k) const
+namespace {
+/// |p'| integrated with 5-point Gauss–Legendre over [a, b] within one span.
+double piece_length(const HermiteSpline& s, double a, double b)
 {
-  // |p'(u)| integrated with 5-point Gauss–Legendre on [0, 1].
   static const double x[5] = {0.0469100770306680, 0.2307653449471585, 0.5, 0.7692346550528415, 0.9530899229693320};
   static const double w[5] = {0.1184634425280945, 0.2393143352496832, 0.2844444444444444, 0.2393143352496832, 0.1184634425280945};
   double length = 0;
-  for (int i = 0; i < 5; ++i) length += w[i] * derivative(k + x[i]).norm();
+  for (int i = 0; i < 5; ++i) length += w[i] * s.derivative(a + (b - a) * x[i]).norm();
+  return (b - a) * length;
+}
+} // namespace
+
+double HermiteSpline::span_length(int k) const { return piece_length(*this, k, k + 1); }
+
+double HermiteSpline::length(double from, double to) const
+{
+  double length = 0;
+  for (double a = from; a < to;) {
+    const double b = std::min(to, std::floor(a) + 1);
+    length += piece_length(*this, a, b);
+    a = b;
+  }
   return length;
 }
 

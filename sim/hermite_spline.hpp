@@ -27,6 +27,8 @@ public:
   /// Arc length, by Gauss–Legendre quadrature on each span.
   double length() const;
   double span_length(int k) const;
+  /// Arc length from parameter `from` to `to` (from ≤ to, both in [0, spans()]), the same way.
+  double length(double from, double to) const;
 
 private:
   std::vector<Eigen::Vector3d> points_, tangents_;

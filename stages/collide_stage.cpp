@@ -146,9 +146,6 @@ void simulate_targets(StageContext& ctx, const FiberClearance& measure, const Fi
                       Routing& final, Json& report)
 {
   const Design& d = ctx.design;
-  if (fibers.routing.routes.size() != d.fibers.size())
-    throw std::runtime_error(fmt::format("optimize/fibers.json has {} fibers, the design {}: run optimize again",
-                                         fibers.routing.routes.size(), d.fibers.size()));
   DesignRouting dr(ctx);
   RoutingProblem& problem = dr.start(optimization_start(d, *dr.skin).routing); // the muscle segments as the optimizer had them
   ctx.progress.update(0.1, "simulating the targets under the optimized routing");
@@ -195,9 +192,14 @@ void CollideStage::run(StageContext& ctx) const
   const FibersFile fibers = read_fibers_json(ctx.upstream("optimize", "fibers.json"));
   const TetMesh mesh = load_tet_mesh(ctx.upstream("mesh", "body.tetmesh"));
   const SurfaceDistance skin(mesh.nodes, mesh.boundary_faces);
+  if (fibers.routing.routes.size() != d.fibers.size())
+    throw std::runtime_error(fmt::format("optimize/fibers.json has {} fibers, the design {}: run optimize again",
+                                         fibers.routing.routes.size(), d.fibers.size()));
   ctx.progress.update(0.05, "measuring clearances");
+  // The skin is tested where the optimizer's skin barrier held it, set by the routes it started from.
   const FiberClearance measure(skin, fibers.routing.routes, d.muscle.model.diameter / 2, d.collide.clearance,
-                               d.collide.samples_per_length, skin_distance(d).groove_margin);
+                               d.collide.samples_per_length, skin_distance(d).groove_margin,
+                               skin_held(d, skin, optimization_start(d, skin).routing.routes));
   const CollisionResolution r = resolve(ctx, measure, fibers);
 
   FibersFile out = fibers;

@@ -72,9 +72,23 @@ MoldFiber mold_fiber(const Route& r, double step)
   return f;
 }
 
-/// The stretch of a fiber at an end on the skin that the molds' checks leave out: the optimizer's
-/// skin barrier's, 2 (d_min + w) (skin_barrier.cpp).
-double skin_end_stretch(const Design& d) { return 2 * (d.muscle.model.diameter + d.collide.clearance); }
+/// Per route, the stretches at its ends on the skin that the molds' checks leave out: where the
+/// optimizer's skin barrier did not hold it (skin_held, set by the routes the optimizer started
+/// from), as arcs along the route as collide left it; collide tests the skin over the same stretch.
+std::vector<ExitStretches> exit_stretches(const Design& d, const SurfaceDistance& skin,
+                                          const std::vector<Route>& routes)
+{
+  const std::vector<HeldStretch> held = skin_held(d, skin, optimization_start(d, skin).routing.routes);
+  std::vector<ExitStretches> out;
+  for (std::size_t f = 0; f < routes.size(); ++f) {
+    const HermiteSpline s(routes[f].points, routes[f].tangents);
+    if (held[f].first > held[f].last)
+      out.push_back({s.length(), s.length()}); // held nowhere: a short fiber between two ends on the skin
+    else
+      out.push_back({s.length(0, held[f].first), s.length(held[f].last, s.spans())});
+  }
+  return out;
+}
 
 /// A reported quantity to six decimals (mL: a nanolitre): the digits below vary with the number of
 /// threads that summed it (OpenVDB's level set volume), and the same design should give the same report.
@@ -168,15 +182,17 @@ void require_mold_grids(const Design& d, const SurfaceMesh& body, const std::vec
     bad(d, "[mold].voxel", *problem);
 }
 
-std::vector<std::vector<Eigen::Vector3d>> require_grooves_fit(const Design& d, const SurfaceDistance& skin, const std::vector<Route>& routes)
+std::vector<std::vector<Eigen::Vector3d>> require_grooves_fit(const Design& d, const SurfaceDistance& skin,
+                                                              const std::vector<Route>& routes,
+                                                              const std::vector<ExitStretches>& exits)
 {
   // The groove's need, as optimize and collide keep it (they keep the fiber at least that far in).
   const SkinDistance rule = skin_distance(d);
   std::vector<std::vector<Eigen::Vector3d>> lines;
-  for (const Route& r : routes) {
-    lines.push_back(mold_fiber(r, mold_line_step(d.mold)).line);
-    if (auto problem = groove_problem(lines.back(), skin, rule.groove, rule.groove_terms, d.mold.pull, skin_end_stretch(d)))
-      bad(d, fmt::format("[fiber.{}]", r.name), *problem);
+  for (std::size_t f = 0; f < routes.size(); ++f) {
+    lines.push_back(mold_fiber(routes[f], mold_line_step(d.mold)).line);
+    if (auto problem = groove_problem(lines.back(), skin, rule.groove, rule.groove_terms, d.mold.pull, exits[f]))
+      bad(d, fmt::format("[fiber.{}]", routes[f].name), *problem);
   }
   return lines;
 }
@@ -192,16 +208,19 @@ void MoldsStage::run(StageContext& ctx) const
   const TetMesh mesh = load_tet_mesh(ctx.upstream("mesh", "body.tetmesh"));
   job.body = body_surface(mesh);
   job.muscle_diameter = d.muscle.model.diameter;
-  job.end_stretch = skin_end_stretch(d);
   job.min_wall = d.export_.min_wall;
   job.printer_volume = d.export_.printer_volume;
   // The route rule against the skin optimize and collide kept it from: the mesh's (remeshed, when
   // it is; the cast's own silicone, on the body as given, is the thickness check's).
   const SurfaceDistance skin(mesh.nodes, mesh.boundary_faces);
   const std::vector<Route> routes = read_fibers_json(ctx.upstream("collide", "fibers.json")).routing.routes;
+  if (routes.size() != d.fibers.size())
+    throw std::runtime_error(fmt::format("collide/fibers.json has {} fibers, the design {}: run collide again",
+                                         routes.size(), d.fibers.size()));
   require_bend_radius(d, routes, "the route as collide left it");
   for (const Route& r : routes) job.fibers.push_back(mold_fiber(r, mold_line_step(m)));
-  require_mold_grids(d, job.body, require_grooves_fit(d, skin, routes));
+  job.exits = exit_stretches(d, skin, routes);
+  require_mold_grids(d, job.body, require_grooves_fit(d, skin, routes, job.exits));
 
   const MoldLog log{[&](const std::string& s) { ctx.log.info("{}", s); }, [&](const std::string& s) { ctx.log.warn("{}", s); }};
   const TwoShotMolds molds = two_shot_molds(job, m, ctx.progress, log);

@@ -11,6 +11,7 @@
 #include "make/stage.hpp"
 #include "mesh/surface_distance.hpp"
 #include "mesh/surface_mesh.hpp"
+#include "molds/silicone_thickness.hpp"
 #include "optimize/routing_problem.hpp"
 
 namespace fibermold {
@@ -19,8 +20,10 @@ namespace fibermold {
 /// polylines `fibers` (molds/grid_budget.hpp), before any carving; `check` asks it too.
 void require_mold_grids(const Design& d, const SurfaceMesh& body, const std::vector<std::vector<Eigen::Vector3d>>& fibers);
 /// InputError at the fiber when a route's groove does not fit inside the body (molds' rule:
-/// groove_problem); the routes' lines as the molds sample them.
-std::vector<std::vector<Eigen::Vector3d>> require_grooves_fit(const Design& d, const SurfaceDistance& skin, const std::vector<Route>& routes);
+/// groove_problem) off its `exits` (one per route); the routes' lines as the molds sample them.
+std::vector<std::vector<Eigen::Vector3d>> require_grooves_fit(const Design& d, const SurfaceDistance& skin,
+                                                              const std::vector<Route>& routes,
+                                                              const std::vector<ExitStretches>& exits);
 
 class MoldsStage final : public Stage {
 public:
@@ -28,10 +31,25 @@ public:
   std::vector<std::string> upstream() const override { return {"mesh", "collide"}; }
   std::vector<std::string> design_keys() const override
   {
-    return {"design.units", "material.density", "muscle.diameter", "muscle.min_bend_radius", "collide.clearance", "mold",
-            "export.min_wall", "export.printer_volume"};
+    // fiber, muscle, target, collide's resolution: the routes the optimizer started from, which set
+    // where its skin barrier held a fiber (exit_stretches)
+    return {"design.units",
+            "material.density",
+            "muscle",
+            "fiber",
+            "target",
+            "collide.clearance",
+            "collide.smoothness",
+            "collide.samples_per_mm",
+            "mold",
+            "export.min_wall",
+            "export.printer_volume"};
   }
-  int version() const override { return 5; }  ///< 2: sprues and vents from the fill simulation, its report, the silicone's thickness; 3: a remeshed body molded as given; 4: the groove rule shared (skin_distance.hpp), 10 µm of placement tolerance; 5: routes under [muscle] min_bend_radius refused
+  /// 2: sprues and vents from the fill simulation, its report, the silicone's thickness; 3: a remeshed body molded as
+  /// given; 4: the groove rule shared (skin_distance.hpp), 10 µm of placement tolerance; 5: routes under [muscle]
+  /// min_bend_radius refused; 6: the stretches at the ends on the skin left out where the optimizer's skin barrier left
+  /// them out (exit_stretches), not 2 × (diameter + clearance)
+  int version() const override { return 6; }
   void run(StageContext& ctx) const override;
 };
 

@@ -31,8 +31,9 @@ public:
   /// 2: fibers moved apart before optimizing, kept apart throughout; 3: termination, warnings and reach in the
   /// report; 4: reached poses; 5: the bend radius barrier, bends in the report; 6: the bend barrier samples each
   /// span's tightest point, [optimize] method; 7: history.csv predicted_decrease, report.json refused,
-  /// Levenberg-Marquardt's secant term, method hybrid (the default)
-  int version() const override { return 7; }
+  /// Levenberg-Marquardt's secant term, method hybrid (the default); 8: the start's skin tested where the skin
+  /// barrier holds it
+  int version() const override { return 8; }
   void run(StageContext& ctx) const override;
 };
 

@@ -121,13 +121,22 @@ Routing starting_routing(const Design& d)
   return r;
 }
 
+std::vector<HeldStretch> skin_held(const Design& d, const SurfaceDistance& skin, const std::vector<Route>& start)
+{
+  const RoutingSettings settings = routing_settings(d);
+  std::vector<HeldStretch> out;
+  for (const Route& r : start) out.push_back(route_skin_barrier(skin, settings, r).held());
+  return out;
+}
+
 OptimizationStart optimization_start(const Design& d, const SurfaceDistance& skin)
 {
   OptimizationStart out{starting_routing(d), {}, {}};
   std::vector<Route>& routes = out.routing.routes;
   if (routes.size() < 2) return out;
-  const FiberClearance measure(skin, routes, d.muscle.model.diameter / 2, d.collide.clearance, d.collide.samples_per_length,
-                               skin_distance(d).groove_margin);
+  const FiberClearance measure(skin, routes, d.muscle.model.diameter / 2, d.collide.clearance,
+                               d.collide.samples_per_length, skin_distance(d).groove_margin,
+                               skin_held(d, skin, routes));
   if (measure.contacts(measure.lines(routes), d.collide.clearance + kBarrierRoom / 2, false).empty()) return out;
   ResolutionSettings settings;
   settings.clearance = d.collide.clearance;

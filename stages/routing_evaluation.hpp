@@ -49,6 +49,10 @@ struct DesignRouting {
 /// clearance) as the routing problem takes them.
 RoutingSettings routing_settings(const Design& d);
 
+/// Per fiber, the parameters where the optimizer's skin barrier holds a routing that started at
+/// `start` off the skin (all but an end's stretch on the skin): collide tests the skin there.
+std::vector<HeldStretch> skin_held(const Design& d, const SurfaceDistance& skin, const std::vector<Route>& start);
+
 /// Weight of the clearance barrier between fibers (optimize/clearance_barrier.hpp), which is ∫ b ds
 /// over the fibers in contact (mm): small, so that it does not outweigh the targets while it stays
 /// infinite at the clearance (as IPC's κ).

@@ -26,7 +26,7 @@ struct Box {
     std::vector<Eigen::Vector3d> dense;
     for (int k = 0; k <= 60; ++k) dense.push_back({k * 0.5 * mm, y, z});
     const GrooveBody g = groove_body(body, {fiber}, radius, {0, 0, 1}, voxel);
-    return silicone_thickness(g.mesh, body, {dense}, radius, muscle, {0, 0, 1}, voxel, 5 * mm);
+    return silicone_thickness(g.mesh, body, {dense}, radius, muscle, {0, 0, 1}, voxel, {ExitStretches{5 * mm, 5 * mm}});
   }
 };
 

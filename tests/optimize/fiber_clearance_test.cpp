@@ -6,6 +6,7 @@
 #include "clearance_fixture.hpp"
 #include "optimize/collision_resolution.hpp"
 #include "optimize/fiber_clearance.hpp"
+#include "optimize/skin_barrier.hpp"
 
 namespace fibermold {
 namespace {
@@ -42,6 +43,43 @@ TEST(FiberClearance, MeasuresPairsAndSkin)
   EXPECT_EQ(worst[1].b, -1);
   EXPECT_NEAR(worst[1].clearance / units::mm, 2.5, 1e-9);
   EXPECT_NEAR(worst[1].normal.z(), -1.0, 1e-9);
+}
+
+/// Collide tests the skin where the optimizer's skin barrier held it: the barrier leaves out 8 mm
+/// of arc (2 (2 radius + clearance)) at an end on the skin, measured along the route it started
+/// from, and a route that has moved since covers that arc in fewer or more parameters.
+TEST(FiberClearance, TestsTheSkinWhereTheSkinBarrierHeldIt)
+{
+  const auto spline_of = [](const Route& r) { return HermiteSpline(r.points, r.tangents); };
+  const Body body(mm(-30, -30, -15), mm(30, 30, 15));
+  // The start creeps along the bottom in 1 mm spans: its first 8 mm of arc end in the fourth span.
+  const Route start =
+      route("a", {mm(-30, 0, -12.8), mm(-29, 0, -12.8), mm(-28, 0, -12.8), mm(-27, 0, -12.8), mm(30, 0, 0)});
+  // Optimized, its first span is 10 mm long, 2.2 mm over the bottom, then it rises to the axis.
+  const Route moved = route("a", {mm(-30, 0, -12.8), mm(-20, 0, -12.8), mm(-10, 0, 0), mm(0, 0, 0), mm(30, 0, 0)});
+  const SkinBarrier barrier(body.skin, kRadius + kClearance, kRadius, spline_of(start), 200);
+  Eigen::Vector3d where;
+  EXPECT_GT(barrier.closest_approach(spline_of(moved), where) / units::mm, 2.5); // where it holds, the route is clear
+  const std::vector<Route> routes{moved};
+  const FiberClearance held(body.skin, routes, kRadius, kClearance, kSamplesPerLength, 0, {barrier.held()});
+  EXPECT_TRUE(held.contacts(held.lines(routes), 0.999 * kClearance).empty());
+  // Measured along the moved route instead, the 8 mm end in its first span: the stretch about
+  // 2.2 mm over the bottom (0.7 mm of clearance, less where the spline swings under it) is tested,
+  // which the barrier never held (collide then failed with "optimizing again left a fiber and the
+  // skin closer than the clearance").
+  const FiberClearance own(body.skin, routes, kRadius, kClearance, kSamplesPerLength);
+  const std::vector<Contact> found = own.contacts(own.lines(routes), 0.999 * kClearance);
+  ASSERT_FALSE(found.empty());
+  EXPECT_TRUE(found.front().with_skin());
+  EXPECT_LT(smallest_clearance(found) / units::mm, 0.71);
+  // Where the barrier holds it, both see the skin: the same route low to the end.
+  const std::vector<Route> low{
+      route("a", {mm(-30, 0, -12.8), mm(-20, 0, -12.8), mm(-10, 0, -12.8), mm(0, 0, -12.8), mm(30, 0, -12.8)})};
+  EXPECT_LT(barrier.closest_approach(spline_of(low.front()), where) / units::mm, 2.21);
+  const FiberClearance held_low(body.skin, low, kRadius, kClearance, kSamplesPerLength, 0, {barrier.held()});
+  const std::vector<Contact> seen = held_low.contacts(held_low.lines(low), 0.999 * kClearance);
+  ASSERT_FALSE(seen.empty());
+  EXPECT_NEAR(smallest_clearance(seen) / units::mm, 0.7, 0.01);
 }
 
 } // namespace

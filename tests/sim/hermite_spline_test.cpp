@@ -18,6 +18,12 @@ TEST(HermiteSpline, InterpolatesItsPointsAndMeasuresLength)
                           {Eigen::Vector3d(0, 1, 0) * r * M_PI / 4, Eigen::Vector3d(-1, 1, 0).normalized() * r * M_PI / 4,
                            Eigen::Vector3d(-1, 0, 0) * r * M_PI / 4});
   EXPECT_NEAR(arc.length(), M_PI * r / 2, 1e-3 * M_PI * r / 2);  // a cubic per 45° of arc
+  // Between parameters: a third of the quarter circle (15° of its 45° in the first span: with the
+  // cubic's uneven speed, 1e-2), pieces add up to the whole.
+  EXPECT_NEAR(arc.length(0, 2) / arc.length(), 1, 1e-15);
+  EXPECT_NEAR(arc.length(0, 1.0 / 3) / (M_PI * r / 12), 1, 1e-2);
+  EXPECT_NEAR(arc.length(0, 0.7) + arc.length(0.7, 1.6) + arc.length(1.6, 2), arc.length(), 1e-9 * arc.length());
+  EXPECT_NEAR(line.length(0.5, 1.5), 0.05, 1e-6); // 0.02 of the first span, 0.03 of the second
 }
 
 TEST(HermiteSpline, SegmentsFollowTheCurveInProportionToSpanLength)
