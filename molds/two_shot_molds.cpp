@@ -167,6 +167,12 @@ std::vector<std::string> Recipe::make_shot(const std::string& name, const Surfac
                         plan.ports.sprues.size(), plan.ports.vents.size(),
                         plan.fill.fill_volume > 0 ? 100 * plan.fill.reachable_volume / plan.fill.fill_volume : 0.0,
                         g3_ * plan.fill.trapped_volume / 1e-9));
+  for (const Port& p : plan.ports.sprues)
+    log_.info(fmt::format("{}: sprue {} at {}, {:.1f} mm across", name, p.upward ? "from above" : "from below",
+                          format_mm(out_.scaled(p.mouth)), p.diameter / 1e-3));
+  for (const Port& p : plan.ports.vents)
+    log_.info(fmt::format("{}: vent at {}, {:.1f} mm across, cut {:.2f} mm into the cavity", name,
+                          format_mm(out_.scaled(p.mouth)), p.diameter / 1e-3, p.dip() / 1e-3));
   Ports scaled_ports = plan.ports;
   for (Port& p : scaled_ports.sprues) p.mouth = out_.scaled(p.mouth);
   for (Port& p : scaled_ports.vents) p.mouth = out_.scaled(p.mouth);

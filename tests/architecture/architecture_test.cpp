@@ -1,7 +1,9 @@
 // The rules of the house that the source tree itself must keep (docs/architecture.md): the module
 // order, no folder holding the bulk of the code, short functions, third-party headers out of the
-// public ones, and nothing cited from outside the repository.
+// public ones, nothing cited from outside the repository, and the last commit's lines formatted.
 
+#include <cstdio>
+#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <map>
@@ -145,6 +147,34 @@ TEST(Architecture, NothingCitesFilesOutsideTheRepository)
       EXPECT_EQ(text.find(outside), std::string::npos) << fs::relative(it->path(), kSource) << " cites " << outside;
   }
   EXPECT_GT(files, 200);
+}
+
+/// What a shell command prints on its standard output.
+std::string output_of(const std::string& command)
+{
+  std::string out;
+  if (FILE* p = popen(command.c_str(), "r")) {
+    char buffer[4096];
+    for (std::size_t n; (n = std::fread(buffer, 1, sizeof buffer, p)) > 0;) out.append(buffer, n);
+    pclose(p);
+  }
+  return out;
+}
+
+/// Formatting is kept by the tool, a change at a time: the lines the last commit changed (and any
+/// not yet committed) are as .clang-format has them (`git clang-format HEAD~1` fixes them).
+/// Skipped outside a git checkout with history; scripts/setup installs clang-format.
+TEST(Architecture, TheLastCommitsChangedLinesAreFormatted)
+{
+  const std::string git = "git -C '" + kSource.string() + "'";
+  if (output_of(git + " rev-parse --verify -q HEAD~1 2>/dev/null").empty())
+    GTEST_SKIP() << "not a git checkout with a parent commit";
+  ASSERT_EQ(std::system("command -v git-clang-format > /dev/null 2>&1"), 0)
+      << "git-clang-format is missing: run scripts/setup";
+  const std::string diff = output_of(git + " clang-format --diff --extensions cpp,hpp HEAD~1 2>&1");
+  EXPECT_EQ(diff.find("@@"), std::string::npos) << "lines changed since HEAD~1 that .clang-format would reformat "
+                                                   "(run git clang-format HEAD~1):\n"
+                                                << diff;
 }
 
 } // namespace
