@@ -11,7 +11,7 @@ import argparse
 import os
 import sys
 
-sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "examples", "common"))
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "common"))
 from cell_surface import boundary, grid_lines, solid_cells, write_obj  # noqa: E402
 
 LENGTH, HALF_WIDTH, HEIGHT = 115.0, 15.0, 20.0     # mm
