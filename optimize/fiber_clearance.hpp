@@ -34,13 +34,13 @@ struct Contact {
 
 class FiberClearance {
 public:
-  /// `radius`: the muscle's (m); `clearance`: the clearance asked for, which sets how much of an
-  /// end on the skin is not tested (as the optimizer's skin barrier: 2 (2 radius + clearance));
+  /// `radius`: the muscle's (m); `clearance`: the clearance asked for, which, without `held`, sets
+  /// how much of an end on the skin is not tested: 2 (2 radius + clearance) of arc;
   /// `samples_per_length`: centre-line samples per m (at least 8 per fiber); `skin_margin` (m):
   /// how much further than the clearance the skin is kept from the muscle (a groove that needs
   /// more room): a skin contact's clearance is its distance − radius − skin_margin. `held`: per
-  /// fiber, the parameters the optimizer's skin barrier held (SkinBarrier::held), tested against
-  /// the skin instead of those off 2 (2 radius + clearance) of each end on the skin.
+  /// fiber, the parameters the optimizer's skin barrier held (SkinBarrier::held): the skin is
+  /// tested there alone.
   FiberClearance(const SurfaceDistance& skin, const std::vector<Route>& routes, double radius, double clearance,
                  double samples_per_length, double skin_margin = 0, const std::vector<HeldStretch>& held = {});
 

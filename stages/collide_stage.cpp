@@ -13,7 +13,6 @@
 #include "optimize/clearance_barrier.hpp"
 #include "optimize/collision_resolution.hpp"
 #include "stages/design_simulation.hpp"
-#include "stages/skin_distance.hpp"
 #include "stages/fibers_file.hpp"
 #include "stages/routing_evaluation.hpp"
 
@@ -197,9 +196,8 @@ void CollideStage::run(StageContext& ctx) const
                                          fibers.routing.routes.size(), d.fibers.size()));
   ctx.progress.update(0.05, "measuring clearances");
   // The skin is tested where the optimizer's skin barrier held it, set by the routes it started from.
-  const FiberClearance measure(skin, fibers.routing.routes, d.muscle.model.diameter / 2, d.collide.clearance,
-                               d.collide.samples_per_length, skin_distance(d).groove_margin,
-                               skin_held(d, skin, optimization_start(d, skin).routing.routes));
+  const FiberClearance measure =
+      design_clearance(d, skin, fibers.routing.routes, optimization_start(d, skin).routing.routes);
   const CollisionResolution r = resolve(ctx, measure, fibers);
 
   FibersFile out = fibers;

@@ -53,9 +53,7 @@ bool keep_fibers_apart(StageContext& ctx, RoutingProblem& problem, const Surface
 {
   const Design& d = ctx.design;
   if (start.routes.size() < 2) return false;
-  measure = std::make_unique<FiberClearance>(skin, start.routes, d.muscle.model.diameter / 2, d.collide.clearance,
-                                             d.collide.samples_per_length, skin_distance(d).groove_margin,
-                                             skin_held(d, skin, start.routes));
+  measure = std::make_unique<FiberClearance>(design_clearance(d, skin, start.routes, start.routes));
   if (!measure->contacts(measure->lines(start.routes), d.collide.clearance, false).empty()) return false;
   barrier = std::make_unique<ClearanceBarrier>(*measure, start.routes, d.collide.clearance, d.muscle.model.diameter / 2);
   problem.set_clearance_barrier(barrier.get(), kClearanceBarrierWeight);

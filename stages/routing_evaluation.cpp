@@ -129,14 +129,19 @@ std::vector<HeldStretch> skin_held(const Design& d, const SurfaceDistance& skin,
   return out;
 }
 
+FiberClearance design_clearance(const Design& d, const SurfaceDistance& skin, const std::vector<Route>& routes,
+                                const std::vector<Route>& start)
+{
+  return FiberClearance(skin, routes, d.muscle.model.diameter / 2, d.collide.clearance, d.collide.samples_per_length,
+                        skin_distance(d).groove_margin, skin_held(d, skin, start));
+}
+
 OptimizationStart optimization_start(const Design& d, const SurfaceDistance& skin)
 {
   OptimizationStart out{starting_routing(d), {}, {}};
   std::vector<Route>& routes = out.routing.routes;
   if (routes.size() < 2) return out;
-  const FiberClearance measure(skin, routes, d.muscle.model.diameter / 2, d.collide.clearance,
-                               d.collide.samples_per_length, skin_distance(d).groove_margin,
-                               skin_held(d, skin, routes));
+  const FiberClearance measure = design_clearance(d, skin, routes, routes);
   if (measure.contacts(measure.lines(routes), d.collide.clearance + kBarrierRoom / 2, false).empty()) return out;
   ResolutionSettings settings;
   settings.clearance = d.collide.clearance;

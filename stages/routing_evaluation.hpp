@@ -13,6 +13,7 @@
 #include "make/stage.hpp"
 #include "mesh/surface_distance.hpp"
 #include "mesh/tet_mesh.hpp"
+#include "optimize/fiber_clearance.hpp"
 #include "optimize/routing_optimizer.hpp"
 #include "optimize/target_errors.hpp"
 
@@ -52,6 +53,10 @@ RoutingSettings routing_settings(const Design& d);
 /// Per fiber, the parameters where the optimizer's skin barrier holds a routing that started at
 /// `start` off the skin (all but an end's stretch on the skin): collide tests the skin there.
 std::vector<HeldStretch> skin_held(const Design& d, const SurfaceDistance& skin, const std::vector<Route>& start);
+/// The clearance measure of `routes` with the design's muscle, clearance, sampling and groove
+/// margin, testing the skin where the optimizer that started from `start` held it (skin_held).
+FiberClearance design_clearance(const Design& d, const SurfaceDistance& skin, const std::vector<Route>& routes,
+                                const std::vector<Route>& start);
 
 /// Weight of the clearance barrier between fibers (optimize/clearance_barrier.hpp), which is ∫ b ds
 /// over the fibers in contact (mm): small, so that it does not outweigh the targets while it stays
