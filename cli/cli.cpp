@@ -169,13 +169,18 @@ int run_simulate(const Design& design, const Runner& runner, const fs::path& bui
 
 int run_check(const Design& design)
 {
-  std::vector<std::string> repairs;
-  const SurfaceCheck surface = check_design_surface(design, repairs);
+  const DesignSurfaceCheck c = check_design_surface(design);
   print_design_summary(design);
   fmt::print("  surface: closed, manifold, outward, no self-intersections; {} component(s), {:.6g} mm³\n",
-             surface.components, surface.volume / 1e-9);
-  for (const std::string& w : surface.warnings) fmt::print("  warning: {}\n", w);
-  for (const std::string& r : repairs) fmt::print("  repair would: {}\n", r);
+             c.surface.components, c.surface.volume / 1e-9);
+  fmt::print("  mesh: {:.3g} mm edges{}, the surface's triangles {}: about {:.0f} tets\n", c.edge_length / 1e-3,
+             design.mesh.edge_length ? "" : " (by default)",
+             c.treatment == SurfaceTriangles::keep    ? "kept"
+             : c.treatment == SurfaceTriangles::split ? "split"
+                                                      : "remeshed",
+             c.estimated_tets);
+  for (const std::string& w : c.surface.warnings) fmt::print("  warning: {}\n", w);
+  for (const std::string& r : c.repairs) fmt::print("  repair would: {}\n", r);
   return kExitDone;
 }
 

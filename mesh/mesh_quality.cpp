@@ -3,7 +3,8 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
-#include <set>
+#include <utility>
+#include <vector>
 
 #include <Eigen/Geometry>
 
@@ -31,7 +32,30 @@ std::array<double, 6> dihedral_angles(const std::array<Eigen::Vector3d, 4>& p)
   return angles;
 }
 
+/// Each corner edge once, as (smaller, larger) node index, sorted.
+std::vector<std::pair<int, int>> unique_edges(const TetMesh& mesh)
+{
+  std::vector<std::pair<int, int>> edges;
+  edges.reserve(static_cast<std::size_t>(6 * mesh.num_tets()));
+  for (Eigen::Index t = 0; t < mesh.num_tets(); ++t)
+    for (const auto& e : kEdges) {
+      const int a = mesh.tets(t, e[0]), b = mesh.tets(t, e[1]);
+      edges.emplace_back(std::min(a, b), std::max(a, b));
+    }
+  std::sort(edges.begin(), edges.end());
+  edges.erase(std::unique(edges.begin(), edges.end()), edges.end());
+  return edges;
+}
+
 } // namespace
+
+double mean_edge_length(const TetMesh& mesh)
+{
+  const std::vector<std::pair<int, int>> edges = unique_edges(mesh);
+  double length = 0;
+  for (const auto& [a, b] : edges) length += (mesh.nodes.row(a) - mesh.nodes.row(b)).norm();
+  return edges.empty() ? 0 : length / static_cast<double>(edges.size());
+}
 
 double radius_edge_ratio(const Eigen::Vector3d& a, const Eigen::Vector3d& b, const Eigen::Vector3d& c,
                          const Eigen::Vector3d& d)
@@ -49,7 +73,6 @@ MeshQuality mesh_quality(const TetMesh& mesh, double max_ratio, double min_dihed
 {
   MeshQuality q;
   q.min_dihedral_deg = 180;
-  std::set<std::pair<int, int>> edges;
   double ratio_sum = 0;
   for (Eigen::Index t = 0; t < mesh.num_tets(); ++t) {
     std::array<Eigen::Vector3d, 4> p;
@@ -70,11 +93,8 @@ MeshQuality mesh_quality(const TetMesh& mesh, double max_ratio, double min_dihed
     if (ratio > max_ratio) ++q.over_ratio;
     if (ratio > q.max_radius_edge_ratio) q.worst_at = (p[0] + p[1] + p[2] + p[3]) / 4;
     q.max_radius_edge_ratio = std::max(q.max_radius_edge_ratio, ratio);
-    for (const auto& e : kEdges) {
-      const int a = mesh.tets(t, e[0]), b = mesh.tets(t, e[1]);
-      edges.emplace(std::min(a, b), std::max(a, b));
-    }
   }
+  const std::vector<std::pair<int, int>> edges = unique_edges(mesh);
   double length = 0;
   q.min_edge_length = edges.empty() ? 0 : HUGE_VAL;
   for (const auto& [a, b] : edges) {

@@ -24,6 +24,9 @@ struct MeshQuality {
 /// The mesh's quality, and the tets outside the bounds (none asked for by default).
 MeshQuality mesh_quality(const TetMesh& mesh, double max_ratio = HUGE_VAL, double min_dihedral_deg = 0);
 
+/// The mean length of the mesh's unique corner edges (m): what [mesh] edge_length asks for.
+double mean_edge_length(const TetMesh& mesh);
+
 /// Circumradius over shortest edge of the tet with corners a, b, c, d.
 double radius_edge_ratio(const Eigen::Vector3d& a, const Eigen::Vector3d& b, const Eigen::Vector3d& c,
                          const Eigen::Vector3d& d);

@@ -58,4 +58,15 @@ double mean_edge_length(const SurfaceMesh& s)
   return s.num_faces() > 0 ? sum / (3.0 * static_cast<double>(s.num_faces())) : 0.0;
 }
 
+double surface_area(const SurfaceMesh& s)
+{
+  double area = 0;
+  for (Eigen::Index f = 0; f < s.num_faces(); ++f) {
+    const Eigen::Vector3d a = s.vertices.row(s.faces(f, 0)), b = s.vertices.row(s.faces(f, 1)),
+                          c = s.vertices.row(s.faces(f, 2));
+    area += (b - a).cross(c - a).norm() / 2;
+  }
+  return area;
+}
+
 } // namespace fibermold

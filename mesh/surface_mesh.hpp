@@ -25,6 +25,9 @@ double signed_volume(const SurfaceMesh& surface);
 double longest_edge(const SurfaceMesh& surface);
 double mean_edge_length(const SurfaceMesh& surface);
 
+/// The surface's area.
+double surface_area(const SurfaceMesh& surface);
+
 /// The connected component ("shell") of each face, numbered 0, 1, ... in the order of their first
 /// face: faces sharing a vertex are in the same shell.
 std::vector<int> face_shells(const SurfaceMesh& surface);

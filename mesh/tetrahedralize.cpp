@@ -114,16 +114,18 @@ double regular_tet_volume(double a) { return a * a * a / (6.0 * std::sqrt(2.0));
 // V / (a³/(6√2)) = 5000
 double default_edge_length(double volume) { return std::cbrt(volume / 5000.0 * 6.0 * std::sqrt(2.0)); }
 
-double expected_tets(double volume, double edge_length) { return 1.2 * volume / regular_tet_volume(edge_length); }
-
 SurfaceTriangles surface_treatment(SurfaceTriangles policy, const SurfaceMesh& surface, double edge_length)
 {
   if (policy != SurfaceTriangles::automatic) return policy;
   // Dense first: a scan with a few long triangles (a planar cut) is remeshed, which also splits
   // them; split, it would keep every one of its vertices.
   if (mean_edge_length(surface) < kCoarsenEdgeFactor * edge_length) return SurfaceTriangles::remesh;
-  if (longest_edge(surface) > kSplitEdgeFactor * edge_length) return SurfaceTriangles::split;
-  return SurfaceTriangles::keep;
+  if (longest_edge(surface) <= kSplitEdgeFactor * edge_length) return SurfaceTriangles::keep;
+  // Split, every input vertex stays a node: more of them than a surface at the edge length has (a
+  // coarse scan's long triangles beside dense ones) would hold the mesh finer than asked.
+  const double vertices_at_edge = surface_area(surface) / (std::sqrt(3.0) / 4 * edge_length * edge_length) / 2;
+  return static_cast<double>(surface.num_vertices()) > vertices_at_edge ? SurfaceTriangles::remesh
+                                                                        : SurfaceTriangles::split;
 }
 
 TetMesh tetrahedralize(const SurfaceMesh& surface, const TetOptions& options, Progress& progress)
@@ -160,7 +162,7 @@ TetMesh tetrahedralize(const SurfaceMesh& surface, const TetOptions& options, Pr
   for (std::size_t h = 0; h < holes.size(); ++h)
     for (int k = 0; k < 3; ++k) in.holelist[3 * h + k] = (holes[h][k] - origin[k]) * scale;
 
-  const double max_volume = regular_tet_volume(options.edge_length * scale);
+  const double max_volume = options.volume_bound_factor * regular_tet_volume(options.edge_length * scale);
   if (!(max_volume > 0)) throw std::invalid_argument("tetrahedralize: the volume bound must be > 0");
   std::string switches = fmt::format("p{}Qq{:.6f}/{:.6f}{}", options.keep_surface ? "Y" : "", options.radius_edge_ratio,
                                      options.min_dihedral_deg, options.quadratic ? "o2" : "");

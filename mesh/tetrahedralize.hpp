@@ -19,6 +19,7 @@ struct TetOptions {
   double min_dihedral_deg = 10;    ///< TetGen's dihedral-angle bound (-q.../angle)
   bool quadratic = false;          ///< 10-node tetrahedra (-o2)
   bool keep_surface = true;        ///< no points added on the surface (-Y)
+  double volume_bound_factor = 1;  ///< TetGen's volume bound (-a) as a multiple of a³/(6√2)
 };
 
 /// What the mesh stage does with the input surface's triangles ([mesh] surface_triangles): keep them
@@ -33,8 +34,10 @@ inline std::string_view choice_name(SurfaceTriangles s) { return name_in(kSurfac
 
 /// At "auto": a mean input edge under kCoarsenEdgeFactor × edge_length (a dense scan, even with a
 /// few long triangles) makes the stage remesh the surface; else an edge longer than
-/// kSplitEdgeFactor × edge_length (a CAD export's few large triangles) makes TetGen split it; else
-/// the triangles are kept. The
+/// kSplitEdgeFactor × edge_length (a CAD export's few large triangles) makes TetGen split it, unless
+/// the input has more vertices than a surface of triangles at the edge length would (a coarse scan
+/// with long triangles beside dense ones: split keeps every vertex), which is remeshed; else the
+/// triangles are kept. The
 /// examples' surfaces, made for their edge lengths, have edges up to 1.63 × theirs and means of
 /// 0.79–1.31 × theirs: all kept.
 inline constexpr double kSplitEdgeFactor = 2.0;
@@ -50,9 +53,5 @@ double regular_tet_volume(double a);
 
 /// The edge length for a body of `volume` when none is asked: about 5,000 regular tets fill it.
 double default_edge_length(double volume);
-
-/// About how many tets TetGen makes of a body of `volume` at `edge_length`: 1.2 × the regular
-/// tets that fill it (its quality bounds add some).
-double expected_tets(double volume, double edge_length);
 
 } // namespace fibermold

@@ -17,11 +17,12 @@
 #include "mesh/surface_distance.hpp"
 #include "mesh/surface_import.hpp"
 #include "mesh/surface_repair.hpp"
+#include "mesh/volume_tolerance.hpp"
+#include "stages/design_simulation.hpp"
 #include "stages/molds_stage.hpp"
 #include "stages/optimize_stage.hpp"
-#include "stages/targets_stage.hpp"
-#include "stages/design_simulation.hpp"
 #include "stages/routing_evaluation.hpp"
+#include "stages/targets_stage.hpp"
 
 namespace fibermold {
 
@@ -32,15 +33,29 @@ double since(Clock::time_point t) { return std::chrono::duration<double>(Clock::
 
 /// Refuses an edge length that would make more than [mesh] max_tets tets (wrong units, typically),
 /// before any remeshing or TetGen run can take all memory.
-void require_mesh_size(const Design& d, double volume, double edge, const std::string& key = "[mesh].edge_length")
+/// Returns the estimate.
+double require_mesh_size(const Design& d, const SurfaceMesh& surface, double volume, double edge,
+                         SurfaceTriangles policy, const std::string& key = "[mesh].edge_length")
 {
-  const double tets = expected_tets(volume, edge);
+  const double tets = expected_tets(volume, edge, surface_treatment(policy, surface, edge), surface);
   if (tets > d.mesh.max_tets)
-    throw InputError(design_problem(d, key,
-                                fmt::format("{}{:.4g} mm for a body of {:.4g} mm³ would make about {:.3g} tets, more than "
-                                            "[mesh].max_tets = {}; raise edge_length, or check [design].units",
-                                            key == "[optimize].refine" ? "the refined mesh's edge length, half the mesh's, " : "",
-                                            edge / units::mm, volume / 1e-9, tets, d.mesh.max_tets)));
+    throw InputError(
+        design_problem(d, key,
+                       fmt::format("{}{:.4g} mm for a body of {:.4g} mm³ would make about {:.3g} tets, more than "
+                                   "[mesh].max_tets = {}; raise edge_length, or check [design].units",
+                                   key == "[optimize].refine" ? "the refined mesh's edge length, " : "",
+                                   edge / units::mm, volume / 1e-9, tets, d.mesh.max_tets)));
+  return tets;
+}
+
+/// The surface treatment of the refined mesh (optimize's and simulate's refine) at `edge`: remeshed
+/// where the design remeshes it or it is dense for the edge, split otherwise (its own triangles
+/// kept would hold the mesh at their size).
+SurfaceTriangles refined_policy(const Design& d, const SurfaceMesh& surface, double edge)
+{
+  const SurfaceTriangles policy =
+      d.mesh.surface_triangles == SurfaceTriangles::remesh ? SurfaceTriangles::remesh : SurfaceTriangles::automatic;
+  return surface_treatment(policy, surface, edge) == SurfaceTriangles::keep ? SurfaceTriangles::split : policy;
 }
 
 /// A closed void inside the body cannot be cast in a two-part mold: nothing would hold it open
@@ -144,8 +159,17 @@ nlohmann::ordered_json surface_triangles_report(const Design& d, const SurfaceMe
   return r;
 }
 
-void log_treatment(StageContext& ctx, const SurfaceMesh& input, const MeshedSurface& meshed, double edge)
+void log_treatment(StageContext& ctx, const SurfaceMesh& input, const BodyMesh& body, double edge)
 {
+  const MeshedSurface& meshed = body.surface;
+  if (body.sizing.first_treatment != meshed.treatment) {
+    ctx.log.info(
+        "surface: with its triangles {} the mesh came out finer than asked (its own vertices hold it); remeshed to the "
+        "edge length instead, {} → {} faces ({} sharp edges kept)",
+        body.sizing.first_treatment == SurfaceTriangles::split ? "split" : "kept", input.num_faces(),
+        meshed.surface.num_faces(), meshed.remeshing.sharp_edges);
+    return;
+  }
   if (meshed.treatment == SurfaceTriangles::split)
     ctx.log.info("surface: its longest edge is {:.3g} mm, {:.2g}× the edge length: TetGen splits its triangles to the edge length",
                  longest_edge(input) / units::mm, longest_edge(input) / edge);
@@ -160,6 +184,25 @@ void log_treatment(StageContext& ctx, const SurfaceMesh& input, const MeshedSurf
                  mean_edge_length(input) / units::mm, mean_edge_length(input) / edge);
 }
 
+/// How the mesh came to the edge length: TetGen's volume bound rescaled, or a warning where the edge
+/// length made still misses.
+void log_sizing(StageContext& ctx, const BodyMesh& body, double edge)
+{
+  const MeshSizing& s = body.sizing;
+  if (s.tetgen_runs > 1)
+    ctx.log.info("mesh: TetGen's volume bound at {:.3g}× a regular {:.3g} mm tet's gives a mean edge of {:.3g} mm ({} "
+                 "runs of TetGen)",
+                 s.volume_bound_factor, edge / units::mm, s.mean_edge_length / units::mm, s.tetgen_runs);
+  if (std::abs(s.mean_edge_length / edge - 1) > kEdgeLengthTolerance)
+    ctx.log.warn("mesh: its mean edge, {:.3g} mm, is {:.2f}× the {:.3g} mm asked ([mesh] edge_length): {}",
+                 s.mean_edge_length / units::mm, s.mean_edge_length / edge, edge / units::mm,
+                 s.mean_edge_length < edge
+                     ? "the surface's own triangles or features hold it finer (slower, not less accurate); "
+                       "surface_triangles = \"remesh\" coarsens them to the edge length"
+                     : "the surface's triangles are coarser than asked; surface_triangles = \"split\" or "
+                       "\"remesh\" refines them");
+}
+
 /// A remeshing that moved the surface by more than kFeatureLoss × the edge length somewhere: a
 /// feature (a thin web, a notch, a small hole) the edge length cannot hold, named by place.
 void warn_lost_features(StageContext& ctx, const MeshedSurface& meshed, const SurfaceFollowing& f, double edge)
@@ -172,9 +215,11 @@ void warn_lost_features(StageContext& ctx, const MeshedSurface& meshed, const Su
                f.remeshed.input_from_remeshed / units::mm, format_mm(f.remeshed.worst_at));
 }
 
-/// TetGen's mesh checked: no inverted tet, the volume of the surface it was given, and a warning
-/// when more than kQualityMissWarning of the tets miss the quality bounds.
-void require_sound_mesh(const Design& d, StageContext& ctx, const TetMesh& mesh, const MeshQuality& q, const MeshedSurface& meshed)
+/// TetGen's mesh checked: no inverted tet, the volume of the surface it was given (to
+/// volume_tolerance), and a warning when more than kQualityMissWarning of the tets miss the quality
+/// bounds.
+void require_sound_mesh(const Design& d, StageContext& ctx, const TetMesh& mesh, const MeshQuality& q,
+                        const MeshedSurface& meshed, const SurfaceFollowing& following)
 {
   if (q.inverted_tets > 0) throw std::runtime_error(fmt::format("TetGen produced {} inverted tets", q.inverted_tets));
   const bool split = meshed.treatment == SurfaceTriangles::split;
@@ -188,12 +233,20 @@ void require_sound_mesh(const Design& d, StageContext& ctx, const TetMesh& mesh,
                  split ? "" : ": TetGen cannot meet its bounds beside the surface's triangles, kept exactly; [mesh] surface_triangles = "
                               "\"split\" lets it add points on the surface");
   const double expected = signed_volume(meshed.surface);
-  const double volume_error = std::abs(q.volume - expected) / expected;
-  // Kept exactly, the tets fill the surface to round-off; points TetGen adds on the input's
-  // triangles lie on them to round-off of their coordinates, which the volume sees at ~1e-8.
-  if (volume_error > (split ? 1e-6 : 1e-9))
-    throw std::runtime_error(fmt::format("tet volume {:.9g} mm³ differs from the surface's {:.9g} mm³ (relative {:.2e})",
-                                         q.volume / 1e-9, expected / 1e-9, volume_error));
+  const double tolerance = volume_tolerance(mesh, meshed.surface, split ? following.deviation : 0);
+  if (std::abs(q.volume - expected) > tolerance)
+    throw InputError(std::vector<Diagnostic>{
+        {d.design.surface, 0, 0, "",
+         fmt::format("the tet mesh does not fill the surface: its volume, {:.9g} mm³, differs from the surface's "
+                     "{:.9g} mm³ by {:.3g} "
+                     "mm³, more than round-off{} allows ({:.3g} mm³); TetGen lost part of the body. Try another [mesh] "
+                     "edge_length, "
+                     "or surface_triangles = \"{}\"",
+                     q.volume / 1e-9, expected / 1e-9, std::abs(q.volume - expected) / 1e-9,
+                     split ? " and the added points' distance from the surface" : "", tolerance / 1e-9,
+                     meshed.treatment == SurfaceTriangles::remesh ? "split" : "remesh")}});
+  ctx.log.info("mesh: volume {:.9g} mm³, the surface's to {:.2g} mm³ (round-off allows {:.2g})", q.volume / 1e-9,
+               std::abs(q.volume - expected) / 1e-9, tolerance / 1e-9);
 }
 
 /// The tets for ParaView, with each one's radius-edge ratio and volume.
@@ -221,33 +274,37 @@ double target_edge_length(const Design& design, double body_volume)
   return design.mesh.edge_length ? *design.mesh.edge_length : default_edge_length(body_volume);
 }
 
-TetMesh scaled_design_mesh(const Design& d, double edge_factor, Progress& progress)
+TetMesh refined_design_mesh(const Design& d, Progress& progress)
 {
   SurfaceCheck check;
   RepairReport repair;
   nlohmann::json seconds;
   const SurfaceMesh surface = prepared_surface(d, check, repair, seconds);
-  const double edge = edge_factor * target_edge_length(d, check.volume);
-  require_mesh_size(d, check.volume, edge);
-  // The surface follows the new edge length: remeshed where the design remeshes it or it is dense
-  // for it, split otherwise (its own triangles kept would hold the mesh at their size).
-  SurfaceTriangles policy = d.mesh.surface_triangles == SurfaceTriangles::remesh ? SurfaceTriangles::remesh : SurfaceTriangles::automatic;
-  if (surface_treatment(policy, surface, edge) == SurfaceTriangles::keep) policy = SurfaceTriangles::split;
-  return mesh_body(surface, surface_for_mesh(surface, policy, edge), tet_options(d, edge), progress);
+  const double edge = kRefinedEdgeFactor * target_edge_length(d, check.volume);
+  const SurfaceTriangles policy = refined_policy(d, surface, edge);
+  require_mesh_size(d, surface, check.volume, edge, policy, "[optimize].refine");
+  return mesh_body(surface, policy, tet_options(d, edge), progress).mesh;
 }
 
-SurfaceCheck check_design_surface(const Design& design, std::vector<std::string>& repairs)
+DesignSurfaceCheck check_design_surface(const Design& design)
 {
-  SurfaceCheck check;
+  DesignSurfaceCheck c;
+  SurfaceCheck& check = c.surface;
   RepairReport repair;
   nlohmann::json seconds;
   const SurfaceMesh surface = prepared_surface(design, check, repair, seconds);
-  repairs = repair.changes();
+  c.repairs = repair.changes();
   // What the stages would refuse later for their size, refused now; and a remeshing that the
   // body's features cannot take.
   const double edge = target_edge_length(design, check.volume);
-  require_mesh_size(design, check.volume, edge);
-  if (design.optimize.enabled && design.optimize.refine) require_mesh_size(design, check.volume, edge / 2, "[optimize].refine");
+  c.edge_length = edge;
+  c.treatment = surface_treatment(design.mesh.surface_triangles, surface, edge);
+  c.estimated_tets = require_mesh_size(design, surface, check.volume, edge, design.mesh.surface_triangles);
+  if (design.optimize.enabled && design.optimize.refine) {
+    const double refined = kRefinedEdgeFactor * edge;
+    require_mesh_size(design, surface, check.volume, refined, refined_policy(design, surface, refined),
+                      "[optimize].refine");
+  }
   const MeshedSurface meshed = surface_for_mesh(surface, design.mesh.surface_triangles, edge);
   std::vector<std::vector<Eigen::Vector3d>> fibers;
   for (const Fiber& f : design.fibers) fibers.push_back(f.points);
@@ -258,7 +315,7 @@ SurfaceCheck check_design_surface(const Design& design, std::vector<std::string>
   require_regions_reach_the_body(design, surface);
   for (const Target& t : design.targets)
     if (t.kind == TargetKind::surface) read_target_surface(design, t, surface.num_vertices(), surface.faces);
-  return check;
+  return c;
 }
 
 void MeshStage::run(StageContext& ctx) const
@@ -275,22 +332,22 @@ void MeshStage::run(StageContext& ctx) const
   for (const std::string& change : repair.changes()) ctx.log.info("repair: {}", change);
 
   const double edge = target_edge_length(d, check.volume);
-  require_mesh_size(d, check.volume, edge);
-  ctx.log.info("surface: {} vertices, {} faces, volume {:.6g} mm³; target edge {:.4g} mm", surface.num_vertices(),
-               surface.num_faces(), check.volume / 1e-9, edge / units::mm);
-  auto t = Clock::now();
-  const MeshedSurface meshed = surface_for_mesh(surface, d.mesh.surface_triangles, edge);
-  log_treatment(ctx, surface, meshed, edge);
-  seconds["remesh"] = since(t);
-  t = Clock::now();
+  const double estimate = require_mesh_size(d, surface, check.volume, edge, d.mesh.surface_triangles);
+  ctx.log.info("surface: {} vertices, {} faces, volume {:.6g} mm³; target edge {:.4g} mm: about {:.3g} tets",
+               surface.num_vertices(), surface.num_faces(), check.volume / 1e-9, edge / units::mm, estimate);
+  const auto t = Clock::now();
   ctx.progress.checkpoint(0.1, "tetrahedralizing");
-  const TetMesh mesh = mesh_body(surface, meshed, tet_options(d, edge), ctx.progress);
-  seconds["tetrahedralize"] = since(t);
+  const BodyMesh body = mesh_body(surface, d.mesh.surface_triangles, tet_options(d, edge), ctx.progress);
+  const MeshedSurface& meshed = body.surface;
+  const TetMesh& mesh = body.mesh;
+  seconds["remesh and tetrahedralize"] = since(t);
+  log_treatment(ctx, surface, body, edge);
+  log_sizing(ctx, body, edge);
   const SurfaceFollowing following = surface_following(surface, meshed, mesh, edge);
   warn_lost_features(ctx, meshed, following, edge);
   ctx.progress.checkpoint(0.8, "measuring quality");
   const MeshQuality q = mesh_quality(mesh, d.mesh.radius_edge_ratio, d.mesh.min_dihedral_deg);
-  require_sound_mesh(d, ctx, mesh, q, meshed);
+  require_sound_mesh(d, ctx, mesh, q, meshed, following);
 
   ctx.progress.checkpoint(0.9, "writing");
   save_tet_mesh(mesh, ctx.output_dir / "body.tetmesh");
@@ -306,25 +363,35 @@ void MeshStage::run(StageContext& ctx) const
                        {"bounds_mm", {{"min", point_mm(check.min)}, {"max", point_mm(check.max)}}},
                        {"warnings", check.warnings},
                        {"repaired", repair.changes()}};
-  report["mesh"] = {{"nodes", mesh.nodes.rows()},
-                    {"tets", mesh.num_tets()},
-                    {"nodes_per_tet", mesh.nodes_per_tet()},
-                    {"boundary_faces", mesh.boundary_faces.rows()},
-                    {"volume_mm3", q.volume / 1e-9},
-                    {"volume_mL", q.volume / 1e-6},
-                    {"target_edge_length_mm", edge / units::mm},
-                    {"mean_edge_length_mm", q.mean_edge_length / units::mm},
-                    {"edge_length_mm", {{"mean", q.mean_edge_length / units::mm}, {"min", q.min_edge_length / units::mm},
-                                        {"max", q.max_edge_length / units::mm}}},
-                    {"surface_triangles", surface_triangles_report(d, surface, meshed, following)},
-                    {"quality_bounds_met", q.over_ratio + q.under_dihedral == 0},
-                    {"tets_over_radius_edge_bound", q.over_ratio},
-                    {"tets_under_dihedral_bound", q.under_dihedral},
-                    {"min_dihedral_deg", q.min_dihedral_deg},
-                    {"max_dihedral_deg", q.max_dihedral_deg},
-                    {"radius_edge_ratio", {{"mean", q.mean_radius_edge_ratio}, {"max", q.max_radius_edge_ratio},
-                                           {"bound", d.mesh.radius_edge_ratio}}},
-                    {"min_dihedral_bound_deg", d.mesh.min_dihedral_deg}};
+  report["mesh"] = {
+      {"nodes", mesh.nodes.rows()},
+      {"tets", mesh.num_tets()},
+      {"nodes_per_tet", mesh.nodes_per_tet()},
+      {"boundary_faces", mesh.boundary_faces.rows()},
+      {"volume_mm3", q.volume / 1e-9},
+      {"volume_mL", q.volume / 1e-6},
+      {"target_edge_length_mm", edge / units::mm},
+      {"mean_edge_length_mm", q.mean_edge_length / units::mm},
+      {"edge_length_mm",
+       {{"mean", q.mean_edge_length / units::mm},
+        {"min", q.min_edge_length / units::mm},
+        {"max", q.max_edge_length / units::mm}}},
+      {"sizing",
+       {{"estimated_tets", std::round(estimate)},
+        {"tetgen_runs", body.sizing.tetgen_runs},
+        {"volume_bound_factor", body.sizing.volume_bound_factor},
+        {"first_treatment", choice_name(body.sizing.first_treatment)},
+        {"mean_edge_within_tolerance", std::abs(q.mean_edge_length / edge - 1) <= kEdgeLengthTolerance},
+        {"tolerance", kEdgeLengthTolerance}}},
+      {"surface_triangles", surface_triangles_report(d, surface, meshed, following)},
+      {"quality_bounds_met", q.over_ratio + q.under_dihedral == 0},
+      {"tets_over_radius_edge_bound", q.over_ratio},
+      {"tets_under_dihedral_bound", q.under_dihedral},
+      {"min_dihedral_deg", q.min_dihedral_deg},
+      {"max_dihedral_deg", q.max_dihedral_deg},
+      {"radius_edge_ratio",
+       {{"mean", q.mean_radius_edge_ratio}, {"max", q.max_radius_edge_ratio}, {"bound", d.mesh.radius_edge_ratio}}},
+      {"min_dihedral_bound_deg", d.mesh.min_dihedral_deg}};
   // Timings go to the log, not the report: an output that changes on every run would make every
   // downstream stage rerun after a rerun of this one.
   ctx.log.info("seconds: {}", seconds.dump());

@@ -19,19 +19,34 @@ public:
     return {"design.surface", "design.units", "mesh", "sim.basis"};
   }
   std::vector<std::filesystem::path> input_files(const Design& d) const override;
-  int version() const override { return 3; }  ///< 2: the surface's triangles split where too large; edge lengths, quality bounds and the surface's deviation in the report; 3: dense surfaces remeshed, surface places in body.tetmesh
+  /// 2: the surface's triangles split where too large; edge lengths, quality bounds and the surface's deviation in
+  /// the report; 3: dense surfaces remeshed, surface places in body.tetmesh; 4: the mesh made at the edge length asked
+  /// (TetGen's volume bound rescaled), sizing and the tet estimate in the report
+  int version() const override { return 4; }
   void run(StageContext& ctx) const override;
 };
 
-/// What `fibermold check` says about the surface: imports and checks it (and, with
-/// [mesh] repair = true, checks the repaired copy). Throws InputError when it cannot be meshed.
-SurfaceCheck check_design_surface(const Design& design, std::vector<std::string>& repairs);
+/// What `fibermold check` says about the surface and the mesh to come.
+struct DesignSurfaceCheck {
+  SurfaceCheck surface;
+  std::vector<std::string> repairs; ///< what [mesh] repair = true changes
+  double edge_length = 0;           ///< m, asked or by default
+  SurfaceTriangles treatment = SurfaceTriangles::keep;
+  double estimated_tets = 0; ///< expected_tets
+};
+
+/// Imports and checks the surface (and, with [mesh] repair = true, checks the repaired copy), and
+/// what every stage would refuse of it. Throws InputError when it cannot be meshed.
+DesignSurfaceCheck check_design_surface(const Design& design);
 
 /// Target edge length: [mesh] edge_length, or one that fits about 5,000 regular tets in the body.
 double target_edge_length(const Design& design, double body_volume);
 
-/// The body meshed as the mesh stage meshes it, at `edge_factor` × its edge length, the surface's
-/// triangles split to that length (`fibermold simulate --refine`). Throws InputError as the stage.
-TetMesh scaled_design_mesh(const Design& design, double edge_factor, Progress& progress);
+/// The refined mesh's edge length, × the mesh's (`[optimize] refine`, `fibermold simulate --refine`).
+inline constexpr double kRefinedEdgeFactor = 0.5;
+
+/// The body meshed as the mesh stage meshes it, at kRefinedEdgeFactor × its edge length, the
+/// surface's triangles split or remeshed to that length. Throws InputError as the stage.
+TetMesh refined_design_mesh(const Design& design, Progress& progress);
 
 } // namespace fibermold

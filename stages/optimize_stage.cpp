@@ -290,7 +290,7 @@ void report_refinement(StageContext& ctx, DesignRouting& dr, const Routing& r, n
   const Design& d = ctx.design;
   RoutingProblem& problem = *dr.problem;
   ctx.progress.checkpoint(-1, "meshing at half the edge length");
-  const TetMesh fine_mesh = scaled_design_mesh(d, 0.5, ctx.progress);
+  const TetMesh fine_mesh = refined_design_mesh(d, ctx.progress);
   const MuscleModel model(d.muscle.model);
   for (int t = 0; t < problem.num_targets(); ++t) {
     const std::string& name = dr.target_names[t];

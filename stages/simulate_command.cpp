@@ -125,7 +125,7 @@ SimulateResult simulate(const Design& d, const Runner& runner, const fs::path& b
                  LameParameters::from_young_poisson(d.material.youngs_modulus, d.material.poisson_ratio));
   if (request.refine) {
     p.checkpoint(-1, "meshing at half the edge length");
-    const TetMesh fine_mesh = scaled_design_mesh(d, 0.5, p);
+    const TetMesh fine_mesh = refined_design_mesh(d, p);
     const Solved fine = solve(d, fine_mesh, target, actuations, p);
     result.refinement = compare_refined(d, *coarse.sim, coarse.x, *fine.sim, fine.x);
     write_deformed(build_dir / "simulate" / fmt::format("deformed-{}-refined.vtu", result.name), *fine.sim, fine.x, fine.muscles,

@@ -27,8 +27,8 @@ struct Placed {
 Placed placed(const SurfaceMesh& input, SurfaceTriangles policy, double edge)
 {
   NullProgress progress;
-  const MeshedSurface meshed = surface_for_mesh(input, policy, edge);
-  return {input, mesh_body(input, meshed, {edge, 1.5, 10, false, true}, progress), meshed.treatment};
+  BodyMesh body = mesh_body(input, policy, {edge, 1.5, 10, false, true}, progress);
+  return {input, std::move(body.mesh), body.surface.treatment};
 }
 
 void expect_affine_carried(const Placed& p)
