@@ -123,7 +123,8 @@ namespace {
 /// Where holes can meet the cavity from outside along ±pull.
 class HoleSites {
 public:
-  HoleSites(const VoxelRegion& region, const SurfaceMesh& cavity) : region_(region), surface_(cavity.vertices, cavity.faces)
+  HoleSites(const VoxelRegion& region, const SurfaceMesh& cavity, double min_wall)
+      : region_(region), surface_(cavity.vertices, cavity.faces), min_wall_(min_wall)
   {
     const Eigen::VectorXd h = cavity.vertices * region.axes.col(2);
     lowest_ = h.minCoeff();
@@ -172,7 +173,7 @@ private:
           ok = level || drop >= 2e-3;
           if (level) deepest = std::min(deepest, *hk);
         }
-        if (!ok) continue;
+        if (!ok || rises_beside(c, r, *h, upward)) continue;
         // A vent as high as it goes (by the voxel) but not above the top it is for (higher skin is
         // other air's), then as near; a sprue as near.
         const double height = upward ? *h : -*h;  // the mouth's height along pull
@@ -185,6 +186,23 @@ private:
         best_score = score;
       }
     return best;
+  }
+
+  /// The skin rises beside the hole: within min_wall of its wall (a ring of 16 points at radius
+  /// r + min_wall), above the mouth's height `h` by more than a 35° slope: the hole runs down past
+  /// a wall of the cavity (a slot's side, as a sprue to a slot's floor through the mold's rib in
+  /// it), and the mold between them would be thinner than the printer holds (the gripper finger's
+  /// shot 2: a wall of 0.27 mm beside a sprue at a slot floor, until session 25).
+  bool rises_beside(const Eigen::Vector3d& c, double r, double h, bool upward) const
+  {
+    const Eigen::Vector3d u = region_.axes.col(0), v = region_.axes.col(1);
+    const double ring = r + min_wall_;
+    for (int k = 0; k < 16; ++k) {
+      const double t = 2 * M_PI * k / 16;
+      const auto hk = skin(c + ring * (std::cos(t) * u + std::sin(t) * v), upward);
+      if (hk && h - *hk < -std::tan(35 * M_PI / 180) * ring) return true;
+    }
+    return false;
   }
 
   /// A hole at c would come within 1 mm of a hole already placed (seen along pull): overlapping
@@ -222,15 +240,17 @@ private:
 
   const VoxelRegion& region_;
   SurfaceDistance surface_;
+  double min_wall_ = 0; ///< m, the printer's thinnest wall
   double lowest_ = 0, highest_ = 0;
 };
 
 } // namespace
 
-FillPlan plan_fill(const VoxelRegion& region, const SurfaceMesh& cavity, Ports ports, double sprue_diameter, double vent_diameter,
-                   bool sprue_from_above, const VoxelRegion* overmold, double tolerance)
+FillPlan plan_fill(const VoxelRegion& region, const SurfaceMesh& cavity, Ports ports, double sprue_diameter,
+                   double vent_diameter, double min_wall, bool sprue_from_above, const VoxelRegion* overmold,
+                   double tolerance)
 {
-  const HoleSites sites(region, cavity);
+  const HoleSites sites(region, cavity, min_wall);
   const auto at_a_groove = [&](const AirPocket& p) {
     if (!overmold || !p.thin) return false;
     const Eigen::Vector3i g = overmold->grid(p.at).array().round().cast<int>();

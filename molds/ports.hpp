@@ -46,12 +46,14 @@ struct FillPlan {
 /// top of its pocket),
 /// where it opens on the fill region and the skin under its rim slopes by at
 /// most 35° or drops away by 2 mm or more (a steeper skin leaves a knife edge of mold beside the
-/// hole); it is cut 0.5 mm past the deepest of that skin under its rim.
+/// hole), and where the skin does not rise beside it within `min_wall` of its wall; it is cut
+/// 0.5 mm past the deepest of that skin under its rim.
 ///
 /// With `overmold` (shot 2's fill region, for shot 1), a thin pocket whose top lies within two
 /// voxels of it sits at a groove's mouth (the wedge of cast between a groove's wall and a sloping
 /// skin): shot 2 fills what it leaves, so it needs no vent and is not counted as trapped.
-FillPlan plan_fill(const VoxelRegion& region, const SurfaceMesh& cavity, Ports ports, double sprue_diameter, double vent_diameter,
-                   bool sprue_from_above, const VoxelRegion* overmold = nullptr, double tolerance = kTrappedAirTolerance);
+FillPlan plan_fill(const VoxelRegion& region, const SurfaceMesh& cavity, Ports ports, double sprue_diameter,
+                   double vent_diameter, double min_wall, bool sprue_from_above, const VoxelRegion* overmold = nullptr,
+                   double tolerance = kTrappedAirTolerance);
 
 } // namespace fibermold

@@ -151,9 +151,11 @@ std::vector<std::string> Recipe::make_shot(const std::string& name, const Surfac
   shot.name = name;
   shot.fill_voxel = region.voxel;
   shot.plan = plan_fill(region, shot_cavity,
-                        first ? cavity_ports(shot_cavity, pull_, block_.sprue_diameter, block_.vents, block_.vent_diameter, block_.min_wall, name)
+                        first ? cavity_ports(shot_cavity, pull_, block_.sprue_diameter, block_.vents,
+                                             block_.vent_diameter, block_.min_wall, name)
                               : Ports{},
-                        block_.sprue_diameter, block_.vent_diameter, !first, first ? &regions_.shot2 : nullptr, kTrappedAirTolerance / g3_);
+                        block_.sprue_diameter, block_.vent_diameter, block_.min_wall, !first,
+                        first ? &regions_.shot2 : nullptr, kTrappedAirTolerance / g3_);
   const FillPlan& plan = shot.plan;
   const double fill_seconds = since(started);
   std::erase_if(fill_failures_, [&](const std::string& f) { return f.starts_with(name); });  // a shot made again

@@ -15,6 +15,7 @@
 #include "molds/parting.hpp"
 #include "molds/ports.hpp"
 #include "molds/solids.hpp"
+#include "primitives.hpp"
 
 namespace fibermold {
 namespace {
@@ -119,7 +120,8 @@ TEST(FillPlan, VentsTheUShapedCavitysSecondLeg)
 {
   const VoxelRegion r = u_cavity();
   const SurfaceMesh cavity = boxes({{{0, 0, 0}, {11, 2, 1}}, {{0, 0, 0}, {2, 2, 11}}, {{9, 0, 0}, {11, 2, 11}}});
-  const FillPlan plan = plan_fill(r, cavity, {{from_below(r, 6, 1, 0)}, {from_above(r, 1, 1, 11)}}, 1 * mm, 1 * mm, false);
+  const FillPlan plan =
+      plan_fill(r, cavity, {{from_below(r, 6, 1, 0)}, {from_above(r, 1, 1, 11)}}, 1 * mm, 1 * mm, 1 * mm, false);
   ASSERT_EQ(plan.ports.vents.size(), 2u);
   EXPECT_GE(plan.ports.vents[1].mouth.x(), r.centre(9, 0, 0).x() - 1e-9);
   EXPECT_NEAR(plan.ports.vents[1].mouth.z(), 12 * mm - r.voxel / 2, 1e-9);  // the top of the leg
@@ -136,7 +138,7 @@ TEST(FillPlan, APocketUnderCuredSiliconeCannotBeVented)
   for (int i = 0; i < 4; ++i)
     for (int j = 0; j < 3; ++j) r.cells[static_cast<std::size_t>(r.index(i, j, 6))] = VoxelRegion::solid;
   const SurfaceMesh cavity = boxes({{{0, 0, 0}, {11, 2, 1}}, {{0, 0, 0}, {3, 2, 6}}, {{8, 0, 0}, {11, 2, 9}}});
-  const FillPlan plan = plan_fill(r, cavity, {{from_below(r, 6, 1, 0)}, {}}, 1 * mm, 1 * mm, false);
+  const FillPlan plan = plan_fill(r, cavity, {{from_below(r, 6, 1, 0)}, {}}, 1 * mm, 1 * mm, 1 * mm, false);
   ASSERT_EQ(plan.ports.vents.size(), 1u);  // the leg's
   EXPECT_GE(plan.ports.vents[0].mouth.x(), r.centre(8, 0, 0).x() - 1e-9);
   ASSERT_EQ(plan.fill.pockets.size(), 1u);
@@ -182,7 +184,7 @@ TEST(FillPlan, Shot2SprueGoesToTheGrooveFromAbove)
   EXPECT_FALSE(old.sprue_open[0]);
   EXPECT_EQ(old.reachable_volume, 0);
 
-  const FillPlan plan = plan_fill(r, b.body, {}, 4 * mm, 1.5 * mm, true);
+  const FillPlan plan = plan_fill(r, b.body, {}, 4 * mm, 1.5 * mm, 1 * mm, true);
   ASSERT_EQ(plan.ports.sprues.size(), 1u);
   const Port& sprue = plan.ports.sprues[0];
   std::printf("sprue at (%.2f, %.2f, %.2f) mm, %zu vents, %.3f mm³ trapped\n", sprue.mouth.x() / mm, sprue.mouth.y() / mm,
@@ -201,12 +203,42 @@ TEST(FillPlan, Shot2SprueGoesToTheGrooveFromAbove)
   }
 }
 
+/// Shot 2 of the box with a slot 5 mm wide across its top, 8 mm deep, over the groove's middle (a
+/// gripper finger's back): a sprue from above down to the slot's floor through the mold's rib in
+/// the slot, 4 mm across, would leave the rib walls of 0.5 mm (the gripper finger's shot 2 failed
+/// its part check so, a wall of 0.27 mm, until session 25). No hole comes within min_wall of a
+/// wall of the cavity that rises beside it.
+TEST(FillPlan, NoHoleRunsDownASlotCloserThanMinWallToItsSides)
+{
+  const GrooveBox b;
+  const double slot_lo = 28.05 * mm, slot_hi = 33.05 * mm, floor = 2.05 * mm;
+  const SurfaceMesh body = test::voxel_body({0.05 * mm, -9.95 * mm, -9.95 * mm}, 1 * mm, {60, 20, 20},
+                                            [](int i, int, int k) { return !(i >= 28 && i < 33 && k >= 12); });
+  const std::vector<Eigen::Vector3d> fiber{
+      {0, 0.05 * mm, -4 * mm}, {30 * mm, 0.05 * mm, -4 * mm}, {60 * mm, 0.05 * mm, -4 * mm}};
+  const VoxelRegion r = fill_regions(body, {fiber}, b.radius, b.muscle, {0, 0, 1}, b.voxel).shot2;
+  const double min_wall = 1 * mm, diameter = 4 * mm;
+  const FillPlan plan = plan_fill(r, body, {}, diameter, 1.5 * mm, min_wall, true);
+  ASSERT_GE(plan.ports.sprues.size(), 1u);
+  EXPECT_NEAR(plan.fill.reachable_volume + plan.fill.crevice_volume, plan.fill.fill_volume, 1e-15);
+  EXPECT_LE(plan.fill.trapped_volume, kTrappedAirTolerance);
+  for (const std::vector<Port>* holes : {&plan.ports.sprues, &plan.ports.vents})
+    for (const Port& p : *holes) {
+      std::printf("hole %.1f mm at (%.2f, %.2f, %.2f) mm\n", p.diameter / mm, p.mouth.x() / mm, p.mouth.y() / mm,
+                  p.mouth.z() / mm);
+      // Down in the slot, the hole's wall keeps min_wall from both of its sides.
+      if (p.mouth.z() < floor + b.voxel) {
+        EXPECT_GE(std::min(p.mouth.x() - slot_lo, slot_hi - p.mouth.x()), p.diameter / 2 + min_wall);
+      }
+    }
+}
+
 TEST(FillPlan, SeparateGrooveBasinsGetASprueAndAVentEach)
 {
   const GrooveBox b;
   const VoxelRegion r = fill_regions(b.body, {GrooveBox::fiber(-5 * mm, 0), GrooveBox::fiber(5 * mm, 3 * mm)}, b.radius, b.muscle,
                                      {0, 0, 1}, b.voxel).shot2;
-  const FillPlan plan = plan_fill(r, b.body, {}, 4 * mm, 1.5 * mm, true);
+  const FillPlan plan = plan_fill(r, b.body, {}, 4 * mm, 1.5 * mm, 1 * mm, true);
   ASSERT_EQ(plan.ports.sprues.size(), 2u);
   EXPECT_LT(plan.ports.sprues[0].mouth.y() * plan.ports.sprues[1].mouth.y(), 0);  // one over each groove
   EXPECT_NEAR(plan.fill.reachable_volume + plan.fill.crevice_volume, plan.fill.fill_volume, 1e-15);
@@ -231,7 +263,7 @@ TEST(FillPlan, AGrooveAlongARoundArmsTopGetsAVentOnEachRidge)
   const FillResult before = simulate_fill(r, start.sprues, start.vents);
   const Parting parting = choose_parting(g.mesh, {0, 0, 1});
   std::printf("parting at z = %.2f mm\n", parting.point.z() / mm);
-  const FillPlan plan = plan_fill(r, g.mesh, start, 2 * mm, 1.5 * mm, false);
+  const FillPlan plan = plan_fill(r, g.mesh, start, 2 * mm, 1.5 * mm, 1 * mm, false);
   std::printf("trapped %.1f mm³ with the %zu vents that fit along the top, %.3f mm³ with %zu vents\n", before.trapped_volume / mm3,
               start.vents.size(), plan.fill.trapped_volume / mm3, plan.ports.vents.size());
   int left = 0, right = 0;
