@@ -63,8 +63,9 @@ TetMesh sized_mesh(const MeshedSurface& meshed, TetOptions options, Progress& pr
       sizing.mean_edge_length = mean;
       sizing.volume_bound_factor = options.volume_bound_factor;
     }
+    // Split, the bound is the mesh's only size: brought within kEdgeLengthAim from the first run.
     const double miss = std::abs(mean / edge - 1);
-    if (run == 0 ? miss <= kEdgeLengthTolerance : miss <= kEdgeLengthAim) break;
+    if (run == 0 && options.keep_surface ? miss <= kEdgeLengthTolerance : miss <= kEdgeLengthAim) break;
     // Triangles TetGen must keep hold the boundary at their size: a larger bound would only grade
     // the interior coarse behind a fine skin. Too fine, such a mesh is the surface's doing.
     if (options.keep_surface && mean < edge) break;
@@ -96,20 +97,20 @@ MeshedSurface surface_for_mesh(const SurfaceMesh& input, SurfaceTriangles policy
   return m;
 }
 
-double expected_tets(double volume, double edge_length, SurfaceTriangles treatment, const SurfaceMesh& surface)
+double expected_tets(double volume, double edge_length, SurfaceTriangles policy, const SurfaceMesh& surface)
 {
-  double rho = 1, k = 1.25;
-  if (treatment == SurfaceTriangles::remesh) {
-    rho = std::sqrt(kRemeshedMeanEdge);
-    k = 1.45;
-  }
+  SurfaceTriangles treatment = surface_treatment(policy, surface, edge_length);
+  double rho = 1; // split: the volume bound is brought to the edge length
   if (treatment == SurfaceTriangles::keep) {
     const double mean_area =
         surface_area(surface) / static_cast<double>(std::max<Eigen::Index>(surface.num_faces(), 1));
     rho = std::sqrt(std::sqrt(4 * mean_area / std::sqrt(3.0)) / edge_length);
-    if (std::abs(rho - 1) > kEdgeLengthTolerance) rho = 1; // mesh_body rescales the volume bound to bring it there
-    k = 1.45;
+    if (rho > 1 + kEdgeLengthTolerance) rho = 1; // mesh_body tightens the volume bound to bring it there
+    // Finer, the kept triangles hold the mesh; at "auto" mesh_body remeshes them instead.
+    if (rho < 1 - kEdgeLengthTolerance && policy == SurfaceTriangles::automatic) treatment = SurfaceTriangles::remesh;
   }
+  if (treatment == SurfaceTriangles::remesh) rho = std::sqrt(kRemeshedMeanEdge);
+  const double k = treatment == SurfaceTriangles::split ? 1.25 : 1.45;
   return k * volume / regular_tet_volume(rho * edge_length);
 }
 

@@ -41,18 +41,20 @@ struct MeshSizing {
 };
 
 /// About how many tets mesh_body makes of a body of `volume` at `edge_length` with `surface`'s
-/// triangles treated as `treatment` (keep, split or remesh). Tets fill a body at k per regular tet
-/// of the mean edge they come to, ρ × edge_length. Split, ρ = 1 (the volume bound is brought to it)
+/// triangles treated as `policy` asks (surface_treatment). Tets fill a body at k per regular tet of
+/// the mean edge they come to, ρ × edge_length. Split, ρ = 1 (the volume bound is brought to it)
 /// and k = 1.25 (TetGen's own points on the surface); remeshed, ρ = √0.91 (the remeshing's
 /// triangles come to a mean edge of about 0.91 × it and hold the boundary there) and k = 1.45;
 /// kept, ρ = √(s / edge_length), s the edge of an equilateral triangle of the surface's mean
 /// triangle area (the kept triangles hold the boundary at their size, the bound the interior at
-/// about edge_length; 1 where that misses kEdgeLengthTolerance, as the bound is then rescaled), and
-/// k = 1.45. Measured (session 25) on 24 meshes of 921 to 193,201 tets (boxes split, kept and
-/// remeshed, CAD exports, scans, the examples): the tets made are 0.83 to 1.2 × this, but where the
-/// input's own vertices or features hold the mesh finer than asked: the gripper finger's slots,
-/// split, 1.30 ×; a strip of 0.5 mm × 7.5 mm triangles, remeshed for that (mesh_body), 1.34 ×.
-double expected_tets(double volume, double edge_length, SurfaceTriangles treatment, const SurfaceMesh& surface);
+/// about edge_length; 1 where that is more than kEdgeLengthTolerance coarse, as the bound is then
+/// tightened; remeshed's where it is that fine at "auto", as mesh_body then remeshes), and k = 1.45.
+/// Measured (session 25) on the meshes docs/mesh.md lists, of 921 to 1,242,732 tets (boxes split,
+/// kept and remeshed, CAD exports, scans, the examples): the tets made are 0.84 to 1.14 × this, but
+/// where the input's
+/// features or unequal triangles hold the mesh finer than asked: the gripper finger's slots, split,
+/// 1.30 ×; fandisk, kept, 1.46 ×.
+double expected_tets(double volume, double edge_length, SurfaceTriangles policy, const SurfaceMesh& surface);
 inline constexpr double kRemeshedMeanEdge = 0.91; ///< × the edge length: CGAL's isotropic remeshing's mean edge
 
 /// The body's mesh, the surface TetGen was given, and how the mesh was sized.
@@ -65,12 +67,11 @@ struct BodyMesh {
 /// The tet mesh of `input` at options.edge_length, attached to `input`. The surface's triangles are
 /// treated as `policy` asks (surface_for_mesh). TetGen's volume bound starts at a³/(6√2) × the
 /// options' factor; where the mean edge made misses the edge length by more than
-/// kEdgeLengthTolerance, the bound is rescaled and TetGen runs again until the mean edge is within
-/// kEdgeLengthAim (at most five runs; the mesh closest to asked is kept); where the surface's
-/// triangles are kept, only to refine a mesh coarser than asked. At "auto", a kept or split surface whose own
-/// vertices still hold the mesh outside the tolerance is remeshed to the edge length and meshed
-/// again, when that comes closer. Throws InputError as surface_for_mesh does, std::runtime_error when
-/// TetGen fails.
+/// kEdgeLengthTolerance (split: kEdgeLengthAim), the bound is rescaled and TetGen runs again until
+/// the mean edge is within kEdgeLengthAim (at most five runs; the mesh closest to asked is kept);
+/// where the surface's triangles are kept, only to refine a mesh coarser than asked. At "auto", a kept or split surface
+/// whose own vertices still hold the mesh outside the tolerance is remeshed to the edge length and meshed again, when
+/// that comes closer. Throws InputError as surface_for_mesh does, std::runtime_error when TetGen fails.
 BodyMesh mesh_body(const SurfaceMesh& input, SurfaceTriangles policy, const TetOptions& options, Progress& progress);
 
 } // namespace fibermold

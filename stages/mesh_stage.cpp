@@ -37,7 +37,7 @@ double since(Clock::time_point t) { return std::chrono::duration<double>(Clock::
 double require_mesh_size(const Design& d, const SurfaceMesh& surface, double volume, double edge,
                          SurfaceTriangles policy, const std::string& key = "[mesh].edge_length")
 {
-  const double tets = expected_tets(volume, edge, surface_treatment(policy, surface, edge), surface);
+  const double tets = expected_tets(volume, edge, policy, surface);
   if (tets > d.mesh.max_tets)
     throw InputError(
         design_problem(d, key,

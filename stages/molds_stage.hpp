@@ -48,8 +48,9 @@ public:
   /// 2: sprues and vents from the fill simulation, its report, the silicone's thickness; 3: a remeshed body molded as
   /// given; 4: the groove rule shared (skin_distance.hpp), 10 µm of placement tolerance; 5: routes under [muscle]
   /// min_bend_radius refused; 6: the stretches at the ends on the skin left out where the optimizer's skin barrier left
-  /// them out (exit_stretches), not 2 × (diameter + clearance)
-  int version() const override { return 6; }
+  /// them out (exit_stretches), not 2 × (diameter + clearance); 7: no sprue or vent within min_wall of a cavity wall
+  /// rising beside it
+  int version() const override { return 7; }
   void run(StageContext& ctx) const override;
 };
 

@@ -26,7 +26,7 @@ Made made(const char* name, const SurfaceMesh& surface, SurfaceTriangles policy,
   NullProgress progress;
   Made m{mesh_body(surface, policy, {edge, 1.5, 10, false, true}, progress), 0, 0};
   m.mean_edge_ratio = mean_edge_length(m.body.mesh) / edge;
-  const double expected = expected_tets(m.body.mesh.volume(), edge, surface_treatment(policy, surface, edge), surface);
+  const double expected = expected_tets(m.body.mesh.volume(), edge, policy, surface);
   m.estimate_ratio = static_cast<double>(m.body.mesh.num_tets()) / expected;
   std::printf("%s: %s, %ld tets, mean edge %.3f x asked, %d TetGen runs (bound %.3g x), %.2f x the estimate\n", name,
               std::string(choice_name(m.body.surface.treatment)).c_str(), static_cast<long>(m.body.mesh.num_tets()),
