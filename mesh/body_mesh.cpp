@@ -38,14 +38,15 @@ bool within_tolerance(double mean_edge, double edge_length)
 }
 
 /// TetGen on `meshed` (its triangles kept unless split), its volume bound rescaled when the mean
-/// edge misses the edge length by more than kEdgeLengthTolerance, then until it is within
-/// kEdgeLengthAim; with the surface's triangles kept, only to refine a mesh coarser than asked. TetGen's bound caps
-/// each tet's volume: tets come out smaller than the bound's regular tet, the more so where TetGen splits the surface's
-/// triangles for its quality bound (a 12-triangle 100 × 15 × 15 mm box at 3 mm: a mean edge of 2.22 mm at the bound of
-/// a 3 mm tet, 2.85 mm at twice it). The mean edge grows about as the bound's cube root, so the first correction scales
-/// the bound by (asked / made)³; later ones follow the slope of log(mean edge) over log(bound) the runs measured (a
-/// secant), since features narrower than the edge length hold it back (the gripper finger's slots: 0.89 × asked at 3×
-/// the bound, 0.90 at 4×, 1.20 at 6×).
+/// edge misses the edge length by more than kEdgeLengthTolerance (split: kEdgeLengthAim), then
+/// until it is within kEdgeLengthAim; with the surface's triangles kept, only to refine a mesh
+/// coarser than asked. TetGen's bound caps each tet's volume: tets come out smaller than the
+/// bound's regular tet, the more so where TetGen splits the surface's triangles for its quality
+/// bound (a 12-triangle 100 × 15 × 15 mm box at 3 mm: a mean edge of 2.22 mm at the bound of a 3 mm
+/// tet, 2.85 mm at twice it). The mean edge grows about as the bound's cube root, so the first
+/// correction scales the bound by (asked / made)³; later ones follow the slope of log(mean edge)
+/// over log(bound) the runs measured (a secant), since features narrower than the edge length hold
+/// it back (the gripper finger's slots: 0.89 × asked at 3× the bound, 0.90 at 4×, 1.20 at 6×).
 TetMesh sized_mesh(const MeshedSurface& meshed, TetOptions options, Progress& progress, MeshSizing& sizing)
 {
   constexpr int kMaxRuns = 5;
@@ -65,7 +66,7 @@ TetMesh sized_mesh(const MeshedSurface& meshed, TetOptions options, Progress& pr
     }
     // Split, the bound is the mesh's only size: brought within kEdgeLengthAim from the first run.
     const double miss = std::abs(mean / edge - 1);
-    if (run == 0 && options.keep_surface ? miss <= kEdgeLengthTolerance : miss <= kEdgeLengthAim) break;
+    if (miss <= (run == 0 && options.keep_surface ? kEdgeLengthTolerance : kEdgeLengthAim)) break;
     // Triangles TetGen must keep hold the boundary at their size: a larger bound would only grade
     // the interior coarse behind a fine skin. Too fine, such a mesh is the surface's doing.
     if (options.keep_surface && mean < edge) break;
