@@ -1,6 +1,7 @@
 // The elastic energy's kernels on the twisting bar (≈3,900 tets, linear MLS, 8 points per tet), the
 // inner loop of every Newton step: Hessian assembly (with the PSD projection), one-pass value and
-// gradient, and CHOLMOD's factorization of the Hessian, at a twisted state.   build/bench/assembly_bench [--benchmark_repetitions=5]
+// gradient, and CHOLMOD's factorization of the Hessian, at a twisted state.   build/bench/assembly_bench
+// [--benchmark_repetitions=5]
 #include <benchmark/benchmark.h>
 
 #include "mesh/mesh_quality.hpp"
@@ -35,7 +36,8 @@ struct Bar {
     for (Eigen::Index i = 0; i < mesh.nodes.rows(); ++i) {
       const Eigen::Vector3d X = mesh.nodes.row(i).transpose();
       const double angle = 3.49 * X.x();
-      x.segment<3>(3 * i) = Eigen::Vector3d(X.x(), std::cos(angle) * X.y() - std::sin(angle) * X.z(), std::sin(angle) * X.y() + std::cos(angle) * X.z());
+      x.segment<3>(3 * i) = Eigen::Vector3d(X.x(), std::cos(angle) * X.y() - std::sin(angle) * X.z(),
+                                            std::sin(angle) * X.y() + std::cos(angle) * X.z());
     }
   }
 };

@@ -25,7 +25,8 @@ using namespace fibermold;
 namespace {
 
 // The suite's bar (tests/test_support.hpp) with a quick optimizer and coarse molds, as in tests/e2e/fuzz_test.cpp.
-const std::string kDesign = std::string(test::kBarDesign) + test::kBarMuscle + test::kBarTrackingCurve + test::kBarTarget +
+const std::string kDesign = std::string(test::kBarDesign) + test::kBarMuscle + test::kBarTrackingCurve +
+                            test::kBarTarget +
                             "[optimize]\nmax_iterations = 2\n[mold]\nvoxel = 0.6\nwall = 3\nkeys = 2\n";
 
 struct Tally {

@@ -87,9 +87,10 @@ void run(double voxel_mm, double draft_deg)
     triangles += p["triangles"].get<long>();
     per_part += (per_part.empty() ? "" : ", ") + name + " " + std::to_string(p["triangles"].get<long>() / 1000) + "k";
   }
-  std::printf("| %.2f | %.1f | %.1f | %.1f | %.0f | %ldk (%s) | %.2f + %.2f |\n", voxel_mm, stage_seconds(build, "molds"),
-              stage_seconds(build, "export"), wall, usage.ru_maxrss / 1024.0, triangles / 1000, per_part.c_str(),
-              report["shots"]["shot1"]["silicone_volume_mL"].get<double>(), report["shots"]["shot2"]["silicone_volume_mL"].get<double>());
+  std::printf("| %.2f | %.1f | %.1f | %.1f | %.0f | %ldk (%s) | %.2f + %.2f |\n", voxel_mm,
+              stage_seconds(build, "molds"), stage_seconds(build, "export"), wall, usage.ru_maxrss / 1024.0,
+              triangles / 1000, per_part.c_str(), report["shots"]["shot1"]["silicone_volume_mL"].get<double>(),
+              report["shots"]["shot2"]["silicone_volume_mL"].get<double>());
   std::fflush(stdout);
 }
 
@@ -100,12 +101,15 @@ int main(int argc, char** argv)
   std::vector<double> voxels;
   double draft_deg = 0;
   for (int i = 1; i < argc; ++i) {
-    if (std::string(argv[i]) == "--draft" && i + 1 < argc) draft_deg = std::stod(argv[++i]);
-    else voxels.push_back(std::stod(argv[i]));
+    if (std::string(argv[i]) == "--draft" && i + 1 < argc)
+      draft_deg = std::stod(argv[++i]);
+    else
+      voxels.push_back(std::stod(argv[i]));
   }
   if (voxels.empty()) voxels = {0.2, 0.1};
   if (draft_deg > 0) std::printf("draft %.1f°\n", draft_deg);
-  std::printf("| voxel mm | molds s | export s | wall s | peak MiB | triangles | silicone mL (shot 1 + 2) |\n|---|---|---|---|---|---|---|\n");
+  std::printf("| voxel mm | molds s | export s | wall s | peak MiB | triangles | silicone mL (shot 1 + 2) "
+              "|\n|---|---|---|---|---|---|---|\n");
   std::fflush(stdout);
   for (double v : voxels) run(v, draft_deg);
 }

@@ -46,7 +46,8 @@ double end_twist_deg(const TetMesh& mesh, const Eigen::MatrixX3d& deformed)
   }
   double sum = 0, weight = 0;
   for (int i : face) {
-    const Eigen::Vector2d r0 = mesh.nodes.row(i).tail<2>().transpose() - c0, r = deformed.row(i).tail<2>().transpose() - c;
+    const Eigen::Vector2d r0 = mesh.nodes.row(i).tail<2>().transpose() - c0,
+                          r = deformed.row(i).tail<2>().transpose() - c;
     if (r0.norm() < 1e-3) continue;
     sum += r0.norm() * std::atan2(r0.x() * r.y() - r0.y() * r.x(), r0.dot(r));
     weight += r0.norm();
@@ -67,14 +68,16 @@ void twist_angles(const Design& d, const fs::path& build, double& target_deg, do
     const Route& r = fibers.routing.routes[f];
     actuations.push_back({r.name, r.points, r.tangents, fibers.routing.pressures(0, static_cast<Eigen::Index>(f))});
   }
-  const MuscleModel model(d.muscle.model);  // the muscles keep a reference to it
+  const MuscleModel model(d.muscle.model); // the muscles keep a reference to it
   add_muscles(sim, d, model, actuations);
   Eigen::VectorXd x = sim.rest();
   NullProgress progress;
   const NewtonSummary s = sim.solve(x, progress);
   // From rest (the optimizer warm-starts); an unconverged state would report a meaningless angle.
   reached_deg = s.converged ? end_twist_deg(mesh, sim.deformed_nodes(x)) : NAN;
-  if (!s.converged) std::fprintf(stderr, "re-simulating the optimized design from rest: %s (%s)\n", s.brief().c_str(), s.message.c_str());
+  if (!s.converged)
+    std::fprintf(stderr, "re-simulating the optimized design from rest: %s (%s)\n", s.brief().c_str(),
+                 s.message.c_str());
 }
 
 void run(const std::string& example, const Paper& paper)
@@ -91,10 +94,11 @@ void run(const std::string& example, const Paper& paper)
   const int it = report["iterations"].get<int>();
   const double total = report["seconds"]["total"], simulation = report["seconds"]["simulation"],
                adjoint = report["seconds"]["adjoint"];
-  const std::string speedup = paper.minutes > 0 ? std::to_string(static_cast<int>(paper.minutes / (total / 60))) + "×" : "—";
+  const std::string speedup =
+      paper.minutes > 0 ? std::to_string(static_cast<int>(paper.minutes / (total / 60))) + "×" : "—";
   std::printf("| %s | %s | %s | %d | %.1f | %s | %.2f | %.2f | %.2f | %.3f / %.3f | %.3f / %.3f | %.2f / %.2f |\n",
-              example.c_str(), mesh_report["mesh"]["tets"].dump().c_str(), mesh_report["mesh"]["nodes"].dump().c_str(), it, total / 60,
-              speedup.c_str(), simulation / it, adjoint / it, (total - simulation - adjoint) / it,
+              example.c_str(), mesh_report["mesh"]["tets"].dump().c_str(), mesh_report["mesh"]["nodes"].dump().c_str(),
+              it, total / 60, speedup.c_str(), simulation / it, adjoint / it, (total - simulation - adjoint) / it,
               t["rmse_mm"].get<double>(), t["max_error_mm"].get<double>(), t["surface_rmse_mm"].get<double>(),
               t["surface_max_error_mm"].get<double>(), paper.rmse, paper.max);
   if (example == "twisting-bar") {
@@ -105,7 +109,8 @@ void run(const std::string& example, const Paper& paper)
   if (collide) {
     const auto c = nlohmann::json::parse(read_file(build / "collide" / "report.json"));
     std::printf("|   collide: %zu colliding pair(s), smallest clearance %s → %s mm |\n", c["collisions"].size(),
-                c["smallest_clearance_mm"]["before"].dump().c_str(), c["smallest_clearance_mm"]["after"].dump().c_str());
+                c["smallest_clearance_mm"]["before"].dump().c_str(),
+                c["smallest_clearance_mm"]["after"].dump().c_str());
     for (const auto& [name, e] : c["targets"].items())
       std::printf("|   %s: curve RMSE %.3f → %.3f mm (%+.1f %%), surface RMSE %.3f → %.3f mm |\n", name.c_str(),
                   e["before"]["rmse_mm"].get<double>(), e["after"]["rmse_mm"].get<double>(),
@@ -122,11 +127,16 @@ int main(int argc, char** argv)
   std::vector<std::string> examples(argv + 1, argv + argc);
   if (examples.empty()) examples = {"recovery", "twisting-bar"};
   std::printf("| example | tets | nodes | iterations | minutes | vs paper | sim s/it | adjoint s/it | rest s/it | "
-              "curve RMSE / max mm | surface RMSE / max mm | paper RMSE / max mm |\n|---|---|---|---|---|---|---|---|---|---|---|---|\n");
+              "curve RMSE / max mm | surface RMSE / max mm | paper RMSE / max mm "
+              "|\n|---|---|---|---|---|---|---|---|---|---|---|---|\n");
   for (const std::string& e : examples) {
-    if (e == "recovery") run(e, {0, 0, 0.10, 0.20});
-    else if (e == "twisting-bar") run(e, {169, 381, 1.9, 4.8});
-    else if (e == "walking-robot") run(e, {76 + 85, 18 + 31, NAN, NAN});
-    else std::fprintf(stderr, "unknown example %s\n", e.c_str());
+    if (e == "recovery")
+      run(e, {0, 0, 0.10, 0.20});
+    else if (e == "twisting-bar")
+      run(e, {169, 381, 1.9, 4.8});
+    else if (e == "walking-robot")
+      run(e, {76 + 85, 18 + 31, NAN, NAN});
+    else
+      std::fprintf(stderr, "unknown example %s\n", e.c_str());
   }
 }

@@ -10,9 +10,9 @@
 #include <CLI/CLI.hpp>
 #include <fmt/format.h>
 #include <fmt/ranges.h>
-#include <spdlog/spdlog.h>
 #include <pthread.h>
 #include <semaphore.h>
+#include <spdlog/spdlog.h>
 #include <unistd.h>
 
 #include "cli/terminal_progress.hpp"
@@ -56,8 +56,9 @@ void watch_for_stop()
   while (sem_wait(&g_signalled) != 0) {
   }
   std::this_thread::sleep_for(kStopDeadline);
-  constexpr char message[] = "fibermold: interrupted; the running step had no checkpoint within 0.7 s, so it was stopped at once: the "
-                             "stage that was running is stale, its previous outputs kept\n";
+  constexpr char message[] =
+      "fibermold: interrupted; the running step had no checkpoint within 0.7 s, so it was stopped at once: the "
+      "stage that was running is stale, its previous outputs kept\n";
   [[maybe_unused]] const auto written = ::write(STDERR_FILENO, message, sizeof message - 1);
   std::_Exit(kExitInterrupted);
 }
@@ -121,7 +122,8 @@ void print_status(const std::vector<StageStatus>& statuses)
       fmt::print("{:<{}}  fresh\n", s.stage, width);
       continue;
     }
-    std::vector<std::string> shown(s.reasons.begin(), s.reasons.begin() + std::min<std::ptrdiff_t>(3, std::ssize(s.reasons)));
+    std::vector<std::string> shown(s.reasons.begin(),
+                                   s.reasons.begin() + std::min<std::ptrdiff_t>(3, std::ssize(s.reasons)));
     std::string more = s.reasons.size() > 3 ? fmt::format("; and {} more", s.reasons.size() - 3) : "";
     fmt::print("{:<{}}  stale ({}{})\n", s.stage, width, fmt::join(shown, "; "), more);
   }
@@ -132,8 +134,8 @@ void print_design_summary(const Design& d)
   fmt::print("{}: ok\n", d.file.string());
   fmt::print("  design {}: surface {} ({}), basis {}, {} fixed region(s), {} fiber(s), {} target(s), "
              "{} tracking curve(s)\n",
-             d.design.name, d.design.surface.filename().string(), d.design.units, choice_name(d.sim.basis), d.fixed.size(),
-             d.fibers.size(), d.targets.size(), d.tracking_curves.size());
+             d.design.name, d.design.surface.filename().string(), d.design.units, choice_name(d.sim.basis),
+             d.fixed.size(), d.fibers.size(), d.targets.size(), d.tracking_curves.size());
 }
 
 ProgressFactory terminal_progress()
@@ -159,9 +161,11 @@ int run_simulate(const Design& design, const Runner& runner, const fs::path& bui
   if (const auto& f = r.refinement) {
     fmt::print("refined: {} nodes, {} tets, mean edge {:.2f} mm; max displacement {:.3f} mm\n"
                "  difference: surface max {:.3f} mm, RMS {:.3f} mm",
-               f->nodes, f->tets, f->edge_length / 1e-3, f->max_displacement / 1e-3, f->surface_max / 1e-3, f->surface_rms / 1e-3);
+               f->nodes, f->tets, f->edge_length / 1e-3, f->max_displacement / 1e-3, f->surface_max / 1e-3,
+               f->surface_rms / 1e-3);
     if (f->curve_samples > 0)
-      fmt::print("; tracking curves max {:.3f} mm, RMS {:.3f} mm ({} samples)", f->curves_max / 1e-3, f->curves_rms / 1e-3, f->curve_samples);
+      fmt::print("; tracking curves max {:.3f} mm, RMS {:.3f} mm ({} samples)", f->curves_max / 1e-3,
+                 f->curves_rms / 1e-3, f->curve_samples);
     fmt::print("\n");
   }
   return kExitDone;
@@ -225,6 +229,26 @@ int report_failure(const std::exception_ptr& error)
   }
 }
 
+/// `fibermold sweep SWEEP [options]`: its options into `request`.
+CLI::App* add_sweep_command(CLI::App& app, SweepRequest& request)
+{
+  CLI::App* sweep =
+      app.add_subcommand("sweep", "Many designs: the cases of a sweep file, as local processes or Slurm job arrays");
+  sweep->add_option("SWEEP", request.sweep, "The sweep file (docs/sweep.md)")->required();
+  sweep->add_option("--engine", request.engine, "local (processes on this machine) or slurm (job arrays)")
+      ->capture_default_str();
+  sweep->add_option("--jobs", request.jobs, "local: tasks at once (default: one per hardware thread)");
+  sweep->add_option("--build-dir", request.build_dir, "Sweep folder (default: out/sweep-<name>)");
+  sweep->add_flag("--no-wait{false}", request.wait, "slurm: return once the jobs are submitted");
+  sweep->add_flag("--status", request.status, "Report each stage's builds and the queue; run nothing");
+  sweep->add_option("--partition", request.slurm.partition, "slurm: partition");
+  sweep->add_option("--time", request.slurm.time, "slurm: time limit per task, e.g. 02:00:00");
+  sweep->add_option("--cpus-per-task", request.slurm.cpus_per_task, "slurm: CPUs per task");
+  sweep->add_option("--sbatch-flag", request.slurm.extra,
+                    "slurm: one more sbatch flag, repeatable (e.g. --sbatch-flag=--mem=4G)");
+  return sweep;
+}
+
 } // namespace
 
 int fibermold_main(int argc, char** argv)
@@ -235,8 +259,8 @@ int fibermold_main(int argc, char** argv)
                "fibermold"};
   app.require_subcommand(1);
   app.set_version_flag("--version", Runner::default_program());
-  app.footer("Exit codes: 0 done, 1 a stage failed on valid input, 2 bad input (command line, design file, mesh, build folder),\n"
-             "3 another fibermold is working in the build folder, 130 interrupted.\n"
+  app.footer("Exit codes: 0 done, 1 a stage failed on valid input, 2 bad input (command line, design file, mesh,\n"
+             "build folder), 3 another fibermold is working in the build folder, 130 interrupted.\n"
              "DESIGN defaults to the bundled demo, " FIBERMOLD_DEFAULT_DESIGN ".");
 
   std::vector<std::string> words;
@@ -244,7 +268,8 @@ int fibermold_main(int argc, char** argv)
   bool force = false;
 
   CLI::App* make = app.add_subcommand("make", "Run what is stale, up to STAGE (default: every stage)");
-  make->add_option("DESIGN_AND_STAGES", words, "[DESIGN] [STAGE...]: the first word is the design unless it is a stage");
+  make->add_option("DESIGN_AND_STAGES", words,
+                   "[DESIGN] [STAGE...]: the first word is the design unless it is a stage");
   make->add_flag("--force", force, "Rerun the selected stages even when fresh");
   make->add_option("--build-dir", build_dir_option, "Build folder (default: out/<design name>)");
 
@@ -266,26 +291,16 @@ int fibermold_main(int argc, char** argv)
   simulate->add_option("--target", target, "Simulate this target's loads");
   simulate->add_option("--pressure", pressures, "FIBER=kPa, repeatable");
   bool refine = false;
-  simulate->add_flag("--refine", refine, "Solve again at half the edge length and report the difference (the discretization error)");
+  simulate->add_flag("--refine", refine,
+                     "Solve again at half the edge length and report the difference (the discretization error)");
   simulate->add_option("--build-dir", build_dir_option, "Build folder (default: out/<design name>)");
 
   SweepRequest sweep_request;
-  std::vector<std::string> sbatch_flags;
-  CLI::App* sweep = app.add_subcommand("sweep", "Many designs: the cases of a sweep file, as local processes or Slurm job arrays");
-  sweep->add_option("SWEEP", sweep_request.sweep, "The sweep file (docs/sweep.md)")->required();
-  sweep->add_option("--engine", sweep_request.engine, "local (processes on this machine) or slurm (job arrays)")->capture_default_str();
-  sweep->add_option("--jobs", sweep_request.jobs, "local: tasks at once (default: one per hardware thread)");
-  sweep->add_option("--build-dir", sweep_request.build_dir, "Sweep folder (default: out/sweep-<name>)");
-  sweep->add_flag("--no-wait{false}", sweep_request.wait, "slurm: return once the jobs are submitted");
-  sweep->add_flag("--status", sweep_request.status, "Report each stage's builds and the queue; run nothing");
-  sweep->add_option("--partition", sweep_request.slurm.partition, "slurm: partition");
-  sweep->add_option("--time", sweep_request.slurm.time, "slurm: time limit per task, e.g. 02:00:00");
-  sweep->add_option("--cpus-per-task", sweep_request.slurm.cpus_per_task, "slurm: CPUs per task");
-  sweep->add_option("--sbatch-flag", sweep_request.slurm.extra, "slurm: one more sbatch flag, repeatable (e.g. --sbatch-flag=--mem=4G)");
+  CLI::App* sweep = add_sweep_command(app, sweep_request);
 
   std::vector<std::string> task_words;
   CLI::App* sweep_task = app.add_subcommand("sweep-task", "One task of a sweep (run by `fibermold sweep`)");
-  sweep_task->group("");  // hidden from --help
+  sweep_task->group(""); // hidden from --help
   sweep_task->add_option("BUILD_DIR STAGE CASE", task_words)->expected(3)->required();
 
   try {
@@ -304,7 +319,8 @@ int fibermold_main(int argc, char** argv)
         split_arguments(words, FIBERMOLD_DEFAULT_DESIGN,
                         check->parsed() || simulate->parsed() ? std::vector<std::string>{} : runner.stage_names());
     const Design design = load_design(args.design);
-    if (simulate->parsed()) return run_simulate(design, runner, build_dir_for(design, build_dir_option), {target, pressures, refine});
+    if (simulate->parsed())
+      return run_simulate(design, runner, build_dir_for(design, build_dir_option), {target, pressures, refine});
     if (check->parsed()) return run_check(design);
     const fs::path build_dir = build_dir_for(design, build_dir_option);
     if (status->parsed()) {

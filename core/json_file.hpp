@@ -17,8 +17,7 @@ namespace fibermold {
 
 /// The JSON pointer (e.g. "/shots/shot1/silicone_mass_g") of the first non-finite number or null
 /// in `j`; empty when there is none.
-template <typename Json>
-std::optional<std::string> first_non_finite(const Json& j, const std::string& at = "")
+template <typename Json> std::optional<std::string> first_non_finite(const Json& j, const std::string& at = "")
 {
   if (j.is_null()) return at.empty() ? "/" : at;
   if (j.is_number_float() && !std::isfinite(j.template get<double>())) return at.empty() ? "/" : at;
@@ -33,18 +32,17 @@ std::optional<std::string> first_non_finite(const Json& j, const std::string& at
 
 /// `j` as text (`indent` spaces, -1: on one line; a final newline); throws std::runtime_error naming
 /// `path` and the place of a non-finite number or null.
-template <typename Json>
-std::string checked_json(const Json& j, const std::filesystem::path& path, int indent = 2)
+template <typename Json> std::string checked_json(const Json& j, const std::filesystem::path& path, int indent = 2)
 {
   if (auto at = first_non_finite(j))
-    throw std::runtime_error(path.filename().string() + ": " + *at + " is not a finite number (NaN, infinity or null): a computation "
+    throw std::runtime_error(path.filename().string() + ": " + *at +
+                             " is not a finite number (NaN, infinity or null): a computation "
                              "behind it went wrong; nothing was written");
   return j.dump(indent) + "\n";
 }
 
 /// Writes `j` to `path` atomically, after checked_json.
-template <typename Json>
-void write_json_atomic(const std::filesystem::path& path, const Json& j)
+template <typename Json> void write_json_atomic(const std::filesystem::path& path, const Json& j)
 {
   write_file_atomic(path, checked_json(j, path));
 }

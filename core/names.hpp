@@ -10,15 +10,13 @@
 
 namespace fibermold {
 
-template <typename E>
-struct Named {
+template <typename E> struct Named {
   E value;
   std::string_view name;
 };
 
 /// The name of `value` in `names`.
-template <typename E, std::size_t N>
-constexpr std::string_view name_in(const std::array<Named<E>, N>& names, E value)
+template <typename E, std::size_t N> constexpr std::string_view name_in(const std::array<Named<E>, N>& names, E value)
 {
   for (const Named<E>& n : names)
     if (n.value == value) return n.name;
@@ -35,8 +33,7 @@ constexpr std::optional<E> value_in(const std::array<Named<E>, N>& names, std::s
 }
 
 /// Every name, in order: what the design file allows.
-template <typename E, std::size_t N>
-std::vector<std::string> names_of(const std::array<Named<E>, N>& names)
+template <typename E, std::size_t N> std::vector<std::string> names_of(const std::array<Named<E>, N>& names)
 {
   std::vector<std::string> out;
   for (const Named<E>& n : names) out.emplace_back(n.name);

@@ -7,10 +7,10 @@
 
 namespace fibermold::units {
 
-inline constexpr double mm = 1e-3;   ///< metres per millimetre
-inline constexpr double kPa = 1e3;   ///< pascals per kilopascal
+inline constexpr double mm = 1e-3; ///< metres per millimetre
+inline constexpr double kPa = 1e3; ///< pascals per kilopascal
 inline constexpr double mm3_per_mL = 1e3;
-inline constexpr double degree = 3.14159265358979323846 / 180;  ///< radians per degree
+inline constexpr double degree = 3.14159265358979323846 / 180; ///< radians per degree
 
 } // namespace fibermold::units
 

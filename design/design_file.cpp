@@ -44,10 +44,7 @@ struct Range {
   double lo = -HUGE_VAL, hi = HUGE_VAL;
   bool lo_open = false, hi_open = false;
 
-  bool contains(double v) const
-  {
-    return (lo_open ? v > lo : v >= lo) && (hi_open ? v < hi : v <= hi);
-  }
+  bool contains(double v) const { return (lo_open ? v > lo : v >= lo) && (hi_open ? v < hi : v <= hi); }
   std::string describe(const Unit& unit) const
   {
     const bool has_lo = std::isfinite(lo), has_hi = std::isfinite(hi);
@@ -78,7 +75,7 @@ std::string excerpt(std::string_view text, char quote = '"')
 {
   if (text.size() <= 60) return fmt::format("{}{}{}", quote, text, quote);
   std::size_t cut = 57;
-  while (cut > 0 && (static_cast<unsigned char>(text[cut]) & 0xC0) == 0x80) --cut;  // not inside a UTF-8 character
+  while (cut > 0 && (static_cast<unsigned char>(text[cut]) & 0xC0) == 0x80) --cut; // not inside a UTF-8 character
   return fmt::format("{}{}…{} ({} characters)", quote, text.substr(0, cut), quote, text.size());
 }
 std::string format_vec3(const Vec3& v)
@@ -98,7 +95,7 @@ struct Context {
   fs::path folder;
   std::vector<Diagnostic> problems;
   std::map<std::string, std::string> values;
-  std::map<std::string, toml::source_region> sources;  ///< where each key given was written (the last of equal names)
+  std::map<std::string, toml::source_region> sources; ///< where each key given was written (the last of equal names)
 
   toml::source_region source_of(const std::string& key) const
   {
@@ -108,8 +105,8 @@ struct Context {
 
   void error(const toml::source_region& where, std::string key, std::string message)
   {
-    problems.push_back({file, static_cast<int>(where.begin.line), static_cast<int>(where.begin.column),
-                        std::move(key), std::move(message)});
+    problems.push_back({file, static_cast<int>(where.begin.line), static_cast<int>(where.begin.column), std::move(key),
+                        std::move(message)});
   }
 };
 
@@ -149,8 +146,7 @@ public:
     ctx_.error(where_, key_name(key), fmt::format("missing; required ({})", what));
   }
 
-  std::optional<double> read_number(const toml::node* n, std::string_view key, const Range& range,
-                                    const Unit& unit)
+  std::optional<double> read_number(const toml::node* n, std::string_view key, const Range& range, const Unit& unit)
   {
     if (!n->is_number()) {
       error(n, key, fmt::format("expected a number, got {}", type_name(*n)));
@@ -258,8 +254,8 @@ public:
         if (std::find(allowed.begin(), allowed.end(), *read) != allowed.end()) {
           v = *read;
         } else {
-          std::string message = fmt::format("unknown value {}; expected one of: {}", excerpt(*read),
-                                            fmt::join(allowed, ", "));
+          std::string message =
+              fmt::format("unknown value {}; expected one of: {}", excerpt(*read), fmt::join(allowed, ", "));
           if (auto hint = closest_match(*read, allowed)) message += fmt::format(" (did you mean \"{}\"?)", *hint);
           error(n, key, message);
         }
@@ -281,12 +277,14 @@ public:
   {
     const toml::array* a = n->as_array();
     if (!a || a->size() != 3 || !std::all_of(a->begin(), a->end(), [](const toml::node& e) { return e.is_number(); })) {
-      error(n, key, fmt::format("expected three numbers [x, y, z]{}", unit.label[0] ? fmt::format(" in{}", unit.label) : ""));
+      error(n, key,
+            fmt::format("expected three numbers [x, y, z]{}", unit.label[0] ? fmt::format(" in{}", unit.label) : ""));
       return std::nullopt;
     }
     Vec3 v(as_double((*a)[0]), as_double((*a)[1]), as_double((*a)[2]));
     if (!v.allFinite() || v.cwiseAbs().maxCoeff() > bound) {
-      error(n, key, fmt::format("every coordinate must be in [{}, {}]{}, got {}", -bound, bound, unit.label, format_vec3(v)));
+      error(n, key,
+            fmt::format("every coordinate must be in [{}, {}]{}, got {}", -bound, bound, unit.label, format_vec3(v)));
       return std::nullopt;
     }
     return v;
@@ -392,8 +390,10 @@ public:
       const std::string name(key.str());
       if (std::find(known_.begin(), known_.end(), name) != known_.end()) continue;
       std::string message = fmt::format("unknown key {} in {}", excerpt(name, '\''), display_);
-      if (auto hint = closest_match(name, known_)) message += fmt::format("; did you mean '{}'?", *hint);
-      else message += fmt::format("; valid keys: {}", fmt::join(known_, ", "));
+      if (auto hint = closest_match(name, known_))
+        message += fmt::format("; did you mean '{}'?", *hint);
+      else
+        message += fmt::format("; valid keys: {}", fmt::join(known_, ", "));
       ctx_.error(key.source(), display_ + "." + name, message);
     }
   }
@@ -401,13 +401,20 @@ public:
   static std::string type_name(const toml::node& n)
   {
     switch (n.type()) {
-    case toml::node_type::table: return "a table";
-    case toml::node_type::array: return "an array";
-    case toml::node_type::string: return "a string";
-    case toml::node_type::integer: return "an integer";
-    case toml::node_type::floating_point: return "a number";
-    case toml::node_type::boolean: return "a boolean";
-    default: return "a date or time";
+    case toml::node_type::table:
+      return "a table";
+    case toml::node_type::array:
+      return "an array";
+    case toml::node_type::string:
+      return "a string";
+    case toml::node_type::integer:
+      return "an integer";
+    case toml::node_type::floating_point:
+      return "a number";
+    case toml::node_type::boolean:
+      return "a boolean";
+    default:
+      return "a date or time";
     }
   }
 
@@ -419,9 +426,9 @@ private:
   std::vector<std::string> known_;
 };
 
-const std::vector<std::string> kSections = {"design", "material", "mesh",     "sim",     "fixed",
-                                            "muscle", "fiber",    "tracking_curve", "target", "optimize",
-                                            "collide", "mold",    "export"};
+const std::vector<std::string> kSections = {"design",  "material", "mesh",           "sim",    "fixed",
+                                            "muscle",  "fiber",    "tracking_curve", "target", "optimize",
+                                            "collide", "mold",     "export"};
 const std::vector<std::string> kArraySections = {"fixed", "fiber", "tracking_curve", "target"};
 
 } // namespace
@@ -450,10 +457,13 @@ void check_name(Section& s, const std::string& name)
     return std::isalnum(c) || c == '-' || c == '_' || c == '.';
   });
   if (!ok && !name.empty())
-    s.error(s.node("name"), "name", fmt::format("{} cannot name a file: use letters, digits, '-', '_' and '.', not "
-                                                "starting with '.'", excerpt(name)));
+    s.error(s.node("name"), "name",
+            fmt::format("{} cannot name a file: use letters, digits, '-', '_' and '.', not "
+                        "starting with '.'",
+                        excerpt(name)));
   else if (name.size() > kMaxName)
-    s.error(s.node("name"), "name", fmt::format("{} is longer than {} characters: it names files and folders", excerpt(name), kMaxName));
+    s.error(s.node("name"), "name",
+            fmt::format("{} is longer than {} characters: it names files and folders", excerpt(name), kMaxName));
 }
 
 DesignOptions read_design(Section s, const fs::path& file)
@@ -489,8 +499,9 @@ MeshOptions read_mesh(Section s)
   o.max_tets = s.integer("max_tets", o.max_tets, 1000, 100'000'000);
   o.repair = s.boolean("repair", o.repair);
   if (const toml::node* n = s.node("remesh"))
-    s.error(n, "remesh", "replaced by surface_triangles = \"remesh\" (and \"auto\", the default, remeshes a surface much denser "
-                         "than edge_length by itself)");
+    s.error(n, "remesh",
+            "replaced by surface_triangles = \"remesh\" (and \"auto\", the default, remeshes a surface much denser "
+            "than edge_length by itself)");
   o.surface_triangles = s.choice_of("surface_triangles", o.surface_triangles, kSurfaceTrianglesNames);
   s.finish();
   return o;
@@ -556,8 +567,7 @@ Region read_region(Section& s, bool allow_point)
 
 /// Reads an array of tables ([[name]]) into one Section per entry, named by its `name` key or its
 /// 1-based index. Reports a plain table where an array of tables is expected.
-template <typename Read>
-void for_each_entry(Context& ctx, const toml::table& root, const std::string& name, Read read)
+template <typename Read> void for_each_entry(Context& ctx, const toml::table& root, const std::string& name, Read read)
 {
   const toml::node* n = root.get(name);
   if (!n) return;
@@ -569,11 +579,12 @@ void for_each_entry(Context& ctx, const toml::table& root, const std::string& na
   for (std::size_t i = 0; i < a->size(); ++i) {
     const toml::table& t = *(*a)[i].as_table();
     // Unnamed: the default name the entry takes (entry_name), so that a stage naming it later finds its line.
-    std::string id = name == "tracking_curve" ? fmt::format("curve{}", i + 1) : name == "fixed" ? fmt::format("fixed{}", i + 1)
-                                                                                               : std::to_string(i + 1);
-    if (const toml::node* nn = t.get("name"); nn && nn->is_string() && !nn->value<std::string>()->empty() &&
-                                              nn->value<std::string>()->size() <= kMaxName)
-      id = *nn->value<std::string>();  // a longer name is refused, and labelled by its index meanwhile
+    std::string id = name == "tracking_curve" ? fmt::format("curve{}", i + 1)
+                     : name == "fixed"        ? fmt::format("fixed{}", i + 1)
+                                              : std::to_string(i + 1);
+    if (const toml::node* nn = t.get("name");
+        nn && nn->is_string() && !nn->value<std::string>()->empty() && nn->value<std::string>()->size() <= kMaxName)
+      id = *nn->value<std::string>(); // a longer name is refused, and labelled by its index meanwhile
     read(Section(ctx, &t, fmt::format("[{}.{}]", name, id), t.source()), i + 1);
   }
 }
@@ -591,7 +602,8 @@ MuscleOptions read_muscle(Section s)
   MuscleOptions o;
   o.model.diameter = s.number("diameter", o.model.diameter / units::mm, closed(0.1, 100), kMm);
   o.max_pressure = s.number("max_pressure", o.max_pressure / units::kPa, closed(0.1, 1e4), kKPa);
-  o.min_bend_radius = s.number("min_bend_radius", kBendRadiusPerDiameter * o.model.diameter / units::mm, closed(0, 1e4), kMm);
+  o.min_bend_radius =
+      s.number("min_bend_radius", kBendRadiusPerDiameter * o.model.diameter / units::mm, closed(0, 1e4), kMm);
   o.segments_per_length = s.number("segments_per_mm", o.segments_per_length * units::mm, closed(0.01, 10)) / units::mm;
   auto line = [&](std::string_view key, TwoPieceLine fallback) {
     std::array<double, 4> c{fallback.slope_low, fallback.intercept_low, fallback.slope_high, fallback.intercept_high};
@@ -615,7 +627,8 @@ MuscleOptions read_muscle(Section s)
   };
   o.model.stiffness = line("stiffness", o.model.stiffness);
   o.model.taut = line("taut", o.model.taut);
-  o.model.rest_strain_slope = s.number("rest_strain_slope", o.model.rest_strain_slope, closed(-1e-3, 1e-3), {1.0, " 1/Pa"});
+  o.model.rest_strain_slope =
+      s.number("rest_strain_slope", o.model.rest_strain_slope, closed(-1e-3, 1e-3), {1.0, " 1/Pa"});
   o.model.rest_strain_intercept = s.number("rest_strain_intercept", o.model.rest_strain_intercept, closed(-0.9, 0.9));
   o.model.smoothing = s.number("smoothing", o.model.smoothing / units::kPa, above_zero(1e4), kKPa);
   for (const auto& [key, line] : {std::pair{"stiffness", o.model.stiffness}, std::pair{"taut", o.model.taut}})
@@ -624,7 +637,8 @@ MuscleOptions read_muscle(Section s)
   // The muscle must keep a positive length up to the highest pressure: 1 + ε_L(p) > 0.05.
   for (const double p : {0.0, o.max_pressure})
     if (!(1 + o.model.rest_strain_slope * p + o.model.rest_strain_intercept > 0.05))
-      s.error(s.node(p == 0 ? "rest_strain_intercept" : "max_pressure"), p == 0 ? "rest_strain_intercept" : "max_pressure",
+      s.error(s.node(p == 0 ? "rest_strain_intercept" : "max_pressure"),
+              p == 0 ? "rest_strain_intercept" : "max_pressure",
               fmt::format("at {} kPa the muscle would contract by more than 95 % (ε_L = {:.3g}): outside any model",
                           p / units::kPa, o.model.rest_strain_slope * p + o.model.rest_strain_intercept));
   s.finish();
@@ -721,18 +735,21 @@ Target read_target(Section s, std::size_t index, const MuscleOptions& muscle, co
     } else {
       for (std::size_t i = 0; i < a->size(); ++i) {
         const toml::table& lt = *(*a)[i].as_table();
-        t.loads.push_back(read_load(Section(s.context(), &lt, fmt::format("{}.load[{}]", s.display(), i + 1), lt.source())));
+        t.loads.push_back(
+            read_load(Section(s.context(), &lt, fmt::format("{}.load[{}]", s.display(), i + 1), lt.source())));
       }
     }
   }
   if (const toml::node* n = s.node("pose")) {
     const toml::array* a = n->as_array();
     if (!a || !a->is_array_of_tables() || a->empty()) {
-      s.error(n, "pose", "expected a list of poses [{ box = {...}, axis = [0, 0, 1], angle_deg = 60, about = [...] }, ...]");
+      s.error(n, "pose",
+              "expected a list of poses [{ box = {...}, axis = [0, 0, 1], angle_deg = 60, about = [...] }, ...]");
     } else {
       for (std::size_t i = 0; i < a->size(); ++i) {
         const toml::table& pt = *(*a)[i].as_table();
-        t.poses.push_back(read_pose(Section(s.context(), &pt, fmt::format("{}.pose[{}]", s.display(), i + 1), pt.source())));
+        t.poses.push_back(
+            read_pose(Section(s.context(), &pt, fmt::format("{}.pose[{}]", s.display(), i + 1), pt.source())));
       }
     }
   }
@@ -753,7 +770,8 @@ Target read_target(Section s, std::size_t index, const MuscleOptions& muscle, co
         act.pressure = f.number("pressure", 0.0, closed(0, muscle.max_pressure / units::kPa), kKPa);
         if (!ft.get("pressure")) f.missing("pressure", "in kPa");
         act.points = f.points("points", kMm, 2, false);
-        const bool known = std::any_of(fibers.begin(), fibers.end(), [&](const Fiber& fb) { return fb.name == act.name; });
+        const bool known =
+            std::any_of(fibers.begin(), fibers.end(), [&](const Fiber& fb) { return fb.name == act.name; });
         if (act.points.empty() && !known && !act.name.empty())
           f.error(ft.get("name"), "name", fmt::format("no [[fiber]] named {} and no points given", excerpt(act.name)));
         f.finish();
@@ -764,7 +782,8 @@ Target read_target(Section s, std::size_t index, const MuscleOptions& muscle, co
 
   if (const toml::node* n = s.node("actuators")) {
     const toml::array* a = n->as_array();
-    if (!a || a->empty()) s.error(n, "actuators", "expected a non-empty list of [[fiber]] names, e.g. [\"m1\", \"m2\"]");
+    if (!a || a->empty())
+      s.error(n, "actuators", "expected a non-empty list of [[fiber]] names, e.g. [\"m1\", \"m2\"]");
     else
       for (const toml::node& e : *a) {
         const auto name = e.value<std::string>();
@@ -847,7 +866,8 @@ MoldOptions read_mold(Section s)
       Section p(s.context(), t, s.display() + ".parting", t->source());
       if (!t->get("point")) p.missing("point", "a point on the parting plane, mm");
       if (!t->get("normal")) p.missing("normal", "the parting plane's normal");
-      PartingPlane plane{p.vec3("point", Vec3::Zero(), kMm, kMaxCoordinate), p.vec3("normal", Vec3::UnitZ(), kNone, kMaxCoordinate, true)};
+      PartingPlane plane{p.vec3("point", Vec3::Zero(), kMm, kMaxCoordinate),
+                         p.vec3("normal", Vec3::UnitZ(), kNone, kMaxCoordinate, true)};
       p.finish();
       o.parting = plane;
     } else {
@@ -909,15 +929,14 @@ ExportOptions read_export(Section s)
   return o;
 }
 
-template <typename T>
-void check_unique_names(Context& ctx, const std::vector<T>& items, std::string_view section)
+template <typename T> void check_unique_names(Context& ctx, const std::vector<T>& items, std::string_view section)
 {
   std::set<std::string> seen;
   for (const T& item : items) {
     if (item.name.empty()) continue;
     if (!seen.insert(item.name).second)
-      ctx.error(ctx.source_of(fmt::format("[{}.{}].name", section, item.name)), fmt::format("[{}.{}]", section, item.name),
-                fmt::format("the name \"{}\" is used twice", item.name));
+      ctx.error(ctx.source_of(fmt::format("[{}.{}].name", section, item.name)),
+                fmt::format("[{}.{}]", section, item.name), fmt::format("the name \"{}\" is used twice", item.name));
   }
 }
 
@@ -932,7 +951,8 @@ void check_design(Context& ctx, const Design& d)
     for (const Target& t : d.targets)
       if (!t.actuators.empty()) {
         const std::string key = fmt::format("[target.{}].actuators", t.name);
-        ctx.error(ctx.source_of(key), key, "the sequential strategy assigns fiber k to target k; remove the key or use \"simultaneous\"");
+        ctx.error(ctx.source_of(key), key,
+                  "the sequential strategy assigns fiber k to target k; remove the key or use \"simultaneous\"");
       }
   if (d.mold.block.wall < d.export_.min_wall)
     ctx.error(ctx.source_of("[mold].wall"), "[mold].wall",
@@ -1025,9 +1045,11 @@ Design parse(std::string_view text, const fs::path& path)
 Diagnostic design_problem(const Design& d, const std::string& key, std::string message)
 {
   std::pair<int, int> at{0, 0};
-  if (auto it = d.places.find(key); it != d.places.end()) at = it->second;
-  else if (auto section = d.places.lower_bound(key + "."); section != d.places.end() && section->first.starts_with(key + "."))
-    at = section->second;  // "[fiber.m1]": its first key written
+  if (auto it = d.places.find(key); it != d.places.end())
+    at = it->second;
+  else if (auto section = d.places.lower_bound(key + ".");
+           section != d.places.end() && section->first.starts_with(key + "."))
+    at = section->second; // "[fiber.m1]": its first key written
   return {d.file, at.first, at.second, key, std::move(message)};
 }
 
@@ -1036,10 +1058,8 @@ Design parse_design(std::string_view toml_text, const fs::path& path) { return p
 Design load_design(const fs::path& path)
 {
   std::error_code ec;
-  if (!fs::exists(path, ec))
-    throw InputError(Diagnostic{path, 0, 0, "", "design file not found"});
-  if (!fs::is_regular_file(path, ec))
-    throw InputError(Diagnostic{path, 0, 0, "", "not a regular file"});
+  if (!fs::exists(path, ec)) throw InputError(Diagnostic{path, 0, 0, "", "design file not found"});
+  if (!fs::is_regular_file(path, ec)) throw InputError(Diagnostic{path, 0, 0, "", "not a regular file"});
   std::string text;
   try {
     text = read_file(path);

@@ -17,7 +17,11 @@ struct Part {
   Copy copy;
 };
 
-#define FIBERMOLD_PART(key, member) Part{key, [](Design& to, const Design& from) { to.member = from.member; }}
+#define FIBERMOLD_PART(key, member)                                                                                    \
+  Part                                                                                                                 \
+  {                                                                                                                    \
+    key, [](Design& to, const Design& from) { to.member = from.member; }                                               \
+  }
 
 const std::vector<Part>& parts()
 {

@@ -15,7 +15,8 @@ std::size_t edit_distance(std::string_view a, std::string_view b)
   for (std::size_t i = 1; i <= n; ++i) {
     for (std::size_t j = 1; j <= m; ++j) {
       at(i, j) = std::min({at(i - 1, j) + 1, at(i, j - 1) + 1, at(i - 1, j - 1) + (a[i - 1] == b[j - 1] ? 0 : 1)});
-      if (i > 1 && j > 1 && a[i - 1] == b[j - 2] && a[i - 2] == b[j - 1]) at(i, j) = std::min(at(i, j), at(i - 2, j - 2) + 1);
+      if (i > 1 && j > 1 && a[i - 1] == b[j - 2] && a[i - 2] == b[j - 1])
+        at(i, j) = std::min(at(i, j), at(i - 2, j - 2) + 1);
     }
   }
   return at(n, m);
@@ -24,7 +25,7 @@ std::size_t edit_distance(std::string_view a, std::string_view b)
 std::optional<std::string> closest_match(std::string_view word, const std::vector<std::string>& candidates)
 {
   std::optional<std::string> best;
-  if (word.size() > 100) return best;  // no key or value is that long, and the table would take n·m words
+  if (word.size() > 100) return best; // no key or value is that long, and the table would take n·m words
   std::size_t best_distance = 0;
   for (const std::string& candidate : candidates) {
     const std::size_t d = edit_distance(word, candidate);

@@ -16,11 +16,13 @@ Eigen::Vector3d largest_flat(const SurfaceMesh& m, double& area)
   // Plane keys rounded to 1e-4 in the normal and 1 µm in the offset.
   std::map<std::tuple<long, long, long, long>, std::pair<double, Eigen::Vector3d>> planes;
   for (Eigen::Index f = 0; f < m.num_faces(); ++f) {
-    const Eigen::Vector3d a = m.vertices.row(m.faces(f, 0)), b = m.vertices.row(m.faces(f, 1)), c = m.vertices.row(m.faces(f, 2));
+    const Eigen::Vector3d a = m.vertices.row(m.faces(f, 0)), b = m.vertices.row(m.faces(f, 1)),
+                          c = m.vertices.row(m.faces(f, 2));
     const Eigen::Vector3d n2 = (b - a).cross(c - a);
     if (!(n2.norm() > 0)) continue;
     const Eigen::Vector3d n = n2.normalized();
-    const auto key = std::make_tuple(std::lround(n.x() * 1e4), std::lround(n.y() * 1e4), std::lround(n.z() * 1e4), std::lround(n.dot(a) * 1e6));
+    const auto key = std::make_tuple(std::lround(n.x() * 1e4), std::lround(n.y() * 1e4), std::lround(n.z() * 1e4),
+                                     std::lround(n.dot(a) * 1e6));
     auto& entry = planes[key];
     entry.first += n2.norm() / 2;
     entry.second = n;

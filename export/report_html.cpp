@@ -19,7 +19,8 @@ std::string base64(const void* data, std::size_t size)
   std::string out;
   out.reserve((size + 2) / 3 * 4);
   for (std::size_t i = 0; i < size; i += 3) {
-    const std::uint32_t n = (bytes[i] << 16) | (i + 1 < size ? bytes[i + 1] << 8 : 0) | (i + 2 < size ? bytes[i + 2] : 0);
+    const std::uint32_t n =
+        (bytes[i] << 16) | (i + 1 < size ? bytes[i + 1] << 8 : 0) | (i + 2 < size ? bytes[i + 2] : 0);
     out += digits[(n >> 18) & 63];
     out += digits[(n >> 12) & 63];
     out += i + 1 < size ? digits[(n >> 6) & 63] : '=';
@@ -33,7 +34,8 @@ nlohmann::json mesh_json(const ReportMesh& m)
 {
   std::vector<float> positions;
   for (Eigen::Index i = 0; i < m.mesh.num_vertices(); ++i)
-    for (int k = 0; k < 3; ++k) positions.push_back(static_cast<float>((m.mesh.vertices(i, k) + m.offset[k]) / units::mm));
+    for (int k = 0; k < 3; ++k)
+      positions.push_back(static_cast<float>((m.mesh.vertices(i, k) + m.offset[k]) / units::mm));
   std::vector<std::uint32_t> indices;
   for (Eigen::Index f = 0; f < m.mesh.num_faces(); ++f)
     for (int k = 0; k < 3; ++k) indices.push_back(static_cast<std::uint32_t>(m.mesh.faces(f, k)));
@@ -49,17 +51,24 @@ nlohmann::json line_json(const ReportLine& l)
   std::vector<float> points;
   for (const Eigen::Vector3d& p : l.points)
     for (int k = 0; k < 3; ++k) points.push_back(static_cast<float>(p[k] / units::mm));
-  return {{"name", l.name}, {"colour", l.colour}, {"visible", l.visible}, {"points", base64(points.data(), points.size() * sizeof(float))}};
+  return {{"name", l.name},
+          {"colour", l.colour},
+          {"visible", l.visible},
+          {"points", base64(points.data(), points.size() * sizeof(float))}};
 }
 
 std::string escaped(const std::string& text)
 {
   std::string out;
   for (char c : text) {
-    if (c == '<') out += "&lt;";
-    else if (c == '>') out += "&gt;";
-    else if (c == '&') out += "&amp;";
-    else out += c;
+    if (c == '<')
+      out += "&lt;";
+    else if (c == '>')
+      out += "&gt;";
+    else if (c == '&')
+      out += "&amp;";
+    else
+      out += c;
   }
   return out;
 }
@@ -95,25 +104,31 @@ std::string plot_svg(const ReportPlot& p)
   const double W = 640, H = 300, L = 70, R = 20, T = 20, B = 45;
   const auto px = [&](double x) { return L + (x - x0) / (x1 - x0) * (W - L - R); };
   const auto py = [&](double y) { return H - B - (y_of(y) - y0) / (y1 - y0) * (H - B - T); };
-  std::string svg = fmt::format("<h2>{}</h2>\n<svg class=\"plot\" xmlns=\"http://www.w3.org/2000/svg\" width=\"{}\" height=\"{}\">", escaped(p.title), W, H);
+  std::string svg =
+      fmt::format("<h2>{}</h2>\n<svg class=\"plot\" xmlns=\"http://www.w3.org/2000/svg\" width=\"{}\" height=\"{}\">",
+                  escaped(p.title), W, H);
   svg += fmt::format("<path d=\"M{0} {1}V{2}H{3}\" fill=\"none\" stroke=\"#444\"/>", L, T, H - B, W - R);
   for (int k = 0; k <= 4; ++k) {
     const double x = x0 + (x1 - x0) * k / 4, y = y0 + (y1 - y0) * k / 4;
-    svg += fmt::format("<text x=\"{:.1f}\" y=\"{}\" font-size=\"11\" text-anchor=\"middle\">{:.4g}</text>", px(x), H - B + 15, x);
+    svg += fmt::format("<text x=\"{:.1f}\" y=\"{}\" font-size=\"11\" text-anchor=\"middle\">{:.4g}</text>", px(x),
+                       H - B + 15, x);
     svg += fmt::format("<text x=\"{}\" y=\"{:.1f}\" font-size=\"11\" text-anchor=\"end\">{:.3g}</text>", L - 5,
                        H - B - (y - y0) / (y1 - y0) * (H - B - T) + 4, p.log_y ? std::pow(10, y) : y);
   }
-  svg += fmt::format("<text x=\"{}\" y=\"{}\" font-size=\"12\" text-anchor=\"middle\">{}</text>", (L + W - R) / 2, H - 8, escaped(p.x_label));
-  svg += fmt::format("<text x=\"14\" y=\"{0}\" font-size=\"12\" text-anchor=\"middle\" transform=\"rotate(-90 14 {0})\">{1}</text>",
-                     (H - B + T) / 2, escaped(p.y_label + (p.log_y ? " (log)" : "")));
+  svg += fmt::format("<text x=\"{}\" y=\"{}\" font-size=\"12\" text-anchor=\"middle\">{}</text>", (L + W - R) / 2,
+                     H - 8, escaped(p.x_label));
+  svg += fmt::format(
+      "<text x=\"14\" y=\"{0}\" font-size=\"12\" text-anchor=\"middle\" transform=\"rotate(-90 14 {0})\">{1}</text>",
+      (H - B + T) / 2, escaped(p.y_label + (p.log_y ? " (log)" : "")));
   for (std::size_t s = 0; s < p.series.size(); ++s) {
     std::string points;
     for (const Eigen::Vector2d& q : p.series[s].second)
-      if (std::isfinite(q.y()) && (!p.log_y || q.y() > 0)) points += fmt::format("{:.1f},{:.1f} ", px(q.x()), py(q.y()));
+      if (std::isfinite(q.y()) && (!p.log_y || q.y() > 0))
+        points += fmt::format("{:.1f},{:.1f} ", px(q.x()), py(q.y()));
     const std::string& colour = palette[s % palette.size()];
     svg += fmt::format("<polyline fill=\"none\" stroke=\"{}\" stroke-width=\"1.5\" points=\"{}\"/>", colour, points);
-    svg += fmt::format("<text x=\"{}\" y=\"{}\" font-size=\"11\" fill=\"{}\" text-anchor=\"end\">{}</text>", W - R, T + 12 * (s + 1), colour,
-                       escaped(p.series[s].first));
+    svg += fmt::format("<text x=\"{}\" y=\"{}\" font-size=\"11\" fill=\"{}\" text-anchor=\"end\">{}</text>", W - R,
+                       T + 12 * (s + 1), colour, escaped(p.series[s].first));
   }
   return svg + "</svg>\n";
 }
@@ -127,19 +142,24 @@ constexpr const char* kViewer = R"JS(
   if (!gl) { status.textContent = 'WebGL is not available in this browser: no 3D view'; return; }
   const decode = (text, Type) => { const s = atob(text), b = new Uint8Array(s.length);
     for (let i = 0; i < s.length; ++i) b[i] = s.charCodeAt(i); return new Type(b.buffer); };
-  const shader = (type, source) => { const s = gl.createShader(type); gl.shaderSource(s, source); gl.compileShader(s); return s; };
+  const shader = (type, source) => {
+    const s = gl.createShader(type); gl.shaderSource(s, source); gl.compileShader(s); return s; };
   const program = gl.createProgram();
-  gl.attachShader(program, shader(gl.VERTEX_SHADER, 'attribute vec3 p; attribute vec3 n; uniform mat4 m; varying vec3 vn;' +
+  gl.attachShader(program, shader(gl.VERTEX_SHADER,
+    'attribute vec3 p; attribute vec3 n; uniform mat4 m; varying vec3 vn;' +
     'void main() { vn = n; gl_Position = m * vec4(p, 1.0); }'));
-  gl.attachShader(program, shader(gl.FRAGMENT_SHADER, 'precision highp float; varying vec3 vn; uniform vec3 c; uniform float lit;' +
+  gl.attachShader(program, shader(gl.FRAGMENT_SHADER,
+    'precision highp float; varying vec3 vn; uniform vec3 c; uniform float lit;' +
     'void main() { float d = lit > 0.5 ? abs(dot(normalize(vn), vec3(0.35, -0.44, 0.83))) : 1.0;' +
     'gl_FragColor = vec4(c * mix(1.0, 0.35 + 0.65 * d, lit), 1.0); }'));
   gl.linkProgram(program);
   gl.useProgram(program);
   const loc = {p: gl.getAttribLocation(program, 'p'), n: gl.getAttribLocation(program, 'n'),
-               m: gl.getUniformLocation(program, 'm'), c: gl.getUniformLocation(program, 'c'), lit: gl.getUniformLocation(program, 'lit')};
+               m: gl.getUniformLocation(program, 'm'), c: gl.getUniformLocation(program, 'c'),
+               lit: gl.getUniformLocation(program, 'lit')};
   const lo = [Infinity, Infinity, Infinity], hi = [-Infinity, -Infinity, -Infinity];
-  const grow = (x, y, z) => { const v = [x, y, z]; for (let k = 0; k < 3; ++k) { lo[k] = Math.min(lo[k], v[k]); hi[k] = Math.max(hi[k], v[k]); } };
+  const grow = (x, y, z) => { const v = [x, y, z];
+    for (let k = 0; k < 3; ++k) { lo[k] = Math.min(lo[k], v[k]); hi[k] = Math.max(hi[k], v[k]); } };
   const items = [];
   let triangles = 0;
   for (const mesh of SCENE.meshes) {
@@ -147,36 +167,50 @@ constexpr const char* kViewer = R"JS(
     const data = new Float32Array(f.length * 6);
     for (let t = 0; t < f.length; t += 3) {
       const a = f[t] * 3, b = f[t + 1] * 3, c = f[t + 2] * 3;
-      const u = [p[b] - p[a], p[b + 1] - p[a + 1], p[b + 2] - p[a + 2]], w = [p[c] - p[a], p[c + 1] - p[a + 1], p[c + 2] - p[a + 2]];
-      const n = [u[1] * w[2] - u[2] * w[1], u[2] * w[0] - u[0] * w[2], u[0] * w[1] - u[1] * w[0]], nl = Math.hypot(...n) || 1;
+      const u = [p[b] - p[a], p[b + 1] - p[a + 1], p[b + 2] - p[a + 2]];
+      const w = [p[c] - p[a], p[c + 1] - p[a + 1], p[c + 2] - p[a + 2]];
+      const n = [u[1] * w[2] - u[2] * w[1], u[2] * w[0] - u[0] * w[2], u[0] * w[1] - u[1] * w[0]];
+      const nl = Math.hypot(...n) || 1;
       n.forEach((v, k) => n[k] = v / nl);
-      [a, b, c].forEach((v, k) => { data.set([p[v], p[v + 1], p[v + 2], n[0], n[1], n[2]], (t + k) * 6); if (mesh.visible) grow(p[v], p[v + 1], p[v + 2]); });
+      [a, b, c].forEach((v, k) => { data.set([p[v], p[v + 1], p[v + 2], n[0], n[1], n[2]], (t + k) * 6);
+        if (mesh.visible) grow(p[v], p[v + 1], p[v + 2]); });
     }
     triangles += f.length / 3;
-    items.push({name: mesh.name, colour: mesh.colour, visible: mesh.visible, data: data, mode: gl.TRIANGLES, count: f.length, lit: 1});
+    items.push({name: mesh.name, colour: mesh.colour, visible: mesh.visible, data: data, mode: gl.TRIANGLES,
+                count: f.length, lit: 1});
   }
   for (const line of SCENE.lines) {
     const p = decode(line.points, Float32Array), data = new Float32Array(p.length * 2);
     for (let i = 0; i < p.length / 3; ++i) data.set([p[3 * i], p[3 * i + 1], p[3 * i + 2], 0, 0, 0], 6 * i);
-    items.push({name: line.name, colour: line.colour, visible: line.visible, data: data, mode: gl.LINE_STRIP, count: p.length / 3, lit: 0});
+    items.push({name: line.name, colour: line.colour, visible: line.visible, data: data, mode: gl.LINE_STRIP,
+                count: p.length / 3, lit: 0});
   }
-  for (const item of items) { item.buffer = gl.createBuffer(); gl.bindBuffer(gl.ARRAY_BUFFER, item.buffer); gl.bufferData(gl.ARRAY_BUFFER, item.data, gl.STATIC_DRAW); }
+  for (const item of items) {
+    item.buffer = gl.createBuffer(); gl.bindBuffer(gl.ARRAY_BUFFER, item.buffer);
+    gl.bufferData(gl.ARRAY_BUFFER, item.data, gl.STATIC_DRAW);
+  }
   const centre = [0, 1, 2].map(k => (lo[k] + hi[k]) / 2), size = Math.max(1, ...[0, 1, 2].map(k => hi[k] - lo[k]));
   let yaw = -0.6, pitch = 0.5, distance = 1.8 * size, painted = null;
   const multiply = (a, b) => { const r = new Float32Array(16);
-    for (let i = 0; i < 4; ++i) for (let j = 0; j < 4; ++j) { let s = 0; for (let k = 0; k < 4; ++k) s += a[k * 4 + j] * b[i * 4 + k]; r[i * 4 + j] = s; } return r; };
+    for (let i = 0; i < 4; ++i) for (let j = 0; j < 4; ++j) {
+      let s = 0; for (let k = 0; k < 4; ++k) s += a[k * 4 + j] * b[i * 4 + k]; r[i * 4 + j] = s; }
+    return r; };
   function draw() {
     canvas.width = canvas.clientWidth; canvas.height = canvas.clientHeight;
     gl.viewport(0, 0, canvas.width, canvas.height);
     gl.clearColor(1, 1, 1, 1); gl.clear(gl.COLOR_BUFFER_BIT | gl.DEPTH_BUFFER_BIT); gl.enable(gl.DEPTH_TEST);
-    const eye = [centre[0] + distance * Math.cos(pitch) * Math.cos(yaw), centre[1] + distance * Math.cos(pitch) * Math.sin(yaw), centre[2] + distance * Math.sin(pitch)];
+    const eye = [centre[0] + distance * Math.cos(pitch) * Math.cos(yaw),
+                 centre[1] + distance * Math.cos(pitch) * Math.sin(yaw), centre[2] + distance * Math.sin(pitch)];
     const f = [0, 1, 2].map(k => centre[k] - eye[k]), fl = Math.hypot(...f); f.forEach((v, k) => f[k] = v / fl);
     const s = [f[1], -f[0], 0], sl = Math.hypot(...s) || 1; s.forEach((v, k) => s[k] = v / sl);
     const u = [s[1] * f[2] - s[2] * f[1], s[2] * f[0] - s[0] * f[2], s[0] * f[1] - s[1] * f[0]];
     const dot = (a, b) => a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
-    const view = new Float32Array([s[0], u[0], -f[0], 0, s[1], u[1], -f[1], 0, s[2], u[2], -f[2], 0, -dot(s, eye), -dot(u, eye), dot(f, eye), 1]);
-    const near = distance / 100, far = distance * 10, t = 1 / Math.tan(0.4), aspect = canvas.width / Math.max(1, canvas.height);
-    const projection = new Float32Array([t / aspect, 0, 0, 0, 0, t, 0, 0, 0, 0, (far + near) / (near - far), -1, 0, 0, 2 * far * near / (near - far), 0]);
+    const view = new Float32Array([s[0], u[0], -f[0], 0, s[1], u[1], -f[1], 0, s[2], u[2], -f[2], 0,
+                                   -dot(s, eye), -dot(u, eye), dot(f, eye), 1]);
+    const near = distance / 100, far = distance * 10, t = 1 / Math.tan(0.4);
+    const aspect = canvas.width / Math.max(1, canvas.height);
+    const projection = new Float32Array([t / aspect, 0, 0, 0, 0, t, 0, 0, 0, 0, (far + near) / (near - far), -1,
+                                         0, 0, 2 * far * near / (near - far), 0]);
     gl.uniformMatrix4fv(loc.m, false, multiply(projection, view));
     let drawn = 0;
     for (const item of items) {
@@ -194,9 +228,11 @@ constexpr const char* kViewer = R"JS(
       const pixels = new Uint8Array(canvas.width * canvas.height * 4);
       gl.readPixels(0, 0, canvas.width, canvas.height, gl.RGBA, gl.UNSIGNED_BYTE, pixels);
       painted = 0;
-      for (let i = 0; i < pixels.length; i += 4) if (pixels[i] < 250 || pixels[i + 1] < 250 || pixels[i + 2] < 250) ++painted;
+      for (let i = 0; i < pixels.length; i += 4)
+        if (pixels[i] < 250 || pixels[i + 1] < 250 || pixels[i + 2] < 250) ++painted;
     }
-    status.textContent = 'drawn ' + drawn + ' of ' + triangles + ' triangles, ' + painted + ' of ' + canvas.width * canvas.height + ' pixels painted';
+    status.textContent = 'drawn ' + drawn + ' of ' + triangles + ' triangles, ' + painted + ' of ' +
+                         canvas.width * canvas.height + ' pixels painted';
   }
   const list = document.getElementById('items');
   for (const item of items) {
@@ -206,13 +242,15 @@ constexpr const char* kViewer = R"JS(
     const swatch = document.createElement('span');
     swatch.className = item.mode === gl.TRIANGLES ? 'swatch surface' : 'swatch line';
     swatch.style.background = 'rgb(' + item.colour.map(c => Math.round(255 * c)).join(',') + ')';
-    label.appendChild(box); label.appendChild(swatch); label.appendChild(document.createTextNode(item.name + ' ')); list.appendChild(label);
+    label.appendChild(box); label.appendChild(swatch); label.appendChild(document.createTextNode(item.name + ' '));
+    list.appendChild(label);
   }
   let drag = null;
   canvas.onmousedown = e => { drag = [e.clientX, e.clientY]; };
   window.onmouseup = () => { drag = null; };
   window.onmousemove = e => { if (!drag) return; yaw -= (e.clientX - drag[0]) * 0.01;
-    pitch = Math.max(-1.5, Math.min(1.5, pitch + (e.clientY - drag[1]) * 0.01)); drag = [e.clientX, e.clientY]; draw(); };
+    pitch = Math.max(-1.5, Math.min(1.5, pitch + (e.clientY - drag[1]) * 0.01));
+    drag = [e.clientX, e.clientY]; draw(); };
   canvas.onwheel = e => { e.preventDefault(); distance *= Math.exp(e.deltaY * 0.001); draw(); };
   window.onresize = draw;
   draw();
@@ -221,20 +259,24 @@ constexpr const char* kViewer = R"JS(
 
 } // namespace
 
-std::string report_html(const std::string& title, const std::vector<ReportMesh>& meshes, const std::vector<ReportLine>& lines,
-                        const std::vector<ReportTable>& tables, const std::vector<ReportPlot>& plots,
-                        const std::vector<std::string>& warnings)
+std::string report_html(const std::string& title, const std::vector<ReportMesh>& meshes,
+                        const std::vector<ReportLine>& lines, const std::vector<ReportTable>& tables,
+                        const std::vector<ReportPlot>& plots, const std::vector<std::string>& warnings)
 {
   nlohmann::json scene{{"meshes", nlohmann::json::array()}, {"lines", nlohmann::json::array()}};
   for (const ReportMesh& m : meshes) scene["meshes"].push_back(mesh_json(m));
   for (const ReportLine& l : lines) scene["lines"].push_back(line_json(l));
-  std::string html = "<!DOCTYPE html>\n<html lang=\"en\">\n<head>\n<meta charset=\"utf-8\">\n<title>" + escaped(title) + "</title>\n";
-  html += "<style>body{font-family:sans-serif;margin:1.5em;max-width:70em}#view{width:100%;height:32em;border:1px solid #ccc}"
-          "table{border-collapse:collapse;margin-bottom:1em}td,th{border:1px solid #ccc;padding:0.2em 0.6em;text-align:left}"
+  std::string html =
+      "<!DOCTYPE html>\n<html lang=\"en\">\n<head>\n<meta charset=\"utf-8\">\n<title>" + escaped(title) + "</title>\n";
+  html += "<style>body{font-family:sans-serif;margin:1.5em;max-width:70em}#view{width:100%;height:32em;border:1px "
+          "solid #ccc}"
+          "table{border-collapse:collapse;margin-bottom:1em}td,th{border:1px solid #ccc;padding:0.2em "
+          "0.6em;text-align:left}"
           "#items{display:flex;flex-wrap:wrap;gap:0.3em 1em}#items label{white-space:nowrap}#status{color:#666}"
           ".swatch{display:inline-block;width:1.1em;margin:0 0.3em;vertical-align:middle}.swatch.surface{height:0.8em}"
           ".swatch.line{height:0.2em}"
-          "#warnings{background:#fff3cd;border:1px solid #e0b400;padding:0.4em 1em;margin-bottom:1em}</style>\n</head>\n<body>\n";
+          "#warnings{background:#fff3cd;border:1px solid #e0b400;padding:0.4em "
+          "1em;margin-bottom:1em}</style>\n</head>\n<body>\n";
   html += "<h1>" + escaped(title) + "</h1>\n";
   if (!warnings.empty()) {
     html += "<div id=\"warnings\"><strong>Warnings</strong>\n<ul>\n";

@@ -4,8 +4,8 @@
 // zoomed and switched on and off.
 
 #include <array>
-#include <utility>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include <Eigen/Core>
@@ -16,15 +16,15 @@ namespace fibermold {
 
 struct ReportMesh {
   std::string name;
-  SurfaceMesh mesh;                         ///< m
+  SurfaceMesh mesh; ///< m
   std::array<float, 3> colour{0.7F, 0.7F, 0.7F};
   bool visible = true;
-  Eigen::Vector3d offset = Eigen::Vector3d::Zero();  ///< m, where it is drawn (e.g. a mold half lifted off)
+  Eigen::Vector3d offset = Eigen::Vector3d::Zero(); ///< m, where it is drawn (e.g. a mold half lifted off)
 };
 
 struct ReportLine {
   std::string name;
-  std::vector<Eigen::Vector3d> points;  ///< m
+  std::vector<Eigen::Vector3d> points; ///< m
   std::array<float, 3> colour{0.8F, 0.1F, 0.1F};
   bool visible = true;
 };
@@ -32,7 +32,7 @@ struct ReportLine {
 /// A line plot drawn as inline SVG: each series a polyline over shared axes.
 struct ReportPlot {
   std::string title, x_label, y_label;
-  std::vector<std::pair<std::string, std::vector<Eigen::Vector2d>>> series;  ///< name, (x, y) points
+  std::vector<std::pair<std::string, std::vector<Eigen::Vector2d>>> series; ///< name, (x, y) points
   bool log_y = false;                                                       ///< y on a log scale (values > 0)
 };
 
@@ -43,11 +43,11 @@ struct ReportTable {
 };
 
 /// The page; `warnings` (what a user must not miss: a target far from reached, a muscle at its
-/// limit) as a banner under the title. Once the 3D view has drawn, the element #status says "drawn N of M triangles, P of Q
-/// pixels painted" (the visible meshes' triangles, and the pixels of the first view that are not
-/// background), or why it could not draw, so that a headless browser can check it.
-std::string report_html(const std::string& title, const std::vector<ReportMesh>& meshes, const std::vector<ReportLine>& lines,
-                        const std::vector<ReportTable>& tables, const std::vector<ReportPlot>& plots = {},
-                        const std::vector<std::string>& warnings = {});
+/// limit) as a banner under the title. Once the 3D view has drawn, the element #status says "drawn N of M triangles, P
+/// of Q pixels painted" (the visible meshes' triangles, and the pixels of the first view that are not background), or
+/// why it could not draw, so that a headless browser can check it.
+std::string report_html(const std::string& title, const std::vector<ReportMesh>& meshes,
+                        const std::vector<ReportLine>& lines, const std::vector<ReportTable>& tables,
+                        const std::vector<ReportPlot>& plots = {}, const std::vector<std::string>& warnings = {});
 
 } // namespace fibermold

@@ -23,7 +23,8 @@ aiScene* scene_of(const SurfaceMesh& s, const std::string& name)
   mesh->mVertices = new aiVector3D[mesh->mNumVertices];
   for (Eigen::Index i = 0; i < s.num_vertices(); ++i) {
     const Eigen::Vector3d p = s.vertices.row(i) / units::mm;
-    mesh->mVertices[i] = aiVector3D(static_cast<ai_real>(p.x()), static_cast<ai_real>(p.y()), static_cast<ai_real>(p.z()));
+    mesh->mVertices[i] =
+        aiVector3D(static_cast<ai_real>(p.x()), static_cast<ai_real>(p.y()), static_cast<ai_real>(p.z()));
   }
   mesh->mNumFaces = static_cast<unsigned>(s.num_faces());
   mesh->mFaces = new aiFace[mesh->mNumFaces];
@@ -35,9 +36,9 @@ aiScene* scene_of(const SurfaceMesh& s, const std::string& name)
   }
   auto* scene = new aiScene;
   scene->mNumMeshes = 1;
-  scene->mMeshes = new aiMesh*[1]{mesh};
+  scene->mMeshes = new aiMesh* [1] { mesh };
   scene->mNumMaterials = 1;
-  scene->mMaterials = new aiMaterial*[1]{new aiMaterial};
+  scene->mMaterials = new aiMaterial* [1] { new aiMaterial };
   // assimp's 3MF exporter writes the root node's children as objects, not the root's own meshes.
   auto* object = new aiNode(name);
   object->mNumMeshes = 1;
@@ -58,7 +59,8 @@ void write_3mf(const std::filesystem::path& path, const SurfaceMesh& surface, co
   std::error_code error;
   if (exporter.Export(scene.get(), "3mf", temporary.string()) != AI_SUCCESS) {
     std::filesystem::remove(temporary, error);
-    throw std::runtime_error("writing " + path.string() + ": assimp's 3MF exporter failed: " + exporter.GetErrorString());
+    throw std::runtime_error("writing " + path.string() +
+                             ": assimp's 3MF exporter failed: " + exporter.GetErrorString());
   }
   std::filesystem::rename(temporary, path, error);
   if (error) {

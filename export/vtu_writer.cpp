@@ -74,16 +74,20 @@ void VtuGrid::write(const std::filesystem::path& path) const
 {
   for (const VtuField& f : point_fields_)
     if (f.values.rows() != points_.rows())
-      throw std::invalid_argument(fmt::format("point field {} has {} rows for {} points", f.name, f.values.rows(), points_.rows()));
+      throw std::invalid_argument(
+          fmt::format("point field {} has {} rows for {} points", f.name, f.values.rows(), points_.rows()));
   for (const VtuField& f : cell_fields_)
     if (f.values.rows() != num_cells())
-      throw std::invalid_argument(fmt::format("cell field {} has {} rows for {} cells", f.name, f.values.rows(), num_cells()));
+      throw std::invalid_argument(
+          fmt::format("cell field {} has {} rows for {} cells", f.name, f.values.rows(), num_cells()));
   // No NaN or infinity in an output (docs/pipeline.md, "Exit codes"): ParaView would draw nothing, or garbage.
-  if (!points_.allFinite()) throw std::runtime_error(fmt::format("{}: a point is not finite; nothing was written", path.filename().string()));
+  if (!points_.allFinite())
+    throw std::runtime_error(fmt::format("{}: a point is not finite; nothing was written", path.filename().string()));
   for (const auto* fields : {&point_fields_, &cell_fields_})
     for (const VtuField& f : *fields)
       if (!f.values.allFinite())
-        throw std::runtime_error(fmt::format("{}: field {} is not finite everywhere; nothing was written", path.filename().string(), f.name));
+        throw std::runtime_error(fmt::format("{}: field {} is not finite everywhere; nothing was written",
+                                             path.filename().string(), f.name));
 
   std::string out = "<?xml version=\"1.0\"?>\n"
                     "<!-- fibermold: lengths in mm -->\n"

@@ -16,7 +16,7 @@ enum class VtkCell : std::uint8_t { line = 3, poly_line = 4, triangle = 5, tetra
 
 struct VtuField {
   std::string name;
-  Eigen::MatrixXd values;  ///< one row per point (or cell), one column per component
+  Eigen::MatrixXd values; ///< one row per point (or cell), one column per component
 };
 
 class VtuGrid {

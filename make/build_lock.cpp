@@ -34,8 +34,8 @@ BuildLock::BuildLock(const std::filesystem::path& build_dir)
     ::close(fd_);
     fd_ = -1;
     const std::string holder = n > 0 ? std::string(buffer, static_cast<std::size_t>(n)) : "unknown";
-    throw BuildLocked(fmt::format("another fibermold (pid {}) is working in {}; wait for it to finish",
-                                  holder, build_dir.string()));
+    throw BuildLocked(
+        fmt::format("another fibermold (pid {}) is working in {}; wait for it to finish", holder, build_dir.string()));
   }
   const std::string pid = std::to_string(::getpid());
   if (::ftruncate(fd_, 0) != 0 || ::pwrite(fd_, pid.data(), pid.size(), 0) < 0) {

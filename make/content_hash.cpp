@@ -26,7 +26,8 @@ std::string hash_file(const std::filesystem::path& path)
   XXH3_128bits_reset(state.get());
   std::vector<char> buffer(1 << 20);
   std::size_t n = 0;
-  while ((n = std::fread(buffer.data(), 1, buffer.size(), file.get())) > 0) XXH3_128bits_update(state.get(), buffer.data(), n);
+  while ((n = std::fread(buffer.data(), 1, buffer.size(), file.get())) > 0)
+    XXH3_128bits_update(state.get(), buffer.data(), n);
   if (std::ferror(file.get())) throw std::runtime_error(fmt::format("cannot read {}", path.string()));
   return to_hex(XXH3_128bits_digest(state.get()));
 }

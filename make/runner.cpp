@@ -46,7 +46,8 @@ public:
     const int tenth = static_cast<int>(std::floor(10 * std::min(fraction, 1.0)));
     if (tenth <= last_tenth_) return;
     last_tenth_ = tenth;
-    log_.info("progress {:.0f} %{}: {}", 100 * std::min(fraction, 1.0), left ? " (~" + TimeLeft::format(*left) + " left)" : "", what);
+    log_.info("progress {:.0f} %{}: {}", 100 * std::min(fraction, 1.0),
+              left ? " (~" + TimeLeft::format(*left) + " left)" : "", what);
   }
   bool interrupted() const override { return inner_.interrupted(); }
 
@@ -89,15 +90,17 @@ void append_make_log(const fs::path& build_dir, const std::string& line)
 }
 
 /// Reasons why `now` differs from `before` for one kind of input.
-void diff_maps(const std::map<std::string, std::string>& before, const std::map<std::string, std::string>& now,
-               const std::function<std::string(const std::string& key, const std::string* was,
-                                               const std::string* is)>& describe,
-               std::vector<std::string>& reasons)
+void diff_maps(
+    const std::map<std::string, std::string>& before, const std::map<std::string, std::string>& now,
+    const std::function<std::string(const std::string& key, const std::string* was, const std::string* is)>& describe,
+    std::vector<std::string>& reasons)
 {
   for (const auto& [key, value] : now) {
     auto it = before.find(key);
-    if (it == before.end()) reasons.push_back(describe(key, nullptr, &value));
-    else if (it->second != value) reasons.push_back(describe(key, &it->second, &value));
+    if (it == before.end())
+      reasons.push_back(describe(key, nullptr, &value));
+    else if (it->second != value)
+      reasons.push_back(describe(key, &it->second, &value));
   }
   for (const auto& [key, value] : before)
     if (!now.contains(key)) reasons.push_back(describe(key, &value, nullptr));
@@ -240,7 +243,7 @@ StageStatus Runner::stage_status(const Stage& stage, const Design& design, const
   if (!stamp) {
     std::error_code ec;
     reasons.push_back(fs::exists(log_path(build_dir, stage.name()), ec) ? "last run failed or was interrupted"
-                                                                         : "never built");
+                                                                        : "never built");
     return status;
   }
   for (const std::string& up : stage.upstream()) {
@@ -253,25 +256,29 @@ StageStatus Runner::stage_status(const Stage& stage, const Design& design, const
   if (now.stage_version != stamp->stage_version)
     reasons.push_back(fmt::format("stage algorithm changed (v{} → v{})", stamp->stage_version, now.stage_version));
   diff_maps(stamp->design, now.design, describe_design, reasons);
-  diff_maps(stamp->files, now.files,
-            [&](const std::string& file, const std::string* was, const std::string* is) {
-              const std::string name = fs::path(file).lexically_proximate(design.folder).string();
-              if (!was) return fmt::format("file {} is a new input", name);
-              if (!is) return fmt::format("file {} is no longer an input", name);
-              return fmt::format("file {} changed", name);
-            },
-            reasons);
+  diff_maps(
+      stamp->files, now.files,
+      [&](const std::string& file, const std::string* was, const std::string* is) {
+        const std::string name = fs::path(file).lexically_proximate(design.folder).string();
+        if (!was) return fmt::format("file {} is a new input", name);
+        if (!is) return fmt::format("file {} is no longer an input", name);
+        return fmt::format("file {} changed", name);
+      },
+      reasons);
   if (reasons.empty() || !reasons.front().starts_with("upstream"))
-    diff_maps(stamp->upstream, now.upstream,
-              [](const std::string& file, const std::string*, const std::string*) {
-                return fmt::format("upstream output {} changed", file);
-              },
-              reasons);
+    diff_maps(
+        stamp->upstream, now.upstream,
+        [](const std::string& file, const std::string*, const std::string*) {
+          return fmt::format("upstream output {} changed", file);
+        },
+        reasons);
   for (const auto& [file, hash] : stamp->outputs) {
     const fs::path path = build_dir / stage.name() / file;
     std::error_code ec;
-    if (!fs::exists(path, ec)) reasons.push_back(fmt::format("output {}/{} is missing", stage.name(), file));
-    else if (hash_file(path) != hash) reasons.push_back(fmt::format("output {}/{} was modified", stage.name(), file));
+    if (!fs::exists(path, ec))
+      reasons.push_back(fmt::format("output {}/{} is missing", stage.name(), file));
+    else if (hash_file(path) != hash)
+      reasons.push_back(fmt::format("output {}/{} was modified", stage.name(), file));
   }
   status.fresh = reasons.empty();
   return status;
@@ -281,7 +288,8 @@ std::vector<StageStatus> Runner::status(const Design& design, const fs::path& bu
                                         const std::vector<std::string>& targets) const
 {
   std::vector<StageStatus> result;
-  for (const std::string& name : closure(targets)) result.push_back(stage_status(stage(name), design, build_dir, result));
+  for (const std::string& name : closure(targets))
+    result.push_back(stage_status(stage(name), design, build_dir, result));
   return result;
 }
 
@@ -299,8 +307,10 @@ std::vector<StageRun> Runner::make(const Design& design, const MakeOptions& opti
       append_make_log(options.build_dir, name + " fresh");
       runs.push_back({name, false, 0});
     } else {
-      if (!st.fresh) spdlog::info("{}: running ({})", name, fmt::join(st.reasons, "; "));
-      else spdlog::info("{}: running (--force)", name);
+      if (!st.fresh)
+        spdlog::info("{}: running ({})", name, fmt::join(st.reasons, "; "));
+      else
+        spdlog::info("{}: running (--force)", name);
       runs.push_back(run_stage(s, design, options.build_dir, progress));
       st.fresh = true;
       st.reasons.clear();
@@ -315,7 +325,7 @@ StageRun Runner::run_stage(const Stage& stage, const Design& design, const fs::p
 {
   const std::string name = stage.name();
   const fs::path stamp_file = stamp_path(build_dir, name);
-  fs::remove(stamp_file);  // from here until the new stamp, the stage is stale
+  fs::remove(stamp_file); // from here until the new stamp, the stage is stale
 
   const fs::path staging = staging_dir(build_dir, name);
   fs::remove_all(staging);
@@ -326,10 +336,10 @@ StageRun Runner::run_stage(const Stage& stage, const Design& design, const fs::p
   auto console = std::make_shared<spdlog::sinks::stderr_sink_mt>();
   console->set_level(spdlog::level::warn);
   console->set_pattern("[%n] %l: %v");
-  spdlog::logger log(name, {sink, console});  // the stage's own messages; warnings reach the terminal
+  spdlog::logger log(name, {sink, console}); // the stage's own messages; warnings reach the terminal
   log.set_level(spdlog::level::debug);
   log.flush_on(spdlog::level::info);
-  spdlog::logger record(name, sink);  // the runner's record of the run: the CLI reports failures itself
+  spdlog::logger record(name, sink); // the runner's record of the run: the CLI reports failures itself
   record.flush_on(spdlog::level::info);
   std::unique_ptr<Progress> reporter = progress ? progress(name) : nullptr;
   NullProgress silent;
@@ -376,7 +386,7 @@ StageRun Runner::run_stage(const Stage& stage, const Design& design, const fs::p
 void Runner::clean(const fs::path& build_dir, const std::vector<std::string>& targets) const
 {
   BuildLock lock(build_dir);
-  if (!targets.empty()) closure(targets);  // rejects unknown names
+  if (!targets.empty()) closure(targets); // rejects unknown names
   for (const std::string& name : stage_names()) {
     if (!targets.empty() && std::find(targets.begin(), targets.end(), name) == targets.end()) continue;
     fs::remove(stamp_path(build_dir, name));

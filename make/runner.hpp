@@ -33,13 +33,13 @@ private:
 struct StageStatus {
   std::string stage;
   bool fresh = false;
-  std::vector<std::string> reasons;  ///< why it is stale, most telling first
+  std::vector<std::string> reasons; ///< why it is stale, most telling first
 };
 
 struct MakeOptions {
   std::filesystem::path build_dir;
-  std::vector<std::string> targets;  ///< run up to these stages; empty: all
-  bool force = false;                ///< rerun every selected stage, fresh or not
+  std::vector<std::string> targets; ///< run up to these stages; empty: all
+  bool force = false;               ///< rerun every selected stage, fresh or not
 };
 
 struct StageRun {
@@ -95,7 +95,7 @@ private:
   StageRun run_stage(const Stage& stage, const Design& design, const std::filesystem::path& build_dir,
                      const ProgressFactory& progress) const;
 
-  std::vector<std::unique_ptr<Stage>> stages_;  ///< in dependency order
+  std::vector<std::unique_ptr<Stage>> stages_; ///< in dependency order
   std::string program_;
 };
 

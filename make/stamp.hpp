@@ -10,14 +10,14 @@
 namespace fibermold {
 
 struct Stamp {
-  std::string program;                        ///< "fibermold 0.1.0"
+  std::string program; ///< "fibermold 0.1.0"
   int stage_version = 0;
-  std::map<std::string, std::string> design;  ///< design key → effective value
-  std::map<std::string, std::string> files;   ///< absolute path → content hash
-  std::map<std::string, std::string> upstream;///< "<stage>/<file>" → content hash
-  std::map<std::string, std::string> outputs; ///< file relative to the stage folder → content hash
-  double seconds = 0;                         ///< wall time of the run
-  std::string finished;                       ///< UTC, ISO 8601
+  std::map<std::string, std::string> design;   ///< design key → effective value
+  std::map<std::string, std::string> files;    ///< absolute path → content hash
+  std::map<std::string, std::string> upstream; ///< "<stage>/<file>" → content hash
+  std::map<std::string, std::string> outputs;  ///< file relative to the stage folder → content hash
+  double seconds = 0;                          ///< wall time of the run
+  std::string finished;                        ///< UTC, ISO 8601
 
   std::string to_json() const;
   /// Null when the file is absent or unreadable (an unreadable stamp is as good as none).

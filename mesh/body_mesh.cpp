@@ -22,11 +22,12 @@ void require_valid_remeshing(const SurfaceMesh& input, const SurfaceMesh& remesh
   const SurfaceCheck check = check_surface(remeshed);
   if (check.ok()) return;
   const SurfaceProblem& p = check.problems.front();
-  throw InputError(std::vector<Diagnostic>{{input.source, 0, 0, "",
-                     fmt::format("remeshed at {:.4g} mm edges, surface {} {} near {}: its features are thinner than the edge length "
-                                 "there; give a smaller [mesh] edge_length, or surface_triangles = \"split\" (or \"keep\") "
-                                 "to mesh the input's own triangles",
-                                 edge_length / units::mm, input.source.filename().string(), p.message, format_mm(p.where))}});
+  throw InputError(std::vector<Diagnostic>{
+      {input.source, 0, 0, "",
+       fmt::format("remeshed at {:.4g} mm edges, surface {} {} near {}: its features are thinner than the edge length "
+                   "there; give a smaller [mesh] edge_length, or surface_triangles = \"split\" (or \"keep\") "
+                   "to mesh the input's own triangles",
+                   edge_length / units::mm, input.source.filename().string(), p.message, format_mm(p.where))}});
 }
 
 /// How far a mean edge is from the edge length asked, as a factor either way (1.2 for 20 % off).

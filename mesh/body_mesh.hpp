@@ -13,9 +13,9 @@ namespace fibermold {
 
 /// The surface TetGen is given, and how it came from the input.
 struct MeshedSurface {
-  SurfaceTriangles treatment = SurfaceTriangles::keep;  ///< keep, split or remesh
-  SurfaceMesh surface;                                  ///< the input, or its remeshing
-  RemeshReport remeshing;                               ///< when remeshed
+  SurfaceTriangles treatment = SurfaceTriangles::keep; ///< keep, split or remesh
+  SurfaceMesh surface;                                 ///< the input, or its remeshing
+  RemeshReport remeshing;                              ///< when remeshed
 };
 
 /// Throws InputError (naming [mesh].edge_length) when remeshing at the edge length leaves an invalid

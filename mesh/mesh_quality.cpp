@@ -63,8 +63,8 @@ double radius_edge_ratio(const Eigen::Vector3d& a, const Eigen::Vector3d& b, con
   // Circumcentre relative to a: (|u|²(v×w) + |v|²(w×u) + |w|²(u×v)) / (2 u·(v×w)).
   const Eigen::Vector3d u = b - a, v = c - a, w = d - a;
   const double denominator = 2 * u.dot(v.cross(w));
-  const Eigen::Vector3d centre = (u.squaredNorm() * v.cross(w) + v.squaredNorm() * w.cross(u) +
-                                  w.squaredNorm() * u.cross(v)) / denominator;
+  const Eigen::Vector3d centre =
+      (u.squaredNorm() * v.cross(w) + v.squaredNorm() * w.cross(u) + w.squaredNorm() * u.cross(v)) / denominator;
   const double shortest = std::min({u.norm(), v.norm(), w.norm(), (c - b).norm(), (d - b).norm(), (d - c).norm()});
   return centre.norm() / shortest;
 }

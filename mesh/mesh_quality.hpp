@@ -8,17 +8,17 @@
 namespace fibermold {
 
 struct MeshQuality {
-  double volume = 0;                  ///< m³
-  double mean_edge_length = 0;        ///< m, over the unique corner edges
-  double min_edge_length = 0, max_edge_length = 0;  ///< m
+  double volume = 0;                               ///< m³
+  double mean_edge_length = 0;                     ///< m, over the unique corner edges
+  double min_edge_length = 0, max_edge_length = 0; ///< m
   double min_dihedral_deg = 0, max_dihedral_deg = 0;
-  double mean_radius_edge_ratio = 0;  ///< circumradius / shortest edge; 0.612 for a regular tet
+  double mean_radius_edge_ratio = 0; ///< circumradius / shortest edge; 0.612 for a regular tet
   double max_radius_edge_ratio = 0;
-  Eigen::Index inverted_tets = 0;     ///< non-positive volume
+  Eigen::Index inverted_tets = 0; ///< non-positive volume
   /// The tets outside the quality bounds asked for: a radius-edge ratio above `max_ratio` or a
   /// dihedral angle below `min_dihedral_deg` (TetGen cannot meet them next to a surface it must keep).
   Eigen::Index over_ratio = 0, under_dihedral = 0;
-  Eigen::Vector3d worst_at = Eigen::Vector3d::Zero();  ///< the centroid of the tet of largest ratio
+  Eigen::Vector3d worst_at = Eigen::Vector3d::Zero(); ///< the centroid of the tet of largest ratio
 };
 
 /// The mesh's quality, and the tets outside the bounds (none asked for by default).

@@ -75,7 +75,7 @@ struct EdgeTallies {
 /// in the same direction (inconsistent orientation).
 EdgeTallies edge_tallies(const SurfaceMesh& s)
 {
-  std::map<std::pair<int, int>, std::vector<bool>> uses;  // undirected edge → direction of each use
+  std::map<std::pair<int, int>, std::vector<bool>> uses; // undirected edge → direction of each use
   for (Eigen::Index f = 0; f < s.num_faces(); ++f)
     for (int k = 0; k < 3; ++k) {
       const int a = s.faces(f, k), b = s.faces(f, (k + 1) % 3);
@@ -84,9 +84,12 @@ EdgeTallies edge_tallies(const SurfaceMesh& s)
   EdgeTallies t;
   for (const auto& [edge, directions] : uses) {
     const Eigen::Vector3d mid = (vertex(s, edge.first) + vertex(s, edge.second)) / 2;
-    if (directions.size() == 1) t.border.add(mid);
-    else if (directions.size() > 2) t.non_manifold.add(mid);
-    else if (directions[0] == directions[1]) t.flipped.add(mid);
+    if (directions.size() == 1)
+      t.border.add(mid);
+    else if (directions.size() > 2)
+      t.non_manifold.add(mid);
+    else if (directions[0] == directions[1])
+      t.flipped.add(mid);
   }
   return t;
 }
@@ -96,8 +99,7 @@ Tally non_manifold_vertices(const SurfaceMesh& s)
 {
   std::vector<std::vector<std::pair<int, int>>> link(static_cast<std::size_t>(s.num_vertices()));
   for (Eigen::Index f = 0; f < s.num_faces(); ++f)
-    for (int k = 0; k < 3; ++k)
-      link[s.faces(f, k)].emplace_back(s.faces(f, (k + 1) % 3), s.faces(f, (k + 2) % 3));
+    for (int k = 0; k < 3; ++k) link[s.faces(f, k)].emplace_back(s.faces(f, (k + 1) % 3), s.faces(f, (k + 2) % 3));
   Tally t;
   for (std::size_t v = 0; v < link.size(); ++v) {
     if (link[v].empty()) continue;
@@ -126,8 +128,10 @@ int count_components(const SurfaceMesh& s, Tally& unused)
     }
   int components = 0;
   for (Eigen::Index v = 0; v < s.num_vertices(); ++v) {
-    if (!used[v]) unused.add(vertex(s, static_cast<int>(v)));
-    else if (sets.find(static_cast<int>(v)) == v) ++components;
+    if (!used[v])
+      unused.add(vertex(s, static_cast<int>(v)));
+    else if (sets.find(static_cast<int>(v)) == v)
+      ++components;
   }
   return components;
 }
@@ -139,7 +143,8 @@ Mesh to_cgal(const SurfaceMesh& s)
   Mesh mesh;
   std::vector<Mesh::Vertex_index> vs;
   for (Eigen::Index v = 0; v < s.num_vertices(); ++v) vs.push_back(mesh.add_vertex(point(s, static_cast<int>(v))));
-  for (Eigen::Index f = 0; f < s.num_faces(); ++f) mesh.add_face(vs[s.faces(f, 0)], vs[s.faces(f, 1)], vs[s.faces(f, 2)]);
+  for (Eigen::Index f = 0; f < s.num_faces(); ++f)
+    mesh.add_face(vs[s.faces(f, 0)], vs[s.faces(f, 1)], vs[s.faces(f, 2)]);
   return mesh;
 }
 
@@ -191,7 +196,8 @@ SurfaceCheck check_surface(const SurfaceMesh& s)
   add(check, edges.non_manifold,
       fmt::format("is not manifold: {} edges shared by more than two faces", edges.non_manifold.count), false);
   add(check, edges.flipped,
-      fmt::format("is not consistently oriented: {} edges where neighbouring faces disagree", edges.flipped.count), true);
+      fmt::format("is not consistently oriented: {} edges where neighbouring faces disagree", edges.flipped.count),
+      true);
   const bool edge_manifold = edges.border.count == 0 && edges.non_manifold.count == 0;
   Tally pinched;
   if (edge_manifold) pinched = non_manifold_vertices(s);
@@ -228,7 +234,8 @@ SurfaceCheck check_surface(const SurfaceMesh& s)
         if (const double v = signed_volume(p); v < 0) {
           Eigen::Vector3d centre = Eigen::Vector3d::Zero();
           for (Eigen::Index f = 0; f < p.num_faces(); ++f)
-            for (int k = 0; k < 3; ++k) centre += p.vertices.row(p.faces(f, k)).transpose() / (3.0 * static_cast<double>(p.num_faces()));
+            for (int k = 0; k < 3; ++k)
+              centre += p.vertices.row(p.faces(f, k)).transpose() / (3.0 * static_cast<double>(p.num_faces()));
           check.cavities.push_back({-v, centre});
         }
     }
@@ -257,11 +264,14 @@ void require_valid_surface(const SurfaceCheck& check, const SurfaceMesh& surface
   const std::string name = surface.source.filename().string();
   for (const SurfaceProblem& p : check.problems) {
     std::string hint;
-    if (p.repairable && !repaired) hint = "; set [mesh] repair = true to fix it";
-    else if (!p.repairable) hint = "; fix it in a mesh editor";
-    else hint = "; repair could not fix it, fix it in a mesh editor";
-    diagnostics.push_back({surface.source, 0, 0, "",
-                           fmt::format("surface {} {}, e.g. at {}{}", name, p.message, mm(p.where), hint)});
+    if (p.repairable && !repaired)
+      hint = "; set [mesh] repair = true to fix it";
+    else if (!p.repairable)
+      hint = "; fix it in a mesh editor";
+    else
+      hint = "; repair could not fix it, fix it in a mesh editor";
+    diagnostics.push_back(
+        {surface.source, 0, 0, "", fmt::format("surface {} {}, e.g. at {}{}", name, p.message, mm(p.where), hint)});
   }
   throw InputError(std::move(diagnostics));
 }

@@ -14,24 +14,24 @@ namespace fibermold {
 
 /// One way in which the surface fails, with a count and one example location.
 struct SurfaceProblem {
-  std::string message;      ///< "is not closed: 4 border edges"
-  Eigen::Vector3d where;    ///< m
-  bool repairable = false;  ///< `[mesh] repair = true` can fix it
+  std::string message;     ///< "is not closed: 4 border edges"
+  Eigen::Vector3d where;   ///< m
+  bool repairable = false; ///< `[mesh] repair = true` can fix it
 };
 
 /// A closed void inside the body: a shell that points inward.
 struct SurfaceCavity {
-  double volume = 0;                              ///< m³
-  Eigen::Vector3d centre = Eigen::Vector3d::Zero();  ///< m, of its vertices
+  double volume = 0;                                ///< m³
+  Eigen::Vector3d centre = Eigen::Vector3d::Zero(); ///< m, of its vertices
 };
 
 struct SurfaceCheck {
   std::vector<SurfaceProblem> problems;
-  std::vector<SurfaceCavity> cavities;  ///< found when the surface is valid
+  std::vector<SurfaceCavity> cavities; ///< found when the surface is valid
   std::vector<std::string> warnings;
-  double volume = 0;        ///< m³, signed; meaningful when closed and consistently oriented
+  double volume = 0; ///< m³, signed; meaningful when closed and consistently oriented
   int components = 0;
-  Eigen::Vector3d min = Eigen::Vector3d::Zero(), max = Eigen::Vector3d::Zero();  ///< m
+  Eigen::Vector3d min = Eigen::Vector3d::Zero(), max = Eigen::Vector3d::Zero(); ///< m
 
   bool ok() const { return problems.empty(); }
 };

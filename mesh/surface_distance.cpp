@@ -29,7 +29,7 @@ struct SurfaceDistance::Impl {
   Mesh mesh;
   Tree tree;
   std::unique_ptr<Side> side;
-  std::vector<Eigen::Index> face_row;  ///< Surface_mesh face index → row of the input's faces
+  std::vector<Eigen::Index> face_row; ///< Surface_mesh face index → row of the input's faces
 };
 
 SurfaceDistance::SurfaceDistance(const Eigen::MatrixX3d& vertices, const Eigen::MatrixX3i& faces)
@@ -71,10 +71,12 @@ double SurfaceDistance::ray_distance(const Eigen::Vector3d& origin, const Eigen:
   return ray_hit(origin, direction, skip).distance;
 }
 
-SurfaceDistance::Hit SurfaceDistance::ray_hit(const Eigen::Vector3d& origin, const Eigen::Vector3d& direction, double skip) const
+SurfaceDistance::Hit SurfaceDistance::ray_hit(const Eigen::Vector3d& origin, const Eigen::Vector3d& direction,
+                                              double skip) const
 {
   const Eigen::Vector3d start = origin + skip * direction;
-  const Kernel::Ray_3 ray(Point(start.x(), start.y(), start.z()), Kernel::Vector_3(direction.x(), direction.y(), direction.z()));
+  const Kernel::Ray_3 ray(Point(start.x(), start.y(), start.z()),
+                          Kernel::Vector_3(direction.x(), direction.y(), direction.z()));
   std::vector<Tree::Intersection_and_primitive_id<Kernel::Ray_3>::Type> hits;
   impl_->tree.all_intersections(ray, std::back_inserter(hits));
   Hit best;

@@ -19,18 +19,18 @@ public:
   SurfaceDistance& operator=(const SurfaceDistance&) = delete;
 
   struct Closest {
-    double distance;        ///< unsigned, to the nearest surface point
-    Eigen::Vector3d point;  ///< the nearest surface point
-    bool inside;            ///< strictly inside the enclosed volume
-    Eigen::Index face;      ///< the face (row of `faces`) the nearest point lies on
+    double distance;       ///< unsigned, to the nearest surface point
+    Eigen::Vector3d point; ///< the nearest surface point
+    bool inside;           ///< strictly inside the enclosed volume
+    Eigen::Index face;     ///< the face (row of `faces`) the nearest point lies on
   };
   Closest closest(const Eigen::Vector3d& p) const;
   /// Distance along the ray from `origin` in unit `direction` to the first surface point farther
   /// than `skip`; +∞ when it hits nothing.
   double ray_distance(const Eigen::Vector3d& origin, const Eigen::Vector3d& direction, double skip = 0) const;
   struct Hit {
-    double distance = HUGE_VAL;  ///< +∞: no hit
-    Eigen::Vector3d normal = Eigen::Vector3d::Zero();  ///< the hit face's unit outward normal
+    double distance = HUGE_VAL;                       ///< +∞: no hit
+    Eigen::Vector3d normal = Eigen::Vector3d::Zero(); ///< the hit face's unit outward normal
   };
   /// The same ray's first hit and the face it hits.
   Hit ray_hit(const Eigen::Vector3d& origin, const Eigen::Vector3d& direction, double skip = 0) const;

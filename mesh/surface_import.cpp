@@ -51,24 +51,31 @@ std::optional<std::string> ply_truncation(const fs::path& file)
     long long count = 0;
     words >> word;
     if (word == "format") words >> format;
-    if (word == "element" && words >> name >> count) (name == "vertex" ? vertices : name == "face" ? faces : count) = count;
+    if (word == "element" && words >> name >> count)
+      (name == "vertex" ? vertices : name == "face" ? faces : count) = count;
     if (word == "end_header") break;
   }
   const auto header_end = static_cast<double>(in.tellg());
-  if (line.rfind("end_header", 0) != 0 || vertices < 0 || faces < 0 || header_end < 0) return std::nullopt;  // assimp judges the header
+  if (line.rfind("end_header", 0) != 0 || vertices < 0 || faces < 0 || header_end < 0)
+    return std::nullopt; // assimp judges the header
   const auto size = static_cast<double>(fs::file_size(file));
   const double elements = static_cast<double>(vertices) + static_cast<double>(faces);
-  const double least_bytes = 12.0 * static_cast<double>(vertices) + 4.0 * static_cast<double>(faces);  // no overflow near 2^63
+  const double least_bytes =
+      12.0 * static_cast<double>(vertices) + 4.0 * static_cast<double>(faces); // no overflow near 2^63
   if (format == "ascii") {
     long long lines = 0;
     while (std::getline(in, line) && static_cast<double>(lines) < elements)
       if (line.find_first_not_of(" \t\r") != std::string::npos) ++lines;
     if (static_cast<double>(lines) < elements)
-      return fmt::format("its header declares {} vertices and {} faces, but {} lines of data follow: the file is truncated or its "
-                         "header is wrong", vertices, faces, lines);
+      return fmt::format(
+          "its header declares {} vertices and {} faces, but {} lines of data follow: the file is truncated or its "
+          "header is wrong",
+          vertices, faces, lines);
   } else if (size - header_end < least_bytes) {
-    return fmt::format("its header declares {} vertices and {} faces, which need at least {:.0f} bytes, but {:.0f} follow: the file is "
-                       "truncated or its header is wrong", vertices, faces, least_bytes, size - header_end);
+    return fmt::format("its header declares {} vertices and {} faces, which need at least {:.0f} bytes, but {:.0f} "
+                       "follow: the file is "
+                       "truncated or its header is wrong",
+                       vertices, faces, least_bytes, size - header_end);
   }
   return std::nullopt;
 }
@@ -99,7 +106,7 @@ std::vector<fs::path> surface_files(const fs::path& file)
 std::vector<std::string> supported_surface_extensions()
 {
   Assimp::Importer importer;
-  std::string list;  // "*.3d;*.3ds;..."
+  std::string list; // "*.3d;*.3ds;..."
   importer.GetExtensionList(list);
   std::vector<std::string> extensions;
   std::size_t start = 0;
@@ -128,8 +135,8 @@ SurfaceMesh import_surface(const fs::path& file, double metres_per_unit)
                            extension));
   }
   // Keep only positions: normals and texture coordinates would stop identical positions from welding.
-  importer.SetPropertyInteger(AI_CONFIG_PP_RVC_FLAGS, aiComponent_NORMALS | aiComponent_TEXCOORDS |
-                                                          aiComponent_COLORS | aiComponent_TANGENTS_AND_BITANGENTS);
+  importer.SetPropertyInteger(AI_CONFIG_PP_RVC_FLAGS, aiComponent_NORMALS | aiComponent_TEXCOORDS | aiComponent_COLORS |
+                                                          aiComponent_TANGENTS_AND_BITANGENTS);
   // ValidateDataStructure runs first and rejects out-of-range indices before anything uses them.
   const unsigned flags = aiProcess_ValidateDataStructure | aiProcess_Triangulate | aiProcess_JoinIdenticalVertices |
                          aiProcess_DropNormals | aiProcess_RemoveComponent | aiProcess_PreTransformVertices;
@@ -138,11 +145,12 @@ SurfaceMesh import_surface(const fs::path& file, double metres_per_unit)
   const aiScene* scene = importer.ReadFile(file.string(), flags);
   if (!scene) {
     std::string why = importer.GetErrorString();
-    for (const std::string& named : {" for " + file.string(), file.string()})  // the message names the file already
+    for (const std::string& named : {" for " + file.string(), file.string()}) // the message names the file already
       if (const auto at = why.find(named); at != std::string::npos) why.erase(at, named.size());
     while (!why.empty() && (why.back() == '.' || why.back() == ' ' || why.back() == '\n')) why.pop_back();
-    fail(file, fmt::format("cannot read the surface ({}): the file is damaged, truncated or in another format (assimp: {})",
-                           extension, why));
+    fail(file,
+         fmt::format("cannot read the surface ({}): the file is damaged, truncated or in another format (assimp: {})",
+                     extension, why));
   }
 
   // Merge all meshes, welding vertices with identical coordinates across them.
@@ -174,7 +182,8 @@ SurfaceMesh import_surface(const fs::path& file, double metres_per_unit)
       }
       for (unsigned k = 0; k < 3; ++k)
         if (face.mIndices[k] >= mesh->mNumVertices)
-          fail(file, fmt::format("face {} refers to vertex {}, but there are {} vertices", f, face.mIndices[k], mesh->mNumVertices));
+          fail(file, fmt::format("face {} refers to vertex {}, but there are {} vertices", f, face.mIndices[k],
+                                 mesh->mNumVertices));
       faces.emplace_back(local[face.mIndices[0]], local[face.mIndices[1]], local[face.mIndices[2]]);
     }
   }
@@ -191,9 +200,11 @@ SurfaceMesh import_surface(const fs::path& file, double metres_per_unit)
   for (const Eigen::Vector3d& v : vertices) lo = lo.cwiseMin(v), hi = hi.cwiseMax(v);
   const double span = (hi - lo).norm() * metres_per_unit;
   if (!(span >= kMinBodySize && span <= kMaxBodySize))
-    fail(file, fmt::format("the surface spans {:.3g} mm corner to corner ({:.3g} to {:.3g} in the file's units): a body is between "
-                           "{} mm and {} m across; check [design].units", span / 1e-3, lo.minCoeff(), hi.maxCoeff(), kMinBodySize / 1e-3,
-                           kMaxBodySize));
+    fail(file,
+         fmt::format(
+             "the surface spans {:.3g} mm corner to corner ({:.3g} to {:.3g} in the file's units): a body is between "
+             "{} mm and {} m across; check [design].units",
+             span / 1e-3, lo.minCoeff(), hi.maxCoeff(), kMinBodySize / 1e-3, kMaxBodySize));
 
   SurfaceMesh surface;
   surface.source = file;

@@ -46,7 +46,8 @@ double longest_edge(const SurfaceMesh& s)
 {
   double longest = 0;
   for (Eigen::Index f = 0; f < s.num_faces(); ++f)
-    for (int c = 0; c < 3; ++c) longest = std::max(longest, (s.vertices.row(s.faces(f, c)) - s.vertices.row(s.faces(f, (c + 1) % 3))).norm());
+    for (int c = 0; c < 3; ++c)
+      longest = std::max(longest, (s.vertices.row(s.faces(f, c)) - s.vertices.row(s.faces(f, (c + 1) % 3))).norm());
   return longest;
 }
 

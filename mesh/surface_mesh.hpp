@@ -9,9 +9,9 @@
 namespace fibermold {
 
 struct SurfaceMesh {
-  Eigen::MatrixX3d vertices;        ///< m
-  Eigen::MatrixX3i faces;           ///< counter-clockwise seen from outside
-  std::filesystem::path source;     ///< the file it came from, for messages
+  Eigen::MatrixX3d vertices;    ///< m
+  Eigen::MatrixX3i faces;       ///< counter-clockwise seen from outside
+  std::filesystem::path source; ///< the file it came from, for messages
 
   Eigen::Index num_vertices() const { return vertices.rows(); }
   Eigen::Index num_faces() const { return faces.rows(); }

@@ -13,7 +13,8 @@ namespace fibermold {
 namespace {
 
 /// Barycentric weights of p's projection on triangle (a, b, c), clamped into it.
-Eigen::Vector3d barycentric(const Eigen::Vector3d& p, const Eigen::Vector3d& a, const Eigen::Vector3d& b, const Eigen::Vector3d& c)
+Eigen::Vector3d barycentric(const Eigen::Vector3d& p, const Eigen::Vector3d& a, const Eigen::Vector3d& b,
+                            const Eigen::Vector3d& c)
 {
   const Eigen::Vector3d e0 = b - a, e1 = c - a, q = p - a;
   const double d00 = e0.dot(e0), d01 = e0.dot(e1), d11 = e1.dot(e1), d20 = q.dot(e0), d21 = q.dot(e1);
@@ -30,7 +31,8 @@ Eigen::Vector3d barycentric(const Eigen::Vector3d& p, const Eigen::Vector3d& a, 
 std::vector<bool> surface_nodes(const TetMesh& mesh)
 {
   std::vector<bool> on(static_cast<std::size_t>(mesh.nodes.rows()), false);
-  for (Eigen::Index i = 0; i < mesh.boundary_faces.size(); ++i) on[static_cast<std::size_t>(mesh.boundary_faces(i))] = true;
+  for (Eigen::Index i = 0; i < mesh.boundary_faces.size(); ++i)
+    on[static_cast<std::size_t>(mesh.boundary_faces(i))] = true;
   return on;
 }
 
@@ -75,19 +77,21 @@ void attach_to_surface(TetMesh& mesh, const SurfaceMesh& input)
 
   mesh.surface_to_node.resize(vertices);
   bool all_nodes = true;
-  for (Eigen::Index v = 0; v < vertices; ++v) all_nodes = all_nodes && v < nodes && mesh.nodes.row(v) == input.vertices.row(v);
+  for (Eigen::Index v = 0; v < vertices; ++v)
+    all_nodes = all_nodes && v < nodes && mesh.nodes.row(v) == input.vertices.row(v);
   if (all_nodes) {
     for (Eigen::Index v = 0; v < vertices; ++v) mesh.surface_to_node(v) = static_cast<int>(v);
     mesh.surface_vertices.resize(0, 3);
     return;
   }
-  mesh.surface_vertices = input.vertices;  // the body as given, for what is made of its shape (the molds)
+  mesh.surface_vertices = input.vertices; // the body as given, for what is made of its shape (the molds)
   // Remeshed: each input vertex's nearest surface node.
   std::vector<int> surface_index;
   for (Eigen::Index i = 0; i < nodes; ++i)
     if (on_surface[static_cast<std::size_t>(i)]) surface_index.push_back(static_cast<int>(i));
   Eigen::MatrixX3d points(static_cast<Eigen::Index>(surface_index.size()), 3);
-  for (std::size_t k = 0; k < surface_index.size(); ++k) points.row(static_cast<Eigen::Index>(k)) = mesh.nodes.row(surface_index[k]);
+  for (std::size_t k = 0; k < surface_index.size(); ++k)
+    points.row(static_cast<Eigen::Index>(k)) = mesh.nodes.row(surface_index[k]);
   const nanoflann::KDTreeEigenMatrixAdaptor<Eigen::MatrixX3d> tree(3, std::cref(points), 10);
   for (Eigen::Index v = 0; v < vertices; ++v) {
     const Eigen::Vector3d q = input.vertices.row(v).transpose();
@@ -102,7 +106,8 @@ std::vector<std::pair<int, Eigen::Vector3d>> carried_surface(const TetMesh& mesh
 {
   std::vector<std::pair<int, Eigen::Vector3d>> out;
   if (mesh.place_face.size() == 0) {
-    for (Eigen::Index v = 0; v < mesh.surface_to_node.size(); ++v) out.emplace_back(mesh.surface_to_node(v), deformed.row(v).transpose());
+    for (Eigen::Index v = 0; v < mesh.surface_to_node.size(); ++v)
+      out.emplace_back(mesh.surface_to_node(v), deformed.row(v).transpose());
     return out;
   }
   for (Eigen::Index i = 0; i < mesh.place_face.size(); ++i) {
@@ -123,8 +128,9 @@ std::vector<int> nodes_of_vertices(const TetMesh& mesh, const std::vector<int>& 
   for (Eigen::Index i = 0; i < mesh.place_face.size(); ++i) {
     const int f = mesh.place_face(i);
     if (f < 0) continue;
-    bool inside = true;  // every corner the place leans on is selected
-    for (int k = 0; k < 3; ++k) inside = inside && (mesh.place_weights(i, k) <= 1e-9 || selected.count(mesh.surface_faces(f, k)) > 0);
+    bool inside = true; // every corner the place leans on is selected
+    for (int k = 0; k < 3; ++k)
+      inside = inside && (mesh.place_weights(i, k) <= 1e-9 || selected.count(mesh.surface_faces(f, k)) > 0);
     if (inside) nodes.insert(static_cast<int>(i));
   }
   return {nodes.begin(), nodes.end()};

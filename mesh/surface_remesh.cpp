@@ -30,8 +30,10 @@ SurfaceMesh remesh_surface(const SurfaceMesh& surface, double edge_length, Remes
   for (Eigen::Index v = 0; v < surface.num_vertices(); ++v)
     index.push_back(mesh.add_vertex(Point(surface.vertices(v, 0), surface.vertices(v, 1), surface.vertices(v, 2))));
   for (Eigen::Index f = 0; f < surface.num_faces(); ++f)
-    if (mesh.add_face(index[surface.faces(f, 0)], index[surface.faces(f, 1)], index[surface.faces(f, 2)]) == Mesh::null_face())
-      throw std::runtime_error(surface.source.string() + ": face " + std::to_string(f) + " is not manifold; cannot remesh");
+    if (mesh.add_face(index[surface.faces(f, 0)], index[surface.faces(f, 1)], index[surface.faces(f, 2)]) ==
+        Mesh::null_face())
+      throw std::runtime_error(surface.source.string() + ": face " + std::to_string(f) +
+                               " is not manifold; cannot remesh");
   report.faces_before = surface.num_faces();
   auto sharp = mesh.add_property_map<Mesh::Edge_index, bool>("e:sharp", false).first;
   PMP::detect_sharp_edges(mesh, kSharpEdgeDeg, sharp);
@@ -50,7 +52,8 @@ SurfaceMesh remesh_surface(const SurfaceMesh& surface, double edge_length, Remes
   out.faces.resize(static_cast<Eigen::Index>(mesh.number_of_faces()), 3);
   for (Mesh::Face_index f : mesh.faces()) {
     int k = 0;
-    for (Mesh::Vertex_index v : CGAL::vertices_around_face(mesh.halfedge(f), mesh)) out.faces(f.idx(), k++) = static_cast<int>(v.idx());
+    for (Mesh::Vertex_index v : CGAL::vertices_around_face(mesh.halfedge(f), mesh))
+      out.faces(f.idx(), k++) = static_cast<int>(v.idx());
   }
   report.faces_after = out.num_faces();
   return out;
@@ -61,7 +64,8 @@ SurfaceDeviation surface_deviation(const SurfaceMesh& input, const SurfaceMesh& 
   SurfaceDeviation d;
   const SurfaceDistance to_input(input.vertices, input.faces), to_remeshed(remeshed.vertices, remeshed.faces);
   for (Eigen::Index v = 0; v < remeshed.num_vertices(); ++v)
-    d.remeshed_from_input = std::max(d.remeshed_from_input, to_input.closest(remeshed.vertices.row(v).transpose()).distance);
+    d.remeshed_from_input =
+        std::max(d.remeshed_from_input, to_input.closest(remeshed.vertices.row(v).transpose()).distance);
   for (Eigen::Index v = 0; v < input.num_vertices(); ++v) {
     const double e = to_remeshed.closest(input.vertices.row(v).transpose()).distance;
     if (e > beyond) ++d.input_vertices_beyond;

@@ -15,7 +15,7 @@ inline constexpr double kSharpEdgeDeg = 60;
 
 struct RemeshReport {
   Eigen::Index faces_before = 0, faces_after = 0;
-  Eigen::Index sharp_edges = 0;  ///< input edges kept as constraints
+  Eigen::Index sharp_edges = 0; ///< input edges kept as constraints
 };
 
 /// `surface` must be closed and valid (check_surface). Throws std::runtime_error when the remeshed
@@ -23,10 +23,10 @@ struct RemeshReport {
 SurfaceMesh remesh_surface(const SurfaceMesh& surface, double edge_length, RemeshReport& report);
 
 struct SurfaceDeviation {
-  double remeshed_from_input = 0;  ///< m: largest distance of a remeshed vertex from the input surface
-  double input_from_remeshed = 0;  ///< m: largest distance of an input vertex from the remeshed surface
-  Eigen::Vector3d worst_at = Eigen::Vector3d::Zero();  ///< the input vertex farthest from the remeshed surface
-  Eigen::Index input_vertices_beyond = 0;              ///< input vertices farther than `beyond` from it
+  double remeshed_from_input = 0; ///< m: largest distance of a remeshed vertex from the input surface
+  double input_from_remeshed = 0; ///< m: largest distance of an input vertex from the remeshed surface
+  Eigen::Vector3d worst_at = Eigen::Vector3d::Zero(); ///< the input vertex farthest from the remeshed surface
+  Eigen::Index input_vertices_beyond = 0;             ///< input vertices farther than `beyond` from it
 };
 SurfaceDeviation surface_deviation(const SurfaceMesh& input, const SurfaceMesh& remeshed, double beyond);
 

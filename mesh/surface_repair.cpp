@@ -6,8 +6,8 @@
 #include <CGAL/Polygon_mesh_processing/orient_polygon_soup.h>
 #include <CGAL/Polygon_mesh_processing/orientation.h>
 #include <CGAL/Polygon_mesh_processing/polygon_soup_to_polygon_mesh.h>
-#include <CGAL/Polygon_mesh_processing/self_intersections.h>
 #include <CGAL/Polygon_mesh_processing/repair_polygon_soup.h>
+#include <CGAL/Polygon_mesh_processing/self_intersections.h>
 #include <CGAL/Polygon_mesh_processing/stitch_borders.h>
 #include <CGAL/Surface_mesh.h>
 #include <fmt/format.h>
@@ -79,7 +79,7 @@ SurfaceMesh repair_surface(const SurfaceMesh& surface, const RepairOptions& opti
                         static_cast<std::size_t>(target[surface.faces(f, 2)])});
 
   const std::size_t points_before = points.size(), polygons_before = polygons.size();
-  PMP::repair_polygon_soup(points, polygons);  // duplicate points and polygons, degenerate polygons, unused points
+  PMP::repair_polygon_soup(points, polygons); // duplicate points and polygons, degenerate polygons, unused points
   report.removed_faces = polygons_before - polygons.size();
   report.removed_vertices = points_before - points.size() - report.merged_vertices;
 
@@ -122,7 +122,8 @@ SurfaceMesh repair_surface(const SurfaceMesh& surface, const RepairOptions& opti
   Eigen::Index f = 0;
   for (Mesh::Face_index face : mesh.faces()) {
     int k = 0;
-    for (Mesh::Vertex_index v : CGAL::vertices_around_face(mesh.halfedge(face), mesh)) repaired.faces(f, k++) = index[v.idx()];
+    for (Mesh::Vertex_index v : CGAL::vertices_around_face(mesh.halfedge(face), mesh))
+      repaired.faces(f, k++) = index[v.idx()];
     ++f;
   }
   report.faces_after = static_cast<std::size_t>(repaired.num_faces());

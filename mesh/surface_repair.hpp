@@ -11,16 +11,16 @@
 namespace fibermold {
 
 struct RepairOptions {
-  double merge_tolerance = 1e-6;             ///< × bounding-box diagonal
+  double merge_tolerance = 1e-6; ///< × bounding-box diagonal
 };
 
 struct RepairReport {
   std::size_t merged_vertices = 0;
-  std::size_t removed_faces = 0;     ///< degenerate or duplicate
-  std::size_t removed_vertices = 0;  ///< used by no face
-  bool reoriented = false;           ///< some faces flipped to agree with their neighbours
+  std::size_t removed_faces = 0;    ///< degenerate or duplicate
+  std::size_t removed_vertices = 0; ///< used by no face
+  bool reoriented = false;          ///< some faces flipped to agree with their neighbours
   std::size_t stitched_edges = 0;
-  bool turned_outward = false;       ///< the whole surface was inside out
+  bool turned_outward = false; ///< the whole surface was inside out
   std::size_t faces_before = 0, faces_after = 0;
 
   /// What changed, one line per change; empty when nothing did.

@@ -14,7 +14,7 @@ namespace fibermold {
 namespace {
 
 constexpr char kMagic[8] = {'F', 'M', 'T', 'E', 'T', 'M', 'S', 'H'};
-constexpr std::uint32_t kVersion = 2;  // 2: the surface places
+constexpr std::uint32_t kVersion = 2; // 2: the surface places
 
 /// FNV-1a over the payload: enough to tell a truncated or damaged artifact from a good one.
 std::uint64_t checksum(std::string_view bytes)
@@ -120,7 +120,8 @@ TetMesh load_tet_mesh(const std::filesystem::path& path)
   r.get_matrix(mesh.place_weights);
   const bool placed = mesh.place_face.size() == mesh.nodes.rows() && mesh.place_weights.rows() == mesh.nodes.rows();
   if (!(placed || (mesh.place_face.size() == 0 && mesh.place_weights.rows() == 0)) ||
-      (mesh.place_face.size() > 0 && (mesh.place_face.minCoeff() < -1 || mesh.place_face.maxCoeff() >= mesh.surface_faces.rows())))
+      (mesh.place_face.size() > 0 &&
+       (mesh.place_face.minCoeff() < -1 || mesh.place_face.maxCoeff() >= mesh.surface_faces.rows())))
     throw std::runtime_error(path.string() + ": corrupt tet mesh (surface places)");
   return mesh;
 }

@@ -9,14 +9,14 @@
 namespace fibermold {
 
 struct TetMesh {
-  Eigen::MatrixX3d nodes;                                          ///< m
-  Eigen::Matrix<int, Eigen::Dynamic, Eigen::Dynamic> tets;         ///< 4 columns (linear) or 10 (quadratic, VTK order)
-  Eigen::MatrixX3i boundary_faces;                                 ///< corner nodes, outward
-  Eigen::VectorXi surface_to_node;                                 ///< input surface vertex → the node at it (or nearest it)
-  Eigen::MatrixX3i surface_faces;                                  ///< the input surface's faces (its vertex indices)
-  Eigen::MatrixX3d surface_vertices;                               ///< m, the input's vertices when they are not all nodes (remeshed); else empty
-  Eigen::VectorXi place_face;                                      ///< node → the input face its place is on; −1 inside
-  Eigen::MatrixX3d place_weights;                                  ///< node → barycentric weights of its place on that face
+  Eigen::MatrixX3d nodes;                                  ///< m
+  Eigen::Matrix<int, Eigen::Dynamic, Eigen::Dynamic> tets; ///< 4 columns (linear) or 10 (quadratic, VTK order)
+  Eigen::MatrixX3i boundary_faces;                         ///< corner nodes, outward
+  Eigen::VectorXi surface_to_node;                         ///< input surface vertex → the node at it (or nearest it)
+  Eigen::MatrixX3i surface_faces;                          ///< the input surface's faces (its vertex indices)
+  Eigen::MatrixX3d surface_vertices; ///< m, the input's vertices when they are not all nodes (remeshed); else empty
+  Eigen::VectorXi place_face;        ///< node → the input face its place is on; −1 inside
+  Eigen::MatrixX3d place_weights;    ///< node → barycentric weights of its place on that face
 
   int nodes_per_tet() const { return static_cast<int>(tets.cols()); }
   Eigen::Index num_tets() const { return tets.rows(); }

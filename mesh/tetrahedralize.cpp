@@ -1,9 +1,9 @@
 #include "mesh/tetrahedralize.hpp"
 
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <map>
-#include <algorithm>
 #include <stdexcept>
 #include <string>
 
@@ -21,13 +21,20 @@ namespace {
 std::string tetgen_error(int code)
 {
   switch (code) {
-  case 1: return "out of memory";
-  case 2: return "internal error";
-  case 3: return "the surface intersects itself";
-  case 4: return "a very small input feature (below TetGen's tolerance)";
-  case 5: return "two very close input facets";
-  case 10: return "an input error";
-  default: return fmt::format("error code {}", code);
+  case 1:
+    return "out of memory";
+  case 2:
+    return "internal error";
+  case 3:
+    return "the surface intersects itself";
+  case 4:
+    return "a very small input feature (below TetGen's tolerance)";
+  case 5:
+    return "two very close input facets";
+  case 10:
+    return "an input error";
+  default:
+    return fmt::format("error code {}", code);
   }
 }
 
@@ -50,7 +57,8 @@ void order_edge_nodes(TetMesh& mesh)
           (mesh.nodes.row(mesh.tets(t, kEdges[e][0])) + mesh.nodes.row(mesh.tets(t, kEdges[e][1]))) / 2;
       int best = 4;
       for (int k = 5; k < 10; ++k)
-        if ((mesh.nodes.row(mesh.tets(t, k)) - mid).squaredNorm() < (mesh.nodes.row(mesh.tets(t, best)) - mid).squaredNorm())
+        if ((mesh.nodes.row(mesh.tets(t, k)) - mid).squaredNorm() <
+            (mesh.nodes.row(mesh.tets(t, best)) - mid).squaredNorm())
           best = k;
       ordered[e] = mesh.tets(t, best);
     }
@@ -63,7 +71,7 @@ Eigen::MatrixX3i boundary_faces(const TetMesh& mesh)
 {
   // Outward faces of a positively oriented tet (0, 1, 2, 3).
   constexpr std::array<std::array<int, 3>, 4> kFaces{{{1, 2, 3}, {0, 3, 2}, {0, 1, 3}, {0, 2, 1}}};
-  std::map<std::array<int, 3>, std::pair<int, std::array<int, 3>>> seen;  // sorted face → count, oriented face
+  std::map<std::array<int, 3>, std::pair<int, std::array<int, 3>>> seen; // sorted face → count, oriented face
   for (Eigen::Index t = 0; t < mesh.num_tets(); ++t)
     for (const auto& f : kFaces) {
       std::array<int, 3> face{mesh.tets(t, f[0]), mesh.tets(t, f[1]), mesh.tets(t, f[2])};
@@ -76,7 +84,8 @@ Eigen::MatrixX3i boundary_faces(const TetMesh& mesh)
   for (const auto& [key, value] : seen)
     if (value.first == 1) faces.push_back(value.second);
   Eigen::MatrixX3i out(static_cast<Eigen::Index>(faces.size()), 3);
-  for (std::size_t i = 0; i < faces.size(); ++i) out.row(static_cast<Eigen::Index>(i)) << faces[i][0], faces[i][1], faces[i][2];
+  for (std::size_t i = 0; i < faces.size(); ++i)
+    out.row(static_cast<Eigen::Index>(i)) << faces[i][0], faces[i][1], faces[i][2];
   return out;
 }
 
@@ -89,9 +98,11 @@ std::vector<Eigen::Vector3d> cavity_points(const SurfaceMesh& s)
     double six_volume = 0, largest_area = 0;
     Eigen::Vector3d point = Eigen::Vector3d::Zero();
   };
-  std::vector<Shell> shells(shell_of.empty() ? 0 : static_cast<std::size_t>(*std::max_element(shell_of.begin(), shell_of.end())) + 1);
+  std::vector<Shell> shells(
+      shell_of.empty() ? 0 : static_cast<std::size_t>(*std::max_element(shell_of.begin(), shell_of.end())) + 1);
   for (Eigen::Index f = 0; f < s.num_faces(); ++f) {
-    const Eigen::Vector3d a = s.vertices.row(s.faces(f, 0)), b = s.vertices.row(s.faces(f, 1)), c = s.vertices.row(s.faces(f, 2));
+    const Eigen::Vector3d a = s.vertices.row(s.faces(f, 0)), b = s.vertices.row(s.faces(f, 1)),
+                          c = s.vertices.row(s.faces(f, 2));
     Shell& shell = shells[shell_of[f]];
     shell.six_volume += a.dot(b.cross(c));
     const Eigen::Vector3d n = (b - a).cross(c - a);
@@ -137,7 +148,7 @@ TetMesh tetrahedralize(const SurfaceMesh& surface, const TetOptions& options, Pr
   const Eigen::RowVector3d origin = surface.vertices.colwise().minCoeff();
   const double diagonal = (surface.vertices.colwise().maxCoeff() - origin).norm();
   if (!(diagonal > 0)) throw std::invalid_argument("tetrahedralize: the surface has no extent");
-  const double scale = 100.0 / diagonal;  // TetGen units per metre
+  const double scale = 100.0 / diagonal; // TetGen units per metre
   tetgenio in, out;
   in.firstnumber = 0;
   in.numberofpoints = static_cast<int>(surface.num_vertices());
@@ -168,12 +179,13 @@ TetMesh tetrahedralize(const SurfaceMesh& surface, const TetOptions& options, Pr
                                      options.min_dihedral_deg, options.quadratic ? "o2" : "");
   tetgenbehavior behaviour;
   if (!behaviour.parse_commandline(switches.data())) throw std::logic_error("TetGen rejected -" + switches);
-  behaviour.fixedvolume = 1;  // -a with the bound set directly, not printed into the switches
+  behaviour.fixedvolume = 1; // -a with the bound set directly, not printed into the switches
   behaviour.maxvolume = max_volume;
   try {
     ::tetrahedralize(&behaviour, &in, &out);
   } catch (int code) {
-    throw std::runtime_error(fmt::format("TetGen failed: {} (switches -{}a{:g})", tetgen_error(code), switches, max_volume));
+    throw std::runtime_error(
+        fmt::format("TetGen failed: {} (switches -{}a{:g})", tetgen_error(code), switches, max_volume));
   }
 
   TetMesh mesh;
@@ -191,7 +203,7 @@ TetMesh tetrahedralize(const SurfaceMesh& surface, const TetOptions& options, Pr
   for (Eigen::Index v = 0; v < surface.num_vertices(); ++v) {
     if (v >= mesh.nodes.rows() || (mesh.nodes.row(v) - surface.vertices.row(v)).norm() > 1e-12 * diagonal)
       throw std::runtime_error(fmt::format("TetGen moved or dropped surface vertex {}", v));
-    mesh.nodes.row(v) = surface.vertices.row(v);  // bit-identical, not round-tripped through mm
+    mesh.nodes.row(v) = surface.vertices.row(v); // bit-identical, not round-tripped through mm
   }
   mesh.boundary_faces = boundary_faces(mesh);
   attach_to_surface(mesh, surface);

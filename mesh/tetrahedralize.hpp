@@ -14,12 +14,12 @@
 namespace fibermold {
 
 struct TetOptions {
-  double edge_length = 0;          ///< m, target; sets TetGen's volume bound a³/(6√2)
-  double radius_edge_ratio = 1.5;  ///< TetGen's quality bound (-q)
-  double min_dihedral_deg = 10;    ///< TetGen's dihedral-angle bound (-q.../angle)
-  bool quadratic = false;          ///< 10-node tetrahedra (-o2)
-  bool keep_surface = true;        ///< no points added on the surface (-Y)
-  double volume_bound_factor = 1;  ///< TetGen's volume bound (-a) as a multiple of a³/(6√2)
+  double edge_length = 0;         ///< m, target; sets TetGen's volume bound a³/(6√2)
+  double radius_edge_ratio = 1.5; ///< TetGen's quality bound (-q)
+  double min_dihedral_deg = 10;   ///< TetGen's dihedral-angle bound (-q.../angle)
+  bool quadratic = false;         ///< 10-node tetrahedra (-o2)
+  bool keep_surface = true;       ///< no points added on the surface (-Y)
+  double volume_bound_factor = 1; ///< TetGen's volume bound (-a) as a multiple of a³/(6√2)
 };
 
 /// What the mesh stage does with the input surface's triangles ([mesh] surface_triangles): keep them
@@ -27,9 +27,9 @@ struct TetOptions {
 /// length (remesh, mesh/surface_remesh.hpp), or choose by their size (auto: surface_treatment).
 enum class SurfaceTriangles { automatic, keep, split, remesh };
 inline constexpr std::array<Named<SurfaceTriangles>, 4> kSurfaceTrianglesNames{{{SurfaceTriangles::automatic, "auto"},
-                                                                                 {SurfaceTriangles::keep, "keep"},
-                                                                                 {SurfaceTriangles::split, "split"},
-                                                                                 {SurfaceTriangles::remesh, "remesh"}}};
+                                                                                {SurfaceTriangles::keep, "keep"},
+                                                                                {SurfaceTriangles::split, "split"},
+                                                                                {SurfaceTriangles::remesh, "remesh"}}};
 inline std::string_view choice_name(SurfaceTriangles s) { return name_in(kSurfaceTrianglesNames, s); }
 
 /// At "auto": a mean input edge under kCoarsenEdgeFactor × edge_length (a dense scan, even with a

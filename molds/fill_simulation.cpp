@@ -19,15 +19,19 @@ std::vector<Index> port_voxels(const VoxelRegion& r, const Port& p)
   const Eigen::Vector3d g = r.grid(p.mouth);
   const double radius = p.diameter / 2 / r.voxel + 0.5, dip = p.dip() / r.voxel + 0.5;
   std::vector<Index> out;
-  const int i0 = std::max(0, static_cast<int>(std::floor(g.x() - radius))), i1 = std::min(r.size.x() - 1, static_cast<int>(std::ceil(g.x() + radius)));
-  const int j0 = std::max(0, static_cast<int>(std::floor(g.y() - radius))), j1 = std::min(r.size.y() - 1, static_cast<int>(std::ceil(g.y() + radius)));
+  const int i0 = std::max(0, static_cast<int>(std::floor(g.x() - radius))),
+            i1 = std::min(r.size.x() - 1, static_cast<int>(std::ceil(g.x() + radius)));
+  const int j0 = std::max(0, static_cast<int>(std::floor(g.y() - radius))),
+            j1 = std::min(r.size.y() - 1, static_cast<int>(std::ceil(g.y() + radius)));
   const int step = p.upward ? -1 : 1;
   for (int j = j0; j <= j1; ++j)
     for (int i = i0; i <= i1; ++i) {
       if (std::hypot(i - g.x(), j - g.y()) > radius) continue;
       int k = p.upward ? r.size.z() - 1 : 0;
       while (k >= 0 && k < r.size.z() && r.cell(i, j, k) == VoxelRegion::mold) k += step;
-      for (; k >= 0 && k < r.size.z() && r.cell(i, j, k) == VoxelRegion::fill && (p.upward ? k >= g.z() - dip : k <= g.z() + dip); k += step)
+      for (; k >= 0 && k < r.size.z() && r.cell(i, j, k) == VoxelRegion::fill &&
+             (p.upward ? k >= g.z() - dip : k <= g.z() + dip);
+           k += step)
         out.push_back(r.index(i, j, k));
     }
   return out;
@@ -35,11 +39,11 @@ std::vector<Index> port_voxels(const VoxelRegion& r, const Port& p)
 
 /// A voxel's state during the simulation.
 enum : std::uint8_t {
-  kOutside = 0,  // mold, or solid (below)
-  kInside = 1,   // fill, not reached yet
+  kOutside = 0, // mold, or solid (below)
+  kInside = 1,  // fill, not reached yet
   kReached = 2,
-  kVent = 3,     // reached, and a vent takes it in
-  kCounted = 4,  // fill no sprue reaches
+  kVent = 3,    // reached, and a vent takes it in
+  kCounted = 4, // fill no sprue reaches
   kSolid = 5,
 };
 bool is_fill(std::uint8_t s) { return s >= kInside && s <= kCounted; }
@@ -49,7 +53,7 @@ bool is_fill(std::uint8_t s) { return s >= kInside && s <= kCounted; }
 struct Padded {
   Index nx, ny, nz, nxy;
   explicit Padded(const VoxelRegion& r) : nx(r.size.x() + 2), ny(r.size.y() + 2), nz(r.size.z() + 2), nxy(nx * ny) {}
-  Index at(Index i, Index j, Index k) const { return (i + 1) + nx * ((j + 1) + ny * (k + 1)); }  // region (i, j, k)
+  Index at(Index i, Index j, Index k) const { return (i + 1) + nx * ((j + 1) + ny * (k + 1)); } // region (i, j, k)
   Eigen::Vector3i region_ijk(Index d) const
   {
     return {static_cast<int>(d % nx - 1), static_cast<int>((d % nxy) / nx - 1), static_cast<int>(d / nxy - 1)};
@@ -91,12 +95,14 @@ struct Top {
   Index k = 0;
   double i = 0, j = 0;
   Index n = 0;
-  Index any = -1;  ///< a voxel of the level (padded grid)
+  Index any = -1; ///< a voxel of the level (padded grid)
 
   void join(const Top& o)
   {
-    if (o.k > k) *this = o;
-    else if (o.k == k) i += o.i, j += o.j, n += o.n;
+    if (o.k > k)
+      *this = o;
+    else if (o.k == k)
+      i += o.i, j += o.j, n += o.n;
   }
 };
 
@@ -104,7 +110,7 @@ struct Top {
 /// whether a vent takes it in, its voxels above the level being swept, and its highest level.
 struct AirSets {
   std::vector<std::int32_t> parent;
-  std::vector<std::uint8_t> rank, vented, thick;  ///< thick: a voxel above the level has its 6 faces in the region
+  std::vector<std::uint8_t> rank, vented, thick; ///< thick: a voxel above the level has its 6 faces in the region
   std::vector<Index> above;
   std::vector<Top> top;
 
@@ -123,7 +129,7 @@ struct AirSets {
   {
     while (parent[static_cast<std::size_t>(c)] != c) {
       auto& p = parent[static_cast<std::size_t>(c)];
-      p = parent[static_cast<std::size_t>(p)];  // path halving
+      p = parent[static_cast<std::size_t>(p)]; // path halving
       c = p;
     }
     return c;
@@ -132,8 +138,7 @@ struct AirSets {
   /// liquid that reaches this level: `sealed` gets its voxels above the level and its top.
   /// Where two parts without a vent join, the smaller would be sealed off once the other has
   /// one: `nested` gets it, so that both can be vented at once.
-  template <class Sealed, class Nested>
-  void unite(std::int32_t a, std::int32_t b, Sealed&& sealed, Nested&& nested)
+  template <class Sealed, class Nested> void unite(std::int32_t a, std::int32_t b, Sealed&& sealed, Nested&& nested)
   {
     auto ra = static_cast<std::size_t>(find(a)), rb = static_cast<std::size_t>(find(b));
     if (ra == rb) return;
@@ -197,14 +202,16 @@ public:
         continue;
       }
       // Named by the voxel of its lowest level nearest that level's middle.
-      const Index low = *std::min_element(part.begin(), part.end()) / g_.nxy;  // k is the slowest index
+      const Index low = *std::min_element(part.begin(), part.end()) / g_.nxy; // k is the slowest index
       double i = 0, j = 0, n = 0;
       for (Index e : part)
-        if (e / g_.nxy == low) i += static_cast<double>(e % g_.nx - 1), j += static_cast<double>((e % g_.nxy) / g_.nx - 1), ++n;
+        if (e / g_.nxy == low)
+          i += static_cast<double>(e % g_.nx - 1), j += static_cast<double>((e % g_.nxy) / g_.nx - 1), ++n;
       const auto id = static_cast<std::int32_t>(-2 - static_cast<std::int32_t>(out_.unreachable.size()));
       for (Index e : part) set_[static_cast<std::size_t>(e)] = id;
-      const Index at = nearest_in_level(r_, g_, low - 1, std::lround(i / n), std::lround(j / n),
-                                        [&](Index e) { return set_[static_cast<std::size_t>(e)] == id; }, std::max(r_.size.x(), r_.size.y()));
+      const Index at = nearest_in_level(
+          r_, g_, low - 1, std::lround(i / n), std::lround(j / n),
+          [&](Index e) { return set_[static_cast<std::size_t>(e)] == id; }, std::max(r_.size.x(), r_.size.y()));
       out_.unreachable.push_back({static_cast<double>(part.size()) * cell_, centre(at)});
     }
   }
@@ -227,8 +234,10 @@ public:
     std::vector<bool> level_thick;
     const auto seal = [&](std::int32_t root, Index voxels, const Top& top, bool thick) {
       const AirPocket p = pocket(root, voxels, top, thick);
-      if (!thick && !p.ventable) out_.crevice_air_volume += p.volume;
-      else out_.pockets.push_back(p);
+      if (!thick && !p.ventable)
+        out_.crevice_air_volume += p.volume;
+      else
+        out_.pockets.push_back(p);
     };
     const auto nested = [&](std::int32_t root, Index voxels, const Top& top, bool thick) {
       if (static_cast<double>(voxels) * cell_ >= 1e-9) out_.nested.push_back(pocket(root, voxels, top, thick));
@@ -245,7 +254,8 @@ public:
           level.push_back(c);
           level_thick.push_back(thick_at(d));
           for (std::size_t n = 0; n < 13; ++n)
-            if (const std::int32_t e = set_[static_cast<std::size_t>(d + offsets_[n])]; e >= 0) air_.unite(c, e, seal, nested);
+            if (const std::int32_t e = set_[static_cast<std::size_t>(d + offsets_[n])]; e >= 0)
+              air_.unite(c, e, seal, nested);
         }
       for (std::size_t n = 0; n < level.size(); ++n) {
         const auto root = static_cast<std::size_t>(air_.find(level[n]));
@@ -281,14 +291,16 @@ private:
   bool thick_at(Index d) const
   {
     const std::array<Index, 6> faces{1, -1, g_.nx, -g_.nx, g_.nxy, -g_.nxy};
-    return std::all_of(faces.begin(), faces.end(), [&](Index o) { return is_fill(state_[static_cast<std::size_t>(d + o)]); });
+    return std::all_of(faces.begin(), faces.end(),
+                       [&](Index o) { return is_fill(state_[static_cast<std::size_t>(d + o)]); });
   }
 
   std::vector<Index> voxels_of(const Port& p) const
   {
     std::vector<Index> found = port_voxels(r_, p);
     for (Index& d : found) {
-      const Index i = d % r_.size.x(), j = (d / r_.size.x()) % r_.size.y(), k = d / (static_cast<Index>(r_.size.x()) * r_.size.y());
+      const Index i = d % r_.size.x(), j = (d / r_.size.x()) % r_.size.y(),
+                  k = d / (static_cast<Index>(r_.size.x()) * r_.size.y());
       d = g_.at(i, j, k);
     }
     return found;
@@ -307,13 +319,18 @@ private:
   /// reach is a crevice.
   AirPocket pocket(std::int32_t root, Index voxels, const Top& top, bool thick)
   {
-    const Index i = std::lround(top.i / static_cast<double>(top.n)), j = std::lround(top.j / static_cast<double>(top.n));
-    Index at = nearest_in_level(r_, g_, top.k, i, j, [&](Index d) {
-      return set_[static_cast<std::size_t>(d)] >= 0 && air_.find(set_[static_cast<std::size_t>(d)]) == root;
-    }, 8);
+    const Index i = std::lround(top.i / static_cast<double>(top.n)),
+                j = std::lround(top.j / static_cast<double>(top.n));
+    Index at = nearest_in_level(
+        r_, g_, top.k, i, j,
+        [&](Index d) {
+          return set_[static_cast<std::size_t>(d)] >= 0 && air_.find(set_[static_cast<std::size_t>(d)]) == root;
+        },
+        8);
     if (at < 0) at = top.any;
     bool ventable = true;
-    for (Index e = at + g_.nxy; e < static_cast<Index>(state_.size()); e += g_.nxy) ventable = ventable && state_[static_cast<std::size_t>(e)] == kOutside;
+    for (Index e = at + g_.nxy; e < static_cast<Index>(state_.size()); e += g_.nxy)
+      ventable = ventable && state_[static_cast<std::size_t>(e)] == kOutside;
     return AirPocket{static_cast<double>(voxels) * cell_, centre(at), ventable, !thick};
   }
 
@@ -322,7 +339,7 @@ private:
   const std::vector<Index> offsets_;
   const double cell_;
   std::vector<std::uint8_t> state_;
-  std::vector<std::int32_t> set_;  ///< per voxel: its air set in the sweep (≥ 0), or −2 − p for unreachable part p
+  std::vector<std::int32_t> set_; ///< per voxel: its air set in the sweep (≥ 0), or −2 − p for unreachable part p
   AirSets air_;
   FillResult out_;
 };

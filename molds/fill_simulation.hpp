@@ -21,9 +21,9 @@ namespace fibermold {
 /// It takes in the fill voxels it meets first from outside in each column of its disc, to its dip
 /// past the mouth: none where it meets solid (a vent over cured silicone).
 struct Port {
-  Eigen::Vector3d mouth;  ///< m, body frame: where the hole meets the cavity
-  double diameter = 0;    ///< m
-  bool upward = true;     ///< leaves along +pull (vents, a sprue from above) or −pull (a sprue from below)
+  Eigen::Vector3d mouth; ///< m, body frame: where the hole meets the cavity
+  double diameter = 0;   ///< m
+  bool upward = true;    ///< leaves along +pull (vents, a sprue from above) or −pull (a sprue from below)
   /// m: how far past its mouth the mold cuts the hole, so that its whole disc lies in the cavity
   /// (a sloping skin under it) and the booleans meet no tangent faces; 0: dip()
   double depth = 0;
@@ -32,18 +32,19 @@ struct Port {
 };
 
 struct AirPocket {
-  double volume = 0;                          ///< m³
-  Eigen::Vector3d at = Eigen::Vector3d::Zero();  ///< m: a pocket's highest point, an unfilled part's lowest
-  bool ventable = true;  ///< a pocket's top has mold straight above it (not cured silicone or a muscle): a vent can reach it
-  bool thin = false;     ///< no voxel of the pocket has all six face neighbours in the region
+  double volume = 0;                            ///< m³
+  Eigen::Vector3d at = Eigen::Vector3d::Zero(); ///< m: a pocket's highest point, an unfilled part's lowest
+  bool ventable =
+      true; ///< a pocket's top has mold straight above it (not cured silicone or a muscle): a vent can reach it
+  bool thin = false; ///< no voxel of the pocket has all six face neighbours in the region
 };
 
 struct FillResult {
-  double fill_volume = 0;       ///< m³: the region the shot must fill
-  double reachable_volume = 0;  ///< m³: connected to a sprue
-  double trapped_volume = 0;    ///< m³: air the rising silicone closes off from every vent, crevices left out
-  std::vector<AirPocket> pockets;      ///< trapped air, largest first, crevices left out
-  std::vector<AirPocket> unreachable;  ///< parts no sprue reaches, largest first, crevices left out
+  double fill_volume = 0;             ///< m³: the region the shot must fill
+  double reachable_volume = 0;        ///< m³: connected to a sprue
+  double trapped_volume = 0;          ///< m³: air the rising silicone closes off from every vent, crevices left out
+  std::vector<AirPocket> pockets;     ///< trapped air, largest first, crevices left out
+  std::vector<AirPocket> unreachable; ///< parts no sprue reaches, largest first, crevices left out
   /// Air that a pocket holds as a part of its own, of 1 mm³ or more, largest first: where two parts
   /// without a vent join, the smaller, sealed off once the other has a vent (not counted as trapped)
   std::vector<AirPocket> nested;
@@ -58,8 +59,8 @@ struct FillResult {
   /// region, as in the wedge of cast between a groove's wall and a sloping skin): what it leaves
   /// empty, shot 2's silicone fills (plan_fill)
   double overmolded_air_volume = 0;
-  std::vector<bool> sprue_open;        ///< the sprue opens onto the region
-  std::vector<bool> vent_open;         ///< the vent opens onto a part of the region that a sprue reaches
+  std::vector<bool> sprue_open; ///< the sprue opens onto the region
+  std::vector<bool> vent_open;  ///< the vent opens onto a part of the region that a sprue reaches
 };
 
 FillResult simulate_fill(const VoxelRegion& region, const std::vector<Port>& sprues, const std::vector<Port>& vents);

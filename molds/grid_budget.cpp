@@ -9,7 +9,8 @@
 
 namespace fibermold {
 
-GridEstimate estimate_grids(const SurfaceMesh& body, double voxel, double radius, const std::vector<std::vector<Eigen::Vector3d>>& fibers)
+GridEstimate estimate_grids(const SurfaceMesh& body, double voxel, double radius,
+                            const std::vector<std::vector<Eigen::Vector3d>>& fibers)
 {
   double groove_length = 0;
   for (const auto& line : fibers)
@@ -29,12 +30,17 @@ GridEstimate estimate_grids(const SurfaceMesh& body, double voxel, double radius
 std::optional<std::string> grid_budget_problem(const GridEstimate& e, double voxel)
 {
   if (e.band_voxels > kMaxBandVoxels)
-    return fmt::format("a {:.3g} mm voxel would carve the skin and the grooves in about {:.3g} million voxels, more than the {:.0f} million "
-                       "that carve in minutes; raise [mold].voxel to {:.2g} mm or more (or check the muscle's diameter and [design].units)",
-                       voxel / 1e-3, e.band_voxels / 1e6, kMaxBandVoxels / 1e6, voxel * std::sqrt(e.band_voxels / kMaxBandVoxels) / 1e-3);
+    return fmt::format("a {:.3g} mm voxel would carve the skin and the grooves in about {:.3g} million voxels, more "
+                       "than the {:.0f} million "
+                       "that carve in minutes; raise [mold].voxel to {:.2g} mm or more (or check the muscle's diameter "
+                       "and [design].units)",
+                       voxel / 1e-3, e.band_voxels / 1e6, kMaxBandVoxels / 1e6,
+                       voxel * std::sqrt(e.band_voxels / kMaxBandVoxels) / 1e-3);
   if (e.fill_voxels > kMaxFillVoxels)
-    return fmt::format("the fill simulation would sample the body on about {:.3g} million voxels, more than {:.0f} million; raise "
-                       "[mold].voxel", e.fill_voxels / 1e6, kMaxFillVoxels / 1e6);
+    return fmt::format(
+        "the fill simulation would sample the body on about {:.3g} million voxels, more than {:.0f} million; raise "
+        "[mold].voxel",
+        e.fill_voxels / 1e6, kMaxFillVoxels / 1e6);
   return std::nullopt;
 }
 

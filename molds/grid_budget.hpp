@@ -16,12 +16,13 @@
 namespace fibermold {
 
 struct GridEstimate {
-  double band_voxels = 0;  ///< the level set's narrow band: 6 voxels across the skin and the grooves' walls
-  double fill_voxels = 0;  ///< the fill simulation's grid over the body's box
+  double band_voxels = 0; ///< the level set's narrow band: 6 voxels across the skin and the grooves' walls
+  double fill_voxels = 0; ///< the fill simulation's grid over the body's box
 };
 
 /// Estimates for `body` carved at `voxel` (m) with grooves of `radius` (m) along the polylines `fibers`.
-GridEstimate estimate_grids(const SurfaceMesh& body, double voxel, double radius, const std::vector<std::vector<Eigen::Vector3d>>& fibers);
+GridEstimate estimate_grids(const SurfaceMesh& body, double voxel, double radius,
+                            const std::vector<std::vector<Eigen::Vector3d>>& fibers);
 
 /// 25× the twisting bar's band (1.9 million voxels at 0.2 mm): minutes of carving, a few GB.
 constexpr double kMaxBandVoxels = 5e7;

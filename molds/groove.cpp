@@ -26,7 +26,8 @@ std::vector<Eigen::Vector3d> simplified(const std::vector<Eigen::Vector3d>& line
     double worst = 0;
     std::size_t at = a;
     for (std::size_t i = a + 1; i < b; ++i) {
-      const double t = ab.squaredNorm() > 0 ? std::clamp((line[i] - line[a]).dot(ab) / ab.squaredNorm(), 0.0, 1.0) : 0.0;
+      const double t =
+          ab.squaredNorm() > 0 ? std::clamp((line[i] - line[a]).dot(ab) / ab.squaredNorm(), 0.0, 1.0) : 0.0;
       if (const double d = (line[i] - line[a] - t * ab).norm(); d > worst) worst = d, at = i;
     }
     if (worst <= tolerance) continue;
@@ -56,7 +57,8 @@ GrooveBody meshed(const LevelSet& solid, double adaptivity)
 } // namespace
 
 GrooveBody groove_body(const SurfaceMesh& body, const std::vector<std::vector<Eigen::Vector3d>>& fibers, double radius,
-                       const Eigen::Vector3d& pull_in, double voxel, double adaptivity, const Draft* draft, GrooveBody* solid_body)
+                       const Eigen::Vector3d& pull_in, double voxel, double adaptivity, const Draft* draft,
+                       GrooveBody* solid_body)
 {
   const Eigen::Vector3d pull = pull_in.normalized();
   const Eigen::VectorXd heights = body.vertices * pull;
@@ -68,13 +70,15 @@ GrooveBody groove_body(const SurfaceMesh& body, const std::vector<std::vector<Ei
   if (draft) solid.grow([&](double h) { return draft->offset(h); }, draft->most());
   if (solid_body) *solid_body = meshed(solid, adaptivity);
   LevelSet grooves(voxel, pull);
-  for (const auto& fiber : fibers) grooves.add_swept_tube(simplified(fiber, voxel / 10), radius, through, draft ? draft->slope : 0);
+  for (const auto& fiber : fibers)
+    grooves.add_swept_tube(simplified(fiber, voxel / 10), radius, through, draft ? draft->slope : 0);
   solid.subtract(grooves);
   return meshed(solid, adaptivity);
 }
 
-FillRegions fill_regions(const SurfaceMesh& cavity, const std::vector<std::vector<Eigen::Vector3d>>& fibers, double radius,
-                         double muscle_radius, const Eigen::Vector3d& pull_in, double voxel, double taper)
+FillRegions fill_regions(const SurfaceMesh& cavity, const std::vector<std::vector<Eigen::Vector3d>>& fibers,
+                         double radius, double muscle_radius, const Eigen::Vector3d& pull_in, double voxel,
+                         double taper)
 {
   const Eigen::Vector3d pull = pull_in.normalized();
   const Eigen::VectorXd heights = cavity.vertices * pull;
@@ -94,7 +98,7 @@ FillRegions fill_regions(const SurfaceMesh& cavity, const std::vector<std::vecto
   LevelSet space = body.copy();
   space.intersect(grooves);
   space.subtract(muscles);
-  out.shot2 = space.voxels(&body);  // the rest of the body is cured silicone and muscle
+  out.shot2 = space.voxels(&body); // the rest of the body is cured silicone and muscle
   return out;
 }
 

@@ -15,9 +15,9 @@
 namespace fibermold {
 
 struct GrooveBody {
-  SurfaceMesh mesh;        ///< closed, outward oriented
-  double volume = 0;       ///< m³, of the level set
-  double adaptivity = 0;   ///< what the mesh was made with
+  SurfaceMesh mesh;      ///< closed, outward oriented
+  double volume = 0;     ///< m³, of the level set
+  double adaptivity = 0; ///< what the mesh was made with
 };
 
 /// OpenVDB's adaptivity for the groove body's mesh: flat stretches become a few large triangles
@@ -40,8 +40,9 @@ GrooveBody groove_body(const SurfaceMesh& body, const std::vector<std::vector<Ei
 struct FillRegions {
   VoxelRegion shot1, shot2;
 };
-FillRegions fill_regions(const SurfaceMesh& cavity, const std::vector<std::vector<Eigen::Vector3d>>& fibers, double radius,
-                         double muscle_radius, const Eigen::Vector3d& pull, double voxel, double taper = 0);
+FillRegions fill_regions(const SurfaceMesh& cavity, const std::vector<std::vector<Eigen::Vector3d>>& fibers,
+                         double radius, double muscle_radius, const Eigen::Vector3d& pull, double voxel,
+                         double taper = 0);
 
 /// The fill simulation's voxel: the mold's, or a quarter of the groove's radius when that is
 /// coarser (a groove is then still eight voxels across, and the simulation costs a few percent of

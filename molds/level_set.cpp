@@ -12,13 +12,13 @@
 #include <openvdb/openvdb.h>
 #include <openvdb/tools/Composite.h>
 #include <openvdb/tools/Interpolation.h>
+#include <openvdb/tools/LevelSetMeasure.h>
 #include <openvdb/tools/LevelSetRebuild.h>
 #include <openvdb/tools/LevelSetUtil.h>
-#include <openvdb/tools/LevelSetMeasure.h>
 #include <openvdb/tools/MeshToVolume.h>
 #include <openvdb/tools/Prune.h>
-#include <openvdb/tools/ValueTransformer.h>
 #include <openvdb/tools/SignedFloodFill.h>
+#include <openvdb/tools/ValueTransformer.h>
 #include <openvdb/tools/VolumeToMesh.h>
 
 #include <tbb/blocked_range.h>
@@ -51,7 +51,7 @@ openvdb::math::Transform::Ptr frame(double voxel, const Eigen::Vector3d& up)
                                 : Eigen::Quaterniond::FromTwoVectors(Eigen::Vector3d::UnitZ(), u).toRotationMatrix();
   openvdb::math::Mat4d m = openvdb::math::Mat4d::identity();
   for (int i = 0; i < 3; ++i)
-    for (int j = 0; j < 3; ++j) m(i, j) = voxel * R(j, i);  // OpenVDB maps row vectors: world = index · m
+    for (int j = 0; j < 3; ++j) m(i, j) = voxel * R(j, i); // OpenVDB maps row vectors: world = index · m
   return openvdb::math::Transform::createLinearTransform(m);
 }
 
@@ -101,7 +101,7 @@ struct SweptSegment {
     const Eigen::Vector3d up(0, 0, length);
     const double edges = std::min(segment_distance(p, a, b), segment_distance(p, a + up, b + up));
     const double dz = b.z() - a.z();
-    double s0 = 0, s1 = 1;  // a.z + s dz <= p.z <= a.z + s dz + length
+    double s0 = 0, s1 = 1; // a.z + s dz <= p.z <= a.z + s dz + length
     if (std::abs(dz) > 1e-12) {
       const double lo = (p.z() - length - a.z()) / dz, hi = (p.z() - a.z()) / dz;
       s0 = std::max(0.0, std::min(lo, hi));
@@ -122,7 +122,7 @@ struct SweptSegment {
 struct LevelSet::Impl {
   openvdb::FloatGrid::Ptr grid;
   double voxel, half_width;
-  double exterior = 0;  ///< voxels of band outside, when wider than half_width
+  double exterior = 0; ///< voxels of band outside, when wider than half_width
 };
 
 LevelSet::LevelSet(double voxel, const Eigen::Vector3d& up, double half_width) : impl_(std::make_unique<Impl>())
@@ -146,7 +146,8 @@ LevelSet LevelSet::copy() const
   return out;
 }
 
-LevelSet LevelSet::from_mesh(const SurfaceMesh& s, double voxel, const Eigen::Vector3d& up, double half_width, double exterior)
+LevelSet LevelSet::from_mesh(const SurfaceMesh& s, double voxel, const Eigen::Vector3d& up, double half_width,
+                             double exterior)
 {
   LevelSet out(voxel, up, half_width);
   std::vector<openvdb::Vec3s> points;
@@ -155,10 +156,12 @@ LevelSet LevelSet::from_mesh(const SurfaceMesh& s, double voxel, const Eigen::Ve
     points.emplace_back(static_cast<float>(s.vertices(i, 0) / kUnit), static_cast<float>(s.vertices(i, 1) / kUnit),
                         static_cast<float>(s.vertices(i, 2) / kUnit));
   for (Eigen::Index f = 0; f < s.num_faces(); ++f)
-    triangles.emplace_back(static_cast<unsigned>(s.faces(f, 0)), static_cast<unsigned>(s.faces(f, 1)), static_cast<unsigned>(s.faces(f, 2)));
+    triangles.emplace_back(static_cast<unsigned>(s.faces(f, 0)), static_cast<unsigned>(s.faces(f, 1)),
+                           static_cast<unsigned>(s.faces(f, 2)));
   out.impl_->exterior = std::max(exterior, half_width);
   out.impl_->grid = openvdb::tools::meshToSignedDistanceField<openvdb::FloatGrid>(
-      out.impl_->grid->transform(), points, triangles, {}, static_cast<float>(out.impl_->exterior), static_cast<float>(half_width));
+      out.impl_->grid->transform(), points, triangles, {}, static_cast<float>(out.impl_->exterior),
+      static_cast<float>(half_width));
   return out;
 }
 
@@ -178,14 +181,17 @@ std::uint64_t column_key(int i, int j)
 /// through `acc`; each voxel keeps the least distance: the union of the pieces. Above the fiber the
 /// piece widens by `taper` per voxel of height (a drafted groove): there the distance to its wall,
 /// inclined by atan(taper), is the horizontal one times cos(atan(taper)).
-void sweep(const SweptSegment& piece, double r, double taper, double band, double v, openvdb::FloatGrid::Accessor& acc, DeepSpans& deep)
+void sweep(const SweptSegment& piece, double r, double taper, double band, double v, openvdb::FloatGrid::Accessor& acc,
+           DeepSpans& deep)
 {
   const auto write = [&](const openvdb::Coord& c, double d) {
     if (d >= band) return;
     const float value = static_cast<float>(std::max(d, -band) * v);
     float old;
-    if (!acc.probeValue(c, old)) acc.setValueOn(c, value);
-    else if (value < old) acc.setValue(c, value);
+    if (!acc.probeValue(c, old))
+      acc.setValueOn(c, value);
+    else if (value < old)
+      acc.setValue(c, value);
   };
   const double cos_a = 1 / std::sqrt(1 + taper * taper);
   const double reach = r + band + taper * piece.length;
@@ -194,7 +200,7 @@ void sweep(const SweptSegment& piece, double r, double taper, double band, doubl
   for (int i = static_cast<int>(std::ceil(lo.x())); i <= static_cast<int>(std::floor(hi.x())); ++i)
     for (int j = static_cast<int>(std::ceil(lo.y())); j <= static_cast<int>(std::floor(hi.y())); ++j) {
       const SweptSegment::Column column = piece.column(i, j);
-      const double wall = column.horizontal - r;  // at the column's bottom
+      const double wall = column.horizontal - r; // at the column's bottom
       const auto wall_at = [&](int l) { return (wall - taper * (l - column.bottom)) * cos_a; };
       if (wall_at(static_cast<int>(std::floor(column.top))) >= band && wall >= band) continue;
       const int bottom = static_cast<int>(std::ceil(column.bottom)), top = static_cast<int>(std::floor(column.top));
@@ -206,8 +212,10 @@ void sweep(const SweptSegment& piece, double r, double taper, double band, doubl
       if (is_deep) deep[column_key(i, j)].emplace_back(std::max(bottom, deep_from), top);
       for (int l = l_lo; l <= l_hi; ++l) {
         if (l >= bottom && l <= top) {
-          if (is_deep && l >= deep_from) l = top;
-          else write(openvdb::Coord(i, j, l), wall_at(l));
+          if (is_deep && l >= deep_from)
+            l = top;
+          else
+            write(openvdb::Coord(i, j, l), wall_at(l));
           continue;
         }
         write(openvdb::Coord(i, j, l), piece.distance(Eigen::Vector3d(i, j, l)) - r);
@@ -222,7 +230,7 @@ void sweep(const SweptSegment& piece, double r, double taper, double band, doubl
 void LevelSet::add_swept_tube(const std::vector<Eigen::Vector3d>& polyline, double radius, double length, double taper)
 {
   if (polyline.size() < 2) return;
-  const double v = impl_->voxel / kUnit, band = impl_->half_width;  // in voxels from here on
+  const double v = impl_->voxel / kUnit, band = impl_->half_width; // in voxels from here on
   const double r = radius / impl_->voxel;
   const openvdb::math::Transform& xf = impl_->grid->transform();
   std::vector<SweptSegment> pieces;
@@ -230,7 +238,8 @@ void LevelSet::add_swept_tube(const std::vector<Eigen::Vector3d>& polyline, doub
     const openvdb::Vec3d i = xf.worldToIndex(openvdb::Vec3d(w.x(), w.y(), w.z()) / kUnit);
     return Eigen::Vector3d(i.x(), i.y(), i.z());
   };
-  for (std::size_t k = 0; k + 1 < polyline.size(); ++k) pieces.push_back({index(polyline[k]), index(polyline[k + 1]), length / impl_->voxel});
+  for (std::size_t k = 0; k + 1 < polyline.size(); ++k)
+    pieces.push_back({index(polyline[k]), index(polyline[k + 1]), length / impl_->voxel});
 
   // Pieces in parallel, each thread into its own grid; then the least value of all.
   struct Partial {
@@ -238,16 +247,20 @@ void LevelSet::add_swept_tube(const std::vector<Eigen::Vector3d>& polyline, doub
     DeepSpans deep;
   };
   tbb::enumerable_thread_specific<Partial> partials([&] { return Partial{empty_grid(xf, v, band), {}}; });
-  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, pieces.size(), 1), [&](const tbb::blocked_range<std::size_t>& range) {
-    Partial& part = partials.local();
-    auto acc = part.grid->getAccessor();
-    for (std::size_t k = range.begin(); k != range.end(); ++k) sweep(pieces[k], r, taper, band, v, acc, part.deep);
-  });
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, pieces.size(), 1),
+                    [&](const tbb::blocked_range<std::size_t>& range) {
+                      Partial& part = partials.local();
+                      auto acc = part.grid->getAccessor();
+                      for (std::size_t k = range.begin(); k != range.end(); ++k)
+                        sweep(pieces[k], r, taper, band, v, acc, part.deep);
+                    });
   openvdb::FloatGrid::Ptr tube;
   DeepSpans deep;
   for (Partial& part : partials) {
-    if (!tube) tube = part.grid;
-    else openvdb::tools::compMin(*tube, *part.grid);
+    if (!tube)
+      tube = part.grid;
+    else
+      openvdb::tools::compMin(*tube, *part.grid);
     for (auto& [column, spans] : part.deep) deep[column].insert(deep[column].end(), spans.begin(), spans.end());
   }
 
@@ -257,7 +270,8 @@ void LevelSet::add_swept_tube(const std::vector<Eigen::Vector3d>& polyline, doub
     const openvdb::Coord c = it.getCoord();
     bool is_inside = *it <= deepest;
     if (const auto found = deep.find(column_key(c.x(), c.y())); !is_inside && found != deep.end())
-      is_inside = std::any_of(found->second.begin(), found->second.end(), [&](const auto& span) { return c.z() >= span.first && c.z() <= span.second; });
+      is_inside = std::any_of(found->second.begin(), found->second.end(),
+                              [&](const auto& span) { return c.z() >= span.first && c.z() <= span.second; });
     if (is_inside) inside.push_back(c);
   }
   auto acc = tube->getAccessor();
@@ -272,9 +286,11 @@ void LevelSet::add_swept_tube(const std::vector<Eigen::Vector3d>& polyline, doub
 void LevelSet::grow(const std::function<double(double)>& by_height, double most)
 {
   // The offset surface must lie inside the band: widen it first when it is too narrow.
-  if (const double needed = std::ceil(most / impl_->voxel) + impl_->half_width; needed > std::max(impl_->exterior, impl_->half_width))
-    impl_->grid = openvdb::tools::levelSetRebuild(*impl_->grid, 0.0f, static_cast<float>(needed), static_cast<float>(impl_->half_width));
-  openvdb::tools::foreach(impl_->grid->beginValueOn(), [&](const openvdb::FloatGrid::ValueOnIter& it) {
+  if (const double needed = std::ceil(most / impl_->voxel) + impl_->half_width;
+      needed > std::max(impl_->exterior, impl_->half_width))
+    impl_->grid = openvdb::tools::levelSetRebuild(*impl_->grid, 0.0f, static_cast<float>(needed),
+                                                  static_cast<float>(impl_->half_width));
+  openvdb::tools::foreach (impl_->grid->beginValueOn(), [&](const openvdb::FloatGrid::ValueOnIter& it) {
     it.setValue(*it - static_cast<float>(by_height(it.getCoord().z() * impl_->voxel) / kUnit));
   });
   impl_->grid = openvdb::tools::levelSetRebuild(*impl_->grid, 0.0f, static_cast<float>(impl_->half_width));
@@ -293,7 +309,7 @@ VoxelRegion LevelSet::voxels(const LevelSet* taken) const
   out.voxel = impl_->voxel;
   const openvdb::math::Mat4d m = impl_->grid->transform().baseMap()->getAffineMap()->getMat4();
   for (int i = 0; i < 3; ++i)
-    for (int j = 0; j < 3; ++j) out.axes(j, i) = m(i, j) / (impl_->voxel / kUnit);  // world = index · m
+    for (int j = 0; j < 3; ++j) out.axes(j, i) = m(i, j) / (impl_->voxel / kUnit); // world = index · m
   const openvdb::BoolGrid::Ptr fill = openvdb::tools::sdfInteriorMask(*impl_->grid, 0.0f);
   const openvdb::BoolGrid::Ptr solid = taken ? openvdb::tools::sdfInteriorMask(*taken->impl_->grid, 0.0f) : nullptr;
   openvdb::CoordBBox box = fill->evalActiveVoxelBoundingBox();
@@ -304,11 +320,12 @@ VoxelRegion LevelSet::voxels(const LevelSet* taken) const
   out.cells.assign(static_cast<std::size_t>(out.size.cast<std::int64_t>().prod()), VoxelRegion::mold);
   const auto mark = [&](const openvdb::BoolGrid& mask, VoxelRegion::Cell cell) {
     for (auto it = mask.cbeginValueOn(); it; ++it) {
-      const openvdb::CoordBBox cells = it.getBoundingBox();  // one voxel, or a tile of them
+      const openvdb::CoordBBox cells = it.getBoundingBox(); // one voxel, or a tile of them
       for (int k = cells.min().z(); k <= cells.max().z(); ++k)
         for (int j = cells.min().y(); j <= cells.max().y(); ++j)
           for (int i = cells.min().x(); i <= cells.max().x(); ++i)
-            out.cells[static_cast<std::size_t>(out.index(i - out.first.x(), j - out.first.y(), k - out.first.z()))] = cell;
+            out.cells[static_cast<std::size_t>(out.index(i - out.first.x(), j - out.first.y(), k - out.first.z()))] =
+                cell;
     }
   };
   if (solid) mark(*solid, VoxelRegion::solid);
@@ -338,7 +355,8 @@ SurfaceMesh collect(openvdb::tools::VolumeToMesh& mesher)
   };
   for (std::size_t n = 0; n < mesher.polygonPoolListSize(); ++n) {
     const openvdb::tools::PolygonPool& pool = mesher.polygonPoolList()[n];
-    for (std::size_t t = 0; t < pool.numTriangles(); ++t) add(pool.triangle(t)[0], pool.triangle(t)[1], pool.triangle(t)[2]);
+    for (std::size_t t = 0; t < pool.numTriangles(); ++t)
+      add(pool.triangle(t)[0], pool.triangle(t)[1], pool.triangle(t)[2]);
     for (std::size_t q = 0; q < pool.numQuads(); ++q) {
       const openvdb::Vec4I& quad = pool.quad(q);
       add(quad[0], quad[1], quad[2]);
@@ -347,10 +365,11 @@ SurfaceMesh collect(openvdb::tools::VolumeToMesh& mesher)
   }
   SurfaceMesh s;
   s.vertices.resize(static_cast<Eigen::Index>(vertices.size()), 3);
-  for (std::size_t i = 0; i < vertices.size(); ++i) s.vertices.row(static_cast<Eigen::Index>(i)) = vertices[i].transpose();
+  for (std::size_t i = 0; i < vertices.size(); ++i)
+    s.vertices.row(static_cast<Eigen::Index>(i)) = vertices[i].transpose();
   s.faces.resize(static_cast<Eigen::Index>(faces.size()), 3);
   for (std::size_t f = 0; f < faces.size(); ++f) s.faces.row(static_cast<Eigen::Index>(f)) = faces[f].transpose();
-  if (signed_volume(s) < 0) s.faces.col(1).swap(s.faces.col(2));  // OpenVDB's winding is inward
+  if (signed_volume(s) < 0) s.faces.col(1).swap(s.faces.col(2)); // OpenVDB's winding is inward
   return s;
 }
 
@@ -361,25 +380,30 @@ constexpr double kCosFold = 0.5;
 std::vector<openvdb::Coord> steep_faces(const SurfaceMesh& s, const openvdb::FloatGrid& grid)
 {
   const openvdb::math::Transform& xf = grid.transform();
-  const auto index = [&](const Eigen::Vector3d& w) { return xf.worldToIndex(openvdb::Vec3d(w.x(), w.y(), w.z()) / kUnit); };
+  const auto index = [&](const Eigen::Vector3d& w) {
+    return xf.worldToIndex(openvdb::Vec3d(w.x(), w.y(), w.z()) / kUnit);
+  };
   tbb::enumerable_thread_specific<std::vector<openvdb::Coord>> found;
-  tbb::parallel_for(tbb::blocked_range<Eigen::Index>(0, s.num_faces(), 4096), [&](const tbb::blocked_range<Eigen::Index>& range) {
-    const openvdb::FloatGrid::ConstAccessor acc = grid.getConstAccessor();
-    const openvdb::tools::GridSampler<openvdb::FloatGrid::ConstAccessor, openvdb::tools::BoxSampler> sampler(acc, xf);
-    std::vector<openvdb::Coord>& out = found.local();
-    for (Eigen::Index f = range.begin(); f != range.end(); ++f) {
-      const openvdb::Vec3d a = index(s.vertices.row(s.faces(f, 0))), b = index(s.vertices.row(s.faces(f, 1))),
-                           c = index(s.vertices.row(s.faces(f, 2)));
-      const openvdb::Vec3d normal = (b - a).cross(c - a), centre = (a + b + c) / 3;
-      openvdb::Vec3d gradient;
-      for (int i = 0; i < 3; ++i) {
-        openvdb::Vec3d h(0);
-        h[i] = 0.5;
-        gradient[i] = sampler.isSample(centre + h) - sampler.isSample(centre - h);
-      }
-      if (normal.dot(gradient) < kCosFold * normal.length() * gradient.length()) out.push_back(openvdb::Coord::round(centre));
-    }
-  });
+  tbb::parallel_for(
+      tbb::blocked_range<Eigen::Index>(0, s.num_faces(), 4096), [&](const tbb::blocked_range<Eigen::Index>& range) {
+        const openvdb::FloatGrid::ConstAccessor acc = grid.getConstAccessor();
+        const openvdb::tools::GridSampler<openvdb::FloatGrid::ConstAccessor, openvdb::tools::BoxSampler> sampler(acc,
+                                                                                                                 xf);
+        std::vector<openvdb::Coord>& out = found.local();
+        for (Eigen::Index f = range.begin(); f != range.end(); ++f) {
+          const openvdb::Vec3d a = index(s.vertices.row(s.faces(f, 0))), b = index(s.vertices.row(s.faces(f, 1))),
+                               c = index(s.vertices.row(s.faces(f, 2)));
+          const openvdb::Vec3d normal = (b - a).cross(c - a), centre = (a + b + c) / 3;
+          openvdb::Vec3d gradient;
+          for (int i = 0; i < 3; ++i) {
+            openvdb::Vec3d h(0);
+            h[i] = 0.5;
+            gradient[i] = sampler.isSample(centre + h) - sampler.isSample(centre - h);
+          }
+          if (normal.dot(gradient) < kCosFold * normal.length() * gradient.length())
+            out.push_back(openvdb::Coord::round(centre));
+        }
+      });
   std::vector<openvdb::Coord> out;
   for (const auto& part : found) out.insert(out.end(), part.begin(), part.end());
   return out;
@@ -409,9 +433,10 @@ SurfaceMesh LevelSet::mesh(double adaptivity, double* used) const
   // round (the walking robot's crossing grooves need three or four). After ten rounds the uniform
   // mesh is kept.
   auto uniform = std::make_shared<openvdb::BoolTree>(false);
-  constexpr int kRounds = 10, kMargin = 3;  // voxels around a steep face
+  constexpr int kRounds = 10, kMargin = 3; // voxels around a steep face
   const auto keep_uniform_around = [&](const std::vector<openvdb::Coord>& faces) {
-    for (const openvdb::Coord& c : faces) uniform->fill(openvdb::CoordBBox(c.offsetBy(-kMargin), c.offsetBy(kMargin)), true, true);
+    for (const openvdb::Coord& c : faces)
+      uniform->fill(openvdb::CoordBBox(c.offsetBy(-kMargin), c.offsetBy(kMargin)), true, true);
   };
   keep_uniform_around(steep_faces(s, *impl_->grid));
   for (int round = 0; round < kRounds; ++round) {

@@ -25,10 +25,11 @@ public:
 
   /// The solid bounded by a closed surface (self-intersections and overlaps allowed: a union). An
   /// `exterior` band wider than half_width (voxels) leaves room for grow() without a rebuild.
-  static LevelSet from_mesh(const SurfaceMesh& surface, double voxel, const Eigen::Vector3d& up = Eigen::Vector3d::UnitZ(),
-                            double half_width = 3, double exterior = 0);
+  static LevelSet from_mesh(const SurfaceMesh& surface, double voxel,
+                            const Eigen::Vector3d& up = Eigen::Vector3d::UnitZ(), double half_width = 3,
+                            double exterior = 0);
 
-  LevelSet copy() const;  ///< a deep copy
+  LevelSet copy() const; ///< a deep copy
 
   /// Adds the solid swept by a ball of `radius` whose centre runs along `polyline` and, from every
   /// point of it, `length` (m) along up: a tube when length is zero, a groove open upward otherwise.
@@ -53,7 +54,7 @@ public:
   /// regions into fewer, larger triangles. `used` (optional) receives the adaptivity the mesh was
   /// made with: 0 when adaptive meshing kept tilting faces and the uniform mesh was returned.
   SurfaceMesh mesh(double adaptivity = 0, double* used = nullptr) const;
-  double volume() const;  ///< m³
+  double volume() const; ///< m³
   double voxel() const;
 
 private:

@@ -24,12 +24,14 @@ Mesh to_cgal(const SurfaceMesh& s)
 {
   Mesh m;
   std::vector<Mesh::Vertex_index> v;
-  for (Eigen::Index i = 0; i < s.num_vertices(); ++i) v.push_back(m.add_vertex(Point(s.vertices(i, 0), s.vertices(i, 1), s.vertices(i, 2))));
+  for (Eigen::Index i = 0; i < s.num_vertices(); ++i)
+    v.push_back(m.add_vertex(Point(s.vertices(i, 0), s.vertices(i, 1), s.vertices(i, 2))));
   for (Eigen::Index f = 0; f < s.num_faces(); ++f)
     if (m.add_face(v[s.faces(f, 0)], v[s.faces(f, 1)], v[s.faces(f, 2)]) == Mesh::null_face()) {
       const Eigen::Vector3d at = s.vertices.row(s.faces(f, 0)).transpose() * 1e3;
-      throw std::runtime_error("mesh boolean: the input is not a manifold surface (face " + std::to_string(f) + " near (" +
-                               std::to_string(at.x()) + ", " + std::to_string(at.y()) + ", " + std::to_string(at.z()) + ") mm)");
+      throw std::runtime_error("mesh boolean: the input is not a manifold surface (face " + std::to_string(f) +
+                               " near (" + std::to_string(at.x()) + ", " + std::to_string(at.y()) + ", " +
+                               std::to_string(at.z()) + ") mm)");
     }
   return m;
 }
@@ -57,8 +59,7 @@ SurfaceMesh from_cgal(Mesh m)
   return s;
 }
 
-template <typename Op>
-SurfaceMesh boolean(const SurfaceMesh& a, const SurfaceMesh& b, const char* what, Op op)
+template <typename Op> SurfaceMesh boolean(const SurfaceMesh& a, const SurfaceMesh& b, const char* what, Op op)
 {
   Mesh A = to_cgal(a), B = to_cgal(b), out;
   if (!op(A, B, out)) throw std::runtime_error(std::string("mesh ") + what + ": the result is not a valid solid");
@@ -69,7 +70,8 @@ SurfaceMesh boolean(const SurfaceMesh& a, const SurfaceMesh& b, const char* what
 
 SurfaceMesh mesh_difference(const SurfaceMesh& a, const SurfaceMesh& b)
 {
-  return boolean(a, b, "difference", [](Mesh& A, Mesh& B, Mesh& out) { return PMP::corefine_and_compute_difference(A, B, out); });
+  return boolean(a, b, "difference",
+                 [](Mesh& A, Mesh& B, Mesh& out) { return PMP::corefine_and_compute_difference(A, B, out); });
 }
 
 SurfaceMesh mesh_union(const SurfaceMesh& a, const SurfaceMesh& b)
@@ -89,12 +91,14 @@ SurfaceMesh mesh_union_touching(const SurfaceMesh& a, SurfaceMesh b, const Eigen
 
 SurfaceMesh mesh_intersection(const SurfaceMesh& a, const SurfaceMesh& b)
 {
-  return boolean(a, b, "intersection", [](Mesh& A, Mesh& B, Mesh& out) { return PMP::corefine_and_compute_intersection(A, B, out); });
+  return boolean(a, b, "intersection",
+                 [](Mesh& A, Mesh& B, Mesh& out) { return PMP::corefine_and_compute_intersection(A, B, out); });
 }
 
 SurfaceMesh without_degenerate_faces(const SurfaceMesh& m) { return from_cgal(to_cgal(m)); }
 
-std::pair<SurfaceMesh, SurfaceMesh> split_by_plane(const SurfaceMesh& m, const Eigen::Vector3d& p, const Eigen::Vector3d& n)
+std::pair<SurfaceMesh, SurfaceMesh> split_by_plane(const SurfaceMesh& m, const Eigen::Vector3d& p,
+                                                   const Eigen::Vector3d& n)
 {
   const auto half = [&](double sign) {
     Mesh mesh = to_cgal(m);
@@ -130,7 +134,8 @@ std::vector<SurfaceMesh> split_shells(const SurfaceMesh& s)
   for (std::size_t k = 0; k < faces.size(); ++k) {
     out[k].source = s.source;
     out[k].vertices.resize(static_cast<Eigen::Index>(vertices[k].size()), 3);
-    for (std::size_t i = 0; i < vertices[k].size(); ++i) out[k].vertices.row(static_cast<Eigen::Index>(i)) = s.vertices.row(vertices[k][i]);
+    for (std::size_t i = 0; i < vertices[k].size(); ++i)
+      out[k].vertices.row(static_cast<Eigen::Index>(i)) = s.vertices.row(vertices[k][i]);
     out[k].faces.resize(static_cast<Eigen::Index>(faces[k].size()), 3);
     for (std::size_t i = 0; i < faces[k].size(); ++i)
       for (int c = 0; c < 3; ++c) out[k].faces(static_cast<Eigen::Index>(i), c) = index[s.faces(faces[k][i], c)];

@@ -32,9 +32,9 @@ std::vector<Eigen::Vector2d> rim_sites(const Eigen::Vector3d& lo, const Eigen::V
   const double x0 = lo.x() + inset, x1 = hi.x() - inset, y0 = lo.y() + inset, y1 = hi.y() - inset;
   const auto x = [&](double t) { return x0 + t * (x1 - x0); };
   const auto y = [&](double t) { return y0 + t * (y1 - y0); };
-  return {{x0, y0}, {x1, y1}, {x1, y0}, {x0, y1},                                   // corners
-          {x(0.5), y0}, {x(0.5), y1}, {x0, y(0.5)}, {x1, y(0.5)},                   // edge midpoints
-          {x(0.25), y0}, {x(0.75), y1}, {x0, y(0.75)}, {x1, y(0.25)},               // quarter points
+  return {{x0, y0},      {x1, y1},      {x1, y0},      {x0, y1},      // corners
+          {x(0.5), y0},  {x(0.5), y1},  {x0, y(0.5)},  {x1, y(0.5)},  // edge midpoints
+          {x(0.25), y0}, {x(0.75), y1}, {x0, y(0.75)}, {x1, y(0.25)}, // quarter points
           {x(0.75), y0}, {x(0.25), y1}, {x0, y(0.25)}, {x1, y(0.75)}};
 }
 
@@ -70,18 +70,52 @@ void reattach_loose_pieces(SurfaceMesh& from, SurfaceMesh& to, double base, bool
   kept.faces.resize(0, 3);
   for (const SurfaceMesh& shell : shells) {
     const double reach = below ? shell.vertices.col(2).minCoeff() - base : base - shell.vertices.col(2).maxCoeff();
-    if (signed_volume(shell) > 0 && reach > 1e-6)  // 10 µm toward `to` where they share only an edge
+    if (signed_volume(shell) > 0 && reach > 1e-6) // 10 µm toward `to` where they share only an edge
       to = mesh_union_touching(to, shell, Eigen::Vector3d(0, 0, below ? 10e-6 : -10e-6));
     else
-      append(kept, shell);  // the block's piece, or a void inside it
+      append(kept, shell); // the block's piece, or a void inside it
   }
   from = std::move(kept);
 }
 
 SurfaceMesh key_solid(const Eigen::Vector3d& base, double radius, KeyShape shape, double sink)
 {
-  if (shape == KeyShape::hemisphere) return hemisphere_solid(base - Eigen::Vector3d(0, 0, sink), Eigen::Vector3d::UnitZ(), radius + sink, 32);
+  if (shape == KeyShape::hemisphere)
+    return hemisphere_solid(base - Eigen::Vector3d(0, 0, sink), Eigen::Vector3d::UnitZ(), radius + sink, 32);
   return cone_solid(base - Eigen::Vector3d(0, 0, sink), base + Eigen::Vector3d(0, 0, radius), radius, radius / 2, 32);
+}
+
+/// A channel's passage through the block, seen along the pull.
+struct Passage {
+  Eigen::Vector2d a, b; ///< the channel's axis
+  double radius;
+};
+
+/// Keys take the first sites (corners, then edge midpoints), screws the next free ones; a site
+/// where a channel runs, or too close to a key or another screw, is left out.
+std::pair<std::vector<Eigen::Vector2d>, std::vector<Eigen::Vector2d>>
+key_and_screw_sites(const std::vector<Eigen::Vector2d>& sites, const std::vector<Passage>& passages,
+                    const MoldBlockOptions& o)
+{
+  const double radius = o.key_diameter / 2, screw = o.screw_diameter / 2;
+  const auto clear_of_channels = [&](const Eigen::Vector2d& s, double r) {
+    return std::none_of(passages.begin(), passages.end(),
+                        [&](const Passage& p) { return distance_to_segment(s, p.a, p.b) < r + p.radius + o.min_wall; });
+  };
+  std::vector<Eigen::Vector2d> keys, screws;
+  for (int k = 0; k < std::min(o.keys, 8); ++k)
+    if (clear_of_channels(sites[k], radius + o.key_clearance)) keys.push_back(sites[k]);
+  for (std::size_t k = static_cast<std::size_t>(std::min(o.keys, 8));
+       k < sites.size() && static_cast<int>(screws.size()) < o.screw_holes; ++k) {
+    const bool clear_of_keys = std::all_of(keys.begin(), keys.end(), [&](const Eigen::Vector2d& key) {
+      return (key - sites[k]).norm() >= radius + o.key_clearance + screw + o.min_wall;
+    });
+    const bool clear_of_screws = std::all_of(screws.begin(), screws.end(), [&](const Eigen::Vector2d& other) {
+      return (other - sites[k]).norm() >= 2 * screw + o.min_wall;
+    });
+    if (clear_of_keys && clear_of_screws && clear_of_channels(sites[k], screw)) screws.push_back(sites[k]);
+  }
+  return {keys, screws};
 }
 
 } // namespace
@@ -103,21 +137,20 @@ Mold make_mold(const SurfaceMesh& cavity_world, const Parting& parting, const st
   Mold mold;
   // Each hole starts a little inside the cavity (its dip) so that the booleans meet no tangent
   // faces, and runs out through the block's bottom (a sprue from below) or top.
-  const Ports own = ports ? Ports{} : cavity_ports(cavity_world, parting.normal, o.sprue_diameter, o.vents, o.vent_diameter, o.min_wall, shot);
+  const Ports own =
+      ports ? Ports{}
+            : cavity_ports(cavity_world, parting.normal, o.sprue_diameter, o.vents, o.vent_diameter, o.min_wall, shot);
   const Ports& holes = ports ? *ports : own;
   const auto cut = [&](const Port& p, int segments) {
     const Eigen::Vector3d mouth = R * p.mouth, out = Eigen::Vector3d::UnitZ() * (p.upward ? 1 : -1);
     const double end = p.upward ? box_hi.z() + 1e-3 : box_lo.z() - 1e-3;
-    block = mesh_difference(block, cylinder_solid(mouth - p.dip() * out, {mouth.x(), mouth.y(), end}, p.diameter / 2, segments));
+    block = mesh_difference(
+        block, cylinder_solid(mouth - p.dip() * out, {mouth.x(), mouth.y(), end}, p.diameter / 2, segments));
     return p.mouth;
   };
   for (const Port& p : holes.sprues) mold.sprues.push_back(cut(p, 24));
   for (const Port& p : holes.vents) mold.vents.push_back(cut(p, 16));
   const double reach = (box_hi - box_lo).norm();
-  struct Passage {
-    Eigen::Vector2d a, b;  ///< the channel's axis seen along pull
-    double radius;
-  };
   std::vector<Passage> passages;
   // Channels run parallel to the parting plane (one crossing it at an angle would leave a wedge of
   // mold thinner than any wall); one that starts within its radius + min_wall of the plane is moved
@@ -126,38 +159,25 @@ Mold make_mold(const SurfaceMesh& cavity_world, const Parting& parting, const st
     Eigen::Vector3d a = R * c.start, d = R * c.direction;
     const double vertical = d.z();
     d.z() = 0;
-    if (d.norm() < 1e-6) d = Eigen::Vector3d(0, 0, vertical < 0 ? -1 : 1);  // straight up or down: out through the top or bottom
+    if (d.norm() < 1e-6)
+      d = Eigen::Vector3d(0, 0, vertical < 0 ? -1 : 1); // straight up or down: out through the top or bottom
     d.normalize();
     if (d.z() == 0 && std::abs(a.z() - h) < c.diameter / 2 + o.min_wall) a.z() = h;
     const bool stepped = c.through_diameter > 0 && c.through_diameter < c.diameter && c.socket < reach;
     block = mesh_difference(block, cylinder_solid(a, a + (stepped ? c.socket : reach) * d, c.diameter / 2, 24));
     // The hole starts a little inside the socket, and has other facets than the socket (20, not
     // 24): coaxial prisms with vertices on the same rays leave CGAL's cut with crossing faces.
-    if (stepped) block = mesh_difference(block, cylinder_solid(a + (c.socket - c.diameter / 4) * d, a + reach * d, c.through_diameter / 2, 20));
+    if (stepped)
+      block = mesh_difference(
+          block, cylinder_solid(a + (c.socket - c.diameter / 4) * d, a + reach * d, c.through_diameter / 2, 20));
     passages.push_back({a.head<2>(), (a + reach * d).head<2>(), c.diameter / 2});
   }
 
-  // Keys take the first sites (corners, then edge midpoints), screws the next free ones; a site
-  // where a channel runs, or too close to a key or another screw, is left out.
   const double radius = o.key_diameter / 2, sink = 0.5e-3, screw = o.screw_diameter / 2;
-  const auto clear_of_channels = [&](const Eigen::Vector2d& s, double r) {
-    return std::none_of(passages.begin(), passages.end(),
-                        [&](const Passage& p) { return distance_to_segment(s, p.a, p.b) < r + p.radius + o.min_wall; });
-  };
-  const std::vector<Eigen::Vector2d> sites = rim_sites(box_lo, box_hi, side / 2);
-  std::vector<Eigen::Vector2d> keys, screws;
-  for (int k = 0; k < std::min(o.keys, 8); ++k)
-    if (clear_of_channels(sites[k], radius + o.key_clearance)) keys.push_back(sites[k]);
-  for (std::size_t k = static_cast<std::size_t>(std::min(o.keys, 8)); k < sites.size() && static_cast<int>(screws.size()) < o.screw_holes; ++k) {
-    const bool clear_of_keys = std::all_of(keys.begin(), keys.end(), [&](const Eigen::Vector2d& key) {
-      return (key - sites[k]).norm() >= radius + o.key_clearance + screw + o.min_wall;
-    });
-    const bool clear_of_screws = std::all_of(screws.begin(), screws.end(),
-                                             [&](const Eigen::Vector2d& other) { return (other - sites[k]).norm() >= 2 * screw + o.min_wall; });
-    if (clear_of_keys && clear_of_screws && clear_of_channels(sites[k], screw)) screws.push_back(sites[k]);
-  }
+  const auto [keys, screws] = key_and_screw_sites(rim_sites(box_lo, box_hi, side / 2), passages, o);
   for (const Eigen::Vector2d& s : screws) {
-    block = mesh_difference(block, cylinder_solid({s.x(), s.y(), box_lo.z() - 1e-3}, {s.x(), s.y(), box_hi.z() + 1e-3}, screw, 24));
+    block = mesh_difference(
+        block, cylinder_solid({s.x(), s.y(), box_lo.z() - 1e-3}, {s.x(), s.y(), box_hi.z() + 1e-3}, screw, 24));
     mold.screws.push_back(R.transpose() * Eigen::Vector3d(s.x(), s.y(), h));
   }
 
@@ -167,7 +187,7 @@ Mold make_mold(const SurfaceMesh& cavity_world, const Parting& parting, const st
   for (const Eigen::Vector2d& s : keys) {
     const Eigen::Vector3d base(s.x(), s.y(), h);
     lower = mesh_union(lower, key_solid(base, radius, o.key_shape, sink));
-    upper = mesh_difference(upper, key_solid(base, radius + o.key_clearance, o.key_shape, sink));  // clearance all round
+    upper = mesh_difference(upper, key_solid(base, radius + o.key_clearance, o.key_shape, sink)); // clearance all round
     mold.keys.push_back(R.transpose() * base);
   }
   // Back to the body's frame. Unless R is the identity, the rotation rounds every vertex, and a

@@ -59,20 +59,26 @@ double thinnest_wall(const SurfaceMesh& m, double min_wall, Eigen::Vector3d& whe
 {
   const SurfaceDistance surface(m.vertices, m.faces);
   if (m.num_faces() == 0) return HUGE_VAL;
-  surface.ray_distance(m.vertices.row(0), Eigen::Vector3d::UnitZ());  // builds the search trees before the threads share them
+  surface.ray_distance(m.vertices.row(0),
+                       Eigen::Vector3d::UnitZ()); // builds the search trees before the threads share them
   struct Thinnest {
     double thickness = HUGE_VAL;
     Eigen::Index face = -1;
-    bool operator<(const Thinnest& o) const { return thickness < o.thickness || (thickness == o.thickness && face < o.face); }
+    bool operator<(const Thinnest& o) const
+    {
+      return thickness < o.thickness || (thickness == o.thickness && face < o.face);
+    }
   };
   const auto centre_of = [&](Eigen::Index f) {
-    return Eigen::Vector3d((m.vertices.row(m.faces(f, 0)) + m.vertices.row(m.faces(f, 1)) + m.vertices.row(m.faces(f, 2))) / 3);
+    return Eigen::Vector3d(
+        (m.vertices.row(m.faces(f, 0)) + m.vertices.row(m.faces(f, 1)) + m.vertices.row(m.faces(f, 2))) / 3);
   };
   const Thinnest best = tbb::parallel_reduce(
       tbb::blocked_range<Eigen::Index>(0, m.num_faces(), 1024), Thinnest{},
       [&](const tbb::blocked_range<Eigen::Index>& range, Thinnest t) {
         for (Eigen::Index f = range.begin(); f != range.end(); ++f) {
-          const Eigen::Vector3d a = m.vertices.row(m.faces(f, 0)), b = m.vertices.row(m.faces(f, 1)), c = m.vertices.row(m.faces(f, 2));
+          const Eigen::Vector3d a = m.vertices.row(m.faces(f, 0)), b = m.vertices.row(m.faces(f, 1)),
+                                c = m.vertices.row(m.faces(f, 2));
           const Eigen::Vector3d n = (b - a).cross(c - a);
           if (!(n.norm() > 0)) continue;
           const Eigen::Vector3d centre = centre_of(f), inward = -n.normalized();
@@ -105,8 +111,8 @@ PartCheck check_part(const SurfaceMesh& part, double min_wall, const Eigen::Vect
   PartCheck out;
   const SurfaceCheck surface = check_surface(part);
   for (const SurfaceProblem& p : surface.problems)
-    out.problems.push_back(fmt::format("{}, e.g. near ({:.1f}, {:.1f}, {:.1f}) mm", p.message, p.where.x() * 1e3, p.where.y() * 1e3,
-                                       p.where.z() * 1e3));
+    out.problems.push_back(fmt::format("{}, e.g. near ({:.1f}, {:.1f}, {:.1f}) mm", p.message, p.where.x() * 1e3,
+                                       p.where.y() * 1e3, p.where.z() * 1e3));
   const SurfaceMesh written = as_written(part);
   out.volume = signed_volume(written);
   out.size = written.vertices.colwise().maxCoeff() - written.vertices.colwise().minCoeff();
@@ -123,15 +129,17 @@ PartCheck check_part(const SurfaceMesh& part, double min_wall, const Eigen::Vect
     }
   } while (std::next_permutation(axes.begin(), axes.end()));
   if (!out.fits)
-    out.problems.push_back(fmt::format("is {} and does not fit the printer's {} in any of the 6 orientations", mm3(out.size), mm3(printer)));
-  if (!surface.ok()) return out;  // the rest needs a valid solid
+    out.problems.push_back(fmt::format("is {} and does not fit the printer's {} in any of the 6 orientations",
+                                       mm3(out.size), mm3(printer)));
+  if (!surface.ok()) return out; // the rest needs a valid solid
   if (const int shells = count_shells(part); shells != 1)
     out.problems.push_back(fmt::format("is {} separate pieces or has a closed void, not one solid", shells));
   Eigen::Vector3d where = Eigen::Vector3d::Zero();
   out.min_thickness = thinnest_wall(written, min_wall, where);
   if (out.min_thickness < min_wall * (1 - 1e-6))
-    out.problems.push_back(fmt::format("has a wall of {:.2f} mm near ({:.1f}, {:.1f}, {:.1f}) mm, thinner than [export] min_wall = {:.2f} mm",
-                                       out.min_thickness * 1e3, where.x() * 1e3, where.y() * 1e3, where.z() * 1e3, min_wall * 1e3));
+    out.problems.push_back(fmt::format(
+        "has a wall of {:.2f} mm near ({:.1f}, {:.1f}, {:.1f}) mm, thinner than [export] min_wall = {:.2f} mm",
+        out.min_thickness * 1e3, where.x() * 1e3, where.y() * 1e3, where.z() * 1e3, min_wall * 1e3));
   return out;
 }
 

@@ -14,11 +14,11 @@
 namespace fibermold {
 
 struct PartCheck {
-  std::vector<std::string> problems;  ///< empty: the part passed
-  double volume = 0;                  ///< m³
-  Eigen::Vector3d size = Eigen::Vector3d::Zero();  ///< bounding box, m
-  double min_thickness = 0;           ///< m, the thinnest wall found (a cone median where a single ray saw < min_wall)
-  Eigen::Vector3i orientation{0, 1, 2};  ///< part axes along the printer's x, y, z that fit
+  std::vector<std::string> problems;              ///< empty: the part passed
+  double volume = 0;                              ///< m³
+  Eigen::Vector3d size = Eigen::Vector3d::Zero(); ///< bounding box, m
+  double min_thickness = 0; ///< m, the thinnest wall found (a cone median where a single ray saw < min_wall)
+  Eigen::Vector3i orientation{0, 1, 2}; ///< part axes along the printer's x, y, z that fit
   bool fits = false;
 
   bool ok() const { return problems.empty(); }

@@ -10,18 +10,19 @@ namespace fibermold {
 
 namespace {
 
-const double kFlat = std::sin(5 * M_PI / 180);  // |n·pull| below this: a wall parallel to pull
+const double kFlat = std::sin(5 * M_PI / 180); // |n·pull| below this: a wall parallel to pull
 
 struct Facing {
-  double height, area;  ///< centroid along pull; area projected on the parting plane, m²
-  bool up;              ///< n·pull > 0
+  double height, area; ///< centroid along pull; area projected on the parting plane, m²
+  bool up;             ///< n·pull > 0
 };
 
 std::vector<Facing> tilted_faces(const SurfaceMesh& m, const Eigen::Vector3d& pull)
 {
   std::vector<Facing> out;
   for (Eigen::Index f = 0; f < m.num_faces(); ++f) {
-    const Eigen::Vector3d a = m.vertices.row(m.faces(f, 0)), b = m.vertices.row(m.faces(f, 1)), c = m.vertices.row(m.faces(f, 2));
+    const Eigen::Vector3d a = m.vertices.row(m.faces(f, 0)), b = m.vertices.row(m.faces(f, 1)),
+                          c = m.vertices.row(m.faces(f, 2));
     const Eigen::Vector3d n = (b - a).cross(c - a);
     const double area = n.norm() / 2;
     if (area <= 0) continue;
@@ -44,7 +45,8 @@ double undercut_area(const SurfaceMesh& cavity, const Eigen::Vector3d& point, co
   return area;
 }
 
-double upright_share(const SurfaceMesh& cavity, const Eigen::Vector3d& point, const Eigen::Vector3d& pull_in, double degrees)
+double upright_share(const SurfaceMesh& cavity, const Eigen::Vector3d& point, const Eigen::Vector3d& pull_in,
+                     double degrees)
 {
   const Eigen::Vector3d pull = pull_in.normalized();
   const double h = point.dot(pull), sin_tol = std::sin(degrees * M_PI / 180);
@@ -84,7 +86,7 @@ Parting choose_parting(const SurfaceMesh& cavity, const Eigen::Vector3d& pull_in
       best_lo = start;
       best_hi = end;
     } else if (end > start && std::abs(u - best) <= 1e-18 && start <= best_hi + 1e-12) {
-      best_hi = end;  // the same optimum continues: widen the range
+      best_hi = end; // the same optimum continues: widen the range
     }
     if (k == faces.size()) break;
     (faces[k].up ? up_below : down_above) += faces[k].up ? faces[k].area : -faces[k].area;

@@ -14,8 +14,8 @@
 namespace fibermold {
 
 struct Parting {
-  Eigen::Vector3d point, normal;  ///< normal = pull (unit)
-  double undercut_area = 0;       ///< m², projected on the plane
+  Eigen::Vector3d point, normal; ///< normal = pull (unit)
+  double undercut_area = 0;      ///< m², projected on the plane
 };
 
 /// Undercut area of `cavity` for the plane.
@@ -24,7 +24,8 @@ double undercut_area(const SurfaceMesh& cavity, const Eigen::Vector3d& point, co
 /// The share of the cavity's area above the plane (the upper half's contact) that lies within
 /// `degrees` of parallel to pull: walls that the half slides along as it comes off, which a draft
 /// would lean.
-double upright_share(const SurfaceMesh& cavity, const Eigen::Vector3d& point, const Eigen::Vector3d& pull, double degrees);
+double upright_share(const SurfaceMesh& cavity, const Eigen::Vector3d& point, const Eigen::Vector3d& pull,
+                     double degrees);
 
 /// The plane normal to `pull` with the least undercut area.
 Parting choose_parting(const SurfaceMesh& cavity, const Eigen::Vector3d& pull);

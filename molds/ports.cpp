@@ -67,16 +67,21 @@ std::vector<Eigen::Vector3d> top_points(const SurfaceMesh& m, int count, double 
     }
   std::vector<Eigen::Vector3d> out;
   for (int k = 0; k < count; ++k) {
-    const double t = count == 1 ? 0 : -0.5 + static_cast<double>(k) / (count - 1);  // over the middle half
+    const double t = count == 1 ? 0 : -0.5 + static_cast<double>(k) / (count - 1); // over the middle half
     const Eigen::Vector2d wanted = centre + t * reach * axis;
     for (std::vector<Eigen::Vector2d>* grid : {&inner, &ring}) {
-      std::sort(grid->begin(), grid->end(), [&](const auto& a, const auto& b) { return (a - wanted).norm() < (b - wanted).norm(); });
+      std::sort(grid->begin(), grid->end(),
+                [&](const auto& a, const auto& b) { return (a - wanted).norm() < (b - wanted).norm(); });
       const auto found = std::find_if(grid->begin(), grid->end(), [&](const Eigen::Vector2d& xy) {
-        const bool apart = std::all_of(out.begin(), out.end(), [&](const Eigen::Vector3d& q) { return (q.head<2>() - xy).norm() >= 2 * (radius + margin); });
+        const bool apart = std::all_of(out.begin(), out.end(), [&](const Eigen::Vector3d& q) {
+          return (q.head<2>() - xy).norm() >= 2 * (radius + margin);
+        });
         return apart && supported(xy);
       });
       if (found != grid->end()) {
-        out.emplace_back(found->x(), found->y(), top - surface.ray_distance({found->x(), found->y(), top + 1e-3}, -Eigen::Vector3d::UnitZ()) + 1e-3);
+        out.emplace_back(found->x(), found->y(),
+                         top - surface.ray_distance({found->x(), found->y(), top + 1e-3}, -Eigen::Vector3d::UnitZ()) +
+                             1e-3);
         break;
       }
     }
@@ -100,9 +105,11 @@ SurfaceMesh in_frame(SurfaceMesh m, const Eigen::Matrix3d& R, bool flip)
 Ports cavity_ports(const SurfaceMesh& cavity, const Eigen::Vector3d& pull, double sprue_diameter, int vents,
                    double vent_diameter, double margin, const std::string& shot)
 {
-  const Eigen::Matrix3d R = Eigen::Quaterniond::FromTwoVectors(pull.normalized(), Eigen::Vector3d::UnitZ()).toRotationMatrix();
+  const Eigen::Matrix3d R =
+      Eigen::Quaterniond::FromTwoVectors(pull.normalized(), Eigen::Vector3d::UnitZ()).toRotationMatrix();
   const double band = 0.5e-3;
-  const std::vector<Eigen::Vector3d> lowest = top_points(in_frame(cavity, R, true), 1, band, sprue_diameter / 2, margin);
+  const std::vector<Eigen::Vector3d> lowest =
+      top_points(in_frame(cavity, R, true), 1, band, sprue_diameter / 2, margin);
   if (lowest.empty())
     throw std::runtime_error(fmt::format(
         "{}: no flat spot at the cavity's bottom (within {:.1f} mm of its lowest point, seen along the pull direction) "
@@ -137,7 +144,8 @@ public:
   /// between the hole's wall and a skin sloping more steeply would be a knife edge) or 2 mm or
   /// more below it (the hole's edge passes over a groove's rib or the body's side, and its bottom
   /// stands on thick mold); for a vent the highest such site, for a sprue the nearest.
-  std::optional<Port> near(const Eigen::Vector3d& near, double diameter, bool upward, bool highest, const Ports& placed) const
+  std::optional<Port> near(const Eigen::Vector3d& near, double diameter, bool upward, bool highest,
+                           const Ports& placed) const
   {
     // Within 3 mm first; farther out where nothing nearer takes the hole (the holes already placed
     // crowd it on a flat top, or the skin is too steep).
@@ -147,7 +155,8 @@ public:
   }
 
 private:
-  std::optional<Port> within(const Eigen::Vector3d& near, double diameter, bool upward, bool highest, const Ports& placed, double search) const
+  std::optional<Port> within(const Eigen::Vector3d& near, double diameter, bool upward, bool highest,
+                             const Ports& placed, double search) const
   {
     const Eigen::Vector3d up = region_.axes.col(2), u = region_.axes.col(0), v = region_.axes.col(1);
     const double r = diameter / 2, step = region_.voxel;
@@ -163,12 +172,12 @@ private:
         if (!h || !opens_on_fill(c, upward)) continue;
         // Each point of the rim: on a skin within 35° of level, or over a drop of 2 mm or more
         // (a groove's rib, the body's side) where the hole's bottom stands on thick mold.
-        double deepest = *h;  // of the level skin under the rim, in the hole's "along"
+        double deepest = *h; // of the level skin under the rim, in the hole's "along"
         bool ok = true;
         for (int k = 0; k < 12 && ok; ++k) {
           const double t = 2 * M_PI * k / 12;
           const auto hk = skin(c + r * (std::cos(t) * u + std::sin(t) * v), upward);
-          const double drop = hk ? *h - *hk : HUGE_VAL;  // away from outside
+          const double drop = hk ? *h - *hk : HUGE_VAL; // away from outside
           const bool level = std::abs(drop) <= std::tan(35 * M_PI / 180) * r;
           ok = level || drop >= 2e-3;
           if (level) deepest = std::min(deepest, *hk);
@@ -176,7 +185,7 @@ private:
         if (!ok || rises_beside(c, r, *h, upward)) continue;
         // A vent as high as it goes (by the voxel) but not above the top it is for (higher skin is
         // other air's), then as near; a sprue as near.
-        const double height = upward ? *h : -*h;  // the mouth's height along pull
+        const double height = upward ? *h : -*h; // the mouth's height along pull
         if (highest && height > near.dot(up) + step) continue;
         const double score = (highest ? std::round(height / step) * 1e6 : 0.0) - std::hypot(a, b);
         if (best && score <= best_score) continue;
@@ -214,7 +223,8 @@ private:
       const Eigen::Vector3d d = p.mouth - c;
       return (d - d.dot(up) * up).norm() >= (p.diameter + diameter) / 2 + 1e-3;
     };
-    return !(std::all_of(placed.sprues.begin(), placed.sprues.end(), apart) && std::all_of(placed.vents.begin(), placed.vents.end(), apart));
+    return !(std::all_of(placed.sprues.begin(), placed.sprues.end(), apart) &&
+             std::all_of(placed.vents.begin(), placed.vents.end(), apart));
   }
 
   /// The skin's first point along ±pull from outside over `p`: its height as "along" from outside
@@ -277,10 +287,11 @@ FillPlan plan_fill(const VoxelRegion& region, const SurfaceMesh& cavity, Ports p
     double left = f.fill_volume - f.reachable_volume - f.crevice_volume;
     for (const AirPocket& part : f.unreachable) {
       if (left <= tolerance || static_cast<int>(plan.ports.sprues.size()) >= kMaxSprues) break;
-      if (const auto sprue = sites.near(part.at, sprue_diameter, sprue_from_above, false, plan.ports)) plan.ports.sprues.push_back(*sprue), added = true;
+      if (const auto sprue = sites.near(part.at, sprue_diameter, sprue_from_above, false, plan.ports))
+        plan.ports.sprues.push_back(*sprue), added = true;
       left -= part.volume;
     }
-    if (added) continue;  // the new sprues' air first
+    if (added) continue; // the new sprues' air first
     // Vents while they let out air: each pocket's gets the highest site near its top.
     if (f.trapped_volume >= before) return plan;
     before = f.trapped_volume;
@@ -288,7 +299,8 @@ FillPlan plan_fill(const VoxelRegion& region, const SurfaceMesh& cavity, Ports p
     for (const AirPocket& pocket : f.pockets) {
       if (left <= tolerance || static_cast<int>(plan.ports.vents.size()) >= kMaxVents) break;
       if (!pocket.ventable) continue;
-      if (const auto vent = sites.near(pocket.at, vent_diameter, true, true, plan.ports)) plan.ports.vents.push_back(*vent), added = true;
+      if (const auto vent = sites.near(pocket.at, vent_diameter, true, true, plan.ports))
+        plan.ports.vents.push_back(*vent), added = true;
       left -= pocket.volume;
     }
     // The parts nested in a pocket that is being vented would be sealed next: vent them now.
@@ -296,7 +308,8 @@ FillPlan plan_fill(const VoxelRegion& region, const SurfaceMesh& cavity, Ports p
       for (const AirPocket& part : f.nested) {
         if (static_cast<int>(plan.ports.vents.size()) >= kMaxVents) break;
         if (!part.ventable || at_a_groove(part)) continue;
-        if (const auto vent = sites.near(part.at, vent_diameter, true, true, plan.ports)) plan.ports.vents.push_back(*vent);
+        if (const auto vent = sites.near(part.at, vent_diameter, true, true, plan.ports))
+          plan.ports.vents.push_back(*vent);
       }
     if (!added) return plan;
   }

@@ -23,7 +23,7 @@ struct Ports {
 
 /// The trapped air a shot may keep: a cubic millimetre (voxel facets of a curved top give pockets
 /// of a few voxels that no vent is needed for).
-constexpr double kTrappedAirTolerance = 1e-9;  // m³
+constexpr double kTrappedAirTolerance = 1e-9; // m³
 constexpr int kMaxVents = 16, kMaxSprues = 8;
 
 /// The sprue at the cavity's lowest flat spot, from below (the whole hole, grown by `margin`, lands
@@ -34,9 +34,9 @@ Ports cavity_ports(const SurfaceMesh& cavity, const Eigen::Vector3d& pull, doubl
 
 struct FillPlan {
   Ports ports;
-  FillResult fill;  ///< of the ports as placed
-  int simulations = 0;             ///< fill simulations run to place them
-  double simulation_seconds = 0;   ///< their time, apart from the search for the holes' sites
+  FillResult fill;               ///< of the ports as placed
+  int simulations = 0;           ///< fill simulations run to place them
+  double simulation_seconds = 0; ///< their time, apart from the search for the holes' sites
 };
 
 /// `ports` completed by the fill simulation of `region`, whose mold is made around `cavity`:

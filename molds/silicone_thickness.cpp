@@ -16,8 +16,8 @@ namespace {
 class ShadowGrid {
 public:
   /// `kept[f][k]`: point k of fiber f counts (its pieces count when both ends do).
-  ShadowGrid(const std::vector<std::vector<Eigen::Vector3d>>& fibers, const std::vector<std::vector<bool>>& kept, const Eigen::Matrix3d& frame,
-             double cell)
+  ShadowGrid(const std::vector<std::vector<Eigen::Vector3d>>& fibers, const std::vector<std::vector<bool>>& kept,
+             const Eigen::Matrix3d& frame, double cell)
       : frame_(frame), cell_(cell)
   {
     for (std::size_t f = 0; f < fibers.size(); ++f)
@@ -48,7 +48,10 @@ public:
 
 private:
   long cell_of(double v) const { return static_cast<long>(std::floor(v / cell_)); }
-  static long long pack(long a, long b) { return (static_cast<long long>(a) << 32) ^ static_cast<long long>(static_cast<unsigned>(b)); }
+  static long long pack(long a, long b)
+  {
+    return (static_cast<long long>(a) << 32) ^ static_cast<long long>(static_cast<unsigned>(b));
+  }
   long long key(const Eigen::Vector3d& p) const { return pack(cell_of(p.x()), cell_of(p.y())); }
 
   Eigen::Matrix3d frame_;
@@ -97,9 +100,13 @@ SiliconeThickness silicone_thickness(const SurfaceMesh& groove_body, const Surfa
   const ShadowGrid shadows(fibers, kept, frame, reach);
   std::vector<Eigen::Index> walls;
   for (Eigen::Index f = 0; f < groove_body.num_faces(); ++f) {
-    const Eigen::Vector3d c = (groove_body.vertices.row(groove_body.faces(f, 0)) + groove_body.vertices.row(groove_body.faces(f, 1)) +
-                               groove_body.vertices.row(groove_body.faces(f, 2))).transpose() / 3;
-    if (c.dot(pull) >= shadows.lowest_within(c, reach) - radius - 1.5 * voxel && skin.ray_distance(c, pull) > radius) walls.push_back(f);
+    const Eigen::Vector3d c =
+        (groove_body.vertices.row(groove_body.faces(f, 0)) + groove_body.vertices.row(groove_body.faces(f, 1)) +
+         groove_body.vertices.row(groove_body.faces(f, 2)))
+            .transpose() /
+        3;
+    if (c.dot(pull) >= shadows.lowest_within(c, reach) - radius - 1.5 * voxel && skin.ray_distance(c, pull) > radius)
+      walls.push_back(f);
   }
   // The silicone behind a wall face: the median over a cone of rays (the inward normal and 8 rays
   // 30° off it, as the part checks measure walls) of how far each goes before it leaves the cast
@@ -118,13 +125,15 @@ SiliconeThickness silicone_thickness(const SurfaceMesh& groove_body, const Surfa
     std::vector<double> d{to_skin(centre, inward)};
     for (int k = 0; k < 8; ++k) {
       const double t = 2 * M_PI * k / 8;
-      d.push_back(to_skin(centre, std::cos(tilt) * inward + std::sin(tilt) * (std::cos(t) * a + std::sin(t) * b)) * std::cos(tilt));
+      d.push_back(to_skin(centre, std::cos(tilt) * inward + std::sin(tilt) * (std::cos(t) * a + std::sin(t) * b)) *
+                  std::cos(tilt));
     }
     std::nth_element(d.begin(), d.begin() + 4, d.end());
     return d[4];
   };
   for (const Eigen::Index f : walls) {
-    const Eigen::Vector3d p0 = groove_body.vertices.row(groove_body.faces(f, 0)), p1 = groove_body.vertices.row(groove_body.faces(f, 1)),
+    const Eigen::Vector3d p0 = groove_body.vertices.row(groove_body.faces(f, 0)),
+                          p1 = groove_body.vertices.row(groove_body.faces(f, 1)),
                           p2 = groove_body.vertices.row(groove_body.faces(f, 2));
     const Eigen::Vector3d n = (p1 - p0).cross(p2 - p0);
     if (!(n.norm() > 0)) continue;

@@ -19,7 +19,7 @@ struct SiliconeThickness {
   /// mouth) and the skin; below 2 mm, else +∞
   double groove_web = HUGE_VAL;
   Eigen::Vector3d groove_web_at = Eigen::Vector3d::Zero();
-  double overmold = HUGE_VAL;    ///< m: the thinnest shot-2 silicone over a muscle
+  double overmold = HUGE_VAL; ///< m: the thinnest shot-2 silicone over a muscle
   Eigen::Vector3d overmold_at = Eigen::Vector3d::Zero();
 };
 

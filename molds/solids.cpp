@@ -47,7 +47,7 @@ SurfaceMesh cone_solid(const Eigen::Vector3d& a, const Eigen::Vector3d& b, doubl
   const Eigen::Vector3d axis = (b - a).normalized();
   Eigen::Vector3d u, w;
   frame(axis, u, w);
-  std::vector<Eigen::Vector3d> v{a, b};  // cap centres
+  std::vector<Eigen::Vector3d> v{a, b}; // cap centres
   // Corners at half steps: a plane through the axis (a parting plane through a channel) cuts the
   // side faces, never runs along an edge.
   for (int end = 0; end < 2; ++end)
@@ -59,8 +59,8 @@ SurfaceMesh cone_solid(const Eigen::Vector3d& a, const Eigen::Vector3d& b, doubl
   for (int k = 0; k < segments; ++k) {
     const int k1 = (k + 1) % segments;
     const int a0 = 2 + k, a1 = 2 + k1, b0 = 2 + segments + k, b1 = 2 + segments + k1;
-    f.emplace_back(0, a1, a0);  // bottom cap faces −axis
-    f.emplace_back(1, b0, b1);  // top cap faces +axis
+    f.emplace_back(0, a1, a0); // bottom cap faces −axis
+    f.emplace_back(1, b0, b1); // top cap faces +axis
     f.emplace_back(a0, a1, b1);
     f.emplace_back(a0, b1, b0);
   }
@@ -78,8 +78,8 @@ SurfaceMesh hemisphere_solid(const Eigen::Vector3d& c, const Eigen::Vector3d& ax
   Eigen::Vector3d u, w;
   frame(axis, u, w);
   const int rings = std::max(2, segments / 4);
-  std::vector<Eigen::Vector3d> v{c, c + radius * axis};  // disc centre, pole
-  for (int r = 0; r < rings; ++r) {  // ring r at polar angle 90° (the rim) up to near the pole
+  std::vector<Eigen::Vector3d> v{c, c + radius * axis}; // disc centre, pole
+  for (int r = 0; r < rings; ++r) {                     // ring r at polar angle 90° (the rim) up to near the pole
     const double phi = M_PI / 2 * (1 - static_cast<double>(r) / rings);
     for (int k = 0; k < segments; ++k) {
       const double t = 2 * M_PI * k / segments;
@@ -89,7 +89,7 @@ SurfaceMesh hemisphere_solid(const Eigen::Vector3d& c, const Eigen::Vector3d& ax
   const auto at = [&](int r, int k) { return 2 + r * segments + (k % segments); };
   std::vector<Eigen::Vector3i> f;
   for (int k = 0; k < segments; ++k) {
-    f.emplace_back(0, at(0, k + 1), at(0, k));  // the disc faces −axis
+    f.emplace_back(0, at(0, k + 1), at(0, k)); // the disc faces −axis
     for (int r = 0; r + 1 < rings; ++r) {
       f.emplace_back(at(r, k), at(r, k + 1), at(r + 1, k + 1));
       f.emplace_back(at(r, k), at(r + 1, k + 1), at(r + 1, k));

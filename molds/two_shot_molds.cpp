@@ -35,8 +35,9 @@ constexpr double kUndercutWarning = 1e-6;
 /// off the face's normal, and its channel, laid along the fiber, cut the body diagonally and left a
 /// 0.08 mm wall), the deepest of the points 1 mm in along ±x, ±y, ±z serves instead. `along`
 /// points out of the fiber at `end`. Nothing for an end inside the body.
-std::optional<Channel> end_channel(const Eigen::Vector3d& end, const Eigen::Vector3d& along, const SurfaceDistance& skin, double radius,
-                                   const MoldOptions& m, double muscle_diameter)
+std::optional<Channel> end_channel(const Eigen::Vector3d& end, const Eigen::Vector3d& along,
+                                   const SurfaceDistance& skin, double radius, const MoldOptions& m,
+                                   double muscle_diameter)
 {
   if (skin.closest(end).distance >= radius) return std::nullopt;
   const auto square_out = [&](const Eigen::Vector3d& in, double& depth) -> std::optional<Eigen::Vector3d> {
@@ -58,27 +59,31 @@ std::optional<Channel> end_channel(const Eigen::Vector3d& end, const Eigen::Vect
 
 /// A shot's fill problems: a part no sprue reaches, or trapped air beyond the tolerance, each named
 /// by where it is. `g3` maps a volume of the nominal body to the scaled cavity.
-void fill_problems(const FillPlan& plan, const TwoShotMolds& molds, double g3, const std::string& shot, std::vector<std::string>& problems)
+void fill_problems(const FillPlan& plan, const TwoShotMolds& molds, double g3, const std::string& shot,
+                   std::vector<std::string>& problems)
 {
   const FillResult& f = plan.fill;
   const double mm3 = 1e-9;
   const double unreached = f.fill_volume - f.reachable_volume - f.crevice_volume;
   if (g3 * unreached > kTrappedAirTolerance && !f.unreachable.empty())
-    problems.push_back(fmt::format("{}: {:.1f} mm³ of the {:.1f} mm³ that the shot fills is reached by no sprue (the largest part, "
-                                   "{:.1f} mm³, lowest at {}) with {} sprue(s) placed: no other fits near it",
-                                   shot, g3 * unreached / mm3, g3 * f.fill_volume / mm3, g3 * f.unreachable.front().volume / mm3,
-                                   format_mm(molds.scaled(f.unreachable.front().at)), plan.ports.sprues.size()));
+    problems.push_back(
+        fmt::format("{}: {:.1f} mm³ of the {:.1f} mm³ that the shot fills is reached by no sprue (the largest part, "
+                    "{:.1f} mm³, lowest at {}) with {} sprue(s) placed: no other fits near it",
+                    shot, g3 * unreached / mm3, g3 * f.fill_volume / mm3, g3 * f.unreachable.front().volume / mm3,
+                    format_mm(molds.scaled(f.unreachable.front().at)), plan.ports.sprues.size()));
   if (g3 * f.trapped_volume > kTrappedAirTolerance && !f.pockets.empty()) {
     const AirPocket& worst = f.pockets.front();
-    problems.push_back(fmt::format("{}: the rising silicone traps {:.1f} mm³ of air, allowed {:.1f} mm³: the largest pocket, {:.1f} mm³, "
-                                   "tops out at {} {}",
-                                   shot, g3 * f.trapped_volume / mm3, kTrappedAirTolerance / mm3, g3 * worst.volume / mm3,
-                                   format_mm(molds.scaled(worst.at)),
-                                   worst.ventable ? fmt::format("with {} vents placed: no more fits near it (within 3 mm the skin slopes more than 35°, or "
-                                                               "another vent let out no more air)",
-                                                               plan.ports.vents.size())
-                                                  : std::string("under cured silicone, a muscle or an overhang of the body, where no "
-                                                                "vent can reach it; another [mold] pull may open it upward")));
+    problems.push_back(fmt::format(
+        "{}: the rising silicone traps {:.1f} mm³ of air, allowed {:.1f} mm³: the largest pocket, {:.1f} mm³, "
+        "tops out at {} {}",
+        shot, g3 * f.trapped_volume / mm3, kTrappedAirTolerance / mm3, g3 * worst.volume / mm3,
+        format_mm(molds.scaled(worst.at)),
+        worst.ventable
+            ? fmt::format("with {} vents placed: no more fits near it (within 3 mm the skin slopes more than 35°, or "
+                          "another vent let out no more air)",
+                          plan.ports.vents.size())
+            : std::string("under cured silicone, a muscle or an overhang of the body, where no "
+                          "vent can reach it; another [mold] pull may open it upward")));
   }
 }
 
@@ -86,7 +91,8 @@ void fill_problems(const FillPlan& plan, const TwoShotMolds& molds, double g3, c
 class Recipe {
 public:
   Recipe(const MoldJob& job, const MoldOptions& m, Progress& progress, const MoldLog& log)
-      : job_(job), m_(m), progress_(progress), log_(log), skin_(job.body.vertices, job.body.faces), pull_(m.pull.normalized())
+      : job_(job), m_(m), progress_(progress), log_(log), skin_(job.body.vertices, job.body.faces),
+        pull_(m.pull.normalized())
   {
     out_.groove_radius = groove_radius(job.muscle_diameter, m);
     block_ = m.block;
@@ -94,8 +100,10 @@ public:
     for (const MoldFiber& f : job.fibers) {
       lines_.push_back(f.line);
       muscle_volume_ += f.length * M_PI * std::pow(job.muscle_diameter / 2, 2);
-      for (const auto& [end, along] : {std::pair{f.start, Eigen::Vector3d(-f.start_tangent)}, std::pair{f.end, f.end_tangent}})
-        if (auto c = end_channel(end, along, skin_, out_.groove_radius, m, job.muscle_diameter)) channels_.push_back(*c);
+      for (const auto& [end, along] :
+           {std::pair{f.start, Eigen::Vector3d(-f.start_tangent)}, std::pair{f.end, f.end_tangent}})
+        if (auto c = end_channel(end, along, skin_, out_.groove_radius, m, job.muscle_diameter))
+          channels_.push_back(*c);
     }
     // Shrink compensation: cavities (and channel starts) scaled up about the body's centre.
     out_.grow = m.shrink > 0 ? 1 / (1 - m.shrink) : 1.0;
@@ -110,14 +118,17 @@ private:
   void carve(double adaptivity, GrooveBody* drafted = nullptr)
   {
     const auto started = Clock::now();
-    out_.groove = groove_body(job_.body, lines_, out_.groove_radius, pull_, m_.voxel, adaptivity, draft_ ? &*draft_ : nullptr, drafted);
+    out_.groove = groove_body(job_.body, lines_, out_.groove_radius, pull_, m_.voxel, adaptivity,
+                              draft_ ? &*draft_ : nullptr, drafted);
     const GrooveBody& g = out_.groove;
-    log_.info(fmt::format("groove body: {} triangles (adaptivity {}), {:.2f} mL (meshed {:.2f} mL), voxel {:.2f} mm, in {:.2f} s",
-                          g.mesh.num_faces(), g.adaptivity, g.volume / 1e-6, signed_volume(g.mesh) / 1e-6, m_.voxel / 1e-3, since(started)));
+    log_.info(fmt::format(
+        "groove body: {} triangles (adaptivity {}), {:.2f} mL (meshed {:.2f} mL), voxel {:.2f} mm, in {:.2f} s",
+        g.mesh.num_faces(), g.adaptivity, g.volume / 1e-6, signed_volume(g.mesh) / 1e-6, m_.voxel / 1e-3,
+        since(started)));
   }
 
-  std::vector<std::string> make_shot(const std::string& name, const SurfaceMesh& shot_cavity, Parting parting, double silicone,
-                                     const std::vector<Channel>& shot_channels);
+  std::vector<std::string> make_shot(const std::string& name, const SurfaceMesh& shot_cavity, Parting parting,
+                                     double silicone, const std::vector<Channel>& shot_channels);
 
   const MoldJob& job_;
   const MoldOptions& m_;
@@ -130,17 +141,17 @@ private:
   std::vector<Channel> channels_;
   double muscle_volume_ = 0, g3_ = 1;
   std::optional<Draft> draft_;
-  FillRegions regions_;  ///< what each shot fills, sampled once: both shots' from the body, drafted or not
-  std::vector<std::string> fill_failures_;  ///< apart from the parts': meshing the cavity again cannot help them
-  std::vector<std::string> too_big_;        ///< parts too big for the printer: meshing again cannot help them either
+  FillRegions regions_; ///< what each shot fills, sampled once: both shots' from the body, drafted or not
+  std::vector<std::string> fill_failures_; ///< apart from the parts': meshing the cavity again cannot help them
+  std::vector<std::string> too_big_;       ///< parts too big for the printer: meshing again cannot help them either
   TwoShotMolds out_;
 };
 
 /// One shot's mold: its fill plan, its parts checked; the parts' problems found, one line each.
 /// Shot 1 fills the grooved body from below; shot 2 the grooves around the laid muscles, over
 /// cured silicone: its sprues come from above (ports.hpp).
-std::vector<std::string> Recipe::make_shot(const std::string& name, const SurfaceMesh& shot_cavity, Parting parting, double silicone,
-                                           const std::vector<Channel>& shot_channels)
+std::vector<std::string> Recipe::make_shot(const std::string& name, const SurfaceMesh& shot_cavity, Parting parting,
+                                           double silicone, const std::vector<Channel>& shot_channels)
 {
   std::vector<std::string> problems;
   const bool first = name == "shot1";
@@ -158,15 +169,17 @@ std::vector<std::string> Recipe::make_shot(const std::string& name, const Surfac
                         first ? &regions_.shot2 : nullptr, kTrappedAirTolerance / g3_);
   const FillPlan& plan = shot.plan;
   const double fill_seconds = since(started);
-  std::erase_if(fill_failures_, [&](const std::string& f) { return f.starts_with(name); });  // a shot made again
+  std::erase_if(fill_failures_, [&](const std::string& f) { return f.starts_with(name); }); // a shot made again
   fill_problems(plan, out_, g3_, name, fill_failures_);
   for (std::size_t k = 0; k < plan.fill.pockets.size() && k < 5; ++k)
-    log_.info(fmt::format("{}: air pocket of {:.2f} mm³ topping out at {}{}", name, g3_ * plan.fill.pockets[k].volume / 1e-9,
-                          format_mm(out_.scaled(plan.fill.pockets[k].at)), plan.fill.pockets[k].ventable ? "" : " (under solid: no vent reaches it)"));
-  log_.info(fmt::format("{}: sprues and vents placed in {:.2f} s, of which {} fill simulation(s) on {} voxels of {:.2f} mm {:.2f} s: {} sprue(s), "
+    log_.info(fmt::format("{}: air pocket of {:.2f} mm³ topping out at {}{}", name,
+                          g3_ * plan.fill.pockets[k].volume / 1e-9, format_mm(out_.scaled(plan.fill.pockets[k].at)),
+                          plan.fill.pockets[k].ventable ? "" : " (under solid: no vent reaches it)"));
+  log_.info(fmt::format("{}: sprues and vents placed in {:.2f} s, of which {} fill simulation(s) on {} voxels of "
+                        "{:.2f} mm {:.2f} s: {} sprue(s), "
                         "{} vent(s), {:.1f} % reached, {:.2f} mm³ of air trapped",
-                        name, fill_seconds, plan.simulations, region.count(), region.voxel / 1e-3, plan.simulation_seconds,
-                        plan.ports.sprues.size(), plan.ports.vents.size(),
+                        name, fill_seconds, plan.simulations, region.count(), region.voxel / 1e-3,
+                        plan.simulation_seconds, plan.ports.sprues.size(), plan.ports.vents.size(),
                         plan.fill.fill_volume > 0 ? 100 * plan.fill.reachable_volume / plan.fill.fill_volume : 0.0,
                         g3_ * plan.fill.trapped_volume / 1e-9));
   for (const Port& p : plan.ports.sprues)
@@ -182,17 +195,19 @@ std::vector<std::string> Recipe::make_shot(const std::string& name, const Surfac
   const SurfaceMesh cavity = out_.grow != 1 ? scaled_about(shot_cavity, out_.centre, out_.grow) : shot_cavity;
   parting.point = out_.scaled(parting.point);
   parting.undercut_area = undercut_area(cavity, parting.point, parting.normal);
-  log_.info(fmt::format("{}: parting plane through {} normal to pull, {:.1f} mm² of undercut", name, format_mm(parting.point),
-                        parting.undercut_area / 1e-6));
+  log_.info(fmt::format("{}: parting plane through {} normal to pull, {:.1f} mm² of undercut", name,
+                        format_mm(parting.point), parting.undercut_area / 1e-6));
   if (parting.undercut_area > kUndercutWarning)
-    log_.warn(fmt::format("{}: {:.1f} mm² of the cavity is an undercut for the parting plane: demolding relies on the silicone bending",
-                          name, parting.undercut_area / 1e-6));
+    log_.warn(fmt::format(
+        "{}: {:.1f} mm² of the cavity is an undercut for the parting plane: demolding relies on the silicone bending",
+        name, parting.undercut_area / 1e-6));
   started = Clock::now();
   const Mold mold = make_mold(cavity, parting, shot_channels, block_, name, &scaled_ports);
   log_.info(fmt::format("{}: mold block and parts in {:.2f} s", name, since(started)));
   shot.upright_share = upright_share(cavity, parting.point, parting.normal, 3);
-  log_.info(fmt::format("{}: {:.0f} % of the upper half's contact lies within 3° of the pull (walls it slides along; draft_deg {})", name,
-                        100 * shot.upright_share, m_.draft_deg));
+  log_.info(fmt::format(
+      "{}: {:.0f} % of the upper half's contact lies within 3° of the pull (walls it slides along; draft_deg {})", name,
+      100 * shot.upright_share, m_.draft_deg));
   shot.parting = parting;
   shot.cavity_volume = signed_volume(cavity);
   shot.silicone_volume = silicone;
@@ -201,8 +216,9 @@ std::vector<std::string> Recipe::make_shot(const std::string& name, const Surfac
   shot.keys = mold.keys.size();
   shot.screw_holes = mold.screws.size();
   if (static_cast<int>(mold.screws.size()) < block_.screw_holes)
-    log_.warn(fmt::format("{}: room for {} of the {} screw holes asked for (channels and keys take the other sites in the rim)", name,
-                          mold.screws.size(), block_.screw_holes));
+    log_.warn(fmt::format(
+        "{}: room for {} of the {} screw holes asked for (channels and keys take the other sites in the rim)", name,
+        mold.screws.size(), block_.screw_holes));
   for (const MoldPart& p : mold.parts) {
     progress_.checkpoint(-1, "checking " + p.name);
     started = Clock::now();
@@ -225,7 +241,8 @@ TwoShotMolds Recipe::make()
   const double body_volume = signed_volume(body);
   // The silicone that fills each channel's socket around the muscle's end.
   const double sleeves = static_cast<double>(channels_.size()) * M_PI *
-                         (std::pow(m_.end_channel_diameter / 2, 2) - std::pow(std::min(m_.end_channel_diameter, job_.muscle_diameter) / 2, 2)) *
+                         (std::pow(m_.end_channel_diameter / 2, 2) -
+                          std::pow(std::min(m_.end_channel_diameter, job_.muscle_diameter) / 2, 2)) *
                          m_.end_channel_length;
 
   // Shot 1 fills the scaled-up groove cavity; its cured part shrinks back to nominal size. The
@@ -249,26 +266,32 @@ TwoShotMolds Recipe::make()
     // The sockets reach end_channel_length beyond the drafted skin.
     for (Channel& c : channels_) c.socket += draft_->offset(c.start.dot(pull_));
     out_.draft_offset = draft_->most();
-    log_.info(fmt::format("draft {}°: cavities grown by up to {:.2f} mm at the parting plane; the body takes {:.2f} mL more silicone",
-                          m_.draft_deg, draft_->most() / 1e-3, (shot2_volume - body_volume) / 1e-6));
+    log_.info(fmt::format(
+        "draft {}°: cavities grown by up to {:.2f} mm at the parting plane; the body takes {:.2f} mL more silicone",
+        m_.draft_deg, draft_->most() / 1e-3, (shot2_volume - body_volume) / 1e-6));
   }
   progress_.checkpoint(0.2, "sampling what each shot fills");
   auto started = Clock::now();
-  regions_ = fill_regions(shot2_cavity, lines_, out_.groove_radius, job_.muscle_diameter / 2, pull_, fill_voxel(m_.voxel, out_.groove_radius),
-                          draft_ ? draft_->slope : 0);
-  log_.info(fmt::format("fill regions: {} and {} voxels of {:.2f} mm (shots 1 and 2) in {:.2f} s", regions_.shot1.count(), regions_.shot2.count(),
-                        regions_.shot1.voxel / 1e-3, since(started)));
+  regions_ = fill_regions(shot2_cavity, lines_, out_.groove_radius, job_.muscle_diameter / 2, pull_,
+                          fill_voxel(m_.voxel, out_.groove_radius), draft_ ? draft_->slope : 0);
+  log_.info(fmt::format("fill regions: {} and {} voxels of {:.2f} mm (shots 1 and 2) in {:.2f} s",
+                        regions_.shot1.count(), regions_.shot2.count(), regions_.shot1.voxel / 1e-3, since(started)));
   std::vector<std::string> failures = make_shot("shot1", out_.groove.mesh, parting1, g3_ * out_.groove.volume, {});
   if (!failures.empty() && out_.groove.adaptivity > 0 && too_big_.empty()) {
-    log_.info(fmt::format("shot 1 from the adaptive groove body mesh failed its checks ({}); meshing the groove body uniformly", failures.front()));
+    log_.info(fmt::format(
+        "shot 1 from the adaptive groove body mesh failed its checks ({}); meshing the groove body uniformly",
+        failures.front()));
     out_.parts.clear();
     carve(0);
     failures = make_shot("shot1", out_.groove.mesh, parting1, g3_ * out_.groove.volume, {});
   }
-  const auto shot2_silicone = [&] { return std::max(0.0, g3_ * shot2_volume - out_.groove.volume - muscle_volume_ + sleeves); };
+  const auto shot2_silicone = [&] {
+    return std::max(0.0, g3_ * shot2_volume - out_.groove.volume - muscle_volume_ + sleeves);
+  };
   std::vector<std::string> shot2 = make_shot("shot2", shot2_cavity, parting2, shot2_silicone(), channels_);
   if (!shot2.empty() && shot2_adaptive && too_big_.empty()) {
-    log_.info(fmt::format("shot 2 from the adaptive drafted body mesh failed its checks ({}); meshing it uniformly", shot2.front()));
+    log_.info(fmt::format("shot 2 from the adaptive drafted body mesh failed its checks ({}); meshing it uniformly",
+                          shot2.front()));
     std::erase_if(out_.parts, [](const CheckedPart& p) { return p.shot == "shot2"; });
     const GrooveBody drafted = groove_body(body, {}, out_.groove_radius, pull_, m_.voxel, 0, &*draft_);
     shot2_cavity = drafted.mesh;
@@ -285,23 +308,30 @@ TwoShotMolds Recipe::make()
   out_.thickness = silicone_thickness(out_.groove.mesh, shot2_cavity, lines_, out_.groove_radius,
                                       job_.muscle_diameter / 2, pull_, m_.voxel, job_.exits);
   const SiliconeThickness& t = out_.thickness;
-  log_.info(fmt::format("silicone: {:.2f} mm at the thinnest groove wall near {}, {:.2f} mm over the muscles at the thinnest, near {}; in {:.2f} s",
-                        t.groove_web / 1e-3, format_mm(out_.scaled(t.groove_web_at)), t.overmold / 1e-3, format_mm(out_.scaled(t.overmold_at)), since(started)));
+  log_.info(fmt::format("silicone: {:.2f} mm at the thinnest groove wall near {}, {:.2f} mm over the muscles at the "
+                        "thinnest, near {}; in {:.2f} s",
+                        t.groove_web / 1e-3, format_mm(out_.scaled(t.groove_web_at)), t.overmold / 1e-3,
+                        format_mm(out_.scaled(t.overmold_at)), since(started)));
   if (t.groove_web < m_.min_silicone - kPlacementTolerance)
-    failures.push_back(fmt::format("shot1: the cast's silicone is {:.3f} mm thin between a groove and the skin near {}, below [mold] "
-                                   "min_silicone = {:.3f} mm: move the fiber away from the skin there",
-                                   t.groove_web / 1e-3, format_mm(out_.scaled(t.groove_web_at)), m_.min_silicone / 1e-3));
+    failures.push_back(
+        fmt::format("shot1: the cast's silicone is {:.3f} mm thin between a groove and the skin near {}, below [mold] "
+                    "min_silicone = {:.3f} mm: move the fiber away from the skin there",
+                    t.groove_web / 1e-3, format_mm(out_.scaled(t.groove_web_at)), m_.min_silicone / 1e-3));
   if (t.overmold < m_.min_silicone)
-    failures.push_back(fmt::format("shot2: the overmold is {:.2f} mm thin over a muscle near {}, below [mold] min_silicone = {:.2f} mm: "
-                                   "move the fiber deeper there",
-                                   t.overmold / 1e-3, format_mm(out_.scaled(t.overmold_at)), m_.min_silicone / 1e-3));
+    failures.push_back(fmt::format(
+        "shot2: the overmold is {:.2f} mm thin over a muscle near {}, below [mold] min_silicone = {:.2f} mm: "
+        "move the fiber deeper there",
+        t.overmold / 1e-3, format_mm(out_.scaled(t.overmold_at)), m_.min_silicone / 1e-3));
   out_.failures = std::move(failures);
   return std::move(out_);
 }
 
 } // namespace
 
-double groove_radius(double muscle_diameter, const MoldOptions& options) { return muscle_diameter / 2 + options.groove_clearance; }
+double groove_radius(double muscle_diameter, const MoldOptions& options)
+{
+  return muscle_diameter / 2 + options.groove_clearance;
+}
 
 double mold_line_step(const MoldOptions& options) { return std::min(0.5e-3, options.voxel * 2); }
 
@@ -314,12 +344,14 @@ std::optional<std::string> groove_problem(const std::vector<Eigen::Vector3d>& li
     const Eigen::Vector3d& p = line[k];
     const auto at = skin.closest(p);
     const bool near_end = !beyond[k];
-    if (!at.inside && !near_end) return fmt::format("the fiber (as routed in fibers.json) leaves the body at {}", format_mm(p));
+    if (!at.inside && !near_end)
+      return fmt::format("the fiber (as routed in fibers.json) leaves the body at {}", format_mm(p));
     if (near_end) continue;
     const Eigen::Vector3d to_skin = at.point - p;
     if (at.distance < need - kPlacementTolerance && to_skin.dot(pull.normalized()) < 0.7 * at.distance)
-      return fmt::format("the fiber (as routed in fibers.json) passes {:.3f} mm from the skin at {}: its groove needs {:.3f} mm ({})",
-                         at.distance / 1e-3, format_mm(p), need / 1e-3, terms);
+      return fmt::format(
+          "the fiber (as routed in fibers.json) passes {:.3f} mm from the skin at {}: its groove needs {:.3f} mm ({})",
+          at.distance / 1e-3, format_mm(p), need / 1e-3, terms);
   }
   return std::nullopt;
 }

@@ -31,23 +31,23 @@ namespace fibermold {
 
 /// A fiber as the molds see it.
 struct MoldFiber {
-  std::vector<Eigen::Vector3d> line;  ///< the centre line, sampled along the spline
-  Eigen::Vector3d start, end;         ///< the spline's end points
-  Eigen::Vector3d start_tangent;      ///< along the fiber at its first point
-  Eigen::Vector3d end_tangent;        ///< along the fiber at its last point
-  double length = 0;                  ///< m, of the spline
+  std::vector<Eigen::Vector3d> line; ///< the centre line, sampled along the spline
+  Eigen::Vector3d start, end;        ///< the spline's end points
+  Eigen::Vector3d start_tangent;     ///< along the fiber at its first point
+  Eigen::Vector3d end_tangent;       ///< along the fiber at its last point
+  double length = 0;                 ///< m, of the spline
 };
 
 /// What the molds are made for: the body and its muscles.
 struct MoldJob {
-  SurfaceMesh body;                      ///< the body's skin, m
+  SurfaceMesh body; ///< the body's skin, m
   std::vector<MoldFiber> fibers;
-  double muscle_diameter = 0;            ///< m
+  double muscle_diameter = 0; ///< m
   /// Per fiber, the stretches at its ends on the skin that the thickness checks leave out (the
   /// optimizer's skin barrier's; the fiber leaves the body there by design).
   std::vector<ExitStretches> exits;
-  double min_wall = 1e-3;                ///< m, the printer's thinnest reliable wall
-  Eigen::Vector3d printer_volume{0.25, 0.21, 0.21};  ///< m
+  double min_wall = 1e-3;                           ///< m, the printer's thinnest reliable wall
+  Eigen::Vector3d printer_volume{0.25, 0.21, 0.21}; ///< m
 };
 
 /// m: how far short of a distance the molds ask of a fiber (from the skin, of silicone beside its
@@ -73,13 +73,13 @@ std::optional<std::string> groove_problem(const std::vector<Eigen::Vector3d>& li
 
 /// One shot's mold.
 struct ShotMold {
-  std::string name;            ///< shot1 | shot2
-  FillPlan plan;               ///< sprues, vents and the fill simulation, on the nominal body (scaled() maps it)
-  double fill_voxel = 0;       ///< m, of the fill simulation's grid
-  Parting parting;             ///< in the scaled cavity
-  double cavity_volume = 0;    ///< m³, scaled
-  double upright_share = 0;    ///< of the upper half's contact within 3° of the pull
-  double silicone_volume = 0;  ///< m³ the shot pours
+  std::string name;           ///< shot1 | shot2
+  FillPlan plan;              ///< sprues, vents and the fill simulation, on the nominal body (scaled() maps it)
+  double fill_voxel = 0;      ///< m, of the fill simulation's grid
+  Parting parting;            ///< in the scaled cavity
+  double cavity_volume = 0;   ///< m³, scaled
+  double upright_share = 0;   ///< of the upper half's contact within 3° of the pull
+  double silicone_volume = 0; ///< m³ the shot pours
   std::size_t sprues = 0, vents = 0, keys = 0, screw_holes = 0;
 };
 
@@ -90,16 +90,16 @@ struct CheckedPart {
 };
 
 struct TwoShotMolds {
-  std::vector<ShotMold> shots;     ///< shot1, shot2
-  std::vector<CheckedPart> parts;  ///< every part of both shots, checked
-  GrooveBody groove;               ///< shot 1's cast: the body with its grooves (nominal size)
-  double groove_radius = 0;        ///< m
-  double draft_offset = 0;         ///< m, the most a draft grew a cavity (0: no draft)
+  std::vector<ShotMold> shots;    ///< shot1, shot2
+  std::vector<CheckedPart> parts; ///< every part of both shots, checked
+  GrooveBody groove;              ///< shot 1's cast: the body with its grooves (nominal size)
+  double groove_radius = 0;       ///< m
+  double draft_offset = 0;        ///< m, the most a draft grew a cavity (0: no draft)
   SiliconeThickness thickness;
   /// What keeps the molds from casting, one line each naming the shot and where; empty: they cast.
   std::vector<std::string> failures;
-  Eigen::Vector3d centre = Eigen::Vector3d::Zero();  ///< the shrink scaling's centre
-  double grow = 1;                                   ///< the shrink scaling's factor
+  Eigen::Vector3d centre = Eigen::Vector3d::Zero(); ///< the shrink scaling's centre
+  double grow = 1;                                  ///< the shrink scaling's factor
 
   /// A point of the nominal body in the scaled cavities.
   Eigen::Vector3d scaled(const Eigen::Vector3d& p) const { return centre + (p - centre) * grow; }
@@ -112,6 +112,7 @@ struct MoldLog {
 };
 
 /// Both shots' molds for `job`. Throws Interrupted when `progress` says so.
-TwoShotMolds two_shot_molds(const MoldJob& job, const MoldOptions& options, Progress& progress, const MoldLog& log = {});
+TwoShotMolds two_shot_molds(const MoldJob& job, const MoldOptions& options, Progress& progress,
+                            const MoldLog& log = {});
 
 } // namespace fibermold

@@ -14,7 +14,7 @@ namespace {
 /// p' and p'' on span k at u ∈ [0, 1] (a span's own side at its knots: p'' jumps there), and the
 /// weights of P_k, T_k, P_{k+1}, T_{k+1} in them.
 struct SpanDerivatives {
-  Eigen::Vector3d a, b;  ///< p', p''
+  Eigen::Vector3d a, b; ///< p', p''
   double d1[4], d2[4];
 };
 SpanDerivatives span_derivatives(const HermiteSpline& s, int k, double u)
@@ -111,7 +111,10 @@ SmallestBend smallest_bend(const HermiteSpline& spline, int per_span)
   return out;
 }
 
-BendBarrier::BendBarrier(double min_radius, double band, int per_span) : min_radius_(min_radius), band_(band), per_span_(per_span) {}
+BendBarrier::BendBarrier(double min_radius, double band, int per_span)
+    : min_radius_(min_radius), band_(band), per_span_(per_span)
+{
+}
 
 std::vector<double> BendBarrier::sample_parameters(const HermiteSpline& spline, int k) const
 {
@@ -127,7 +130,7 @@ double BendBarrier::value(const HermiteSpline& spline) const
   for (int k = 0; k < spline.spans(); ++k)
     for (double u : sample_parameters(spline, k)) {
       const double kappa = span_curvature(spline, k, u);
-      B += barrier(1 - min_radius_ * kappa, band_);  // +∞ at or under the smallest radius
+      B += barrier(1 - min_radius_ * kappa, band_); // +∞ at or under the smallest radius
       if (!std::isfinite(B)) return HUGE_VAL;
     }
   return B;

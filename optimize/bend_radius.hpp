@@ -56,10 +56,10 @@ private:
 
 /// Where a spline bends tightest.
 struct SmallestBend {
-  double radius = HUGE_VAL;  ///< m; +∞ for a straight spline (a radius over 1e6 × its length)
-  double t = 0;              ///< spline parameter
+  double radius = HUGE_VAL; ///< m; +∞ for a straight spline (a radius over 1e6 × its length)
+  double t = 0;             ///< spline parameter
   Eigen::Vector3d where = Eigen::Vector3d::Zero();
-  double arc_length = 0;     ///< m from the first point
+  double arc_length = 0; ///< m from the first point
 };
 /// The smallest bend radius along the spline: κ scanned at `per_span` parameters per span, the
 /// largest refined by golden-section search between its neighbours (to 1e-9 of a span).

@@ -3,10 +3,11 @@
 #include <algorithm>
 #include <cmath>
 #include <optional>
-#include <vector>
 #include <stdexcept>
+#include <vector>
 
-#include <LBFGSpp/Param.h>  // before the line search, which uses it
+#include <LBFGSpp/Param.h> // before the line search, which uses it
+
 #include <LBFGSpp/LineSearchBacktracking.h>
 #include <fmt/format.h>
 
@@ -52,7 +53,7 @@ void take_pair(Eigen::MatrixXd& H, bool& scaled, const Eigen::VectorXd& s, const
 {
   if (!(y.dot(s) > 1e-12 * s.norm() * y.norm())) return;
   if (!scaled) {
-    H *= y.dot(s) / y.dot(y);  // eq. 6.20
+    H *= y.dot(s) / y.dot(y); // eq. 6.20
     scaled = true;
   }
   bfgs_update(H, s, y);
@@ -73,7 +74,7 @@ MinimizerResult finished(MinimizerResult& result, const Tracked& tracked, Termin
 } // namespace
 
 MinimizerResult minimize_bfgs(const Objective& f, Eigen::VectorXd x, const MinimizerOptions& options,
-                         const IterationCallback& on_iteration, Progress& progress)
+                              const IterationCallback& on_iteration, Progress& progress)
 {
   const Eigen::Index n = x.size();
   Tracked tracked(f);
@@ -92,24 +93,27 @@ MinimizerResult minimize_bfgs(const Objective& f, Eigen::VectorXd x, const Minim
   param.max_linesearch = options.max_line_search;
   param.min_step = 1e-14;
 
-  std::vector<double> values{fx};  // f after each iteration
+  std::vector<double> values{fx}; // f after each iteration
   Eigen::MatrixXd H = Eigen::MatrixXd::Identity(n, n);
-  bool scaled = false;  // H is the identity, not yet scaled by eq. 6.20
+  bool scaled = false; // H is the identity, not yet scaled by eq. 6.20
   // The first trial of a BFGS line search, as a fraction of the full step: 1, or 4× the last
   // search's step where that one needed many trials (near a design where f jumps up, the walking
   // robot's last line searches each spent their 20 evaluations halving from 1).
   double first_trial = 1;
-  auto finish = [&](Termination why, std::string message) { return finished(result, tracked, why, std::move(message)); };
+  auto finish = [&](Termination why, std::string message) {
+    return finished(result, tracked, why, std::move(message));
+  };
   try {
     for (;;) {
       const double gnorm = g.norm();
-      if (gnorm <= options.gradient_tolerance) return finish(Termination::gradient_tolerance, fmt::format("|∇f| = {:.3g} below tolerance", gnorm));
+      if (gnorm <= options.gradient_tolerance)
+        return finish(Termination::gradient_tolerance, fmt::format("|∇f| = {:.3g} below tolerance", gnorm));
       if (result.iterations == options.max_iterations)
         return finish(Termination::iteration_limit, fmt::format("{} iterations, the limit", options.max_iterations));
       if (progress.interrupted()) throw Interrupted();
 
       Eigen::VectorXd d = -H * g;
-      if (!(g.dot(d) < 0)) {  // lost positive definiteness to round-off: restart from steepest descent
+      if (!(g.dot(d) < 0)) { // lost positive definiteness to round-off: restart from steepest descent
         H.setIdentity();
         scaled = false;
         d = -g;
@@ -121,7 +125,7 @@ MinimizerResult minimize_bfgs(const Objective& f, Eigen::VectorXd x, const Minim
       const double fp = fx;
       const bool along_bfgs = scaled;
       const int evaluations_before = tracked.evaluations;
-      bool exhausted = false;  // the line search used all its evaluations
+      bool exhausted = false; // the line search used all its evaluations
       try {
         LBFGSpp::LineSearchBacktracking<double>::LineSearch(tracked, fx, x, g, step, d, xp, param);
       } catch (const Interrupted&) {
@@ -129,11 +133,12 @@ MinimizerResult minimize_bfgs(const Objective& f, Eigen::VectorXd x, const Minim
       } catch (const std::exception& e) {
         // No Wolfe step (e.g. against a region where f is +∞); a sufficient decrease still counts.
         const bool decreased = tracked.best < fp;
-        if (!decreased && !scaled) return finish(Termination::line_search, fmt::format("the line search found no decrease ({})", e.what()));
+        if (!decreased && !scaled)
+          return finish(Termination::line_search, fmt::format("the line search found no decrease ({})", e.what()));
         x = tracked.best_x;
         g = tracked.best_g;
         fx = tracked.best;
-        if (!decreased) {  // retry along steepest descent
+        if (!decreased) { // retry along steepest descent
           H.setIdentity();
           scaled = false;
           continue;
@@ -154,8 +159,9 @@ MinimizerResult minimize_bfgs(const Objective& f, Eigen::VectorXd x, const Minim
       // there. Steepest descent gets one try, then the run stops.
       if (exhausted && fp - fx <= options.relative_tolerance / options.window * std::abs(fp)) {
         if (!along_bfgs)
-          return finish(Termination::line_search, fmt::format("the line search used all {} evaluations and f fell by only {:.3g} of its value",
-                                          options.max_line_search, (fp - fx) / std::abs(fp)));
+          return finish(Termination::line_search,
+                        fmt::format("the line search used all {} evaluations and f fell by only {:.3g} of its value",
+                                    options.max_line_search, (fp - fx) / std::abs(fp)));
         H.setIdentity();
         scaled = false;
       }

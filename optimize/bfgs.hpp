@@ -13,6 +13,6 @@ namespace fibermold {
 
 /// Throws std::invalid_argument when f is not finite at x0.
 MinimizerResult minimize_bfgs(const Objective& f, Eigen::VectorXd x0, const MinimizerOptions& options,
-                         const IterationCallback& on_iteration, Progress& progress);
+                              const IterationCallback& on_iteration, Progress& progress);
 
 } // namespace fibermold

@@ -16,7 +16,7 @@
 #include <Eigen/Core>
 
 #include "mesh/surface_distance.hpp"
-#include "optimize/routing_problem.hpp"
+#include "optimize/routing.hpp"
 
 namespace fibermold {
 

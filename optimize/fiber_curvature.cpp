@@ -7,10 +7,10 @@ namespace fibermold {
 namespace {
 
 constexpr double kX[5] = {0.0469100770306680, 0.2307653449471585, 0.5, 0.7692346550528415, 0.9530899229693320};
-constexpr double kW[5] = {0.1184634425280945, 0.2393143352496832, 0.2844444444444444, 0.2393143352496832, 0.1184634425280945};
+constexpr double kW[5] = {0.1184634425280945, 0.2393143352496832, 0.2844444444444444, 0.2393143352496832,
+                          0.1184634425280945};
 
-template <typename Visit>
-void for_each_quadrature_point(const HermiteSpline& s, Visit visit)
+template <typename Visit> void for_each_quadrature_point(const HermiteSpline& s, Visit visit)
 {
   const auto& P = s.points();
   const auto& T = s.tangents();
@@ -19,7 +19,7 @@ void for_each_quadrature_point(const HermiteSpline& s, Visit visit)
       double d1[4], d2[4];
       hermite_derivative_weights(kX[i], d1, d2);
       const Eigen::Vector3d* c[4] = {&P[k], &T[k], &P[k + 1], &T[k + 1]};
-      Eigen::Vector3d a = Eigen::Vector3d::Zero(), b = Eigen::Vector3d::Zero();  // p', p''
+      Eigen::Vector3d a = Eigen::Vector3d::Zero(), b = Eigen::Vector3d::Zero(); // p', p''
       for (int m = 0; m < 4; ++m) {
         a += d1[m] * *c[m];
         b += d2[m] * *c[m];
@@ -33,9 +33,9 @@ void for_each_quadrature_point(const HermiteSpline& s, Visit visit)
 double fiber_curvature(const HermiteSpline& spline)
 {
   double R = 0;
-  for_each_quadrature_point(spline, [&](int, double w, const Eigen::Vector3d& a, const Eigen::Vector3d& b, const double*, const double*) {
-    R += w * a.cross(b).squaredNorm() / std::pow(a.norm(), 5);
-  });
+  for_each_quadrature_point(spline,
+                            [&](int, double w, const Eigen::Vector3d& a, const Eigen::Vector3d& b, const double*,
+                                const double*) { R += w * a.cross(b).squaredNorm() / std::pow(a.norm(), 5); });
   return R;
 }
 

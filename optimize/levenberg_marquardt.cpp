@@ -35,7 +35,8 @@ double model_decrease(const Eigen::MatrixXd& B, const Eigen::VectorXd& g)
 }
 
 /// δ = −(B + μD)⁻¹g, with μ raised (×ν, ν doubling) until B + μD is positive definite.
-Eigen::VectorXd damped_step(const Eigen::MatrixXd& B, const Eigen::VectorXd& D, const Eigen::VectorXd& g, double& mu, double& nu)
+Eigen::VectorXd damped_step(const Eigen::MatrixXd& B, const Eigen::VectorXd& D, const Eigen::VectorXd& g, double& mu,
+                            double& nu)
 {
   for (;;) {
     Eigen::MatrixXd A = B;
@@ -75,8 +76,9 @@ double predicted_decrease(const Eigen::VectorXd& g, const Eigen::MatrixXd& B, co
 
 } // namespace
 
-MinimizerResult minimize_levenberg_marquardt(const ModelObjective& f, Eigen::VectorXd x, const MinimizerOptions& options,
-                                             const IterationCallback& on_iteration, Progress& progress)
+MinimizerResult minimize_levenberg_marquardt(const ModelObjective& f, Eigen::VectorXd x,
+                                             const MinimizerOptions& options, const IterationCallback& on_iteration,
+                                             Progress& progress)
 {
   MinimizerResult result;
   Eigen::VectorXd g;
@@ -95,8 +97,8 @@ MinimizerResult minimize_levenberg_marquardt(const ModelObjective& f, Eigen::Vec
   // NL2SOL's choice of model: B + S where it predicted the last step's decrease better than B.
   bool augmented = false;
   const auto model = [&]() -> Eigen::MatrixXd { return augmented ? Eigen::MatrixXd(B + S) : B; };
-  std::vector<double> values{fx};  // f after each iteration
-  int rejected = 0;                // trial steps rejected in a row
+  std::vector<double> values{fx}; // f after each iteration
+  int rejected = 0;               // trial steps rejected in a row
   auto finish = [&](Termination why, std::string message) {
     result.x = x;
     result.value = fx;
@@ -108,7 +110,8 @@ MinimizerResult minimize_levenberg_marquardt(const ModelObjective& f, Eigen::Vec
   try {
     for (;;) {
       const double gnorm = g.norm();
-      if (gnorm <= options.gradient_tolerance) return finish(Termination::gradient_tolerance, fmt::format("|∇f| = {:.3g} below tolerance", gnorm));
+      if (gnorm <= options.gradient_tolerance)
+        return finish(Termination::gradient_tolerance, fmt::format("|∇f| = {:.3g} below tolerance", gnorm));
       const Eigen::MatrixXd M = model();
       if (const double decrease = model_decrease(M, g); decrease <= options.decrease_tolerance * std::abs(fx))
         return finish(Termination::decrease_tolerance,
@@ -146,7 +149,7 @@ MinimizerResult minimize_levenberg_marquardt(const ModelObjective& f, Eigen::Vec
         fx = trial;
         g = std::move(trial_g);
         B = std::move(trial_B);
-        mu *= std::max(1.0 / 3, 1 - std::pow(2 * rho - 1, 3));  // eq. 2.21
+        mu *= std::max(1.0 / 3, 1 - std::pow(2 * rho - 1, 3)); // eq. 2.21
         nu = 2;
         rejected = 0;
         ++result.iterations;

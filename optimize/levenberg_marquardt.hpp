@@ -27,10 +27,12 @@ namespace fibermold {
 
 /// f(x, g, B) returns the value and writes the gradient into g and the model Hessian into B
 /// (symmetric; it need not be positive definite).
-using ModelObjective = std::function<double(const Eigen::VectorXd& x, Eigen::VectorXd& gradient, Eigen::MatrixXd& model)>;
+using ModelObjective =
+    std::function<double(const Eigen::VectorXd& x, Eigen::VectorXd& gradient, Eigen::MatrixXd& model)>;
 
 /// Throws std::invalid_argument when f is not finite at x0.
-MinimizerResult minimize_levenberg_marquardt(const ModelObjective& f, Eigen::VectorXd x0, const MinimizerOptions& options,
-                                             const IterationCallback& on_iteration, Progress& progress);
+MinimizerResult minimize_levenberg_marquardt(const ModelObjective& f, Eigen::VectorXd x0,
+                                             const MinimizerOptions& options, const IterationCallback& on_iteration,
+                                             Progress& progress);
 
 } // namespace fibermold

@@ -25,12 +25,12 @@ inline std::string_view choice_name(Method m) { return name_in(kMethodNames, m);
 struct MinimizerOptions {
   Method method = Method::hybrid;
   int max_iterations = 400;
-  double gradient_tolerance = 1e-6;   ///< stop when |∇f| ≤ this
-  double relative_tolerance = 1e-3;   ///< stop when f fell by ≤ this × |f| over the last `window` iterations
+  double gradient_tolerance = 1e-6; ///< stop when |∇f| ≤ this
+  double relative_tolerance = 1e-3; ///< stop when f fell by ≤ this × |f| over the last `window` iterations
   int window = 10;
-  double max_step = 5;                ///< largest change of one variable in a line search's first trial (a
-                                      ///< Wolfe extension may try up to 2.1× that once) or an LM step
-  int max_line_search = 20;           ///< evaluations per line search (BFGS); trial steps rejected in a row (LM)
+  double max_step = 5;      ///< largest change of one variable in a line search's first trial (a
+                            ///< Wolfe extension may try up to 2.1× that once) or an LM step
+  int max_line_search = 20; ///< evaluations per line search (BFGS); trial steps rejected in a row (LM)
   /// Levenberg-Marquardt converges where its model's whole decrease ½ gᵀM⁻¹g is at most this share of f.
   double decrease_tolerance = 1e-4;
   /// hybrid: BFGS hands over to Levenberg-Marquardt where f fell by ≤ this × |f| over `window` iterations.
@@ -40,7 +40,7 @@ struct MinimizerOptions {
 struct MinimizerIteration {
   int iteration = 0;
   double value = 0, gradient_norm = 0, step = 0;
-  int evaluations = 0;  ///< objective evaluations so far
+  int evaluations = 0; ///< objective evaluations so far
   /// What the minimizer's model predicts is left to gain from here: ½ gᵀHg with BFGS's inverse
   /// Hessian H, ½ gᵀM⁻¹g with Levenberg-Marquardt's model M (the Newton decrement, squared and halved).
   double predicted_decrease = 0;
@@ -50,19 +50,20 @@ struct MinimizerIteration {
 /// or the decrease a model Hessian predicts from it, vanishes);
 /// the others end at the best point seen, which may be short of one.
 enum class Termination {
-  gradient_tolerance,  ///< |∇f| ≤ gradient_tolerance
-  decrease_tolerance,  ///< the model's whole decrease ½ gᵀB⁻¹g ≤ decrease_tolerance × f (levenberg_marquardt.hpp)
-  stalled,             ///< f fell by ≤ relative_tolerance × |f| over `window` iterations
-  line_search,         ///< the line search found no step that lowers f usefully (a kink or a jump ahead)
-  iteration_limit,     ///< max_iterations taken
-  interrupted,         ///< Ctrl-C or SIGTERM
+  gradient_tolerance, ///< |∇f| ≤ gradient_tolerance
+  decrease_tolerance, ///< the model's whole decrease ½ gᵀB⁻¹g ≤ decrease_tolerance × f (levenberg_marquardt.hpp)
+  stalled,            ///< f fell by ≤ relative_tolerance × |f| over `window` iterations
+  line_search,        ///< the line search found no step that lowers f usefully (a kink or a jump ahead)
+  iteration_limit,    ///< max_iterations taken
+  interrupted,        ///< Ctrl-C or SIGTERM
 };
-inline constexpr std::array<Named<Termination>, 6> kTerminationNames{{{Termination::gradient_tolerance, "gradient tolerance met"},
-                                                                      {Termination::decrease_tolerance, "converged"},
-                                                                      {Termination::stalled, "stalled"},
-                                                                      {Termination::line_search, "line search failed"},
-                                                                      {Termination::iteration_limit, "iteration limit"},
-                                                                      {Termination::interrupted, "interrupted"}}};
+inline constexpr std::array<Named<Termination>, 6> kTerminationNames{
+    {{Termination::gradient_tolerance, "gradient tolerance met"},
+     {Termination::decrease_tolerance, "converged"},
+     {Termination::stalled, "stalled"},
+     {Termination::line_search, "line search failed"},
+     {Termination::iteration_limit, "iteration limit"},
+     {Termination::interrupted, "interrupted"}}};
 inline std::string_view choice_name(Termination t) { return name_in(kTerminationNames, t); }
 
 struct MinimizerResult {
@@ -70,10 +71,13 @@ struct MinimizerResult {
   double value = 0, gradient_norm = 0;
   int iterations = 0, evaluations = 0;
   Termination termination = Termination::iteration_limit;
-  bool interrupted = false;  ///< Ctrl-C: x is the best point found before it
-  std::string message;       ///< why it stopped, with the figures
+  bool interrupted = false; ///< Ctrl-C: x is the best point found before it
+  std::string message;      ///< why it stopped, with the figures
 
-  bool converged() const { return termination == Termination::gradient_tolerance || termination == Termination::decrease_tolerance; }
+  bool converged() const
+  {
+    return termination == Termination::gradient_tolerance || termination == Termination::decrease_tolerance;
+  }
 };
 
 /// f(x, g) returns the value and writes the gradient into g.

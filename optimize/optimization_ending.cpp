@@ -8,17 +8,20 @@
 
 namespace fibermold {
 
-OptimizationEnding optimization_ending(const RoutingResult& result, const ActuatorMask& actuators, const RoutingSettings& settings,
-                                       const std::vector<TargetErrors>& before, const std::vector<TargetErrors>& after,
+OptimizationEnding optimization_ending(const RoutingResult& result, const ActuatorMask& actuators,
+                                       const RoutingSettings& settings, const std::vector<TargetErrors>& before,
+                                       const std::vector<TargetErrors>& after,
                                        const std::vector<std::vector<AngleReach>>& angles,
-                                       const std::vector<std::string>& target_names, const std::vector<std::string>& fiber_names)
+                                       const std::vector<std::string>& target_names,
+                                       const std::vector<std::string>& fiber_names)
 {
   OptimizationEnding e;
   const Eigen::MatrixXd& p = result.routing.pressures;
   const double max_pressure = settings.max_pressure, margin = settings.pressure_margin * max_pressure;
   if (!result.converged)
-    e.warnings.push_back(fmt::format("the optimizer stopped before converging ({}: {}); the routes are the best it found",
-                                     choice_name(result.termination), result.message));
+    e.warnings.push_back(
+        fmt::format("the optimizer stopped before converging ({}: {}); the routes are the best it found",
+                    choice_name(result.termination), result.message));
   for (Eigen::Index t = 0; t < p.rows(); ++t)
     for (Eigen::Index f = 0; f < p.cols(); ++f) {
       if (!actuators(t, f)) continue;
@@ -28,12 +31,16 @@ OptimizationEnding optimization_ending(const RoutingResult& result, const Actuat
       const std::string& fiber = fiber_names[f];
       const std::string& target = target_names[t];
       e.warnings.push_back(
-          at_max ? fmt::format("target {}: fiber {} ends at {:.1f} kPa, at its limit, [muscle] max_pressure = {:.0f} kPa (within "
-                               "the {:.0f} % where the pressure barrier holds it): more of the target needs more than the muscle can give",
-                               target, fiber, p(t, f) / units::kPa, max_pressure / units::kPa, 100 * settings.pressure_margin)
-                 : fmt::format("target {}: fiber {} ends at {:.1f} kPa: the optimizer turned it off, it does not help this target "
-                               "from where its route ended",
-                               target, fiber, p(t, f) / units::kPa));
+          at_max
+              ? fmt::format(
+                    "target {}: fiber {} ends at {:.1f} kPa, at its limit, [muscle] max_pressure = {:.0f} kPa (within "
+                    "the {:.0f} % where the pressure barrier holds it): more of the target needs more than the muscle "
+                    "can give",
+                    target, fiber, p(t, f) / units::kPa, max_pressure / units::kPa, 100 * settings.pressure_margin)
+              : fmt::format(
+                    "target {}: fiber {} ends at {:.1f} kPa: the optimizer turned it off, it does not help this target "
+                    "from where its route ended",
+                    target, fiber, p(t, f) / units::kPa));
     }
   for (std::size_t t = 0; t < before.size(); ++t) {
     TargetReach r{before[t].rmse, after[t].rmse, before[t].rmse > 0 ? 1 - after[t].rmse / before[t].rmse : 1.0};
@@ -42,23 +49,25 @@ OptimizationEnding optimization_ending(const RoutingResult& result, const Actuat
     const std::vector<AngleReach> turns = t < angles.size() ? angles[t] : std::vector<AngleReach>{};
     for (const AngleReach& a : turns)
       if (a.asked != 0 && a.reached / a.asked < 1 - kFarFromReached)
-        how_far += fmt::format("{}{} turned {:.1f}° of the {:.1f}° asked ({:.0f} %{})", how_far.empty() ? "" : ", ", a.place,
-                               a.reached / units::degree, a.asked / units::degree, 100 * a.reached / a.asked,
-                               a.reached / a.asked < 0 ? ": the other way; check the sign of the pose's axis against its translation"
-                                                       : "");
+        how_far += fmt::format("{}{} turned {:.1f}° of the {:.1f}° asked ({:.0f} %{})", how_far.empty() ? "" : ", ",
+                               a.place, a.reached / units::degree, a.asked / units::degree, 100 * a.reached / a.asked,
+                               a.reached / a.asked < 0
+                                   ? ": the other way; check the sign of the pose's axis against its translation"
+                                   : "");
     const bool asks_turns = std::any_of(turns.begin(), turns.end(), [](const AngleReach& a) { return a.asked != 0; });
     if (!asks_turns && before[t].rmse > 0 && after[t].rmse > kFarFromReached * before[t].rmse)
       how_far = fmt::format("{:.0f} % of the way (tracking-curve RMSE {:.2f} → {:.2f} mm)", 100 * r.reached,
                             r.start_rmse / units::mm, r.end_rmse / units::mm);
-    if (how_far.empty()) continue;  // nothing to reach, or reached
+    if (how_far.empty()) continue; // nothing to reach, or reached
     bool limited = false;
     for (const PressureLimit& l : e.limits) limited = limited || (l.target == static_cast<int>(t) && l.at_max);
-    e.warnings.push_back(fmt::format(
-        "target {} is far from reached: {}; {}", target_names[t], how_far,
-        limited ? "its muscles are at max_pressure: raise [muscle] max_pressure if the muscle takes it, add a muscle, or use a "
-                  "softer material"
-                : "add a muscle, start the routes elsewhere, or use a softer material; raise [optimize] max_iterations if the "
-                  "optimizer stopped at its limit"));
+    e.warnings.push_back(fmt::format("target {} is far from reached: {}; {}", target_names[t], how_far,
+                                     limited ? "its muscles are at max_pressure: raise [muscle] max_pressure if the "
+                                               "muscle takes it, add a muscle, or use a "
+                                               "softer material"
+                                             : "add a muscle, start the routes elsewhere, or use a softer material; "
+                                               "raise [optimize] max_iterations if the "
+                                               "optimizer stopped at its limit"));
   }
   return e;
 }

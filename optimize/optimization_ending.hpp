@@ -19,27 +19,27 @@ namespace fibermold {
 inline constexpr double kFarFromReached = 1.0 / 3;
 
 struct TargetReach {
-  double start_rmse = 0, end_rmse = 0;  ///< m, on the tracking curves
-  double reached = 0;                   ///< 1 − end/start: the share of the way from the start to the target
+  double start_rmse = 0, end_rmse = 0; ///< m, on the tracking curves
+  double reached = 0;                  ///< 1 − end/start: the share of the way from the start to the target
 };
 
 /// A pose target's turn: the angle it asked of a region and the angle the optimized robot's region
 /// turned about the asked axis (rad).
 struct AngleReach {
-  std::string place;  ///< "pose[1]"
+  std::string place; ///< "pose[1]"
   double asked = 0, reached = 0;
 };
 
 struct PressureLimit {
   int target = 0, fiber = 0;
-  double pressure = 0;  ///< Pa
-  bool at_max = false;  ///< at max_pressure; else at 0
+  double pressure = 0; ///< Pa
+  bool at_max = false; ///< at max_pressure; else at 0
 };
 
 struct OptimizationEnding {
   std::vector<TargetReach> targets;
   std::vector<PressureLimit> limits;
-  std::vector<std::string> warnings;  ///< sentences naming the target, the fiber, the figures and what to try
+  std::vector<std::string> warnings; ///< sentences naming the target, the fiber, the figures and what to try
 };
 
 /// `actuators` (targets × fibers): which fibers the optimizer could pressurize for which target;
@@ -47,9 +47,11 @@ struct OptimizationEnding {
 /// max_pressure is at that limit: there the pressure barrier, not the target, holds it.
 /// `angles[t]`: target t's turns (empty for a target that asks none); such a target is far from
 /// reached when a region turned less than 2/3 of its angle, whatever the tracking curves say.
-OptimizationEnding optimization_ending(const RoutingResult& result, const ActuatorMask& actuators, const RoutingSettings& settings,
-                                       const std::vector<TargetErrors>& before, const std::vector<TargetErrors>& after,
+OptimizationEnding optimization_ending(const RoutingResult& result, const ActuatorMask& actuators,
+                                       const RoutingSettings& settings, const std::vector<TargetErrors>& before,
+                                       const std::vector<TargetErrors>& after,
                                        const std::vector<std::vector<AngleReach>>& angles,
-                                       const std::vector<std::string>& target_names, const std::vector<std::string>& fiber_names);
+                                       const std::vector<std::string>& target_names,
+                                       const std::vector<std::string>& fiber_names);
 
 } // namespace fibermold

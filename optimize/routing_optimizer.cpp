@@ -66,7 +66,8 @@ RoutingResult optimize_routing(RoutingProblem& problem, Strategy strategy, const
     return out;
   }
   if (F != T)
-    throw std::invalid_argument(fmt::format("the sequential strategy drives one fiber per target: {} fiber(s), {} target(s)", F, T));
+    throw std::invalid_argument(
+        fmt::format("the sequential strategy drives one fiber per target: {} fiber(s), {} target(s)", F, T));
   for (int k = 0; k < F && !out.interrupted; ++k) {
     std::vector<bool> route(F, false), target(T, false);
     Mask pressure = Mask::Constant(T, F, false);
@@ -79,12 +80,13 @@ RoutingResult optimize_routing(RoutingProblem& problem, Strategy strategy, const
   return out;
 }
 
-RoutingResult optimize_pressures(RoutingProblem& problem, const MinimizerOptions& options, const RoutingCallback& on_iteration,
-                                 Progress& progress, const ActuatorMask& actuators)
+RoutingResult optimize_pressures(RoutingProblem& problem, const MinimizerOptions& options,
+                                 const RoutingCallback& on_iteration, Progress& progress, const ActuatorMask& actuators)
 {
   RoutingResult out;
   out.routing = problem.base();
-  problem.set_free(std::vector<bool>(problem.num_fibers(), false), actuators, std::vector<bool>(problem.num_targets(), true));
+  problem.set_free(std::vector<bool>(problem.num_fibers(), false), actuators,
+                   std::vector<bool>(problem.num_targets(), true));
   absorb(out, problem, run(problem, 0, options, on_iteration, progress));
   return out;
 }

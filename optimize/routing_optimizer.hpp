@@ -18,7 +18,7 @@ namespace fibermold {
 
 struct RoutingResult {
   Routing routing;
-  double value = 0;  ///< objective at the end (of the last stage for sequential)
+  double value = 0; ///< objective at the end (of the last stage for sequential)
   int iterations = 0, evaluations = 0;
   /// Why it stopped: the first run (of a sequential one's stages) that did not converge, else the
   /// last; `converged` only when every run met the gradient tolerance.
@@ -38,8 +38,8 @@ using ActuatorMask = Eigen::Matrix<bool, Eigen::Dynamic, Eigen::Dynamic>;
 /// How the fibers are optimized (paper section VI): all at once for all targets, or fiber k for
 /// target k, one after the other with the earlier ones fixed.
 enum class Strategy { simultaneous, sequential };
-inline constexpr std::array<Named<Strategy>, 2> kStrategyNames{{{Strategy::simultaneous, "simultaneous"},
-                                                                {Strategy::sequential, "sequential"}}};
+inline constexpr std::array<Named<Strategy>, 2> kStrategyNames{
+    {{Strategy::simultaneous, "simultaneous"}, {Strategy::sequential, "sequential"}}};
 inline std::string_view choice_name(Strategy s) { return name_in(kStrategyNames, s); }
 
 /// `actuators` applies to simultaneous (empty: every fiber for every target). Throws
@@ -50,7 +50,8 @@ RoutingResult optimize_routing(RoutingProblem& problem, Strategy strategy, const
 
 /// The first guess's routes at their best pressures: a pressure-only run (the routes held), over
 /// the pressures `actuators` frees. Every optimization is measured against it (docs/optimize.md).
-RoutingResult optimize_pressures(RoutingProblem& problem, const MinimizerOptions& options, const RoutingCallback& on_iteration,
-                                 Progress& progress, const ActuatorMask& actuators);
+RoutingResult optimize_pressures(RoutingProblem& problem, const MinimizerOptions& options,
+                                 const RoutingCallback& on_iteration, Progress& progress,
+                                 const ActuatorMask& actuators);
 
 } // namespace fibermold

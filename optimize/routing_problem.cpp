@@ -26,7 +26,7 @@ int solver_slot(int target) { return target % kSolverSlots; }
 using Clock = std::chrono::steady_clock;
 double since(Clock::time_point t) { return std::chrono::duration<double>(Clock::now() - t).count(); }
 
-constexpr double kPressureUnit = 10e3;  // Pa per optimizer unit
+constexpr double kPressureUnit = 10e3; // Pa per optimizer unit
 /// The skin barrier's samples per muscle segment (0.5 mm apart at the default 2 mm segments): the
 /// barrier then follows the skin closely, and between them closest_approach holds it exactly.
 constexpr int kSkinSamplesPerSegment = 4;
@@ -35,7 +35,8 @@ constexpr int kSkinSamplesPerSegment = 4;
 SkinBarrier route_skin_barrier(const SurfaceDistance& skin, const RoutingSettings& settings, const Route& route)
 {
   const HermiteSpline s(route.points, route.tangents);
-  return SkinBarrier(skin, settings.skin_distance, settings.skin_band, s, kSkinSamplesPerSegment * segment_count(s, settings.segments_per_length));
+  return SkinBarrier(skin, settings.skin_distance, settings.skin_band, s,
+                     kSkinSamplesPerSegment * segment_count(s, settings.segments_per_length));
 }
 
 RoutingProblem::RoutingProblem(Simulation& sim, const MuscleModel& model, const SurfaceDistance& skin,
@@ -64,8 +65,7 @@ RoutingProblem::RoutingProblem(Simulation& sim, const MuscleModel& model, const 
     skin_barriers_.push_back(route_skin_barrier(skin_, settings_, r));
     start_length_.push_back(s.length());
   }
-  if (!fibers_inside(base_))
-    throw std::invalid_argument("a fiber of the starting routing leaves the body");
+  if (!fibers_inside(base_)) throw std::invalid_argument("a fiber of the starting routing leaves the body");
   if (settings_.min_bend_radius > 0) bend_barrier_.emplace(settings_.min_bend_radius);
   set_free(std::vector<bool>(F, true), Eigen::Matrix<bool, Eigen::Dynamic, Eigen::Dynamic>::Constant(T, F, true),
            std::vector<bool>(T, true));
@@ -76,7 +76,7 @@ void RoutingProblem::set_free(std::vector<bool> routes, Eigen::Matrix<bool, Eige
 {
   target_active_ = std::move(targets);
   best_terms_ = RoutingTerms{};
-  best_terms_.total = HUGE_VAL;  // the objective changed: no best yet
+  best_terms_.total = HUGE_VAL; // the objective changed: no best yet
   best_warm_.clear();
   entries_.clear();
   entry_of_.assign(base_.routes.size(), {});
@@ -87,7 +87,7 @@ void RoutingProblem::set_free(std::vector<bool> routes, Eigen::Matrix<bool, Eige
     if (!routes[f]) continue;
     for (int k = 0; k < n; ++k)
       for (int kind = 0; kind < 2; ++kind) {
-        if (kind == 0 && (k == 0 || k == n - 1)) continue;  // end points stay fixed
+        if (kind == 0 && (k == 0 || k == n - 1)) continue; // end points stay fixed
         for (int c = 0; c < 3; ++c) {
           entry_of_[f][6 * k + 3 * kind + c] = static_cast<int>(entries_.size());
           entries_.push_back({kind == 0 ? Entry::Point : Entry::Tangent, f, k, c});
@@ -113,7 +113,7 @@ int RoutingProblem::skin_violation(const Routing& r, double& distance, Eigen::Ve
 
 double RoutingProblem::skin_weight() const
 {
-  return settings_.weight_skin / kSkinSamplesPerSegment;  // weight_skin per segment, as with one sample each
+  return settings_.weight_skin / kSkinSamplesPerSegment; // weight_skin per segment, as with one sample each
 }
 
 double RoutingProblem::scale(const Entry& e) const { return e.kind == Entry::Pressure ? kPressureUnit : units::mm; }
@@ -139,9 +139,12 @@ Routing RoutingProblem::routing(const Eigen::VectorXd& z) const
     const Entry& e = entries_[i];
     Route& route = r.routes[e.fiber];
     const double v = z[i] * scale(e);
-    if (e.kind == Entry::Point) route.points[e.index][e.component] = v;
-    else if (e.kind == Entry::Tangent) route.tangents[e.index][e.component] = v;
-    else r.pressures(e.index, e.fiber) = v;
+    if (e.kind == Entry::Point)
+      route.points[e.index][e.component] = v;
+    else if (e.kind == Entry::Tangent)
+      route.tangents[e.index][e.component] = v;
+    else
+      r.pressures(e.index, e.fiber) = v;
   }
   return r;
 }
@@ -173,8 +176,9 @@ std::vector<std::unique_ptr<MuscleEnergy>> RoutingProblem::muscles(const Routing
 {
   std::vector<std::unique_ptr<MuscleEnergy>> out;
   for (int f = 0; f < num_fibers(); ++f)
-    out.push_back(std::make_unique<MuscleEnergy>(sim_.basis(), model_, HermiteSpline(r.routes[f].points, r.routes[f].tangents),
-                                                 segment_t_[f], r.pressures(t, f)));
+    out.push_back(std::make_unique<MuscleEnergy>(sim_.basis(), model_,
+                                                 HermiteSpline(r.routes[f].points, r.routes[f].tangents), segment_t_[f],
+                                                 r.pressures(t, f)));
   return out;
 }
 
@@ -182,7 +186,7 @@ bool RoutingProblem::solve(int t, std::vector<std::unique_ptr<Energy>> energies,
 {
   sim_.use_solver(solver_slot(t));
   sim_.set_variable_energies(std::move(energies));
-  NullProgress progress;  // still honours Ctrl-C
+  NullProgress progress; // still honours Ctrl-C
   const auto start = Clock::now();
   // From the best design's equilibrium, not the last trial's: a body with more than one
   // equilibrium (the walking robot's legs) can settle on another branch at a long trial step,
@@ -191,7 +195,7 @@ bool RoutingProblem::solve(int t, std::vector<std::unique_ptr<Energy>> energies,
   x = best_warm_.empty() ? warm_[t] : best_warm_[t];
   NewtonSummary s = sim_.solve(x, progress);
   newton_ += s;
-  if (!s.converged) {  // a warm start far from the answer can fail where the rest state does not
+  if (!s.converged) { // a warm start far from the answer can fail where the rest state does not
     x = sim_.rest();
     s = sim_.solve(x, progress);
     newton_ += s;
@@ -214,13 +218,13 @@ double RoutingProblem::regularizers(const Routing& r, Eigen::VectorXd* gradient,
 {
   for (int f = 0; f < num_fibers(); ++f) {
     if (entry_of_[f].empty() || std::all_of(entry_of_[f].begin(), entry_of_[f].end(), [](int i) { return i < 0; }))
-      continue;  // a fixed route adds a constant
+      continue; // a fixed route adds a constant
     const HermiteSpline s(r.routes[f].points, r.routes[f].tangents);
     const double wc = settings_.weight_curvature * start_length_[f];
     terms.curvature += wc * fiber_curvature(s);
     terms.skin += skin_weight() * skin_barriers_[f].value(s);
     if (!std::isfinite(terms.skin)) return refuse("skin distance");
-    Eigen::Vector3d where;  // between the barrier's samples too (a notch's bottom between two)
+    Eigen::Vector3d where; // between the barrier's samples too (a notch's bottom between two)
     if (skin_barriers_[f].closest_approach(s, where, true) <= settings_.skin_distance) return refuse("skin distance");
     if (bend_barrier_) {
       // The barrier's samples, and between them the spline's exact smallest radius.
@@ -299,11 +303,12 @@ Eigen::MatrixXd RoutingProblem::regularizer_hessian(const Eigen::VectorXd& z) co
   return eigen.eigenvectors() * eigen.eigenvalues().cwiseMax(0).asDiagonal() * eigen.eigenvectors().transpose();
 }
 
-Eigen::MatrixXd RoutingProblem::mixed_columns(int t, const Eigen::VectorXd& x, const std::vector<const MuscleEnergy*>& muscles,
+Eigen::MatrixXd RoutingProblem::mixed_columns(int t, const Eigen::VectorXd& x,
+                                              const std::vector<const MuscleEnergy*>& muscles,
                                               std::vector<Eigen::Index>& columns) const
 {
   columns.clear();
-  std::vector<std::pair<int, int>> source;  // (fiber, column of its mixed_columns)
+  std::vector<std::pair<int, int>> source; // (fiber, column of its mixed_columns)
   for (int f = 0; f < num_fibers(); ++f) {
     for (std::size_t c = 0; c < entry_of_[f].size(); ++c)
       if (entry_of_[f][c] >= 0) {
@@ -379,7 +384,7 @@ double RoutingProblem::evaluate(const Eigen::VectorXd& z, Eigen::VectorXd* gradi
     const auto model_start = Clock::now();
     std::vector<Eigen::Index> columns;
     const Eigen::MatrixXd M = mixed_columns(t, x, m, columns);
-    Eigen::MatrixXd S;  // −dx/dz over `columns`: the sign drops out of SᵀQS
+    Eigen::MatrixXd S; // −dx/dz over `columns`: the sign drops out of SᵀQS
     if (!sim_.solver().solve_with_factorization(M, S)) return refuse("unstable equilibrium");
     const Eigen::MatrixXd gn = distances_[t].gauss_newton_hessian(S);
     for (std::size_t a = 0; a < columns.size(); ++a)

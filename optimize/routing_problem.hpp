@@ -23,6 +23,7 @@
 #include "mesh/surface_distance.hpp"
 #include "optimize/bend_radius.hpp"
 #include "optimize/distance_objective.hpp"
+#include "optimize/routing.hpp"
 #include "optimize/skin_barrier.hpp"
 #include "sim/simulation.hpp"
 
@@ -30,24 +31,13 @@ namespace fibermold {
 
 class ClearanceBarrier;
 
-struct Route {
-  std::string name;
-  std::vector<Eigen::Vector3d> points, tangents;  ///< m
-};
-
-/// Routes shared by all targets, and each target's pressures.
-struct Routing {
-  std::vector<Route> routes;
-  Eigen::MatrixXd pressures;  ///< targets × fibers, Pa
-};
-
 struct RoutingSettings {
-  double max_pressure = 425e3;        ///< Pa
-  double segments_per_length = 500;   ///< muscle segments per m
-  double skin_distance = 2.5e-3;      ///< d_min of the skin barrier: muscle radius + clearance, m
-  double skin_band = 1.5e-3;          ///< w: the barrier acts from d_min to d_min + w, m
+  double max_pressure = 425e3;      ///< Pa
+  double segments_per_length = 500; ///< muscle segments per m
+  double skin_distance = 2.5e-3;    ///< d_min of the skin barrier: muscle radius + clearance, m
+  double skin_band = 1.5e-3;        ///< w: the barrier acts from d_min to d_min + w, m
   double weight_curvature = 1e-4;
-  double min_bend_radius = 0;         ///< m: the muscle bends no tighter (bend_radius.hpp); 0: no limit
+  double min_bend_radius = 0; ///< m: the muscle bends no tighter (bend_radius.hpp); 0: no limit
   double weight_bend = 1;
   double weight_skin = 1;
   double weight_pressure = 1;
@@ -63,7 +53,7 @@ SkinBarrier route_skin_barrier(const SurfaceDistance& skin, const RoutingSetting
 /// The value of each term at a routing.
 struct RoutingTerms {
   double total = 0, distance = 0, curvature = 0, skin = 0, bend = 0, pressure = 0, clearance = 0;
-  std::vector<double> per_target;  ///< f_dist per target (0 for inactive ones)
+  std::vector<double> per_target; ///< f_dist per target (0 for inactive ones)
 };
 
 class RoutingProblem {
@@ -149,7 +139,7 @@ public:
 private:
   struct Entry {
     enum Kind { Point, Tangent, Pressure } kind;
-    int fiber, index, component;  ///< index: the point, or the target for a pressure
+    int fiber, index, component; ///< index: the point, or the target for a pressure
   };
   double scale(const Entry& e) const;
   /// Each skin barrier sample's weight.
@@ -164,7 +154,8 @@ private:
   /// free routes' points and tangents), and those columns with `muscles` at x.
   Eigen::MatrixXd mixed_columns(int t, const Eigen::VectorXd& x, const std::vector<const MuscleEnergy*>& muscles,
                                 std::vector<Eigen::Index>& columns) const;
-  void add_fiber_gradient(int f, const FiberParameterGradient& g, double weight, int target, Eigen::VectorXd& out) const;
+  void add_fiber_gradient(int f, const FiberParameterGradient& g, double weight, int target,
+                          Eigen::VectorXd& out) const;
   bool fibers_inside(const Routing& r) const;
 
   Simulation& sim_;
@@ -174,16 +165,16 @@ private:
   std::vector<DistanceObjective> distances_;
   Routing base_;
   RoutingSettings settings_;
-  std::vector<std::vector<double>> segment_t_;  ///< per fiber, fixed at the start
+  std::vector<std::vector<double>> segment_t_; ///< per fiber, fixed at the start
   std::vector<SkinBarrier> skin_barriers_;
   std::optional<BendBarrier> bend_barrier_;
   std::vector<double> start_length_;
   std::vector<bool> target_active_;
   std::vector<Entry> entries_;
-  std::vector<std::vector<int>> entry_of_;  ///< [fiber][6·point + 3·is_tangent + component] → entry or −1
-  Eigen::MatrixXi pressure_entry_;          ///< targets × fibers → entry or −1
+  std::vector<std::vector<int>> entry_of_; ///< [fiber][6·point + 3·is_tangent + component] → entry or −1
+  Eigen::MatrixXi pressure_entry_;         ///< targets × fibers → entry or −1
   RoutingTerms last_terms_, best_terms_;
-  std::vector<Eigen::VectorXd> best_warm_;  ///< equilibria at the best evaluation since set_free
+  std::vector<Eigen::VectorXd> best_warm_; ///< equilibria at the best evaluation since set_free
   const ClearanceBarrier* clearance_barrier_ = nullptr;
   double weight_clearance_ = 0;
   NewtonTotals newton_;

@@ -27,7 +27,8 @@ std::vector<double> parameters_off_exits(const SurfaceDistance& skin, const Herm
 
 SkinBarrier::SkinBarrier(const SurfaceDistance& skin, double min_distance, double band, const HermiteSpline& initial,
                          int samples)
-    : skin_(skin), min_(min_distance), band_(band), t_(parameters_off_exits(skin, initial, segment_parameters(initial, samples), min_distance + band))
+    : skin_(skin), min_(min_distance), band_(band),
+      t_(parameters_off_exits(skin, initial, segment_parameters(initial, samples), min_distance + band))
 {
 }
 
@@ -52,7 +53,8 @@ FiberParameterGradient SkinBarrier::gradient(const HermiteSpline& spline) const
     const auto c = skin_.closest(p);
     if (!c.inside || c.distance >= min_ + band_) continue;
     // ∂b/∂p = b'((d − d_min)/w)/w ∇d,  ∇d = (p − c)/|p − c| inside the body
-    const Eigen::Vector3d by_p = barrier_gradient((c.distance - min_) / band_, 1.0) / band_ * (p - c.point) / c.distance;
+    const Eigen::Vector3d by_p =
+        barrier_gradient((c.distance - min_) / band_, 1.0) / band_ * (p - c.point) / c.distance;
     int k;
     double w[4];
     spline.weights(t, k, w);
@@ -79,7 +81,7 @@ double arc_bound(const HermiteSpline& s, double a, double b)
 {
   const double h = b - a;
   const Eigen::Vector3d p0 = s.position(a), p3 = s.position(b);
-  const Eigen::Vector3d p1 = p0 + h / 3 * s.derivative(a), p2 = p3 - h / 3 * s.derivative(b);  // p' is continuous
+  const Eigen::Vector3d p1 = p0 + h / 3 * s.derivative(a), p2 = p3 - h / 3 * s.derivative(b); // p' is continuous
   return (p1 - p0).norm() + (p2 - p1).norm() + (p3 - p2).norm();
 }
 
@@ -87,7 +89,7 @@ double arc_bound(const HermiteSpline& s, double a, double b)
 
 double SkinBarrier::closest_approach(const HermiteSpline& spline, Eigen::Vector3d& where, bool first_only) const
 {
-  constexpr double kShortest = 1e-6;  // m: a piece this short is as close as its ends
+  constexpr double kShortest = 1e-6; // m: a piece this short is as close as its ends
   if (t_.empty()) return HUGE_VAL;
   const auto probe = [&](double t) {
     const Eigen::Vector3d p = spline.position(t);

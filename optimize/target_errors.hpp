@@ -10,8 +10,8 @@
 namespace fibermold {
 
 struct TargetErrors {
-  double rmse = 0, max = 0;                  ///< m, at the tracking curves' samples
-  double surface_rmse = 0, surface_max = 0;  ///< m, at the surface's vertices
+  double rmse = 0, max = 0;                 ///< m, at the tracking curves' samples
+  double surface_rmse = 0, surface_max = 0; ///< m, at the surface's vertices
 };
 
 /// The errors of equilibrium x of target t of `problem`, whose body is `mesh`.

@@ -10,8 +10,8 @@
 namespace fibermold {
 
 struct TrackingSamples {
-  std::vector<Eigen::Vector3d> points;  ///< q_j, m
-  std::vector<Eigen::Matrix3d> frames;  ///< A_j
+  std::vector<Eigen::Vector3d> points; ///< q_j, m
+  std::vector<Eigen::Matrix3d> frames; ///< A_j
   double weight_position = 1, weight_orientation = 0.1;
 };
 

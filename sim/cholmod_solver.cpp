@@ -50,13 +50,13 @@ void no_openmp_regions()
 
 struct CholmodSolver::Impl {
   Eigen::CholmodSupernodalLLT<Eigen::SparseMatrix<double>, Eigen::Upper> llt;
-  std::vector<int> outer, inner;  ///< the pattern last analyzed
+  std::vector<int> outer, inner; ///< the pattern last analyzed
 };
 
 CholmodSolver::CholmodSolver() : impl_(std::make_unique<Impl>())
 {
   one_blas_thread();
-  impl_->llt.cholmod().print = 0;  // "not positive definite" is an answer here, not an error to print
+  impl_->llt.cholmod().print = 0; // "not positive definite" is an answer here, not an error to print
 }
 CholmodSolver::~CholmodSolver() = default;
 

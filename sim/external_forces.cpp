@@ -1,7 +1,7 @@
 #include "sim/external_forces.hpp"
 
-#include <Eigen/Geometry>
 #include <Eigen/Eigenvalues>
+#include <Eigen/Geometry>
 #include <Eigen/LU>
 #include <stdexcept>
 
@@ -77,7 +77,8 @@ std::vector<int> nodes_in_box(const Eigen::MatrixX3d& X, const Eigen::Vector3d& 
   std::vector<int> nodes;
   for (Eigen::Index i = 0; i < X.rows(); ++i) {
     const Eigen::Vector3d p = X.row(i).transpose();
-    if (((p - lo).array() >= -slack.array()).all() && ((hi - p).array() >= -slack.array()).all()) nodes.push_back(static_cast<int>(i));
+    if (((p - lo).array() >= -slack.array()).all() && ((hi - p).array() >= -slack.array()).all())
+      nodes.push_back(static_cast<int>(i));
   }
   return nodes;
 }

@@ -10,11 +10,12 @@ namespace fibermold {
 
 struct FemBasis::Locator {
   Eigen::MatrixX3d centroids;
-  double reach = 0;  ///< the largest distance from a tet's centroid to one of its corners
+  double reach = 0; ///< the largest distance from a tet's centroid to one of its corners
   std::unique_ptr<nanoflann::KDTreeEigenMatrixAdaptor<Eigen::MatrixX3d>> tree;
 };
 
-FemBasis::FemBasis(const TetMesh& mesh) : mesh_(mesh), quadratic_(mesh.nodes_per_tet() == 10), locator_(std::make_unique<Locator>())
+FemBasis::FemBasis(const TetMesh& mesh)
+    : mesh_(mesh), quadratic_(mesh.nodes_per_tet() == 10), locator_(std::make_unique<Locator>())
 {
   locator_->centroids.resize(mesh.num_tets(), 3);
   for (Eigen::Index t = 0; t < mesh.num_tets(); ++t) {
@@ -24,12 +25,14 @@ FemBasis::FemBasis(const TetMesh& mesh) : mesh_(mesh), quadratic_(mesh.nodes_per
     for (int k = 0; k < 4; ++k)
       locator_->reach = std::max(locator_->reach, (mesh.nodes.row(mesh.tets(t, k)) - c / 4).norm());
   }
-  locator_->tree = std::make_unique<nanoflann::KDTreeEigenMatrixAdaptor<Eigen::MatrixX3d>>(3, std::cref(locator_->centroids), 16);
+  locator_->tree =
+      std::make_unique<nanoflann::KDTreeEigenMatrixAdaptor<Eigen::MatrixX3d>>(3, std::cref(locator_->centroids), 16);
 }
 
 FemBasis::~FemBasis() = default;
 
-Eigen::Vector4d FemBasis::barycentric(Eigen::Index t, const Eigen::Vector3d& X, Eigen::Matrix<double, 4, 3>* gradients) const
+Eigen::Vector4d FemBasis::barycentric(Eigen::Index t, const Eigen::Vector3d& X,
+                                      Eigen::Matrix<double, 4, 3>* gradients) const
 {
   const Eigen::Vector3d x0 = mesh_.nodes.row(mesh_.tets(t, 0));
   Eigen::Matrix3d D;

@@ -23,7 +23,8 @@ public:
   /// The tet containing X, or the one X is least outside of.
   Eigen::Index locate(const Eigen::Vector3d& X) const;
   /// Barycentric coordinates of X in tet t and their (constant) gradients (rows).
-  Eigen::Vector4d barycentric(Eigen::Index t, const Eigen::Vector3d& X, Eigen::Matrix<double, 4, 3>* gradients = nullptr) const;
+  Eigen::Vector4d barycentric(Eigen::Index t, const Eigen::Vector3d& X,
+                              Eigen::Matrix<double, 4, 3>* gradients = nullptr) const;
 
 private:
   struct Locator;

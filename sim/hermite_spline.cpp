@@ -27,10 +27,10 @@ void HermiteSpline::weights(double t, int& span, double w[4]) const
 {
   span = std::clamp(static_cast<int>(std::floor(t)), 0, spans() - 1);
   const double u = t - span, u2 = u * u, u3 = u2 * u;
-  w[0] = 2 * u3 - 3 * u2 + 1;  // h00
-  w[1] = u3 - 2 * u2 + u;      // h10
-  w[2] = -2 * u3 + 3 * u2;     // h01
-  w[3] = u3 - u2;              // h11
+  w[0] = 2 * u3 - 3 * u2 + 1; // h00
+  w[1] = u3 - 2 * u2 + u;     // h10
+  w[2] = -2 * u3 + 3 * u2;    // h01
+  w[3] = u3 - u2;             // h11
 }
 
 void hermite_derivative_weights(double u, double d1[4], double d2[4])
@@ -61,7 +61,8 @@ namespace {
 double piece_length(const HermiteSpline& s, double a, double b)
 {
   static const double x[5] = {0.0469100770306680, 0.2307653449471585, 0.5, 0.7692346550528415, 0.9530899229693320};
-  static const double w[5] = {0.1184634425280945, 0.2393143352496832, 0.2844444444444444, 0.2393143352496832, 0.1184634425280945};
+  static const double w[5] = {0.1184634425280945, 0.2393143352496832, 0.2844444444444444, 0.2393143352496832,
+                              0.1184634425280945};
   double length = 0;
   for (int i = 0; i < 5; ++i) length += w[i] * s.derivative(a + (b - a) * x[i]).norm();
   return (b - a) * length;
@@ -129,7 +130,7 @@ std::vector<double> segment_parameters(const HermiteSpline& spline, int count)
   for (int k = 0; k < spans; ++k) assigned += per[k];
   std::sort(share.rbegin(), share.rend());
   for (int i = 0; assigned < count; ++i, ++assigned) ++per[share[i % spans].second];
-  for (int k = 0; assigned > count; k = (k + 1) % spans)  // the minimum of one per span overshot
+  for (int k = 0; assigned > count; k = (k + 1) % spans) // the minimum of one per span overshot
     if (per[k] > 1) {
       --per[k];
       --assigned;

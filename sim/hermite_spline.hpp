@@ -40,7 +40,7 @@ void hermite_derivative_weights(double u, double d1[4], double d2[4]);
 /// Straight segments along a spline: the endpoints' parameters, spread over the spans in
 /// proportion to their lengths, `count` segments in all (at least one per span).
 struct FiberSegments {
-  std::vector<double> t;             ///< count + 1 endpoint parameters
+  std::vector<double> t; ///< count + 1 endpoint parameters
   std::vector<Eigen::Vector3d> centres, vectors;
 };
 FiberSegments split_into_segments(const HermiteSpline& spline, int count);

@@ -28,7 +28,8 @@ struct PolynomialBasis {
   {
     Eigen::VectorXd p(size);
     p.head<4>() << 1, y.x(), y.y(), y.z();
-    if (size == 10) p.tail<6>() << y.x() * y.x(), y.y() * y.y(), y.z() * y.z(), y.x() * y.y(), y.y() * y.z(), y.x() * y.z();
+    if (size == 10)
+      p.tail<6>() << y.x() * y.x(), y.y() * y.y(), y.z() * y.z(), y.x() * y.y(), y.y() * y.z(), y.x() * y.z();
     return p;
   }
   /// ∂p/∂y_k at y = 0.
@@ -43,7 +44,8 @@ struct PolynomialBasis {
   {
     Eigen::VectorXd p = Eigen::VectorXd::Zero(size);
     if (size == 10) {
-      if (k == l) p[4 + k] = 2;
+      if (k == l)
+        p[4 + k] = 2;
       else {
         const int lo = std::min(k, l), hi = std::max(k, l);
         p[lo == 0 && hi == 1 ? 7 : lo == 1 && hi == 2 ? 8 : 9] = 1;
@@ -82,7 +84,7 @@ ShapeEval MlsBasis::at(const Eigen::Vector3d& X, int order, Eigen::Index) const
   const int m = basis.size;
   double r = options_.radius;
   std::vector<std::pair<Eigen::Index, double>> found;
-  Eigen::MatrixXd G, B;  // B: column j = b_j
+  Eigen::MatrixXd G, B; // B: column j = b_j
   std::vector<MlsWeight> weights;
   for (int attempt = 0;; ++attempt) {
     found.clear();
@@ -111,14 +113,14 @@ ShapeEval MlsBasis::at(const Eigen::Vector3d& X, int order, Eigen::Index) const
   const Eigen::LLT<Eigen::MatrixXd> llt(G);
   // Derivatives of b(X) = p((X − c)/r) at c = X: N_i does not depend on c, so c is held fixed.
   const Eigen::VectorXd b = basis.value(Eigen::Vector3d::Zero());
-  const Eigen::VectorXd a = llt.solve(b);  // a = G⁻¹ b(X)
+  const Eigen::VectorXd a = llt.solve(b); // a = G⁻¹ b(X)
   const Eigen::Index n = B.cols();
   ShapeEval out;
   out.nodes.reserve(found.size());
   for (const auto& f : found) out.nodes.push_back(static_cast<int>(f.first));
   out.N.resize(n);
   out.dN.setZero(n, 3);
-  const Eigen::VectorXd Ba = B.transpose() * a;  // b_iᵀ a
+  const Eigen::VectorXd Ba = B.transpose() * a; // b_iᵀ a
   for (Eigen::Index i = 0; i < n; ++i) out.N[i] = weights[i].w * Ba[i];
   if (order < 1) return out;
 

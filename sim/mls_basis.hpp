@@ -13,9 +13,9 @@ namespace fibermold {
 
 struct MlsOptions {
   bool quadratic = false;
-  double radius = 0;                    ///< r, m
-  double max_condition = 1e8;           ///< of G in scaled coordinates; beyond it r is widened
-  int max_widenings = 4;                ///< × 1.5 each, before giving up
+  double radius = 0;          ///< r, m
+  double max_condition = 1e8; ///< of G in scaled coordinates; beyond it r is widened
+  int max_widenings = 4;      ///< × 1.5 each, before giving up
 };
 
 /// Where G was ill-conditioned: how often r had to be widened, and one place.

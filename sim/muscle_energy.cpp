@@ -10,7 +10,7 @@ MuscleEnergy::MuscleEnergy(const Basis& basis, const MuscleModel& model, Hermite
 {
   for (double t_end : segments_.t) ends_.push_back(basis.at(spline_.position(t_end), 1));
   for (std::size_t j = 0; j + 1 < ends_.size(); ++j) {
-    std::map<int, double> alpha;  // node → N_i(e_{j+1}) − N_i(e_j)
+    std::map<int, double> alpha; // node → N_i(e_{j+1}) − N_i(e_j)
     for (Eigen::Index k = 0; k < ends_[j].size(); ++k) alpha[ends_[j].nodes[k]] -= ends_[j].N[k];
     for (Eigen::Index k = 0; k < ends_[j + 1].size(); ++k) alpha[ends_[j + 1].nodes[k]] += ends_[j + 1].N[k];
     Chord c;
@@ -28,7 +28,8 @@ MuscleEnergy::SegmentState MuscleEnergy::state(const Eigen::VectorXd& x, std::si
   // u = x(e_{j+1}) − x(e_j) = Σ_i α_i x_i
   const Chord& c = chords_[j];
   Eigen::Vector3d u = Eigen::Vector3d::Zero();
-  for (std::size_t k = 0; k < c.nodes.size(); ++k) u += c.alpha[static_cast<Eigen::Index>(k)] * x.segment<3>(3 * c.nodes[k]);
+  for (std::size_t k = 0; k < c.nodes.size(); ++k)
+    u += c.alpha[static_cast<Eigen::Index>(k)] * x.segment<3>(3 * c.nodes[k]);
   SegmentState s;
   s.rest_length = (model_.rest_strain(pressure_) + 1) * segments_.vectors[j].norm();
   s.length = u.norm();
@@ -64,7 +65,8 @@ void MuscleEnergy::add_gradient(const Eigen::VectorXd& x, Eigen::VectorXd& g) co
     const SegmentState s = state(x, j);
     const Eigen::Vector3d f = area * model_.density(pressure_, s.strain).d_eps * s.direction;
     const Chord& c = chords_[j];
-    for (std::size_t k = 0; k < c.nodes.size(); ++k) g.segment<3>(3 * c.nodes[k]) += c.alpha[static_cast<Eigen::Index>(k)] * f;
+    for (std::size_t k = 0; k < c.nodes.size(); ++k)
+      g.segment<3>(3 * c.nodes[k]) += c.alpha[static_cast<Eigen::Index>(k)] * f;
   }
 }
 
@@ -86,7 +88,7 @@ void MuscleEnergy::add_hessian(const Eigen::VectorXd& x, SparseHessian& H, bool 
     }
     const Eigen::Matrix3d nn = s.direction * s.direction.transpose();
     const Eigen::Matrix3d M = along * nn + across * (Eigen::Matrix3d::Identity() - nn);
-    const Chord& c = chords_[j];  // nodes ascending
+    const Chord& c = chords_[j]; // nodes ascending
     for (std::size_t a = 0; a < c.nodes.size(); ++a) {
       const double alpha_a = c.alpha[static_cast<Eigen::Index>(a)];
       H.add_block(c.nodes[a], c.nodes[a], alpha_a * alpha_a * M);
@@ -163,7 +165,8 @@ FiberParameterGradient MuscleEnergy::mixed_derivative(const Eigen::VectorXd& x, 
     const MuscleDensity m = model_.density(pressure_, s.strain);
     const Chord& c = chords_[j];
     Eigen::Vector3d w = Eigen::Vector3d::Zero();
-    for (std::size_t k = 0; k < c.nodes.size(); ++k) w += c.alpha[static_cast<Eigen::Index>(k)] * lambda.segment<3>(3 * c.nodes[k]);
+    for (std::size_t k = 0; k < c.nodes.size(); ++k)
+      w += c.alpha[static_cast<Eigen::Index>(k)] * lambda.segment<3>(3 * c.nodes[k]);
     const Eigen::Vector3d& n = s.direction;
     const double q = n.dot(w), l = s.length, L = s.rest_length;
     const Eigen::Vector3d by_rest = (1 + s.strain) * rest * segments_.vectors[j].normalized();

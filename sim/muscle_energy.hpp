@@ -30,7 +30,8 @@ class MuscleEnergy final : public Energy {
 public:
   /// Segments between the spline parameters `t` (held fixed as the spline moves). Shape functions
   /// and their gradients are evaluated at the segments' ends once.
-  MuscleEnergy(const Basis& basis, const MuscleModel& model, HermiteSpline spline, std::vector<double> t, double pressure);
+  MuscleEnergy(const Basis& basis, const MuscleModel& model, HermiteSpline spline, std::vector<double> t,
+               double pressure);
 
   std::string name() const override { return "muscle"; }
   double value(const Eigen::VectorXd& x) const override;
@@ -56,8 +57,8 @@ public:
 
 private:
   struct SegmentState {
-    double rest_length, length, strain;  ///< L_j, l_j, ε_j
-    Eigen::Vector3d direction;           ///< n = u / l,  u = x(e_{j+1}) − x(e_j)
+    double rest_length, length, strain; ///< L_j, l_j, ε_j
+    Eigen::Vector3d direction;          ///< n = u / l,  u = x(e_{j+1}) − x(e_j)
   };
   /// Segment j's deformed chord u = Σ_i α_i x_i, α_i = N_i(e_{j+1}) − N_i(e_j), over the nodes of
   /// either end.
@@ -74,7 +75,7 @@ private:
   const MuscleModel& model_;
   HermiteSpline spline_;
   FiberSegments segments_;
-  std::vector<ShapeEval> ends_;  ///< shape functions at the segments' ends e_0 … e_n, with ∇N
+  std::vector<ShapeEval> ends_; ///< shape functions at the segments' ends e_0 … e_n, with ∇N
   std::vector<Chord> chords_;
   double pressure_;
 };

@@ -7,7 +7,7 @@ namespace fibermold {
 Smoothed smoothed_two_piece(const TwoPieceLine& l, double x, double rho)
 {
   const double a = l.slope_low, b = l.intercept_low, c = l.slope_high, d = l.intercept_high;
-  if (c == a) return {a * x + std::max(b, d), a, 0};  // one line (the design file rejects distinct parallel ones)
+  if (c == a) return {a * x + std::max(b, d), a, 0}; // one line (the design file rejects distinct parallel ones)
   const double xi = -(d - b) / (c - a);
   const double y = (x - xi) / rho;
   // ln cosh y = |y| + ln(1 + e^{−2|y|}) − ln 2, stable for large |y|

@@ -20,20 +20,20 @@ struct Smoothed {
 Smoothed smoothed_two_piece(const TwoPieceLine& line, double x, double rho);
 
 struct MuscleParameters {
-  TwoPieceLine stiffness{-549.92, 73.068e6, 26.36, 4.40e6};    ///< E(p), Pa (paper, section VIII)
-  TwoPieceLine taut{-23.91e3, 4067.66e6, -986.60, 833.51e6};    ///< A(p), Pa
-  double rest_strain_slope = -0.512e-6;                         ///< ε_L(p) = slope p + intercept, 1/Pa
+  TwoPieceLine stiffness{-549.92, 73.068e6, 26.36, 4.40e6};  ///< E(p), Pa (paper, section VIII)
+  TwoPieceLine taut{-23.91e3, 4067.66e6, -986.60, 833.51e6}; ///< A(p), Pa
+  double rest_strain_slope = -0.512e-6;                      ///< ε_L(p) = slope p + intercept, 1/Pa
   double rest_strain_intercept = 0;
-  double smoothing = 10e3;                                      ///< ρ, Pa
-  double diameter = 3e-3;                                       ///< m
+  double smoothing = 10e3; ///< ρ, Pa
+  double diameter = 3e-3;  ///< m
 
-  double area() const;  ///< A_act = π d² / 4
+  double area() const; ///< A_act = π d² / 4
 };
 
 /// Ψ_act(p, ε) and its derivatives in ε and p.
 struct MuscleDensity {
   double psi = 0;
-  double d_eps = 0, d_eps_eps = 0;  ///< σ = ∂Ψ/∂ε and ∂σ/∂ε
+  double d_eps = 0, d_eps_eps = 0; ///< σ = ∂Ψ/∂ε and ∂σ/∂ε
   double d_p = 0, d_eps_p = 0, d_p_p = 0;
 };
 

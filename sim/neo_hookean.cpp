@@ -51,7 +51,8 @@ Eigen::Matrix<double, 9, 9> neo_hookean_stress_derivative(const Eigen::Matrix3d&
     for (int j = 0; j < 3; ++j)
       for (int k = 0; k < 3; ++k)
         for (int m = 0; m < 3; ++m)
-          D(3 * i + j, 3 * k + m) = (i == k && j == m ? l.mu : 0) + l.lambda * G(i, j) * G(k, m) + c * G(i, m) * G(k, j);
+          D(3 * i + j, 3 * k + m) =
+              (i == k && j == m ? l.mu : 0) + l.lambda * G(i, j) * G(k, m) + c * G(i, m) * G(k, j);
   return D;
 }
 
@@ -78,12 +79,16 @@ Eigen::Matrix<double, 9, 9> neo_hookean_stress_derivative_psd(const Eigen::Matri
     for (int k = i + 1; k < 3; ++k)
       for (const double sign : {1.0, -1.0}) {
         const double eigenvalue = l.mu + sign * c * d[i] * d[k];
-        if (eigenvalue < 0) subtract(eigenvalue, (U.col(i) * V.col(k).transpose() + sign * U.col(k) * V.col(i).transpose()) / std::sqrt(2.0));
+        if (eigenvalue < 0)
+          subtract(eigenvalue,
+                   (U.col(i) * V.col(k).transpose() + sign * U.col(k) * V.col(i).transpose()) / std::sqrt(2.0));
       }
-  const Eigen::Matrix3d scaling = l.mu * Eigen::Matrix3d::Identity() + l.lambda * d * d.transpose() + c * d.cwiseAbs2().asDiagonal().toDenseMatrix();
+  const Eigen::Matrix3d scaling = l.mu * Eigen::Matrix3d::Identity() + l.lambda * d * d.transpose() +
+                                  c * d.cwiseAbs2().asDiagonal().toDenseMatrix();
   const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eig(scaling);
   for (int m = 0; m < 3; ++m)
-    if (eig.eigenvalues()[m] < 0) subtract(eig.eigenvalues()[m], U * eig.eigenvectors().col(m).asDiagonal() * V.transpose());
+    if (eig.eigenvalues()[m] < 0)
+      subtract(eig.eigenvalues()[m], U * eig.eigenvectors().col(m).asDiagonal() * V.transpose());
   return C;
 }
 
@@ -115,16 +120,14 @@ bool NeoHookean::is_step_valid(const Eigen::VectorXd& x) const
   return tbb::parallel_reduce(
       tbb::blocked_range<Eigen::Index>(0, qp_.size()), true,
       [&](const tbb::blocked_range<Eigen::Index>& range, bool ok) {
-        for (Eigen::Index q = range.begin(); ok && q < range.end(); ++q) ok = deformation_gradient(x, q).determinant() > 0;
+        for (Eigen::Index q = range.begin(); ok && q < range.end(); ++q)
+          ok = deformation_gradient(x, q).determinant() > 0;
         return ok;
       },
       std::logical_and<>());
 }
 
-void NeoHookean::add_gradient(const Eigen::VectorXd& x, Eigen::VectorXd& g) const
-{
-  value_and_gradient(x, g);
-}
+void NeoHookean::add_gradient(const Eigen::VectorXd& x, Eigen::VectorXd& g) const { value_and_gradient(x, g); }
 
 double NeoHookean::value_and_gradient(const Eigen::VectorXd& x, Eigen::VectorXd& g) const
 {
@@ -158,8 +161,10 @@ double NeoHookean::value_and_gradient(const Eigen::VectorXd& x, Eigen::VectorXd&
       },
       [](Partial a, const Partial& b) {
         a.E += b.E;
-        if (a.g.size() == 0) a.g = b.g;
-        else if (b.g.size() != 0) a.g += b.g;
+        if (a.g.size() == 0)
+          a.g = b.g;
+        else if (b.g.size() != 0)
+          a.g += b.g;
         return a;
       });
   if (!(total.E < HUGE_VAL)) return HUGE_VAL;
@@ -178,8 +183,11 @@ void NeoHookean::add_hessian(const Eigen::VectorXd& x, SparseHessian& H, bool pr
   tbb::parallel_for(Eigen::Index{0}, qp_.size(), [&](Eigen::Index q) {
     const Eigen::Matrix3d F = deformation_gradient(x, q);
     const double V = qp_.volume[q];
-    if (project) W[q] = stiffness_layout(V * neo_hookean_stress_derivative_psd(F, lame_));
-    else exact[q] = {F.inverse().transpose(), V * lame_.mu, V * lame_.lambda, V * (lame_.mu - lame_.lambda * std::log(F.determinant()))};
+    if (project)
+      W[q] = stiffness_layout(V * neo_hookean_stress_derivative_psd(F, lame_));
+    else
+      exact[q] = {F.inverse().transpose(), V * lame_.mu, V * lame_.lambda,
+                  V * (lame_.mu - lame_.lambda * std::log(F.determinant()))};
   });
   // Column j of the Hessian gathers every point q touching j, for q's nodes i ≤ j: into a padded
   // copy (4 entries per block column) when the AVX2 kernels run, added to the matrix at the end.
@@ -188,7 +196,8 @@ void NeoHookean::add_hessian(const Eigen::VectorXd& x, SparseHessian& H, bool pr
     std::vector<double> values;
   };
   const bool padded = stiffness_simd_available();
-  tbb::enumerable_thread_specific<Scratch> scratch(Scratch{std::vector<int>(static_cast<std::size_t>(H.num_nodes()), -1), {}});
+  tbb::enumerable_thread_specific<Scratch> scratch(
+      Scratch{std::vector<int>(static_cast<std::size_t>(H.num_nodes()), -1), {}});
   const auto n = static_cast<Eigen::Index>(incidence_.offset.size()) - 1;
   tbb::parallel_for(Eigen::Index{0}, n, [&](Eigen::Index j) {
     Scratch& local = scratch.local();
@@ -203,7 +212,8 @@ void NeoHookean::add_hessian(const Eigen::VectorXd& x, SparseHessian& H, bool pr
       const auto [q, kj] = incidence_.entry[e];
       if (e + 2 < incidence_.offset[j + 1]) {
         const auto [q2, k2] = incidence_.entry[e + 2];
-        const char* next = project ? reinterpret_cast<const char*>(W[q2].data()) : reinterpret_cast<const char*>(&exact[q2]);
+        const char* next =
+            project ? reinterpret_cast<const char*>(W[q2].data()) : reinterpret_cast<const char*>(&exact[q2]);
         const int lines = project ? 11 : 2;
         for (int line = 0; line < lines; ++line) __builtin_prefetch(next + 64 * line);
         const char* gradients = reinterpret_cast<const char*>(qp_.dN[qp_.offset[q2]].data());
@@ -213,8 +223,10 @@ void NeoHookean::add_hessian(const Eigen::VectorXd& x, SparseHessian& H, bool pr
       }
       // A point's nodes ascend, so those ≤ j are its entries up to j's.
       const int first = qp_.offset[q];
-      if (project) add_point_to_column(W[q].data(), qp_.dN[kj], &qp_.dN[first], &qp_.node[first], kj + 1 - first, column);
-      else add_neo_hookean_point_to_column(exact[q], qp_.dN[kj], &qp_.dN[first], &qp_.node[first], kj + 1 - first, column);
+      if (project)
+        add_point_to_column(W[q].data(), qp_.dN[kj], &qp_.dN[first], &qp_.node[first], kj + 1 - first, column);
+      else
+        add_neo_hookean_point_to_column(exact[q], qp_.dN[kj], &qp_.dN[first], &qp_.node[first], kj + 1 - first, column);
     }
     if (padded) {
       double* values = H.column_values(j);
@@ -228,7 +240,8 @@ void NeoHookean::add_hessian(const Eigen::VectorXd& x, SparseHessian& H, bool pr
 
 void NeoHookean::stencils(std::vector<std::vector<int>>& out) const
 {
-  for (Eigen::Index q = 0; q < qp_.size(); ++q) out.emplace_back(qp_.node.begin() + qp_.offset[q], qp_.node.begin() + qp_.offset[q + 1]);
+  for (Eigen::Index q = 0; q < qp_.size(); ++q)
+    out.emplace_back(qp_.node.begin() + qp_.offset[q], qp_.node.begin() + qp_.offset[q + 1]);
 }
 
 } // namespace fibermold

@@ -41,8 +41,8 @@ SparseHessian make_pattern(const std::vector<const Energy*>& energies, Eigen::In
 
 std::string NewtonSummary::brief() const
 {
-  return fmt::format("{} after {} iterations: |∇E| = {:.3e} N (from {:.3e}), {:.3f} s", converged ? "converged" : "NOT converged",
-                     iterations, residual, initial_residual, seconds_total);
+  return fmt::format("{} after {} iterations: |∇E| = {:.3e} N (from {:.3e}), {:.3f} s",
+                     converged ? "converged" : "NOT converged", iterations, residual, initial_residual, seconds_total);
 }
 
 NewtonTotals& NewtonTotals::operator+=(const NewtonSummary& s)
@@ -97,14 +97,15 @@ double NewtonSolver::value_and_gradient(const Eigen::VectorXd& x, Eigen::VectorX
 
 bool NewtonSolver::solve_with_hessian(const Eigen::VectorXd& x, const Eigen::VectorXd& b, Eigen::VectorXd& lambda)
 {
-  if (adjoint_ready_ && x.size() == adjoint_x_.size() && x == adjoint_x_ && conjugate_gradient_solve(x, b, lambda)) return true;
+  if (adjoint_ready_ && x.size() == adjoint_x_.size() && x == adjoint_x_ && conjugate_gradient_solve(x, b, lambda))
+    return true;
   adjoint_ready_ = false;
   if (keep_pattern_ && hessian(x, true).lumped() > 0) {
     // The projected Hessian with lumped pairs (semi-definite as they are) preconditions conjugate
     // gradients on the exact one; where that does not converge, the pattern grows to hold the
     // pairs (a symbolic analysis).
     if (cholmod_.factorize(hessian_.matrix(), 0) && conjugate_gradient_solve(x, b, lambda)) {
-      kind_ = Factorization::projected;  // of the Hessian at x all the same: a solve from x may begin on it
+      kind_ = Factorization::projected; // of the Hessian at x all the same: a solve from x may begin on it
       return true;
     }
     hessian_ = SparseHessian(hessian_, variable_stencils_);
@@ -126,7 +127,8 @@ bool NewtonSolver::solve_with_factorization(const Eigen::MatrixXd& B, Eigen::Mat
   return X.allFinite();
 }
 
-bool NewtonSolver::conjugate_gradient_solve(const Eigen::VectorXd& x, const Eigen::VectorXd& b, Eigen::VectorXd& lambda) const
+bool NewtonSolver::conjugate_gradient_solve(const Eigen::VectorXd& x, const Eigen::VectorXd& b,
+                                            Eigen::VectorXd& lambda) const
 {
   // Preconditioned conjugate gradients (Nocedal & Wright, Algorithm 5.3) on H(x) λ = b, with the
   // factorization K held as the preconditioner and H(x)v from central differences of ∇E over a
@@ -135,7 +137,7 @@ bool NewtonSolver::conjugate_gradient_solve(const Eigen::VectorXd& x, const Eige
   // products do (on the test's bar K⁻¹b is 3e-7 from H(x)⁻¹b, and one product brings it to 8e-10).
   // H(x) must be positive definite (a stable equilibrium).
   constexpr int kMaxProducts = 50;
-  constexpr double kResidual = 1e-8;  // of |b|
+  constexpr double kResidual = 1e-8; // of |b|
   const auto nodes = x.reshaped(3, x.size() / 3);
   const double extent = (nodes.rowwise().maxCoeff() - nodes.rowwise().minCoeff()).maxCoeff();
   const auto product = [&](const Eigen::VectorXd& v) -> Eigen::VectorXd {
@@ -154,7 +156,7 @@ bool NewtonSolver::conjugate_gradient_solve(const Eigen::VectorXd& x, const Eige
     if (!(r.norm() > kResidual * b.norm())) return lambda.allFinite() && r.allFinite();
     const Eigen::VectorXd q = product(p);
     const double pq = p.dot(q);
-    if (!(pq > 0)) return false;  // not definite
+    if (!(pq > 0)) return false; // not definite
     const double alpha = rz / pq;
     lambda += alpha * p;
     r -= alpha * q;
@@ -166,7 +168,8 @@ bool NewtonSolver::conjugate_gradient_solve(const Eigen::VectorXd& x, const Eige
   return false;
 }
 
-NewtonSolver::Factorization NewtonSolver::factorize_at(const Eigen::VectorXd& x, NewtonSummary& s, double& shift, bool exact_first)
+NewtonSolver::Factorization NewtonSolver::factorize_at(const Eigen::VectorXd& x, NewtonSummary& s, double& shift,
+                                                       bool exact_first)
 {
   // The exact Hessian where it is positive definite (quadratic convergence near a stable
   // equilibrium); shifted by τI where it is indefinite but only softly (a state passing a snap or
@@ -180,8 +183,8 @@ NewtonSolver::Factorization NewtonSolver::factorize_at(const Eigen::VectorXd& x,
     t = Clock::now();
     ++s.factorizations;
     Factorization kind = cholmod_.factorize(hessian_.matrix(), 0) ? Factorization::exact
-                         : factorize_shifted(s, shift)               ? Factorization::shifted
-                                                                     : Factorization::none;
+                         : factorize_shifted(s, shift)            ? Factorization::shifted
+                                                                  : Factorization::none;
     s.seconds_factorization += since(t);
     if (kind != Factorization::none) return kind;
   }
@@ -198,7 +201,7 @@ NewtonSolver::Factorization NewtonSolver::factorize_at(const Eigen::VectorXd& x,
   }
   bool factorized = false;
   shift = 0;
-  while (!factorized && shift <= diagonal) {  // at most 11 attempts
+  while (!factorized && shift <= diagonal) { // at most 11 attempts
     factorized = cholmod_.factorize(hessian_.matrix(), shift);
     ++s.factorizations;
     if (!factorized) shift = shift == 0 ? 1e-10 * diagonal : shift * 10;
@@ -236,23 +239,26 @@ bool NewtonSolver::factorize_shifted(NewtonSummary& s, double& shift)
 
 /// One solve's state: where it is, and what the factorization held is of.
 struct NewtonSolver::SolveState {
-  SolveState(Eigen::VectorXd& x, const NewtonOptions& options) : x(x), options(options), secant(options.quasi_newton_pairs) {}
+  SolveState(Eigen::VectorXd& x, const NewtonOptions& options)
+      : x(x), options(options), secant(options.quasi_newton_pairs)
+  {
+  }
 
   Eigen::VectorXd& x;
   const NewtonOptions& options;
   NewtonSummary s;
-  Eigen::VectorXd g;           // ∇E(x)
-  double E = 0;                // E(x)
-  double goal = 0;             // the tolerance on |∇E|, N
+  Eigen::VectorXd g; // ∇E(x)
+  double E = 0;      // E(x)
+  double goal = 0;   // the tolerance on |∇E|, N
   double last_alpha = 0, shift = 0;
-  bool fresh = false;          // the factorization is of the Hessian at x
-  bool stale = true;           // the next step needs a new factorization
-  bool exact_first = true;     // false: the next factorization is the projected Hessian
-  bool near = false;           // the factorization is of the Hessian at a state within kNearTolerance
-  bool finishing = false;      // below the tolerance, taking the step that finish_on_fresh_step asks for
-  int full_steps = 0;          // steps on a fresh factorization: what max_iterations bounds
-  int reused_run = 0;          // steps on the factorization held
-  LbfgsCorrection secant;      // the steps since the last factorization
+  bool fresh = false;      // the factorization is of the Hessian at x
+  bool stale = true;       // the next step needs a new factorization
+  bool exact_first = true; // false: the next factorization is the projected Hessian
+  bool near = false;       // the factorization is of the Hessian at a state within kNearTolerance
+  bool finishing = false;  // below the tolerance, taking the step that finish_on_fresh_step asks for
+  int full_steps = 0;      // steps on a fresh factorization: what max_iterations bounds
+  int reused_run = 0;      // steps on the factorization held
+  LbfgsCorrection secant;  // the steps since the last factorization
 };
 
 /// A line search's outcome: the state it accepted, or found = false.
@@ -288,8 +294,9 @@ NewtonSummary NewtonSolver::solve(Eigen::VectorXd& x, const NewtonOptions& optio
   st.stale = !(restart_ready_ && x.size() == restart_x_.size() && x == restart_x_);
   restart_ready_ = false;
   while (!stops_before_step(st) && refactorizes_if_stale(st)) {
-    progress.checkpoint(-1, fmt::format("Newton iteration {}: |∇E| = {:.3e} N, last step {:.3g}, shift {:.3g}{}", st.s.iterations,
-                                        st.s.residual, st.last_alpha, st.shift, st.fresh ? "" : ", Hessian reused"));
+    progress.checkpoint(-1, fmt::format("Newton iteration {}: |∇E| = {:.3e} N, last step {:.3g}, shift {:.3g}{}",
+                                        st.s.iterations, st.s.residual, st.last_alpha, st.shift,
+                                        st.fresh ? "" : ", Hessian reused"));
     auto t = Clock::now();
     if (st.fresh) st.secant.clear();
     const Eigen::VectorXd dx = -st.secant.apply(st.g, [&](const Eigen::VectorXd& q) { return cholmod_.solve(q); });
@@ -340,9 +347,12 @@ bool NewtonSolver::stops_before_step(SolveState& st)
     }
   }
   if (options.finish_on_fresh_step && !st.fresh && !st.near && s.residual <= kNearTolerance * st.goal) st.stale = true;
-  if ((st.full_steps >= options.max_iterations || s.iterations >= kStepsPerIteration * options.max_iterations) && !st.finishing) {
-    if (s.residual <= st.goal) converge(st, st.near && kind_ == Factorization::exact);
-    else s.message = fmt::format("no convergence in {} iterations ({} steps)", options.max_iterations, s.iterations);
+  if ((st.full_steps >= options.max_iterations || s.iterations >= kStepsPerIteration * options.max_iterations) &&
+      !st.finishing) {
+    if (s.residual <= st.goal)
+      converge(st, st.near && kind_ == Factorization::exact);
+    else
+      s.message = fmt::format("no convergence in {} iterations ({} steps)", options.max_iterations, s.iterations);
     return true;
   }
   return false;
@@ -353,7 +363,7 @@ bool NewtonSolver::refactorizes_if_stale(SolveState& st)
   if (!st.stale) return true;
   kind_ = factorize_at(st.x, st.s, st.shift, st.exact_first);
   if (kind_ == Factorization::none) {
-    if (st.finishing) converge(st, false);  // x is below the tolerance all the same
+    if (st.finishing) converge(st, false); // x is below the tolerance all the same
     return false;
   }
   st.stale = false;
@@ -386,12 +396,12 @@ NewtonSolver::Trial NewtonSolver::line_search(SolveState& st, const Eigen::Vecto
 
 bool NewtonSolver::retries_after_failed_search(SolveState& st)
 {
-  if (!st.fresh || kind_ == Factorization::shifted) {  // an old Hessian's direction: refactorize
-    st.stale = true;                                   // and try again; a shifted one's: project
+  if (!st.fresh || kind_ == Factorization::shifted) { // an old Hessian's direction: refactorize
+    st.stale = true;                                  // and try again; a shifted one's: project
     st.exact_first = !st.fresh;
     return true;
   }
-  if (st.s.residual <= st.goal) {  // the factorization is of the Hessian at x, which is below the tolerance
+  if (st.s.residual <= st.goal) { // the factorization is of the Hessian at x, which is below the tolerance
     converge(st, kind_ == Factorization::exact);
     return false;
   }
@@ -401,12 +411,13 @@ bool NewtonSolver::retries_after_failed_search(SolveState& st)
 
 bool NewtonSolver::stops_at_step(SolveState& st, const Trial& t)
 {
-  if (st.fresh && kind_ == Factorization::exact && t.alpha < kRoundOffStep && st.s.residual <= kRoundOffAccept * st.goal) {
-    converge(st, true);  // the factorization is of the exact Hessian at x
+  if (st.fresh && kind_ == Factorization::exact && t.alpha < kRoundOffStep &&
+      st.s.residual <= kRoundOffAccept * st.goal) {
+    converge(st, true); // the factorization is of the exact Hessian at x
     st.s.message = fmt::format("gradient at its round-off floor, {:.2g}× the tolerance", st.s.residual / st.goal);
     return true;
   }
-  if (st.finishing && !(t.g.norm() <= st.goal)) {  // the extra step must not undo convergence
+  if (st.finishing && !(t.g.norm() <= st.goal)) { // the extra step must not undo convergence
     converge(st, false);
     return true;
   }

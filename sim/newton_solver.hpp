@@ -14,8 +14,8 @@ namespace fibermold {
 
 struct NewtonOptions {
   int max_iterations = 100;
-  double tolerance = 1e-8;   ///< converged when |∇E| ≤ tolerance × force_scale
-  double force_scale = 1.0;  ///< N
+  double tolerance = 1e-8;  ///< converged when |∇E| ≤ tolerance × force_scale
+  double force_scale = 1.0; ///< N
   int max_halvings = 40;
   /// Steps on a kept factorization K are L-BFGS steps from the pairs of this many of the last
   /// steps, with K⁻¹ as the initial inverse Hessian (lbfgs_correction.hpp). K is then kept while
@@ -37,12 +37,12 @@ struct NewtonOptions {
 struct NewtonSummary {
   bool converged = false;
   int iterations = 0;
-  double residual = 0;         ///< |∇E| at the end, N
+  double residual = 0; ///< |∇E| at the end, N
   double initial_residual = 0;
-  double energy = 0;           ///< J
+  double energy = 0; ///< J
   double seconds_assembly = 0, seconds_factorization = 0, seconds_solve = 0, seconds_total = 0;
   int assemblies = 0, factorizations = 0;
-  std::string message;         ///< why it stopped
+  std::string message; ///< why it stopped
 
   std::string brief() const;
 };
@@ -130,11 +130,11 @@ private:
   bool keep_pattern_;
   std::vector<std::vector<int>> variable_stencils_;
   CholmodSolver cholmod_;
-  Factorization kind_ = Factorization::none;  ///< what cholmod_ holds
-  double last_shift_ = 0;       ///< the last τ that served (in any solve): a search starts at a quarter of it
-  bool adjoint_ready_ = false;  ///< solve_with_hessian(adjoint_x_) may use the factorization
+  Factorization kind_ = Factorization::none; ///< what cholmod_ holds
+  double last_shift_ = 0;      ///< the last τ that served (in any solve): a search starts at a quarter of it
+  bool adjoint_ready_ = false; ///< solve_with_hessian(adjoint_x_) may use the factorization
   Eigen::VectorXd adjoint_x_;
-  bool restart_ready_ = false;  ///< a solve from restart_x_ may begin on the factorization
+  bool restart_ready_ = false; ///< a solve from restart_x_ may begin on the factorization
   Eigen::VectorXd restart_x_;
 };
 

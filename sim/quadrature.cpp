@@ -13,7 +13,9 @@ namespace {
 /// m_k = k! α! / (k + α + 1)!: the nodes are the roots of the orthogonal quadratic u² + a u + b.
 std::array<std::array<double, 2>, 2> gauss_jacobi_2(int alpha)
 {
-  const auto moment = [alpha](int k) { return std::tgamma(k + 1.0) * std::tgamma(alpha + 1.0) / std::tgamma(k + alpha + 2.0); };
+  const auto moment = [alpha](int k) {
+    return std::tgamma(k + 1.0) * std::tgamma(alpha + 1.0) / std::tgamma(k + alpha + 2.0);
+  };
   const double m0 = moment(0), m1 = moment(1), m2 = moment(2), m3 = moment(3);
   // m2 + a m1 + b m0 = 0,  m3 + a m2 + b m1 = 0
   const double det = m1 * m1 - m0 * m2;
@@ -63,10 +65,14 @@ const TetQuadrature& tet_quadrature(int points)
 {
   static const TetQuadrature one = one_point(), four = four_points(), eight = eight_points();
   switch (points) {
-  case 1: return one;
-  case 4: return four;
-  case 8: return eight;
-  default: throw std::invalid_argument("no tet quadrature with " + std::to_string(points) + " points");
+  case 1:
+    return one;
+  case 4:
+    return four;
+  case 8:
+    return eight;
+  default:
+    throw std::invalid_argument("no tet quadrature with " + std::to_string(points) + " points");
   }
 }
 

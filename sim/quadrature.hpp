@@ -11,7 +11,7 @@ namespace fibermold {
 struct TetQuadrature {
   std::vector<Eigen::Vector4d> barycentric;
   std::vector<double> weights;
-  int degree = 0;  ///< polynomials up to this degree are integrated exactly
+  int degree = 0; ///< polynomials up to this degree are integrated exactly
 };
 
 /// 1 point (degree 1), 4 points (degree 2), or 8 points: the Stroud conical product of 2-point

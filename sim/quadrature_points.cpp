@@ -89,7 +89,8 @@ QuadraturePoints build_quadrature_points(const TetMesh& mesh, const Basis& basis
     std::vector<int> order(static_cast<std::size_t>(e.size()));
     std::iota(order.begin(), order.end(), 0);
     std::sort(order.begin(), order.end(), [&](int a, int b) { return e.nodes[a] < e.nodes[b]; });
-    if (std::adjacent_find(order.begin(), order.end(), [&](int a, int b) { return e.nodes[a] == e.nodes[b]; }) != order.end())
+    if (std::adjacent_find(order.begin(), order.end(), [&](int a, int b) { return e.nodes[a] == e.nodes[b]; }) !=
+        order.end())
       throw std::logic_error("quadrature point with a node twice in its shape functions");
     for (Eigen::Index k = 0; k < e.size(); ++k) {
       const int from = order[k];

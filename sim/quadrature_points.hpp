@@ -13,10 +13,10 @@
 namespace fibermold {
 
 struct QuadraturePoints {
-  std::vector<Eigen::Vector3d> X;     ///< rest position, m
-  std::vector<double> volume;         ///< quadrature weight × tet volume, m³
-  std::vector<int> offset;            ///< point q's shape functions are entries offset[q] .. offset[q+1]
-  std::vector<int> node;              ///< ascending within each point
+  std::vector<Eigen::Vector3d> X; ///< rest position, m
+  std::vector<double> volume;     ///< quadrature weight × tet volume, m³
+  std::vector<int> offset;        ///< point q's shape functions are entries offset[q] .. offset[q+1]
+  std::vector<int> node;          ///< ascending within each point
   std::vector<double> N;
   std::vector<Eigen::Vector3d> dN;
 
@@ -29,8 +29,8 @@ QuadraturePoints build_quadrature_points(const TetMesh& mesh, const Basis& basis
 /// For each node, the (quadrature point, entry) pairs that touch it: the transpose of the above,
 /// so that the stiffness is assembled per node column without write conflicts.
 struct NodeIncidence {
-  std::vector<int> offset;                 ///< size n + 1
-  std::vector<std::pair<int, int>> entry;  ///< (q, index into node/N/dN)
+  std::vector<int> offset;                ///< size n + 1
+  std::vector<std::pair<int, int>> entry; ///< (q, index into node/N/dN)
 };
 NodeIncidence node_incidence(const QuadraturePoints& qp, Eigen::Index num_nodes);
 

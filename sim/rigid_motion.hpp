@@ -8,7 +8,7 @@ namespace fibermold {
 
 struct RigidMotion {
   Eigen::Matrix3d rotation = Eigen::Matrix3d::Identity();
-  Eigen::Vector3d translation = Eigen::Vector3d::Zero();  ///< m
+  Eigen::Vector3d translation = Eigen::Vector3d::Zero(); ///< m
 
   Eigen::Vector3d apply(const Eigen::Vector3d& X) const { return rotation * X + translation; }
   /// The rotation's angle in [0, π] (rad) and its unit axis ((1, 0, 0) when the angle is 0).

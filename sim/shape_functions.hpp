@@ -11,10 +11,10 @@ namespace fibermold {
 
 /// The shape functions that are non-zero at one point, and their derivatives.
 struct ShapeEval {
-  std::vector<int> nodes;            ///< the nodes i with N_i(X) ≠ 0
-  Eigen::VectorXd N;                 ///< N_i(X)
-  Eigen::MatrixX3d dN;               ///< row i: ∇N_i(X)ᵀ
-  std::vector<Eigen::Matrix3d> ddN;  ///< ∇∇N_i(X); filled when second derivatives are asked for
+  std::vector<int> nodes;           ///< the nodes i with N_i(X) ≠ 0
+  Eigen::VectorXd N;                ///< N_i(X)
+  Eigen::MatrixX3d dN;              ///< row i: ∇N_i(X)ᵀ
+  std::vector<Eigen::Matrix3d> ddN; ///< ∇∇N_i(X); filled when second derivatives are asked for
 
   Eigen::Index size() const { return static_cast<Eigen::Index>(nodes.size()); }
   /// x(X) = Σ_i x_i N_i  for positions `x` stacked as 3n.

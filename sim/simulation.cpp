@@ -39,16 +39,19 @@ Simulation::Simulation(const TetMesh& mesh, SimulationOptions options)
 
   const Eigen::Index n = mesh_.nodes.rows();
   at_nodes_.resize(static_cast<std::size_t>(n));
-  tbb::parallel_for(Eigen::Index{0}, n, [&](Eigen::Index i) { at_nodes_[i] = basis_->at(mesh_.nodes.row(i).transpose(), 0); });
+  tbb::parallel_for(Eigen::Index{0}, n,
+                    [&](Eigen::Index i) { at_nodes_[i] = basis_->at(mesh_.nodes.row(i).transpose(), 0); });
 
-  energies_.push_back(std::make_unique<NeoHookean>(qp_, n, LameParameters::from_young_poisson(options_.youngs_modulus, options_.poisson_ratio)));
+  energies_.push_back(std::make_unique<NeoHookean>(
+      qp_, n, LameParameters::from_young_poisson(options_.youngs_modulus, options_.poisson_ratio)));
   if (options_.gravity.norm() > 0 && options_.density > 0)
     energies_.push_back(std::make_unique<ExternalForces>(gravity_forces(masses_, options_.gravity)));
 
   std::vector<ShapeEval> held;
   std::vector<Eigen::Vector3d> targets;
   for (std::size_t r = 0; r < options_.fixed_nodes.size(); ++r) {
-    if (options_.fixed_nodes[r].empty()) throw std::invalid_argument(fmt::format("fixed region {} holds no node", r + 1));
+    if (options_.fixed_nodes[r].empty())
+      throw std::invalid_argument(fmt::format("fixed region {} holds no node", r + 1));
     for (int i : options_.fixed_nodes[r]) {
       held.push_back(at_nodes_[i]);
       targets.push_back(mesh_.nodes.row(i).transpose());
@@ -69,8 +72,8 @@ Simulation::Simulation(const TetMesh& mesh, SimulationOptions options)
 void Simulation::move_nodes(const std::vector<Eigen::Vector3d>& positions)
 {
   if (positions.size() != options_.moved_nodes.size())
-    throw std::invalid_argument(fmt::format("move_nodes: {} positions for {} moved nodes", positions.size(),
-                                            options_.moved_nodes.size()));
+    throw std::invalid_argument(
+        fmt::format("move_nodes: {} positions for {} moved nodes", positions.size(), options_.moved_nodes.size()));
   dirichlet_->move_targets(fixed_points_, positions);
 }
 
@@ -95,7 +98,7 @@ void Simulation::set_variable_energies(std::vector<std::unique_ptr<Energy>> ener
 {
   std::vector<const Energy*> terms;
   for (const auto& e : energies) terms.push_back(e.get());
-  solver().set_variable_energies(terms);  // before the old terms it points to are freed
+  solver().set_variable_energies(terms); // before the old terms it points to are freed
   variable_energies_[slot_] = std::move(energies);
 }
 

@@ -25,15 +25,15 @@ inline std::string_view choice_name(BasisKind b) { return name_in(kBasisNames, b
 
 struct SimulationOptions {
   BasisKind basis = BasisKind::mls_linear;
-  double mls_radius = 1.7;             ///< × mean edge length
+  double mls_radius = 1.7; ///< × mean edge length
   int quadrature_points = 8;
-  double youngs_modulus = 86.4e3;      ///< Pa
+  double youngs_modulus = 86.4e3; ///< Pa
   double poisson_ratio = 0.47;
-  double density = 1070;               ///< kg/m³
+  double density = 1070; ///< kg/m³
   Eigen::Vector3d gravity{0, 0, -9.81};
-  double dirichlet_penalty = 1e4;      ///< k = penalty × E × mean edge length
-  std::vector<std::vector<int>> fixed_nodes;  ///< held nodes, one list per region
-  std::vector<std::pair<int, Eigen::Vector3d>> moved_nodes;  ///< nodes held at a given position (m)
+  double dirichlet_penalty = 1e4;                           ///< k = penalty × E × mean edge length
+  std::vector<std::vector<int>> fixed_nodes;                ///< held nodes, one list per region
+  std::vector<std::pair<int, Eigen::Vector3d>> moved_nodes; ///< nodes held at a given position (m)
   NewtonOptions newton;
 };
 
@@ -85,12 +85,12 @@ private:
   QuadraturePoints qp_;
   Eigen::VectorXd masses_;
   std::vector<std::unique_ptr<Energy>> energies_;
-  std::vector<std::vector<std::unique_ptr<Energy>>> variable_energies_;  ///< per solver
+  std::vector<std::vector<std::unique_ptr<Energy>>> variable_energies_; ///< per solver
   std::vector<std::unique_ptr<NewtonSolver>> solvers_;
   std::size_t slot_ = 0;
   std::vector<ShapeEval> at_nodes_;
   SoftDirichlet* dirichlet_ = nullptr;
-  std::size_t fixed_points_ = 0;  ///< the held points before the moved ones in dirichlet_
+  std::size_t fixed_points_ = 0; ///< the held points before the moved ones in dirichlet_
 };
 
 } // namespace fibermold

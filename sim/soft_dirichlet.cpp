@@ -12,7 +12,8 @@ SoftDirichlet::SoftDirichlet(std::vector<ShapeEval> at_nodes, std::vector<Eigen:
 
 void SoftDirichlet::move_targets(std::size_t first, const std::vector<Eigen::Vector3d>& targets)
 {
-  if (first + targets.size() > targets_.size()) throw std::out_of_range("SoftDirichlet::move_targets: past the held points");
+  if (first + targets.size() > targets_.size())
+    throw std::out_of_range("SoftDirichlet::move_targets: past the held points");
   std::copy(targets.begin(), targets.end(), targets_.begin() + static_cast<std::ptrdiff_t>(first));
 }
 

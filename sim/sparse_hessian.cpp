@@ -122,7 +122,7 @@ Eigen::SparseMatrix<double> SparseHessian::full() const
 
 void SparseHessian::add_block(int i, int j, const Eigen::Matrix3d& block)
 {
-  if (i > j) return;  // the lower block triangle is not stored
+  if (i > j) return; // the lower block triangle is not stored
   const int k = position(i, j);
   if (k < 0) throw std::logic_error("SparseHessian: block outside the pattern");
   add_block_at(k, j, block);

@@ -56,7 +56,7 @@ public:
 private:
   void build_matrix();
 
-  std::vector<std::vector<int>> neighbours_;  ///< sorted, per node column
+  std::vector<std::vector<int>> neighbours_; ///< sorted, per node column
   std::vector<Eigen::Index> block_start_;
   Eigen::SparseMatrix<double> matrix_;
   int lumped_ = 0;

@@ -56,9 +56,9 @@ void add_neo_hookean_point_portable(const NeoHookeanPoint& p, const Eigen::Vecto
 // slower (a partly overlapping load cannot be forwarded from the store buffer) and would write
 // outside the column. A padded column takes one 4-wide load and store per block column instead:
 // the exact Hessian of the 4×-DoF twisting bar (assembly_bench) 51–55 → 42–48 ms.
-__attribute__((target("avx2,fma"))) inline void add_contraction_avx2(const __m256d (&T)[3][3], const Eigen::Vector3d* gi,
-                                                                     const int* nodes, int count,
-                                                                     const StiffnessColumn& column)
+__attribute__((target("avx2,fma"))) inline void add_contraction_avx2(const __m256d (&T)[3][3],
+                                                                     const Eigen::Vector3d* gi, const int* nodes,
+                                                                     int count, const StiffnessColumn& column)
 {
   // Locals: the stores below may alias anything (the intrinsics' types say so), the column's fields too.
   const std::ptrdiff_t stride = column.stride;

@@ -37,8 +37,8 @@ void add_point_to_column(const double* W, const Eigen::Vector3d& gj, const Eigen
 /// (neo_hookean.hpp). 12 doubles instead of the layout's 81: the assembly reads each point once per
 /// node column it touches, and at 30 nodes per point those reads are most of its memory traffic.
 struct NeoHookeanPoint {
-  Eigen::Matrix3d G;          ///< F⁻ᵀ, column-major
-  double mu, lambda, c;       ///< V μ, V λ, V (μ − λ ln J)
+  Eigen::Matrix3d G;    ///< F⁻ᵀ, column-major
+  double mu, lambda, c; ///< V μ, V λ, V (μ − λ ln J)
 };
 
 /// The same sum as add_point_to_column with W = stiffness_layout(V ∂P/∂F) of that point, with

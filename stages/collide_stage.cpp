@@ -26,11 +26,13 @@ constexpr double kReportReach = 10e-3; // m: clearances are reported up to this 
 
 /// The smallest clearance (mm) among fibers and skin, before and after; a value more than
 /// kReportReach above the clearance asked for is not measured, and left out.
-Json smallest_json(const FiberClearance& measure, const std::vector<Route>& before, const std::vector<Route>& after, double clearance)
+Json smallest_json(const FiberClearance& measure, const std::vector<Route>& before, const std::vector<Route>& after,
+                   double clearance)
 {
   Json out = Json::object();
   for (const auto& [name, routes] : {std::pair{"before", &before}, std::pair{"after", &after}})
-    if (const double c = smallest_clearance(measure.contacts(*routes, clearance + kReportReach)); std::isfinite(c)) out[name] = c / units::mm;
+    if (const double c = smallest_clearance(measure.contacts(*routes, clearance + kReportReach)); std::isfinite(c))
+      out[name] = c / units::mm;
   out["measured_up_to"] = (clearance + kReportReach) / units::mm;
   return out;
 }
@@ -107,7 +109,8 @@ Routing reoptimize(StageContext& ctx, RoutingProblem& problem, const FiberCleara
     ctx.progress.update(0.2 + 0.6 * it.iteration / std::max(1, o.max_iterations), what);
     ctx.log.info("{}", what);
   };
-  const RoutingResult r = optimize_routing(problem, Strategy::simultaneous, o, on_iteration, ctx.progress, actuator_mask(d));
+  const RoutingResult r =
+      optimize_routing(problem, Strategy::simultaneous, o, on_iteration, ctx.progress, actuator_mask(d));
   problem.set_clearance_barrier(nullptr, 0);
   if (r.interrupted) throw Interrupted();
   ctx.log.info("optimized again: {} after {} iterations", r.message, r.iterations);
@@ -146,7 +149,8 @@ void simulate_targets(StageContext& ctx, const FiberClearance& measure, const Fi
 {
   const Design& d = ctx.design;
   DesignRouting dr(ctx);
-  RoutingProblem& problem = dr.start(optimization_start(d, *dr.skin).routing); // the muscle segments as the optimizer had them
+  RoutingProblem& problem =
+      dr.start(optimization_start(d, *dr.skin).routing); // the muscle segments as the optimizer had them
   ctx.progress.update(0.1, "simulating the targets under the optimized routing");
   const std::vector<TargetErrors> before = errors_under(problem, dr, fibers.routing);
   std::vector<TargetErrors> resolved;
@@ -160,7 +164,8 @@ void simulate_targets(StageContext& ctx, const FiberClearance& measure, const Fi
     report["reoptimized"] = true;
     Json& smallest = report["smallest_clearance_mm"];
     smallest.erase("after");
-    if (const Json again = smallest_json(measure, final.routes, final.routes, d.collide.clearance); again.contains("after"))
+    if (const Json again = smallest_json(measure, final.routes, final.routes, d.collide.clearance);
+        again.contains("after"))
       smallest["after"] = again["after"];
   }
   ctx.progress.update(0.85, "simulating the targets under the final routing");
@@ -220,7 +225,8 @@ void CollideStage::run(StageContext& ctx) const
   try {
     require_bend_radius(d, out.routing.routes, "the route as collide left it");
   } catch (const InputError& e) {
-    throw std::runtime_error(e.diagnostics().front().message + "; or raise [collide] smoothness, which spreads a move along the fiber");
+    throw std::runtime_error(e.diagnostics().front().message +
+                             "; or raise [collide] smoothness, which spreads a move along the fiber");
   }
   report["min_bend_radius_mm"] = d.muscle.min_bend_radius / units::mm;
   report["bends"] = bends_json(out.routing.routes);

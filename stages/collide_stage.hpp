@@ -19,8 +19,18 @@ public:
   std::vector<std::string> upstream() const override { return {"mesh", "targets", "optimize"}; }
   std::vector<std::string> design_keys() const override
   {
-    return {"design.units", "material", "sim", "fixed", "muscle", "fiber", "tracking_curve", "target", "optimize", "collide",
-            "mold.groove_clearance", "mold.min_silicone"};  // the skin distance (skin_distance.hpp)
+    return {"design.units",
+            "material",
+            "sim",
+            "fixed",
+            "muscle",
+            "fiber",
+            "tracking_curve",
+            "target",
+            "optimize",
+            "collide",
+            "mold.groove_clearance",
+            "mold.min_silicone"}; // the skin distance (skin_distance.hpp)
   }
   /// 2: writes deformed-<target>.json for the report; 3: no null in report.json; 4: bends in the report, routes
   /// under min_bend_radius refused; 5: the bend barrier samples each span's tightest point, min_bend_radius_mm in the

@@ -15,7 +15,7 @@
 #include "optimize/tracking_curve.hpp"
 #include "sim/external_forces.hpp"
 #include "sim/fem_basis.hpp"
-#include "stages/target_poses.hpp"
+#include "stages/plausible_pose.hpp"
 
 namespace fibermold {
 
@@ -27,7 +27,6 @@ namespace {
 {
   throw InputError(design_problem(d, key, message));
 }
-
 
 /// True when P lies in a tet of the mesh (within 1e-6 in barycentric coordinates).
 bool inside_body(const FemBasis& locator, const Eigen::Vector3d& P)
@@ -52,7 +51,6 @@ std::vector<int> region_nodes(const Region& r, const TetMesh& mesh, const Design
   return nodes;
 }
 
-
 void require_regions_reach_the_body(const Design& d, const SurfaceMesh& surface)
 {
   const Eigen::Vector3d lo = surface.vertices.colwise().minCoeff(), hi = surface.vertices.colwise().maxCoeff();
@@ -62,9 +60,11 @@ void require_regions_reach_the_body(const Design& d, const SurfaceMesh& surface)
       if (v >= surface.num_vertices())
         bad(d, key, fmt::format("vertex {} does not exist: the surface has {} vertices", v, surface.num_vertices()));
     if (r.box && (((*r.box)[1].array() < lo.array()).any() || ((*r.box)[0].array() > hi.array()).any()))
-      bad(d, key, fmt::format("{} no node of the mesh: the box {} to {} misses the body, which spans {} to {}", what,
-                              format_mm((*r.box)[0]), format_mm((*r.box)[1]), format_mm(lo), format_mm(hi)));
-    if (r.point && !skin.closest(*r.point).inside) bad(d, key, fmt::format("the point {} lies outside the body", format_mm(*r.point)));
+      bad(d, key,
+          fmt::format("{} no node of the mesh: the box {} to {} misses the body, which spans {} to {}", what,
+                      format_mm((*r.box)[0]), format_mm((*r.box)[1]), format_mm(lo), format_mm(hi)));
+    if (r.point && !skin.closest(*r.point).inside)
+      bad(d, key, fmt::format("the point {} lies outside the body", format_mm(*r.point)));
   };
   for (const FixedRegion& f : d.fixed) require(f.region, fmt::format("[fixed.{}]", f.name), "holds");
   // The surface vertices a region selects (each is a node of a mesh that keeps or splits the surface).
@@ -76,13 +76,16 @@ void require_regions_reach_the_body(const Design& d, const SurfaceMesh& surface)
     return in;
   };
   // A pose's vertices held by another region too: refused, naming it.
-  const auto refuse_shared = [&](const std::string& key, const std::vector<bool>& moved, const Region& other, const std::string& name) {
+  const auto refuse_shared = [&](const std::string& key, const std::vector<bool>& moved, const Region& other,
+                                 const std::string& name) {
     const std::vector<bool> held = selected(other);
     int shared = 0;
     for (std::size_t v = 0; v < moved.size(); ++v) shared += moved[v] && held[v];
     if (shared > 0)
-      bad(d, key, fmt::format("the region shares {} surface vertices with {}: a node cannot be held in two places; shrink one of them",
-                              shared, name));
+      bad(d, key,
+          fmt::format(
+              "the region shares {} surface vertices with {}: a node cannot be held in two places; shrink one of them",
+              shared, name));
   };
   for (const Target& t : d.targets) {
     for (std::size_t i = 0; i < t.loads.size(); ++i)
@@ -127,7 +130,6 @@ SimulationOptions simulation_options(const Design& d, const TetMesh& mesh, bool 
   return o;
 }
 
-
 /// The nodal forces of a forces target's loads.
 Eigen::VectorXd target_forces(const Design& d, const Target& t, const Simulation& sim)
 {
@@ -140,8 +142,7 @@ Eigen::VectorXd target_forces(const Design& d, const Target& t, const Simulation
     const std::string key = fmt::format("[target.{}].load[{}]", t.name, i + 1);
     if (load.region.point) {
       const Eigen::Vector3d& P = *load.region.point;
-      if (!inside_body(locator, P))
-        bad(d, key, fmt::format("the point {} lies outside the body", format_mm(P)));
+      if (!inside_body(locator, P)) bad(d, key, fmt::format("the point {} lies outside the body", format_mm(P)));
       f += point_force(sim.basis().at(P, 0), mesh.nodes.rows(), *load.force);
       continue;
     }
@@ -156,7 +157,6 @@ Eigen::VectorXd target_forces(const Design& d, const Target& t, const Simulation
   }
   return f;
 }
-
 
 namespace {
 
@@ -180,8 +180,10 @@ std::vector<Actuation> target_actuations(const Design& d, const Target& t)
     const Fiber* f = nullptr;
     for (const Fiber& fb : d.fibers)
       if (fb.name == a.name) f = &fb;
-    if (a.points.empty()) out.push_back({a.name, f->points, f->tangents, a.pressure});
-    else out.push_back({a.name, a.points, {}, a.pressure});
+    if (a.points.empty())
+      out.push_back({a.name, f->points, f->tangents, a.pressure});
+    else
+      out.push_back({a.name, a.points, {}, a.pressure});
   }
   return out;
 }
@@ -207,7 +209,6 @@ std::vector<const MuscleEnergy*> add_muscles(Simulation& sim, const Design& d, c
   }
   return muscles;
 }
-
 
 /// VTU of the deformed body (points at x(X_i), displacement in mm, von Mises stress in kPa at each
 /// tet's centre) with the fibers as deformed polylines.
@@ -246,7 +247,7 @@ void write_deformed(const fs::path& path, const Simulation& sim, const Eigen::Ve
     Eigen::Vector3d c = Eigen::Vector3d::Zero();
     for (int k = 0; k < 4; ++k) c += mesh.nodes.row(mesh.tets(t, k)).transpose() / 4;
     const Eigen::Matrix3d F = sim.basis().at(c, 1, t).deformation_gradient(x);
-    const Eigen::Matrix3d sigma = neo_hookean_stress(F, lame) * F.transpose() / F.determinant();  // Cauchy
+    const Eigen::Matrix3d sigma = neo_hookean_stress(F, lame) * F.transpose() / F.determinant(); // Cauchy
     const Eigen::Matrix3d s = sigma - sigma.trace() / 3 * Eigen::Matrix3d::Identity();
     von_mises(t, 0) = std::sqrt(1.5 * s.squaredNorm()) / units::kPa;
   }
@@ -255,9 +256,8 @@ void write_deformed(const fs::path& path, const Simulation& sim, const Eigen::Ve
   grid.write(path);
 }
 
-
-Refinement compare_refined(const Design& d, const Simulation& coarse, const Eigen::VectorXd& coarse_x, const Simulation& fine,
-                           const Eigen::VectorXd& fine_x)
+Refinement compare_refined(const Design& d, const Simulation& coarse, const Eigen::VectorXd& coarse_x,
+                           const Simulation& fine, const Eigen::VectorXd& fine_x)
 {
   const TetMesh& coarse_mesh = coarse.mesh();
   const TetMesh& fine_mesh = fine.mesh();
@@ -277,7 +277,8 @@ Refinement compare_refined(const Design& d, const Simulation& coarse, const Eige
   r.surface_rms = std::sqrt(sum / static_cast<double>(std::max<Eigen::Index>(1, coarse_mesh.surface_to_node.size())));
   sum = 0;
   for (const TrackingCurve& c : d.tracking_curves)
-    for (const Eigen::Vector3d& q : sample_tracking_curve(c.points, c.samples, c.weight_position, c.weight_orientation).points) {
+    for (const Eigen::Vector3d& q :
+         sample_tracking_curve(c.points, c.samples, c.weight_position, c.weight_orientation).points) {
       const double e = difference(q);
       sum += e * e;
       r.curves_max = std::max(r.curves_max, e);

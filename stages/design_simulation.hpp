@@ -50,18 +50,18 @@ std::vector<const MuscleEnergy*> add_muscles(Simulation& sim, const Design& d, c
 /// How far a result is from converged in the mesh (docs/sim.md, "Discretization error"): the same
 /// load solved on a mesh of half the edge length, and the difference of the displacements.
 struct Refinement {
-  double edge_length = 0;            ///< m, of the refined mesh
-  Eigen::Index nodes = 0, tets = 0;  ///< of the refined mesh
-  double surface_max = 0, surface_rms = 0;  ///< m, at the input surface's vertices
-  double curves_max = 0, curves_rms = 0;    ///< m, at the tracking curves' samples (0 without curves)
+  double edge_length = 0;                  ///< m, of the refined mesh
+  Eigen::Index nodes = 0, tets = 0;        ///< of the refined mesh
+  double surface_max = 0, surface_rms = 0; ///< m, at the input surface's vertices
+  double curves_max = 0, curves_rms = 0;   ///< m, at the tracking curves' samples (0 without curves)
   int curve_samples = 0;
-  double max_displacement = 0;       ///< m, on the refined mesh
+  double max_displacement = 0; ///< m, on the refined mesh
 };
 
 /// The displacements of one load solved on `coarse` (equilibrium `coarse_x`) and on `fine` (a mesh
 /// of half the edge length) compared at the input surface's vertices and the tracking curves' samples.
-Refinement compare_refined(const Design& d, const Simulation& coarse, const Eigen::VectorXd& coarse_x, const Simulation& fine,
-                           const Eigen::VectorXd& fine_x);
+Refinement compare_refined(const Design& d, const Simulation& coarse, const Eigen::VectorXd& coarse_x,
+                           const Simulation& fine, const Eigen::VectorXd& fine_x);
 
 /// VTU of the deformed body (points at x(X_i), displacement in mm, von Mises stress in kPa at each
 /// tet's centre) with the fibers as deformed polylines.

@@ -30,7 +30,10 @@ using Json = nlohmann::ordered_json;
 /// "the sprue hole", "the 2 sprue holes (one per groove system, one after the other)".
 std::string sprue_holes(const Json& sprues)
 {
-  return sprues.size() == 1 ? "the sprue hole" : fmt::format("the {} sprue holes (one for each part that the others do not reach, one after the other)", sprues.size());
+  return sprues.size() == 1
+             ? "the sprue hole"
+             : fmt::format("the {} sprue holes (one for each part that the others do not reach, one after the other)",
+                           sprues.size());
 }
 /// "the vent", "every one of the 3 vents".
 std::string vent_holes(const Json& vents)
@@ -78,10 +81,11 @@ and vent meets the cavity, each part's size, volume, checks and how its printed 
 the body.
 )",
                      design, FORMAT, ext, ext, ml("shot1"), g("shot1"), sprue_holes(fill("shot1")["sprues"]),
-                     vent_holes(fill("shot1")["vents"]), ext, ext, ml("shot2"), g("shot2"), sprue_holes(fill("shot2")["sprues"]),
-                     vent_holes(fill("shot2")["vents"]), fill("shot1")["reachable_percent"].get<double>(),
-                     fill("shot1")["trapped_air_mm3"].get<double>(), fill("shot2")["reachable_percent"].get<double>(),
-                     fill("shot2")["trapped_air_mm3"].get<double>(), fill("shot1")["trapped_air_tolerance_mm3"].get<double>());
+                     vent_holes(fill("shot1")["vents"]), ext, ext, ml("shot2"), g("shot2"),
+                     sprue_holes(fill("shot2")["sprues"]), vent_holes(fill("shot2")["vents"]),
+                     fill("shot1")["reachable_percent"].get<double>(), fill("shot1")["trapped_air_mm3"].get<double>(),
+                     fill("shot2")["reachable_percent"].get<double>(), fill("shot2")["trapped_air_mm3"].get<double>(),
+                     fill("shot1")["trapped_air_tolerance_mm3"].get<double>());
 }
 
 /// Each fiber's centre line, 10 points per mm.
@@ -106,7 +110,9 @@ Json placement_json(const Placement& placed)
   Json rotation = Json::array();
   for (int i = 0; i < 3; ++i) rotation.push_back({placed.rotation(i, 0), placed.rotation(i, 1), placed.rotation(i, 2)});
   const Eigen::Vector3d t = placed.translation / units::mm;
-  return {{"rotation", rotation}, {"translation_mm", {t.x(), t.y(), t.z()}}, {"maps", "printed = rotation · body + translation"}};
+  return {{"rotation", rotation},
+          {"translation_mm", {t.x(), t.y(), t.z()}},
+          {"maps", "printed = rotation · body + translation"}};
 }
 
 std::optional<Json> json_if_any(const std::filesystem::path& file)
@@ -138,8 +144,8 @@ std::optional<SurfaceMesh> deformed_body(const TetMesh& body, const std::optiona
 /// The body at rest and, per target, deformed under the final routing (collide/deformed-*.json),
 /// with its fibers, at `offset`, and the target's own deformation (targets/<name>.json) beside it,
 /// `beside` further; the first target's shown, the rest switched off; the tracking curves at rest.
-void add_bodies(const StageContext& ctx, const Eigen::Vector3d& offset, const Eigen::Vector3d& beside, std::vector<ReportMesh>& meshes,
-                std::vector<ReportLine>& lines)
+void add_bodies(const StageContext& ctx, const Eigen::Vector3d& offset, const Eigen::Vector3d& beside,
+                std::vector<ReportMesh>& meshes, std::vector<ReportLine>& lines)
 {
   const TetMesh body = load_tet_mesh(ctx.upstream("mesh", "body.tetmesh"));
   bool first = true;
@@ -148,8 +154,10 @@ void add_bodies(const StageContext& ctx, const Eigen::Vector3d& offset, const Ei
     std::optional<SurfaceMesh> deformed = deformed_body(body, state);
     if (!deformed) continue;
     meshes.push_back({"body, " + target.name, std::move(*deformed), {0.5F, 0.78F, 0.5F}, first, offset});
-    if (std::optional<SurfaceMesh> asked = deformed_body(body, json_if_any(ctx.upstream("targets", target.name + ".json"))))
-      meshes.push_back({"target " + target.name + " (asked)", std::move(*asked), {0.45F, 0.6F, 0.95F}, first, offset + beside});
+    if (std::optional<SurfaceMesh> asked =
+            deformed_body(body, json_if_any(ctx.upstream("targets", target.name + ".json"))))
+      meshes.push_back(
+          {"target " + target.name + " (asked)", std::move(*asked), {0.45F, 0.6F, 0.95F}, first, offset + beside});
     for (const auto& [fiber, points] : (*state)["fibers_mm"].items()) {
       ReportLine line{target.name + ": " + fiber, {}, {0.8F, 0.1F, 0.1F}, first};
       for (const Json& p : points) line.points.push_back(offset + Eigen::Vector3d(p[0], p[1], p[2]) * units::mm);
@@ -158,10 +166,12 @@ void add_bodies(const StageContext& ctx, const Eigen::Vector3d& offset, const Ei
     first = false;
   }
   // At rest: shown when no target's deformed state is (optimize disabled, or no targets).
-  meshes.push_back({"body at rest", SurfaceMesh{body.nodes, body.boundary_faces, {}}, {0.75F, 0.75F, 0.75F}, first, offset});
+  meshes.push_back(
+      {"body at rest", SurfaceMesh{body.nodes, body.boundary_faces, {}}, {0.75F, 0.75F, 0.75F}, first, offset});
   for (const TrackingCurve& c : ctx.design.tracking_curves) {
     ReportLine line{"tracking curve " + c.name, {}, {0.1F, 0.3F, 0.9F}, true};
-    for (const Eigen::Vector3d& p : sample_tracking_curve(c.points, std::max(c.samples, 64), 1, 0).points) line.points.push_back(offset + p);
+    for (const Eigen::Vector3d& p : sample_tracking_curve(c.points, std::max(c.samples, 64), 1, 0).points)
+      line.points.push_back(offset + p);
     lines.push_back(std::move(line));
   }
 }
@@ -172,12 +182,14 @@ std::string muscle_bends_text(const StageContext& ctx)
 {
   const auto report = json_if_any(ctx.upstream("collide", "report.json"));
   if (!report || !report->contains("bends") || !(*report)["min_bend_radius_mm"].is_number()) return {};
-  std::string text = fmt::format("\nThe muscles take bends no tighter than {:.1f} mm in radius ([muscle] min_bend_radius); the grooves\n"
-                                 "follow the routes, so lay each muscle along its groove without kinking it. Each route's tightest bend:\n",
-                                 (*report)["min_bend_radius_mm"].get<double>());
+  std::string text = fmt::format(
+      "\nThe muscles take bends no tighter than {:.1f} mm in radius ([muscle] min_bend_radius); the grooves\n"
+      "follow the routes, so lay each muscle along its groove without kinking it. Each route's tightest bend:\n",
+      (*report)["min_bend_radius_mm"].get<double>());
   for (const auto& [fiber, b] : (*report)["bends"].items())
     text += b.contains("min_bend_radius_mm")
-                ? fmt::format("  {}: {:.1f} mm, {:.1f} mm along it\n", fiber, b["min_bend_radius_mm"].get<double>(), b["along_mm"].get<double>())
+                ? fmt::format("  {}: {:.1f} mm, {:.1f} mm along it\n", fiber, b["min_bend_radius_mm"].get<double>(),
+                              b["along_mm"].get<double>())
                 : fmt::format("  {}: straight\n", fiber);
   return text;
 }
@@ -192,13 +204,16 @@ std::vector<ReportTable> behaviour_tables(const StageContext& ctx)
   const auto mm = [](const Json& v) { return v.is_number() ? fixed(v.get<double>(), 3) : std::string("–"); };
   if ((*report)["targets"].is_object() && !(*report)["targets"].empty()) {
     ReportTable targets{"Targets: error over the tracking curves and the surface (mm)",
-                        {"target", "RMSE before collide", "RMSE after", "change", "max before", "max after", "surface RMSE after", "surface max after"},
+                        {"target", "RMSE before collide", "RMSE after", "change", "max before", "max after",
+                         "surface RMSE after", "surface max after"},
                         {}};
     for (const auto& [name, t] : (*report)["targets"].items())
       targets.rows.push_back({name, mm(t["before"]["rmse_mm"]), mm(t["after"]["rmse_mm"]),
-                              t["rmse_change_percent"].is_number() ? fmt::format("{:+.1f} %", t["rmse_change_percent"].get<double>()) : "–",
-                              mm(t["before"]["max_error_mm"]), mm(t["after"]["max_error_mm"]), mm(t["after"]["surface_rmse_mm"]),
-                              mm(t["after"]["surface_max_error_mm"])});
+                              t["rmse_change_percent"].is_number()
+                                  ? fmt::format("{:+.1f} %", t["rmse_change_percent"].get<double>())
+                                  : "–",
+                              mm(t["before"]["max_error_mm"]), mm(t["after"]["max_error_mm"]),
+                              mm(t["after"]["surface_rmse_mm"]), mm(t["after"]["surface_max_error_mm"])});
     out.push_back(std::move(targets));
   }
   ReportTable collisions{"Collisions", {"between", "clearance before (mm)", "at (mm)"}, {}};
@@ -206,13 +221,16 @@ std::vector<ReportTable> behaviour_tables(const StageContext& ctx)
     std::string between;
     for (const Json& n : c["between"]) between += (between.empty() ? "" : " and ") + n.get<std::string>();
     std::string at;
-    for (const Json& v : c["at_mm"]) at += (at.empty() ? "" : ", ") + (v.is_number() ? fixed(v.get<double>(), 1) : std::string("–"));
+    for (const Json& v : c["at_mm"])
+      at += (at.empty() ? "" : ", ") + (v.is_number() ? fixed(v.get<double>(), 1) : std::string("–"));
     collisions.rows.push_back({between, mm(c["clearance_mm"]), "(" + at + ")"});
   }
   if (collisions.rows.empty()) collisions.rows.push_back({"none: every fiber was clear", "", ""});
   out.push_back(std::move(collisions));
-  ReportTable moves{fmt::format("Collide: smallest clearance {} → {} mm (asked {} mm); {} round(s){}", mm((*report)["smallest_clearance_mm"].value("before", Json())),
-                                mm((*report)["smallest_clearance_mm"].value("after", Json())), mm((*report)["clearance_mm"]), (*report)["rounds"].get<int>(),
+  ReportTable moves{fmt::format("Collide: smallest clearance {} → {} mm (asked {} mm); {} round(s){}",
+                                mm((*report)["smallest_clearance_mm"].value("before", Json())),
+                                mm((*report)["smallest_clearance_mm"].value("after", Json())),
+                                mm((*report)["clearance_mm"]), (*report)["rounds"].get<int>(),
                                 (*report)["reoptimized"].get<bool>() ? ", optimized again" : ""),
                     {"fiber", "largest control point move (mm)", "largest tangent change (mm)"},
                     {}};
@@ -224,7 +242,8 @@ std::vector<ReportTable> behaviour_tables(const StageContext& ctx)
   }
   out.push_back(std::move(moves));
   // Each fiber's tightest bend as it will be cast, against the muscle's limit.
-  ReportTable bends{fmt::format("Bend radius: each fiber's smallest, as built (the muscle takes {} mm)", mm((*report)["min_bend_radius_mm"])),
+  ReportTable bends{fmt::format("Bend radius: each fiber's smallest, as built (the muscle takes {} mm)",
+                                mm((*report)["min_bend_radius_mm"])),
                     {"fiber", "smallest bend radius (mm)", "at (mm)", "along the fiber (mm)"},
                     {}};
   for (const auto& [fiber, b] : (*report)["bends"].items()) {
@@ -245,19 +264,20 @@ std::vector<ReportTable> behaviour_tables(const StageContext& ctx)
 std::optional<ReportTable> optimization_table(const StageContext& ctx, std::vector<std::string>& warnings)
 {
   const auto report = json_if_any(ctx.upstream("optimize", "report.json"));
-  if (!report || !report->value("optimized", false) || !report->contains("targets") || !(*report)["targets"].is_object() ||
-      (*report)["targets"].empty())
+  if (!report || !report->value("optimized", false) || !report->contains("targets") ||
+      !(*report)["targets"].is_object() || (*report)["targets"].empty())
     return std::nullopt;
   for (const Json& w : report->value("warnings", Json::array()))
     if (w.is_string()) warnings.push_back(w.get<std::string>());
   const auto number = [](const Json& j, const char* key, int digits, const std::string& unit = "") {
-    return j.is_object() && j.contains(key) && j[key].is_number() ? fixed(j[key].get<double>(), digits) + unit : std::string("–");
+    return j.is_object() && j.contains(key) && j[key].is_number() ? fixed(j[key].get<double>(), digits) + unit
+                                                                  : std::string("–");
   };
   ReportTable t{fmt::format("Optimization: {} after {} iterations ({})", report->value("termination", std::string("?")),
                             report->value("iterations", 0), report->value("message", std::string())),
                 {"target", "RMSE at the start (mm)", "RMSE at the end (mm)", "reached"},
                 {}};
-  std::vector<std::string> fibers;  // every target's report names every fiber's pressure
+  std::vector<std::string> fibers; // every target's report names every fiber's pressure
   const Json& first = (*report)["targets"].begin().value();
   if (first.contains("pressure_kPa") && first["pressure_kPa"].is_object())
     for (const auto& [fiber, p] : first["pressure_kPa"].items()) {
@@ -271,18 +291,20 @@ std::optional<ReportTable> optimization_table(const StageContext& ctx, std::vect
       for (const Json& p : target["poses"])
         if (p.is_object() && p.contains("asked_rotation_deg") && p["asked_rotation_deg"].is_number() &&
             p.contains("rotation_about_asked_axis_deg") && p["rotation_about_asked_axis_deg"].is_number())
-          out += fmt::format("{}{:.1f}° of {:.1f}° ({})", out.empty() ? "" : "; ", p["rotation_about_asked_axis_deg"].get<double>(),
-                             p["asked_rotation_deg"].get<double>(), p.value("place", std::string("?")));
+          out += fmt::format("{}{:.1f}° of {:.1f}° ({})", out.empty() ? "" : "; ",
+                             p["rotation_about_asked_axis_deg"].get<double>(), p["asked_rotation_deg"].get<double>(),
+                             p.value("place", std::string("?")));
     return out;
   };
   bool any_turn = false;
   for (const auto& [name, target] : (*report)["targets"].items()) any_turn = any_turn || !turns(target).empty();
   if (any_turn) t.header.insert(t.header.begin() + 4, "turn reached");
   for (const auto& [name, target] : (*report)["targets"].items()) {
-    std::vector<std::string> row{name, number(target.value("start", Json::object()), "rmse_mm", 3), number(target, "rmse_mm", 3),
-                                 number(target, "reached_percent", 0, " %")};
+    std::vector<std::string> row{name, number(target.value("start", Json::object()), "rmse_mm", 3),
+                                 number(target, "rmse_mm", 3), number(target, "reached_percent", 0, " %")};
     if (any_turn) row.push_back(turns(target).empty() ? "–" : turns(target));
-    for (const std::string& f : fibers) row.push_back(number(target.value("pressure_kPa", Json::object()), f.c_str(), 1));
+    for (const std::string& f : fibers)
+      row.push_back(number(target.value("pressure_kPa", Json::object()), f.c_str(), 1));
     t.rows.push_back(std::move(row));
   }
   return t;
@@ -300,7 +322,9 @@ std::optional<ReportPlot> optimization_history(const StageContext& ctx)
   std::vector<std::string> columns;
   std::istringstream names(header);
   for (std::string c; std::getline(names, c, ',');) columns.push_back(c);
-  const auto column = [&](const std::string& name) { return std::find(columns.begin(), columns.end(), name) - columns.begin(); };
+  const auto column = [&](const std::string& name) {
+    return std::find(columns.begin(), columns.end(), name) - columns.begin();
+  };
   const auto iteration = column("iteration"), objective = column("objective"), distance = column("distance");
   if (std::max({iteration, objective, distance}) >= std::ssize(columns)) return std::nullopt;
   ReportPlot plot{"Optimization", "iteration", "objective", {{"objective", {}}, {"distance term", {}}}, true};
@@ -324,7 +348,8 @@ std::string report(const StageContext& ctx, const Json& molds, const Json& parts
   const Design& d = ctx.design;
   const auto load = [&](const std::string& file) { return import_surface(ctx.upstream("molds", file), units::mm); };
   std::vector<ReportMesh> meshes;
-  meshes.push_back({"groove body (shot 1)", load("groove-body.stl"), {0.93F, 0.55F, 0.45F}, true, Eigen::Vector3d::Zero()});
+  meshes.push_back(
+      {"groove body (shot 1)", load("groove-body.stl"), {0.93F, 0.55F, 0.45F}, true, Eigen::Vector3d::Zero()});
   double width = 0, height = 0;
   for (const auto& [name, info] : molds["parts"].items()) {
     const Eigen::Vector3d size(info["size_mm"][0], info["size_mm"][1], info["size_mm"][2]);
@@ -332,23 +357,30 @@ std::string report(const StageContext& ctx, const Json& molds, const Json& parts
     height = std::max(height, size.minCoeff() * units::mm);
   }
   const Eigen::Vector3d pull = d.mold.pull.normalized();
-  const Eigen::Vector3d aside = (pull.cross(Eigen::Vector3d::UnitZ()).norm() > 0.5 ? pull.cross(Eigen::Vector3d::UnitZ()) : pull.cross(Eigen::Vector3d::UnitX())).normalized();
+  const Eigen::Vector3d aside =
+      (pull.cross(Eigen::Vector3d::UnitZ()).norm() > 0.5 ? pull.cross(Eigen::Vector3d::UnitZ())
+                                                         : pull.cross(Eigen::Vector3d::UnitX()))
+          .normalized();
   for (const auto& [name, info] : molds["parts"].items()) {
     const bool shot1 = info["shot"] == "shot1", upper = name.find("upper") != std::string::npos;
     const Eigen::Vector3d offset = (upper ? 1.5 * height : 0.0) * pull + (shot1 ? 0.0 : 1.3 * width) * aside;
-    meshes.push_back({name, load(info["file"].get<std::string>()), upper ? std::array{0.55F, 0.65F, 0.8F} : std::array{0.45F, 0.55F, 0.7F},
-                      shot1, offset});
+    meshes.push_back({name, load(info["file"].get<std::string>()),
+                      upper ? std::array{0.55F, 0.65F, 0.8F} : std::array{0.45F, 0.55F, 0.7F}, shot1, offset});
   }
   const FibersFile fibers = read_fibers_json(ctx.upstream("collide", "fibers.json"));
   std::vector<ReportLine> lines = fiber_lines(fibers);
   add_bodies(ctx, -1.3 * width * aside, -1.3 * width * aside, meshes, lines);
 
-  ReportTable checks{"Mold parts", {"part", "files", "triangles", "volume (mL)", "thinnest wall (mm)", "fits the printer", "checks"}, {}};
+  ReportTable checks{"Mold parts",
+                     {"part", "files", "triangles", "volume (mL)", "thinnest wall (mm)", "fits the printer", "checks"},
+                     {}};
   for (const Json& p : parts) {
     std::string files;
     for (const Json& f : p["files"]) files += (files.empty() ? "" : ", ") + f.get<std::string>();
-    checks.rows.push_back({p["name"], files, std::to_string(p["triangles"].get<long>()), fixed(p["volume_mL"], 2), fixed(p["min_wall_mm"], 2),
-                           p["fits_printer_as_placed"].get<bool>() ? "lying flat" : "turned", p["checks_passed"].get<bool>() ? "passed" : "FAILED"});
+    checks.rows.push_back({p["name"], files, std::to_string(p["triangles"].get<long>()), fixed(p["volume_mL"], 2),
+                           fixed(p["min_wall_mm"], 2),
+                           p["fits_printer_as_placed"].get<bool>() ? "lying flat" : "turned",
+                           p["checks_passed"].get<bool>() ? "passed" : "FAILED"});
   }
   ReportTable silicone{"Silicone and its fill (simulated: rising level by level from the sprues)",
                        {"shot", "volume (mL)", "mass (g)", "sprues", "vents", "fill reached", "air trapped (mm³)"},
@@ -356,8 +388,10 @@ std::string report(const StageContext& ctx, const Json& molds, const Json& parts
   for (const auto& [shot, info] : shots.items()) {
     const Json& f = info["fill"];
     silicone.rows.push_back({shot, fixed(info["silicone_volume_mL"], 2), fixed(info["silicone_mass_g"], 2),
-                             fmt::format("{} from {}", f["sprues"].size(), f["sprues"].empty() ? "" : f["sprues"][0]["from"].get<std::string>()),
-                             std::to_string(f["vents"].size()), fixed(f["reachable_percent"], 1) + " %", fixed(f["trapped_air_mm3"], 2)});
+                             fmt::format("{} from {}", f["sprues"].size(),
+                                         f["sprues"].empty() ? "" : f["sprues"][0]["from"].get<std::string>()),
+                             std::to_string(f["vents"].size()), fixed(f["reachable_percent"], 1) + " %",
+                             fixed(f["trapped_air_mm3"], 2)});
   }
   std::vector<std::string> warnings;
   std::vector<ReportTable> tables;
@@ -383,31 +417,39 @@ void ExportStage::run(StageContext& ctx) const
     Json files = Json::array();
     for (const std::string& format : d.export_.formats) {
       const std::string file = name + "." + format;
-      if (format == "3mf") write_3mf(ctx.output_dir / file, placed.part, name);
-      else write_stl(ctx.output_dir / file, placed.part, fmt::format("fibermold {} {} (mm)", d.design.name, name));
+      if (format == "3mf")
+        write_3mf(ctx.output_dir / file, placed.part, name);
+      else
+        write_stl(ctx.output_dir / file, placed.part, fmt::format("fibermold {} {} (mm)", d.design.name, name));
       files.push_back(file);
     }
-    parts.push_back({{"name", name},
-                     {"shot", info["shot"]},
-                     {"file", files[0]},
-                     {"files", files},
-                     {"size_mm", {placed.size.x() / units::mm, placed.size.y() / units::mm, placed.size.z() / units::mm}},
-                     {"lies_on_mm2", placed.flat_area / 1e-6},
-                     {"fits_printer_as_placed", placed.fits},
-                     {"volume_mL", info["volume_mL"]},
-                     {"triangles", placed.part.num_faces()},
-                     {"min_wall_mm", info["min_wall_mm"]},
-                     {"checks_passed", info["checks_passed"]},
-                     {"from_body_frame", placement_json(placed)}});
+    parts.push_back(
+        {{"name", name},
+         {"shot", info["shot"]},
+         {"file", files[0]},
+         {"files", files},
+         {"size_mm", {placed.size.x() / units::mm, placed.size.y() / units::mm, placed.size.z() / units::mm}},
+         {"lies_on_mm2", placed.flat_area / 1e-6},
+         {"fits_printer_as_placed", placed.fits},
+         {"volume_mL", info["volume_mL"]},
+         {"triangles", placed.part.num_faces()},
+         {"min_wall_mm", info["min_wall_mm"]},
+         {"checks_passed", info["checks_passed"]},
+         {"from_body_frame", placement_json(placed)}});
     if (!placed.fits)
-      ctx.log.warn("part {} does not fit the printer lying flat; its best fit turns it: axes {}", name, info["print_axes"].dump());
+      ctx.log.warn("part {} does not fit the printer lying flat; its best fit turns it: axes {}", name,
+                   info["print_axes"].dump());
   }
   Json shots = Json::object();
   for (const auto& [shot, info] : molds["shots"].items())
-    shots[shot] = {{"silicone_volume_mL", info["silicone_volume_mL"]}, {"silicone_mass_g", info["silicone_mass_g"]}, {"fill", info["fill"]}};
-  const Json manifest{{"design", d.design.name}, {"units", "mm"}, {"voxel_mm", molds["voxel_mm"]}, {"parts", parts}, {"shots", shots}};
+    shots[shot] = {{"silicone_volume_mL", info["silicone_volume_mL"]},
+                   {"silicone_mass_g", info["silicone_mass_g"]},
+                   {"fill", info["fill"]}};
+  const Json manifest{
+      {"design", d.design.name}, {"units", "mm"}, {"voxel_mm", molds["voxel_mm"]}, {"parts", parts}, {"shots", shots}};
   write_json_atomic(ctx.output_dir / "manifest.json", manifest);
-  write_file_atomic(ctx.output_dir / "README.txt", casting_guide(d.design.name, molds["shots"], d.export_.formats.front()) + muscle_bends_text(ctx));
+  write_file_atomic(ctx.output_dir / "README.txt",
+                    casting_guide(d.design.name, molds["shots"], d.export_.formats.front()) + muscle_bends_text(ctx));
   ctx.progress.checkpoint(-1, "writing the report");
   write_file_atomic(ctx.output_dir / "report.html", report(ctx, molds, parts, shots));
 }

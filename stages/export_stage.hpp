@@ -14,8 +14,16 @@ public:
   std::string name() const override { return "export"; }
   std::vector<std::string> upstream() const override { return {"mesh", "targets", "optimize", "collide", "molds"}; }
   /// The report shows the tracking curves and names the targets.
-  std::vector<std::string> design_keys() const override { return {"design.name", "export", "tracking_curve", "target"}; }
-  int version() const override { return 6; }  ///< 2: the fill in the manifest and README.txt, parts' transforms; 3: no timings in report.html; 4: the optimization table and the warnings banner; 5: each target drawn beside the robot, the turns reached; 6: the bend radius table
+  std::vector<std::string> design_keys() const override
+  {
+    return {"design.name", "export", "tracking_curve", "target"};
+  }
+  int version() const override
+  {
+    return 6;
+  } ///< 2: the fill in the manifest and README.txt, parts' transforms; 3: no timings in report.html; 4: the
+    ///< optimization table and the warnings banner; 5: each target drawn beside the robot, the turns reached; 6: the
+    ///< bend radius table
   void run(StageContext& ctx) const override;
 };
 

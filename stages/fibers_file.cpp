@@ -23,7 +23,9 @@ Json to_mm(const std::vector<Eigen::Vector3d>& v)
 std::vector<Eigen::Vector3d> from_mm(const Json& j)
 {
   std::vector<Eigen::Vector3d> out;
-  for (const Json& p : j) out.emplace_back(p.at(0).get<double>() * units::mm, p.at(1).get<double>() * units::mm, p.at(2).get<double>() * units::mm);
+  for (const Json& p : j)
+    out.emplace_back(p.at(0).get<double>() * units::mm, p.at(1).get<double>() * units::mm,
+                     p.at(2).get<double>() * units::mm);
   return out;
 }
 } // namespace
@@ -35,7 +37,8 @@ std::string fibers_json(const FibersFile& f)
     const Route& r = f.routing.routes[k];
     Json pressures = Json::object();
     for (std::size_t t = 0; t < f.targets.size(); ++t)
-      pressures[f.targets[t]] = f.routing.pressures(static_cast<Eigen::Index>(t), static_cast<Eigen::Index>(k)) / units::kPa;
+      pressures[f.targets[t]] =
+          f.routing.pressures(static_cast<Eigen::Index>(t), static_cast<Eigen::Index>(k)) / units::kPa;
     fibers.push_back({{"name", r.name},
                       {"points_mm", to_mm(r.points)},
                       {"tangents_mm", to_mm(r.tangents)},
@@ -52,7 +55,9 @@ FibersFile read_fibers_json(const std::filesystem::path& path)
     FibersFile f;
     f.optimized = j.at("optimized").get<bool>();
     const Json& fibers = j.at("fibers");
-    for (const Json& fb : fibers) f.routing.routes.push_back({fb.at("name").get<std::string>(), from_mm(fb.at("points_mm")), from_mm(fb.at("tangents_mm"))});
+    for (const Json& fb : fibers)
+      f.routing.routes.push_back(
+          {fb.at("name").get<std::string>(), from_mm(fb.at("points_mm")), from_mm(fb.at("tangents_mm"))});
     if (!fibers.empty())
       for (const auto& [name, value] : fibers.front().at("pressure_kPa").items()) f.targets.push_back(name);
     f.routing.pressures.resize(static_cast<Eigen::Index>(f.targets.size()), static_cast<Eigen::Index>(fibers.size()));

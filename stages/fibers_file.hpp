@@ -11,8 +11,8 @@
 namespace fibermold {
 
 struct FibersFile {
-  Routing routing;                   ///< SI
-  std::vector<std::string> targets;  ///< names of the pressure matrix's rows
+  Routing routing;                  ///< SI
+  std::vector<std::string> targets; ///< names of the pressure matrix's rows
   bool optimized = false;
 };
 

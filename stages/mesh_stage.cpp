@@ -18,6 +18,7 @@
 #include "mesh/surface_import.hpp"
 #include "mesh/surface_repair.hpp"
 #include "mesh/volume_tolerance.hpp"
+#include "stages/design_mesh.hpp"
 #include "stages/design_simulation.hpp"
 #include "stages/molds_stage.hpp"
 #include "stages/optimize_stage.hpp"
@@ -31,92 +32,22 @@ namespace {
 using Clock = std::chrono::steady_clock;
 double since(Clock::time_point t) { return std::chrono::duration<double>(Clock::now() - t).count(); }
 
-/// Refuses an edge length that would make more than [mesh] max_tets tets (wrong units, typically),
-/// before any remeshing or TetGen run can take all memory.
-/// Returns the estimate.
-double require_mesh_size(const Design& d, const SurfaceMesh& surface, double volume, double edge,
-                         SurfaceTriangles policy, const std::string& key = "[mesh].edge_length")
-{
-  const double tets = expected_tets(volume, edge, policy, surface);
-  if (tets > d.mesh.max_tets)
-    throw InputError(
-        design_problem(d, key,
-                       fmt::format("{}{:.4g} mm for a body of {:.4g} mm³ would make about {:.3g} tets, more than "
-                                   "[mesh].max_tets = {}; raise edge_length, or check [design].units",
-                                   key == "[optimize].refine" ? "the refined mesh's edge length, " : "",
-                                   edge / units::mm, volume / 1e-9, tets, d.mesh.max_tets)));
-  return tets;
-}
-
-/// The surface treatment of the refined mesh (optimize's and simulate's refine) at `edge`: remeshed
-/// where the design remeshes it or it is dense for the edge, split otherwise (its own triangles
-/// kept would hold the mesh at their size).
-SurfaceTriangles refined_policy(const Design& d, const SurfaceMesh& surface, double edge)
-{
-  const SurfaceTriangles policy =
-      d.mesh.surface_triangles == SurfaceTriangles::remesh ? SurfaceTriangles::remesh : SurfaceTriangles::automatic;
-  return surface_treatment(policy, surface, edge) == SurfaceTriangles::keep ? SurfaceTriangles::split : policy;
-}
-
-/// A closed void inside the body cannot be cast in a two-part mold: nothing would hold it open
-/// (it takes a core, which fibermold does not make).
-void require_castable(const SurfaceCheck& check, const SurfaceMesh& surface)
-{
-  std::vector<Diagnostic> diagnostics;
-  for (const SurfaceCavity& c : check.cavities)
-    diagnostics.push_back({surface.source, 0, 0, "",
-                           fmt::format("surface {} has a closed internal cavity of {:.4g} mm³ around ({:.1f}, {:.1f}, {:.1f}) mm: a "
-                                       "two-part mold cannot cast it (the void would need a core to hold it, which fibermold does "
-                                       "not make); fill it, or open it to the outside through the skin",
-                                       surface.source.filename().string(), c.volume / 1e-9, c.centre.x() / units::mm,
-                                       c.centre.y() / units::mm, c.centre.z() / units::mm)});
-  if (!diagnostics.empty()) throw InputError(std::move(diagnostics));
-}
-
-/// Import, check, and repair when asked; throws InputError when the result cannot be meshed or cast.
-SurfaceMesh prepared_surface(const Design& d, SurfaceCheck& check, RepairReport& repair, nlohmann::json& seconds)
-{
-  auto t = Clock::now();
-  SurfaceMesh surface = import_surface(d.design.surface, d.design.surface_scale);
-  seconds["import"] = since(t);
-  t = Clock::now();
-  check = check_surface(surface);
-  seconds["check"] = since(t);
-  if (d.mesh.repair) {
-    t = Clock::now();
-    surface = repair_surface(surface, {}, repair);
-    check = check_surface(surface);
-    seconds["repair"] = since(t);
-  }
-  require_valid_surface(check, surface, d.mesh.repair);
-  require_castable(check, surface);
-  return surface;
-}
-
-/// TetGen's options for the design at `edge` (mesh_body sets whether the surface is kept).
-TetOptions tet_options(const Design& d, double edge)
-{
-  return {edge, d.mesh.radius_edge_ratio, d.mesh.min_dihedral_deg, d.sim.basis == BasisKind::fem_p2, true};
-}
-
 /// The share of tets outside the quality bounds above which the mesh stage warns.
 constexpr double kQualityMissWarning = 0.01;
 
-nlohmann::json point_mm(const Eigen::Vector3d& p)
-{
-  return {p.x() / units::mm, p.y() / units::mm, p.z() / units::mm};
-}
+nlohmann::json point_mm(const Eigen::Vector3d& p) { return {p.x() / units::mm, p.y() / units::mm, p.z() / units::mm}; }
 
 /// How far the mesh's surface is from the input's. Split: the points TetGen added on it (they lie
 /// on its triangles, 0 up to round-off). Remeshed: both ways, and the input vertices farther than
 /// kFeatureLoss × the edge length from the mesh's surface (a feature the edge length cannot hold).
 struct SurfaceFollowing {
   Eigen::Index points_added = 0;
-  double deviation = 0;  ///< m, the largest distance either way
+  double deviation = 0; ///< m, the largest distance either way
   SurfaceDeviation remeshed;
 };
 constexpr double kFeatureLoss = 0.25;
-SurfaceFollowing surface_following(const SurfaceMesh& input, const MeshedSurface& meshed, const TetMesh& mesh, double edge)
+SurfaceFollowing surface_following(const SurfaceMesh& input, const MeshedSurface& meshed, const TetMesh& mesh,
+                                   double edge)
 {
   SurfaceFollowing f;
   if (meshed.treatment == SurfaceTriangles::remesh) {
@@ -125,7 +56,8 @@ SurfaceFollowing surface_following(const SurfaceMesh& input, const MeshedSurface
     return f;
   }
   std::vector<bool> on_surface(static_cast<std::size_t>(mesh.nodes.rows()), false);
-  for (Eigen::Index i = 0; i < mesh.boundary_faces.size(); ++i) on_surface[static_cast<std::size_t>(mesh.boundary_faces(i))] = true;
+  for (Eigen::Index i = 0; i < mesh.boundary_faces.size(); ++i)
+    on_surface[static_cast<std::size_t>(mesh.boundary_faces(i))] = true;
   const SurfaceDistance distance(input.vertices, input.faces);
   for (Eigen::Index v = input.num_vertices(); v < mesh.nodes.rows(); ++v) {
     if (!on_surface[static_cast<std::size_t>(v)]) continue;
@@ -171,16 +103,20 @@ void log_treatment(StageContext& ctx, const SurfaceMesh& input, const BodyMesh& 
     return;
   }
   if (meshed.treatment == SurfaceTriangles::split)
-    ctx.log.info("surface: its longest edge is {:.3g} mm, {:.2g}× the edge length: TetGen splits its triangles to the edge length",
+    ctx.log.info("surface: its longest edge is {:.3g} mm, {:.2g}× the edge length: TetGen splits its triangles to the "
+                 "edge length",
                  longest_edge(input) / units::mm, longest_edge(input) / edge);
   if (meshed.treatment == SurfaceTriangles::remesh)
-    ctx.log.info("surface: its mean edge is {:.3g} mm, {:.2g}× the edge length: remeshed to it, {} → {} faces ({} sharp edges kept)",
+    ctx.log.info("surface: its mean edge is {:.3g} mm, {:.2g}× the edge length: remeshed to it, {} → {} faces ({} "
+                 "sharp edges kept)",
                  mean_edge_length(input) / units::mm, mean_edge_length(input) / edge, input.num_faces(),
                  meshed.surface.num_faces(), meshed.remeshing.sharp_edges);
   // Kept triangles well under the edge length hold the mesh finer than asked (auto remeshes below 0.5×).
   if (meshed.treatment == SurfaceTriangles::keep && mean_edge_length(input) < 0.75 * edge)
-    ctx.log.warn("surface: its triangles are kept and their mean edge, {:.3g} mm, is {:.2g}× the edge length: the mesh comes out "
-                 "finer than asked (slower, not less accurate); surface_triangles = \"remesh\" coarsens it to [mesh] edge_length",
+    ctx.log.warn("surface: its triangles are kept and their mean edge, {:.3g} mm, is {:.2g}× the edge length: the mesh "
+                 "comes out "
+                 "finer than asked (slower, not less accurate); surface_triangles = \"remesh\" coarsens it to [mesh] "
+                 "edge_length",
                  mean_edge_length(input) / units::mm, mean_edge_length(input) / edge);
 }
 
@@ -208,11 +144,12 @@ void log_sizing(StageContext& ctx, const BodyMesh& body, double edge)
 void warn_lost_features(StageContext& ctx, const MeshedSurface& meshed, const SurfaceFollowing& f, double edge)
 {
   if (meshed.treatment != SurfaceTriangles::remesh || f.remeshed.input_vertices_beyond == 0) return;
-  ctx.log.warn("surface: remeshed at {:.3g} mm edges, {} input vertices lie more than {:.3g} mm from the mesh's surface (up to "
-               "{:.3g} mm, near {}): features smaller than the edge length are lost there; a smaller [mesh] edge_length keeps "
-               "them, or surface_triangles = \"split\" meshes the input's own triangles",
-               edge / units::mm, f.remeshed.input_vertices_beyond, kFeatureLoss * edge / units::mm,
-               f.remeshed.input_from_remeshed / units::mm, format_mm(f.remeshed.worst_at));
+  ctx.log.warn(
+      "surface: remeshed at {:.3g} mm edges, {} input vertices lie more than {:.3g} mm from the mesh's surface (up to "
+      "{:.3g} mm, near {}): features smaller than the edge length are lost there; a smaller [mesh] edge_length keeps "
+      "them, or surface_triangles = \"split\" meshes the input's own triangles",
+      edge / units::mm, f.remeshed.input_vertices_beyond, kFeatureLoss * edge / units::mm,
+      f.remeshed.input_from_remeshed / units::mm, format_mm(f.remeshed.worst_at));
 }
 
 /// TetGen's mesh checked: no inverted tet, the volume of the surface it was given (to
@@ -226,12 +163,15 @@ void require_sound_mesh(const Design& d, StageContext& ctx, const TetMesh& mesh,
   // TetGen's dihedral bound is best effort: a few slivers (0.04–0.5 % of the examples' tets) are
   // reported, not warned about; more than 1 % is a mesh to look at.
   if (q.over_ratio + q.under_dihedral > kQualityMissWarning * static_cast<double>(mesh.num_tets()))
-    ctx.log.warn("mesh: {} of {} tets exceed the radius-edge ratio bound {} (up to {:.3g}, near {}) and {} have a dihedral angle "
+    ctx.log.warn("mesh: {} of {} tets exceed the radius-edge ratio bound {} (up to {:.3g}, near {}) and {} have a "
+                 "dihedral angle "
                  "under {}°{}",
-                 q.over_ratio, mesh.num_tets(), d.mesh.radius_edge_ratio, q.max_radius_edge_ratio, format_mm(q.worst_at),
-                 q.under_dihedral, d.mesh.min_dihedral_deg,
-                 split ? "" : ": TetGen cannot meet its bounds beside the surface's triangles, kept exactly; [mesh] surface_triangles = "
-                              "\"split\" lets it add points on the surface");
+                 q.over_ratio, mesh.num_tets(), d.mesh.radius_edge_ratio, q.max_radius_edge_ratio,
+                 format_mm(q.worst_at), q.under_dihedral, d.mesh.min_dihedral_deg,
+                 split ? ""
+                       : ": TetGen cannot meet its bounds beside the surface's triangles, kept exactly; [mesh] "
+                         "surface_triangles = "
+                         "\"split\" lets it add points on the surface");
   const double expected = signed_volume(meshed.surface);
   const double tolerance = volume_tolerance(mesh, meshed.surface, split ? following.deviation : 0);
   if (std::abs(q.volume - expected) > tolerance)
@@ -267,23 +207,9 @@ void write_mesh_vtu(const std::filesystem::path& path, const TetMesh& mesh)
 
 } // namespace
 
-std::vector<std::filesystem::path> MeshStage::input_files(const Design& d) const { return surface_files(d.design.surface); }
-
-double target_edge_length(const Design& design, double body_volume)
+std::vector<std::filesystem::path> MeshStage::input_files(const Design& d) const
 {
-  return design.mesh.edge_length ? *design.mesh.edge_length : default_edge_length(body_volume);
-}
-
-TetMesh refined_design_mesh(const Design& d, Progress& progress)
-{
-  SurfaceCheck check;
-  RepairReport repair;
-  nlohmann::json seconds;
-  const SurfaceMesh surface = prepared_surface(d, check, repair, seconds);
-  const double edge = kRefinedEdgeFactor * target_edge_length(d, check.volume);
-  const SurfaceTriangles policy = refined_policy(d, surface, edge);
-  require_mesh_size(d, surface, check.volume, edge, policy, "[optimize].refine");
-  return mesh_body(surface, policy, tet_options(d, edge), progress).mesh;
+  return surface_files(d.design.surface);
 }
 
 DesignSurfaceCheck check_design_surface(const Design& design)

@@ -39,14 +39,4 @@ struct DesignSurfaceCheck {
 /// what every stage would refuse of it. Throws InputError when it cannot be meshed.
 DesignSurfaceCheck check_design_surface(const Design& design);
 
-/// Target edge length: [mesh] edge_length, or one that fits about 5,000 regular tets in the body.
-double target_edge_length(const Design& design, double body_volume);
-
-/// The refined mesh's edge length, × the mesh's (`[optimize] refine`, `fibermold simulate --refine`).
-inline constexpr double kRefinedEdgeFactor = 0.5;
-
-/// The body meshed as the mesh stage meshes it, at kRefinedEdgeFactor × its edge length, the
-/// surface's triangles split or remeshed to that length. Throws InputError as the stage.
-TetMesh refined_design_mesh(const Design& design, Progress& progress);
-
 } // namespace fibermold

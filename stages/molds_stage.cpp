@@ -111,7 +111,8 @@ Json fill_report(const FillPlan& plan, double voxel, const TwoShotMolds& molds)
                       {"from", plan.ports.sprues[k].upward ? "above" : "below"},
                       {"opens_on_fill_region", static_cast<bool>(f.sprue_open[k])}});
   for (std::size_t k = 0; k < plan.ports.vents.size(); ++k)
-    vents.push_back({{"mouth_mm", vec_mm(molds.scaled(plan.ports.vents[k].mouth))}, {"opens_on_fill_region", static_cast<bool>(f.vent_open[k])}});
+    vents.push_back({{"mouth_mm", vec_mm(molds.scaled(plan.ports.vents[k].mouth))},
+                     {"opens_on_fill_region", static_cast<bool>(f.vent_open[k])}});
   return {{"voxel_mm", voxel / units::mm},
           {"fill_volume_mL", six_places(g3 * f.fill_volume / 1e-6)},
           {"reachable_percent", f.fill_volume > 0 ? six_places(100 * f.reachable_volume / f.fill_volume) : 0.0},
@@ -175,7 +176,8 @@ Json molds_report(const TwoShotMolds& molds, const Design& d)
 
 } // namespace
 
-void require_mold_grids(const Design& d, const SurfaceMesh& body, const std::vector<std::vector<Eigen::Vector3d>>& fibers)
+void require_mold_grids(const Design& d, const SurfaceMesh& body,
+                        const std::vector<std::vector<Eigen::Vector3d>>& fibers)
 {
   const double radius = groove_radius(d.muscle.model.diameter, d.mold);
   if (const auto problem = grid_budget_problem(estimate_grids(body, d.mold.voxel, radius, fibers), d.mold.voxel))
@@ -202,7 +204,8 @@ void MoldsStage::run(StageContext& ctx) const
   const Design& d = ctx.design;
   const MoldOptions& m = d.mold;
   if (m.parting && m.parting->normal.normalized().cross(m.pull.normalized()).norm() > 1e-6)
-    bad(d, "[mold].parting", "the parting plane's normal must be parallel to [mold].pull: the halves come apart along pull");
+    bad(d, "[mold].parting",
+        "the parting plane's normal must be parallel to [mold].pull: the halves come apart along pull");
 
   MoldJob job;
   const TetMesh mesh = load_tet_mesh(ctx.upstream("mesh", "body.tetmesh"));
@@ -222,14 +225,17 @@ void MoldsStage::run(StageContext& ctx) const
   job.exits = exit_stretches(d, skin, routes);
   require_mold_grids(d, job.body, require_grooves_fit(d, skin, routes, job.exits));
 
-  const MoldLog log{[&](const std::string& s) { ctx.log.info("{}", s); }, [&](const std::string& s) { ctx.log.warn("{}", s); }};
+  const MoldLog log{[&](const std::string& s) { ctx.log.info("{}", s); },
+                    [&](const std::string& s) { ctx.log.warn("{}", s); }};
   const TwoShotMolds molds = two_shot_molds(job, m, ctx.progress, log);
   if (!molds.failures.empty()) {
     std::string list;
     for (const auto& f : molds.failures) list += "\n  " + f;
-    throw std::runtime_error(fmt::format("{} mold part check(s) failed; no part written:{}", molds.failures.size(), list));
+    throw std::runtime_error(
+        fmt::format("{} mold part check(s) failed; no part written:{}", molds.failures.size(), list));
   }
-  for (const CheckedPart& p : molds.parts) write_stl(ctx.output_dir / (p.part.name + ".stl"), p.part.mesh, "fibermold " + p.part.name + " (mm)");
+  for (const CheckedPart& p : molds.parts)
+    write_stl(ctx.output_dir / (p.part.name + ".stl"), p.part.mesh, "fibermold " + p.part.name + " (mm)");
   write_stl(ctx.output_dir / "groove-body.stl", molds.groove.mesh, "fibermold groove body, shot 1 (mm)");
   write_json_atomic(ctx.output_dir / "report.json", molds_report(molds, d));
 }

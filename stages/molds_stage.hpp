@@ -5,8 +5,8 @@
 //           channels where the fibers leave the body for their ends and supply tubes.
 // Fiber routes come from collide/fibers.json (the [[fiber]] routes when [optimize] enabled =
 // false, given their clearance by collide all the same). Every part is checked (part_checks.hpp);
-// any failed check fails the stage and nothing is written. Outputs: molds/<shot>-lower.stl, <shot>-upper.stl (mm, in the body's frame),
-// groove-body.stl, report.json.
+// any failed check fails the stage and nothing is written. Outputs: molds/<shot>-lower.stl, <shot>-upper.stl (mm, in
+// the body's frame), groove-body.stl, report.json.
 
 #include "make/stage.hpp"
 #include "mesh/surface_distance.hpp"
@@ -18,7 +18,8 @@ namespace fibermold {
 
 /// Refuses (InputError on [mold].voxel) a voxel too fine for the body and its grooves along the
 /// polylines `fibers` (molds/grid_budget.hpp), before any carving; `check` asks it too.
-void require_mold_grids(const Design& d, const SurfaceMesh& body, const std::vector<std::vector<Eigen::Vector3d>>& fibers);
+void require_mold_grids(const Design& d, const SurfaceMesh& body,
+                        const std::vector<std::vector<Eigen::Vector3d>>& fibers);
 /// InputError at the fiber when a route's groove does not fit inside the body (molds' rule:
 /// groove_problem) off its `exits` (one per route); the routes' lines as the molds sample them.
 std::vector<std::vector<Eigen::Vector3d>> require_grooves_fit(const Design& d, const SurfaceDistance& skin,

@@ -15,9 +15,9 @@
 #include "optimize/clearance_barrier.hpp"
 #include "optimize/optimization_ending.hpp"
 #include "optimize/routing_optimizer.hpp"
+#include "stages/design_mesh.hpp"
 #include "stages/design_simulation.hpp"
 #include "stages/fibers_file.hpp"
-#include "stages/mesh_stage.hpp"
 #include "stages/routing_evaluation.hpp"
 #include "stages/skin_distance.hpp"
 #include "stages/target_poses.hpp"
@@ -55,9 +55,11 @@ bool keep_fibers_apart(StageContext& ctx, RoutingProblem& problem, const Surface
   if (start.routes.size() < 2) return false;
   measure = std::make_unique<FiberClearance>(design_clearance(d, skin, start.routes, start.routes));
   if (!measure->contacts(measure->lines(start.routes), d.collide.clearance, false).empty()) return false;
-  barrier = std::make_unique<ClearanceBarrier>(*measure, start.routes, d.collide.clearance, d.muscle.model.diameter / 2);
+  barrier =
+      std::make_unique<ClearanceBarrier>(*measure, start.routes, d.collide.clearance, d.muscle.model.diameter / 2);
   problem.set_clearance_barrier(barrier.get(), kClearanceBarrierWeight);
-  ctx.log.info("the fibers start clear of each other; a barrier keeps them {:.2f} mm apart", d.collide.clearance / units::mm);
+  ctx.log.info("the fibers start clear of each other; a barrier keeps them {:.2f} mm apart",
+               d.collide.clearance / units::mm);
   return true;
 }
 
@@ -88,14 +90,15 @@ private:
 };
 
 /// The routes and pressures optimized; first, with `route_only_iterations`, the routes alone at
-/// their starting pressures (reported as stage −1). At zero pressure a route has no effect, so an optimizer that turns a
-/// muscle down before its route does the job can stop there (the twisting bar: a straight muscle
-/// bends the bar, so the pressure falls to zero before a helix forms).
-RoutingResult optimize(const Design& d, RoutingProblem& problem, const MinimizerOptions& o, const RoutingCallback& on_iteration,
-                       Progress& progress)
+/// their starting pressures (reported as stage −1). At zero pressure a route has no effect, so an optimizer that turns
+/// a muscle down before its route does the job can stop there (the twisting bar: a straight muscle bends the bar, so
+/// the pressure falls to zero before a helix forms).
+RoutingResult optimize(const Design& d, RoutingProblem& problem, const MinimizerOptions& o,
+                       const RoutingCallback& on_iteration, Progress& progress)
 {
   const int route_only = d.optimize.route_only_iterations;
-  if (route_only == 0) return optimize_routing(problem, d.optimize.strategy, o, on_iteration, progress, actuator_mask(d));
+  if (route_only == 0)
+    return optimize_routing(problem, d.optimize.strategy, o, on_iteration, progress, actuator_mask(d));
   MinimizerOptions first = o;
   first.max_iterations = route_only;
   const ActuatorMask none = ActuatorMask::Constant(problem.num_targets(), problem.num_fibers(), false);
@@ -115,16 +118,18 @@ RoutingResult optimize(const Design& d, RoutingProblem& problem, const Minimizer
 /// optimization reports beside its own result and must beat or equal.
 struct Baseline {
   RoutingResult result;
-  nlohmann::ordered_json json;  ///< {objective, iterations, termination, targets: {name: {rmse_mm, max_error_mm, pressure_kPa}}}
+  nlohmann::ordered_json
+      json; ///< {objective, iterations, termination, targets: {name: {rmse_mm, max_error_mm, pressure_kPa}}}
 };
-Baseline first_guess_at_best_pressures(StageContext& ctx, DesignRouting& dr, const MinimizerOptions& o, const Routing& start)
+Baseline first_guess_at_best_pressures(StageContext& ctx, DesignRouting& dr, const MinimizerOptions& o,
+                                       const Routing& start)
 {
   RoutingProblem& problem = *dr.problem;
   MinimizerOptions pressures_only = o;
   pressures_only.max_iterations = std::min(o.max_iterations, kBaselineIterations);
   const RoutingCallback log = [&](int, const MinimizerIteration& it, const RoutingTerms& terms) {
-    ctx.log.info("first guess, pressures only, iteration {}: objective {:.4g} (distance {:.4g})", it.iteration, terms.total,
-                 terms.distance);
+    ctx.log.info("first guess, pressures only, iteration {}: objective {:.4g} (distance {:.4g})", it.iteration,
+                 terms.total, terms.distance);
   };
   Baseline b{optimize_pressures(problem, pressures_only, log, ctx.progress, actuator_mask(ctx.design)), {}};
   problem.set_base(start);
@@ -135,13 +140,16 @@ Baseline first_guess_at_best_pressures(StageContext& ctx, DesignRouting& dr, con
     nlohmann::ordered_json pressures = nlohmann::ordered_json::object();
     for (int f = 0; f < problem.num_fibers(); ++f)
       pressures[b.result.routing.routes[f].name] = b.result.routing.pressures(t, f) / units::kPa;
-    targets[dr.target_names[t]] = {{"rmse_mm", e.rmse / units::mm}, {"max_error_mm", e.max / units::mm}, {"pressure_kPa", pressures}};
+    targets[dr.target_names[t]] = {
+        {"rmse_mm", e.rmse / units::mm}, {"max_error_mm", e.max / units::mm}, {"pressure_kPa", pressures}};
     ctx.log.info("target {}: the first guess at its best pressures: RMSE {:.3f} mm, max {:.3f} mm", dr.target_names[t],
                  e.rmse / units::mm, e.max / units::mm);
   }
   // The optimization's solves start from the start's equilibria again, as without this run.
   for (int t = 0; t < problem.num_targets(); ++t) problem.equilibrium(start, t);
-  b.json = {{"objective", b.result.value}, {"iterations", b.result.iterations}, {"termination", choice_name(b.result.termination)},
+  b.json = {{"objective", b.result.value},
+            {"iterations", b.result.iterations},
+            {"termination", choice_name(b.result.termination)},
             {"targets", targets}};
   return b;
 }
@@ -161,15 +169,15 @@ std::string keep_the_better(StageContext& ctx, RoutingProblem& problem, Baseline
   try {
     first_guess = problem.evaluate(problem.variables(baseline.result.routing));
   } catch (const Interrupted&) {
-    result.interrupted = true;  // the caller keeps the best design so far
+    result.interrupted = true; // the caller keeps the best design so far
   }
   problem.set_base(base);
   if (std::isfinite(first_guess)) baseline.json["objective"] = first_guess;
   if (!(first_guess < result.value)) return {};
-  const std::string warning = fmt::format(
-      "the optimizer ended at an objective of {:.4g}, above the first guess's at its best pressures ({:.4g}): the first guess is "
-      "kept; start the routes elsewhere or raise [optimize] max_iterations",
-      result.value, first_guess);
+  const std::string warning = fmt::format("the optimizer ended at an objective of {:.4g}, above the first guess's at "
+                                          "its best pressures ({:.4g}): the first guess is "
+                                          "kept; start the routes elsewhere or raise [optimize] max_iterations",
+                                          result.value, first_guess);
   ctx.log.warn("{}", warning);
   result.routing = baseline.result.routing;
   result.value = first_guess;
@@ -191,9 +199,9 @@ nlohmann::ordered_json newton_json(RoutingProblem& problem)
 /// Target t's entry in report.json, with its deformed state written: the errors at equilibrium x
 /// of the optimized routing `r` against those at the start, the pressures, and the errors of a
 /// solve from rest.
-nlohmann::ordered_json target_report(StageContext& ctx, DesignRouting& dr, const Routing& r, int t, const Eigen::VectorXd& x,
-                                     const TargetErrors& before, const TargetErrors& after, const TargetReach& reach,
-                                     const std::vector<ReachedPose>& reached)
+nlohmann::ordered_json target_report(StageContext& ctx, DesignRouting& dr, const Routing& r, int t,
+                                     const Eigen::VectorXd& x, const TargetErrors& before, const TargetErrors& after,
+                                     const TargetReach& reach, const std::vector<ReachedPose>& reached)
 {
   const Design& d = ctx.design;
   RoutingProblem& problem = *dr.problem;
@@ -222,7 +230,8 @@ nlohmann::ordered_json target_report(StageContext& ctx, DesignRouting& dr, const
   nlohmann::ordered_json poses = nlohmann::ordered_json::array();
   for (const ReachedPose& p : reached) poses.push_back(pose_report(p));
   entry["poses"] = std::move(poses);
-  ctx.log.info("target {}: RMSE {:.3f} mm (from {:.3f}), max {:.3f} mm (from {:.3f}) on the tracking curves; surface RMSE {:.3f} mm, max {:.3f} mm",
+  ctx.log.info("target {}: RMSE {:.3f} mm (from {:.3f}), max {:.3f} mm (from {:.3f}) on the tracking curves; surface "
+               "RMSE {:.3f} mm, max {:.3f} mm",
                name, after.rmse / units::mm, before.rmse / units::mm, after.max / units::mm, before.max / units::mm,
                after.surface_rmse / units::mm, after.surface_max / units::mm);
   return entry;
@@ -236,9 +245,10 @@ OptimizationEnding report_targets(StageContext& ctx, DesignRouting& dr, const Ro
   const Design& d = ctx.design;
   RoutingProblem& problem = *dr.problem;
   const int targets = problem.num_targets();
-  std::vector<Eigen::VectorXd> optimized;  // the equilibria the optimizer scored (warm-started)
+  std::vector<Eigen::VectorXd> optimized; // the equilibria the optimizer scored (warm-started)
   std::vector<TargetErrors> after;
-  // Where the optimized robot's regions and tracking curves' ends went; for a pose target, the angle reached of the angle asked.
+  // Where the optimized robot's regions and tracking curves' ends went; for a pose target, the angle reached of the
+  // angle asked.
   std::vector<std::vector<PosedRegion>> asked(static_cast<std::size_t>(targets));
   std::vector<std::vector<ReachedPose>> reached(static_cast<std::size_t>(targets));
   std::vector<std::vector<AngleReach>> angles(static_cast<std::size_t>(targets));
@@ -251,16 +261,16 @@ OptimizationEnding report_targets(StageContext& ctx, DesignRouting& dr, const Ro
     for (const ReachedPose& p : reached[t])
       if (p.asked) {
         angles[t].push_back({p.place, p.asked->angle, p.motion.angle_about(p.asked->axis)});
-        ctx.log.info("target {}: {} turned {:.2f}° of the {:.2f}° asked about ({:.3f}, {:.3f}, {:.3f})", dr.target_names[t], p.place,
-                     angles[t].back().reached / units::degree, p.asked->angle / units::degree, p.asked->axis.x(),
-                     p.asked->axis.y(), p.asked->axis.z());
+        ctx.log.info("target {}: {} turned {:.2f}° of the {:.2f}° asked about ({:.3f}, {:.3f}, {:.3f})",
+                     dr.target_names[t], p.place, angles[t].back().reached / units::degree,
+                     p.asked->angle / units::degree, p.asked->axis.x(), p.asked->axis.y(), p.asked->axis.z());
       }
   }
   problem.forget_states();
   std::vector<std::string> fiber_names;
   for (const Fiber& f : d.fibers) fiber_names.push_back(f.name);
-  OptimizationEnding ending =
-      optimization_ending(result, actuator_mask(d), routing_settings(d), before, after, angles, dr.target_names, fiber_names);
+  OptimizationEnding ending = optimization_ending(result, actuator_mask(d), routing_settings(d), before, after, angles,
+                                                  dr.target_names, fiber_names);
   for (int t = 0; t < targets; ++t) {
     ctx.progress.checkpoint(1, "writing target " + dr.target_names[t]);
     per_target[dr.target_names[t]] =
@@ -275,7 +285,8 @@ void require_refinable(const Design& d, const TetMesh& mesh)
 {
   if (d.optimize.refine && 8.0 * static_cast<double>(mesh.num_tets()) > d.mesh.max_tets)
     bad(d, "[optimize].refine",
-        fmt::format("the refined mesh, at half the edge length, would make about {} tets, more than [mesh].max_tets = {}: raise "
+        fmt::format("the refined mesh, at half the edge length, would make about {} tets, more than [mesh].max_tets = "
+                    "{}: raise "
                     "max_tets or turn refine off",
                     8 * mesh.num_tets(), d.mesh.max_tets));
 }
@@ -301,13 +312,15 @@ void report_refinement(StageContext& ctx, DesignRouting& dr, const Routing& r, n
     Simulation fine(fine_mesh, simulation_options(d, fine_mesh));
     std::vector<Actuation> actuations;
     for (std::size_t f = 0; f < r.routes.size(); ++f)
-      actuations.push_back({r.routes[f].name, r.routes[f].points, r.routes[f].tangents, r.pressures(t, static_cast<Eigen::Index>(f))});
+      actuations.push_back(
+          {r.routes[f].name, r.routes[f].points, r.routes[f].tangents, r.pressures(t, static_cast<Eigen::Index>(f))});
     add_muscles(fine, d, model, actuations);
     Eigen::VectorXd x = fine.rest();
     const NewtonSummary summary = fine.solve(x, ctx.progress);
     if (!summary.converged) {
-      warnings.push_back(fmt::format("target {}: the refined solve ({} tets) did not reach equilibrium ({}); no discretization figure",
-                                     name, fine_mesh.num_tets(), summary.brief()));
+      warnings.push_back(
+          fmt::format("target {}: the refined solve ({} tets) did not reach equilibrium ({}); no discretization figure",
+                      name, fine_mesh.num_tets(), summary.brief()));
       ctx.log.warn("{}", warnings.back());
       continue;
     }
@@ -322,14 +335,16 @@ void report_refinement(StageContext& ctx, DesignRouting& dr, const Routing& r, n
                         {"surface_max_mm", f.surface_max / units::mm},
                         {"surface_rms_mm", f.surface_rms / units::mm},
                         {"seconds", seconds}};
-    ctx.log.info("target {}: on half the edge length ({} tets) the optimized robot's tracking curves move {:.3f} mm RMS, "
-                 "{:.3f} mm at most; its surface {:.3f} mm RMS, {:.3f} mm at most ({:.1f} s)",
-                 name, f.tets, f.curves_rms / units::mm, f.curves_max / units::mm, f.surface_rms / units::mm,
-                 f.surface_max / units::mm, seconds);
+    ctx.log.info(
+        "target {}: on half the edge length ({} tets) the optimized robot's tracking curves move {:.3f} mm RMS, "
+        "{:.3f} mm at most; its surface {:.3f} mm RMS, {:.3f} mm at most ({:.1f} s)",
+        name, f.tets, f.curves_rms / units::mm, f.curves_max / units::mm, f.surface_rms / units::mm,
+        f.surface_max / units::mm, seconds);
     const double error = entry.value("rmse_mm", 0.0) * units::mm;
     if (f.curves_rms > error) {
       warnings.push_back(fmt::format(
-          "target {}: on a mesh of half the edge length the optimized robot's tracking curves move {:.2f} mm RMS, more than its "
+          "target {}: on a mesh of half the edge length the optimized robot's tracking curves move {:.2f} mm RMS, more "
+          "than its "
           "error to the target ({:.2f} mm): that error is not resolved by the mesh; lower [mesh] edge_length",
           name, f.curves_rms / units::mm, error / units::mm));
       ctx.log.warn("{}", warnings.back());
@@ -341,10 +356,12 @@ void report_refinement(StageContext& ctx, DesignRouting& dr, const Routing& r, n
 std::string too_near_the_skin(const Design& d, double closest, const Eigen::Vector3d& where)
 {
   const SkinDistance need = skin_distance(d);
-  return fmt::format("the starting route passes {:.3f} mm from the skin at {}, where the optimizer keeps a fiber's centre line "
-                     "more than {:.3f} mm inside ({}): move the route {:.3f} mm or more inward there, or give a thinner muscle or {}",
-                     closest / units::mm, format_mm(where), need.distance / units::mm, need.terms, (need.distance - closest) / units::mm,
-                     need.groove_margin > 0 ? "a smaller [mold] groove_clearance or min_silicone" : "a smaller clearance");
+  return fmt::format(
+      "the starting route passes {:.3f} mm from the skin at {}, where the optimizer keeps a fiber's centre line "
+      "more than {:.3f} mm inside ({}): move the route {:.3f} mm or more inward there, or give a thinner muscle or {}",
+      closest / units::mm, format_mm(where), need.distance / units::mm, need.terms,
+      (need.distance - closest) / units::mm,
+      need.groove_margin > 0 ? "a smaller [mold] groove_clearance or min_silicone" : "a smaller clearance");
 }
 
 /// A starting route the skin barrier refuses (InputError at the fiber).
@@ -356,6 +373,19 @@ void require_start_inside(const Design& d, RoutingProblem& problem, const Routin
     bad(d, fmt::format("[fiber.{}]", d.fibers[f].name), too_near_the_skin(d, closest, where));
   // The start may differ from the [[fiber]] routes: fibers closer than the clearance are moved apart.
   require_bend_radius(d, start.routes, "the starting route, as moved apart from the other fibers,");
+}
+
+/// An interrupted run's best design and history, kept beside the outputs (which stay as they were).
+[[noreturn]] void keep_interrupted(StageContext& ctx, const FibersFile& fibers, const History& history, int iterations,
+                                   double objective)
+{
+  const fs::path kept = ctx.build_dir / "optimize.interrupted";
+  fs::create_directories(kept);
+  write_file_atomic(kept / "fibers.json", fibers_json(fibers));
+  write_file_atomic(kept / "history.csv", history.text());
+  ctx.log.warn("interrupted after {} iterations; the best design so far (objective {:.4g}) is in {}", iterations,
+               objective, kept.string());
+  throw Interrupted();
 }
 
 } // namespace
@@ -374,15 +404,18 @@ void require_optimizable(const Design& d, const SurfaceDistance& skin)
   for (const Fiber& f : d.fibers) {
     const HermiteSpline s(f.points, f.tangents);
     for (const Eigen::Vector3d& c : split_into_segments(s, segment_count(s, d.muscle.segments_per_length)).centres)
-      if (!skin.closest(c).inside) bad(d, fmt::format("[fiber.{}]", f.name), fmt::format("the fiber leaves the body at {}", format_mm(c)));
+      if (!skin.closest(c).inside)
+        bad(d, fmt::format("[fiber.{}]", f.name), fmt::format("the fiber leaves the body at {}", format_mm(c)));
   }
   const Routing start = starting_routing(d);
   const RoutingSettings settings = routing_settings(d);
   for (std::size_t f = 0; f < start.routes.size(); ++f) {
     Eigen::Vector3d where;
-    const double closest = route_skin_barrier(skin, settings, start.routes[f]).closest_approach(
-        HermiteSpline(start.routes[f].points, start.routes[f].tangents), where);
-    if (closest <= settings.skin_distance) bad(d, fmt::format("[fiber.{}]", d.fibers[f].name), too_near_the_skin(d, closest, where));
+    const double closest =
+        route_skin_barrier(skin, settings, start.routes[f])
+            .closest_approach(HermiteSpline(start.routes[f].points, start.routes[f].tangents), where);
+    if (closest <= settings.skin_distance)
+      bad(d, fmt::format("[fiber.{}]", d.fibers[f].name), too_near_the_skin(d, closest, where));
   }
   tracking_samples(d, skin);
 }
@@ -414,7 +447,8 @@ void OptimizeStage::run(StageContext& ctx) const
   const bool kept_apart = keep_fibers_apart(ctx, problem, *dr.skin, start, measure, barrier);
 
   std::vector<TargetErrors> before;
-  for (int t = 0; t < problem.num_targets(); ++t) before.push_back(target_errors(problem, dr.mesh, t, problem.equilibrium(start, t)));
+  for (int t = 0; t < problem.num_targets(); ++t)
+    before.push_back(target_errors(problem, dr.mesh, t, problem.equilibrium(start, t)));
   for (int t = 0; t < problem.num_targets(); ++t)
     ctx.log.info("target {}: at the start, RMSE {:.3f} mm, max {:.3f} mm on the tracking curves", names[t],
                  before[t].rmse / units::mm, before[t].max / units::mm);
@@ -431,29 +465,24 @@ void OptimizeStage::run(StageContext& ctx) const
     ++iterations;
     history.add(iterations, stage, it, terms, since(started));
     if (stage < 0) ++route_only_done;
-    const std::string what =
-        fmt::format("{}iteration {}: objective {:.4g} (distance {:.4g}), |∇| {:.2g}",
-                    stage < 0 ? "routes only, " : stages > 1 ? fmt::format("fiber {}/{}, ", stage + 1, stages) : "",
-                    it.iteration, terms.total, terms.distance, it.gradient_norm);
-    const double done = stage < 0 ? route_only_done : route_only_done + stage * std::max(1, o.max_iterations) + it.iteration;
+    const std::string what = fmt::format("{}iteration {}: objective {:.4g} (distance {:.4g}), |∇| {:.2g}",
+                                         stage < 0    ? "routes only, "
+                                         : stages > 1 ? fmt::format("fiber {}/{}, ", stage + 1, stages)
+                                                      : "",
+                                         it.iteration, terms.total, terms.distance, it.gradient_norm);
+    const double done =
+        stage < 0 ? route_only_done : route_only_done + stage * std::max(1, o.max_iterations) + it.iteration;
     ctx.progress.update(done / budget, what);
     ctx.log.info("{}", what);
   };
-  RoutingResult result = baseline.result.interrupted ? baseline.result : optimize(d, problem, o, on_iteration, ctx.progress);
+  RoutingResult result =
+      baseline.result.interrupted ? baseline.result : optimize(d, problem, o, on_iteration, ctx.progress);
   const std::string kept_first_guess = keep_the_better(ctx, problem, baseline, result);
   const FibersFile fibers{result.routing, names, true};
 
-  if (result.interrupted) {
-    const fs::path kept = ctx.build_dir / "optimize.interrupted";
-    fs::create_directories(kept);
-    write_file_atomic(kept / "fibers.json", fibers_json(fibers));
-    write_file_atomic(kept / "history.csv", history.text());
-    ctx.log.warn("interrupted after {} iterations; the best design so far (objective {:.4g}) is in {}",
-                 baseline.result.iterations + iterations, result.value, kept.string());
-    throw Interrupted();
-  }
-  ctx.log.info("{}: {} after {} iterations, {} evaluations", choice_name(result.termination), result.message, result.iterations,
-               result.evaluations);
+  if (result.interrupted) keep_interrupted(ctx, fibers, history, baseline.result.iterations + iterations, result.value);
+  ctx.log.info("{}: {} after {} iterations, {} evaluations", choice_name(result.termination), result.message,
+               result.iterations, result.evaluations);
 
   nlohmann::ordered_json per_target = nlohmann::ordered_json::object();
   OptimizationEnding ending = report_targets(ctx, dr, result, before, per_target);
@@ -478,8 +507,11 @@ void OptimizeStage::run(StageContext& ctx) const
       {"objective", result.value},
       {"newton_iterations", problem.newton().iterations},
       {"newton", newton_json(problem)},
-      {"seconds", {{"total", since(started)}, {"simulation", problem.seconds_simulation()}, {"adjoint", problem.seconds_adjoint()},
-                   {"model", problem.seconds_model()}}},
+      {"seconds",
+       {{"total", since(started)},
+        {"simulation", problem.seconds_simulation()},
+        {"adjoint", problem.seconds_adjoint()},
+        {"model", problem.seconds_model()}}},
       {"targets", per_target}};
   write_file_atomic(ctx.output_dir / "fibers.json", fibers_json(fibers));
   write_file_atomic(ctx.output_dir / "history.csv", history.text());

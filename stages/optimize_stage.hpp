@@ -25,8 +25,22 @@ public:
   {
     // smoothness: optimization_start; the surface and [mesh]: [optimize] refine meshes the body again;
     // groove_clearance, min_silicone: the skin distance (skin_distance.hpp)
-    return {"design.surface", "design.units", "mesh", "material", "sim", "fixed", "muscle", "fiber", "tracking_curve", "target",
-            "optimize", "collide.clearance", "collide.samples_per_mm", "collide.smoothness", "mold.groove_clearance", "mold.min_silicone"};
+    return {"design.surface",
+            "design.units",
+            "mesh",
+            "material",
+            "sim",
+            "fixed",
+            "muscle",
+            "fiber",
+            "tracking_curve",
+            "target",
+            "optimize",
+            "collide.clearance",
+            "collide.samples_per_mm",
+            "collide.smoothness",
+            "mold.groove_clearance",
+            "mold.min_silicone"};
   }
   /// 2: fibers moved apart before optimizing, kept apart throughout; 3: termination, warnings and reach in the
   /// report; 4: reached poses; 5: the bend radius barrier, bends in the report; 6: the bend barrier samples each

@@ -54,13 +54,15 @@ void require_bend_radius(const Design& d, const std::vector<Route>& routes, std:
   for (const Route& r : routes) {
     const SmallestBend b = smallest_bend(HermiteSpline(r.points, r.tangents));
     if (b.radius > limit) continue;
-    throw InputError(design_problem(
-        d, fmt::format("[fiber.{}]", r.name),
-        fmt::format("{} bends with a radius of {:.2f} mm at {}, {:.1f} mm along it, tighter than [muscle] min_bend_radius = {:g} mm "
-                    "(short by {:.2f} mm): spread its control points or straighten its tangents there, or lower min_bend_radius "
-                    "if the muscle takes a tighter bend",
-                    whose, b.radius / units::mm, format_mm(b.where), b.arc_length / units::mm, limit / units::mm,
-                    (limit - b.radius) / units::mm)));
+    throw InputError(
+        design_problem(d, fmt::format("[fiber.{}]", r.name),
+                       fmt::format("{} bends with a radius of {:.2f} mm at {}, {:.1f} mm along it, tighter than "
+                                   "[muscle] min_bend_radius = {:g} mm "
+                                   "(short by {:.2f} mm): spread its control points or straighten its tangents there, "
+                                   "or lower min_bend_radius "
+                                   "if the muscle takes a tighter bend",
+                                   whose, b.radius / units::mm, format_mm(b.where), b.arc_length / units::mm,
+                                   limit / units::mm, (limit - b.radius) / units::mm)));
   }
 }
 
@@ -151,14 +153,18 @@ OptimizationStart optimization_start(const Design& d, const SurfaceDistance& ski
     const CollisionResolution r = resolve_collisions(measure, routes, settings);
     for (const Contact& c : r.collided)
       if (!c.with_skin())
-        out.log.push_back(fmt::format("fibers {} and {} start {:.2f} mm apart at {}, less than the [collide] clearance", routes[c.a].name,
-                                      routes[c.b].name, c.clearance / units::mm, format_mm(c.point_a)));
-    out.log.push_back(fmt::format("moved apart before optimizing, in {} rounds: the smallest clearance went from {:.3f} mm to {:.3f} mm",
-                                  r.iterations, r.before / units::mm, r.after / units::mm));
+        out.log.push_back(fmt::format("fibers {} and {} start {:.2f} mm apart at {}, less than the [collide] clearance",
+                                      routes[c.a].name, routes[c.b].name, c.clearance / units::mm,
+                                      format_mm(c.point_a)));
+    out.log.push_back(fmt::format(
+        "moved apart before optimizing, in {} rounds: the smallest clearance went from {:.3f} mm to {:.3f} mm",
+        r.iterations, r.before / units::mm, r.after / units::mm));
     routes = r.routes;
   } catch (const CollisionError& e) {
-    out.warning = fmt::format("the starting fibers cannot be moved apart ({}); the optimizer lets them cross, and collide parts "
-                              "them afterwards", e.what());
+    out.warning =
+        fmt::format("the starting fibers cannot be moved apart ({}); the optimizer lets them cross, and collide parts "
+                    "them afterwards",
+                    e.what());
   }
   return out;
 }
@@ -206,10 +212,13 @@ std::string deformed_json(DesignRouting& dr, const Routing& r, int t, const Eige
   const auto muscles = dr.problem->muscles(r, t);
   for (std::size_t m = 0; m < muscles.size() && m < r.routes.size(); ++m) {
     nlohmann::ordered_json line = nlohmann::ordered_json::array();
-    for (double s : muscles[m]->segments().t) line.push_back(mm(dr.sim->basis().at(muscles[m]->spline().position(s), 0).position(x)));
+    for (double s : muscles[m]->segments().t)
+      line.push_back(mm(dr.sim->basis().at(muscles[m]->spline().position(s), 0).position(x)));
     fibers[r.routes[m].name] = line;
   }
-  return checked_json(nlohmann::ordered_json{{"target", dr.target_names[static_cast<std::size_t>(t)]}, {"nodes_mm", points}, {"fibers_mm", fibers}},
+  return checked_json(nlohmann::ordered_json{{"target", dr.target_names[static_cast<std::size_t>(t)]},
+                                             {"nodes_mm", points},
+                                             {"fibers_mm", fibers}},
                       fmt::format("deformed-{}.json", dr.target_names[static_cast<std::size_t>(t)]), -1);
 }
 

@@ -1,7 +1,7 @@
 #include "stages/simulate_command.hpp"
 
+#include "stages/design_mesh.hpp"
 #include "stages/design_simulation.hpp"
-#include "stages/mesh_stage.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -46,12 +46,14 @@ std::vector<Actuation> requested_actuations(const Design& d, const SimulateReque
       if (eq != std::string::npos) kpa = std::stod(item.substr(eq + 1));
     } catch (const std::exception&) {
     }
-    if (eq == std::string::npos || !std::isfinite(kpa)) bad(d, "--pressure", fmt::format("'{}': expected FIBER=kPa", item));
+    if (eq == std::string::npos || !std::isfinite(kpa))
+      bad(d, "--pressure", fmt::format("'{}': expected FIBER=kPa", item));
     const Fiber* f = fiber(name);
     if (!f) bad(d, "--pressure", fmt::format("no [[fiber]] named \"{}\"", name));
     if (kpa < 0 || kpa * units::kPa > d.muscle.max_pressure)
-      bad(d, "--pressure", fmt::format("{} kPa for {} is outside [0, {}] kPa ([muscle].max_pressure)", kpa, name,
-                                       d.muscle.max_pressure / units::kPa));
+      bad(d, "--pressure",
+          fmt::format("{} kPa for {} is outside [0, {}] kPa ([muscle].max_pressure)", kpa, name,
+                      d.muscle.max_pressure / units::kPa));
     if (std::any_of(out.begin(), out.end(), [&](const Actuation& a) { return a.fiber == name; }))
       bad(d, "--pressure", fmt::format("{} is given twice", name));
     out.push_back({name, f->points, f->tangents, kpa * units::kPa});
@@ -61,14 +63,15 @@ std::vector<Actuation> requested_actuations(const Design& d, const SimulateReque
 
 /// The design's body on `mesh` under the request's load, at equilibrium.
 struct Solved {
-  std::unique_ptr<MuscleModel> model;  ///< before sim: its muscles hold a reference to it
+  std::unique_ptr<MuscleModel> model; ///< before sim: its muscles hold a reference to it
   std::unique_ptr<Simulation> sim;
   std::vector<const MuscleEnergy*> muscles;
   Eigen::VectorXd x;
   NewtonSummary summary;
 };
 
-Solved solve(const Design& d, const TetMesh& mesh, const Target* target, const std::vector<Actuation>& actuations, Progress& progress)
+Solved solve(const Design& d, const TetMesh& mesh, const Target* target, const std::vector<Actuation>& actuations,
+             Progress& progress)
 {
   Solved out;
   out.sim = std::make_unique<Simulation>(mesh, simulation_options(d, mesh));
@@ -79,15 +82,15 @@ Solved solve(const Design& d, const TetMesh& mesh, const Target* target, const s
   out.x = out.sim->rest();
   out.summary = out.sim->solve(out.x, progress);
   if (!out.summary.converged)
-    throw std::runtime_error(fmt::format("the simulation did not reach equilibrium on {} tets: {} ({})", mesh.num_tets(),
-                                         out.summary.brief(), out.summary.message));
+    throw std::runtime_error(fmt::format("the simulation did not reach equilibrium on {} tets: {} ({})",
+                                         mesh.num_tets(), out.summary.brief(), out.summary.message));
   return out;
 }
 
 } // namespace
 
-SimulateResult simulate(const Design& d, const Runner& runner, const fs::path& build_dir, const SimulateRequest& request,
-                        const ProgressFactory& progress)
+SimulateResult simulate(const Design& d, const Runner& runner, const fs::path& build_dir,
+                        const SimulateRequest& request, const ProgressFactory& progress)
 {
   if (!request.target.empty() && !request.pressures.empty())
     bad(d, "--target", "give either --target or --pressure, not both");
@@ -96,10 +99,13 @@ SimulateResult simulate(const Design& d, const Runner& runner, const fs::path& b
     if (t.name == request.target) target = &t;
   if (!request.target.empty() && !target) bad(d, "--target", fmt::format("no [[target]] named \"{}\"", request.target));
   if (target && target->kind == TargetKind::surface)
-    bad(d, "--target", fmt::format("target \"{}\" is a deformed surface, not a load: nothing to simulate", target->name));
+    bad(d, "--target",
+        fmt::format("target \"{}\" is a deformed surface, not a load: nothing to simulate", target->name));
   if (target && target->kind == TargetKind::pose)
-    bad(d, "--target", fmt::format("target \"{}\" is a pose, not a load: `fibermold make DESIGN targets` fills it in "
-                                   "(targets/{}.vtu)", target->name, target->name));
+    bad(d, "--target",
+        fmt::format("target \"{}\" is a pose, not a load: `fibermold make DESIGN targets` fills it in "
+                    "(targets/{}.vtu)",
+                    target->name, target->name));
   std::vector<Actuation> actuations = requested_actuations(d, request);
   if (target && target->kind == TargetKind::fibers) actuations = target_actuations(d, *target);
 
@@ -128,7 +134,8 @@ SimulateResult simulate(const Design& d, const Runner& runner, const fs::path& b
     const TetMesh fine_mesh = refined_design_mesh(d, p);
     const Solved fine = solve(d, fine_mesh, target, actuations, p);
     result.refinement = compare_refined(d, *coarse.sim, coarse.x, *fine.sim, fine.x);
-    write_deformed(build_dir / "simulate" / fmt::format("deformed-{}-refined.vtu", result.name), *fine.sim, fine.x, fine.muscles,
+    write_deformed(build_dir / "simulate" / fmt::format("deformed-{}-refined.vtu", result.name), *fine.sim, fine.x,
+                   fine.muscles,
                    LameParameters::from_young_poisson(d.material.youngs_modulus, d.material.poisson_ratio));
   }
   return result;

@@ -15,18 +15,18 @@
 namespace fibermold {
 
 struct SimulateRequest {
-  std::string target;                  ///< a [[target]] name, or empty
-  std::vector<std::string> pressures;  ///< "FIBER=kPa"
-  bool refine = false;                 ///< solve again at half the edge length and compare
+  std::string target;                 ///< a [[target]] name, or empty
+  std::vector<std::string> pressures; ///< "FIBER=kPa"
+  bool refine = false;                ///< solve again at half the edge length and compare
 };
 
 struct SimulateResult {
-  std::string name;                    ///< "twist", or "pressures"
+  std::string name; ///< "twist", or "pressures"
   std::filesystem::path vtu;
-  double max_displacement = 0;         ///< m
+  double max_displacement = 0; ///< m
   NewtonSummary summary;
-  std::string conditioning;            ///< where the MLS radius had to be widened; empty when nowhere
-  std::optional<Refinement> refinement;  ///< with --refine
+  std::string conditioning;             ///< where the MLS radius had to be widened; empty when nowhere
+  std::optional<Refinement> refinement; ///< with --refine
 };
 
 /// Throws InputError for a bad request or design (exit 2), std::runtime_error when the solve fails.

@@ -19,10 +19,11 @@ SkinDistance skin_distance(const Design& d)
   s.groove_margin = s.distance - (radius + clearance);
   s.groove_terms = fmt::format("[muscle] diameter/2 = {:.3g} mm + [mold] groove_clearance = {:.3g} mm + {} = {:.3g} mm",
                                radius / units::mm, groove / units::mm,
-                               clearance / 2 >= d.mold.min_silicone ? "[collide] clearance/2" : "[mold] min_silicone", web / units::mm);
+                               clearance / 2 >= d.mold.min_silicone ? "[collide] clearance/2" : "[mold] min_silicone",
+                               web / units::mm);
   s.terms = s.groove_margin > 0 ? s.groove_terms + ", what the groove needs"
-                                : fmt::format("[muscle] diameter/2 = {:.3g} mm + [collide] clearance = {:.3g} mm", radius / units::mm,
-                                              clearance / units::mm);
+                                : fmt::format("[muscle] diameter/2 = {:.3g} mm + [collide] clearance = {:.3g} mm",
+                                              radius / units::mm, clearance / units::mm);
   return s;
 }
 

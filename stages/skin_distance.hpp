@@ -18,7 +18,7 @@ struct SkinDistance {
   /// m: what the groove needs of the fiber's centre line in the molds: the groove's radius
   /// (muscle radius + groove_clearance) + that silicone; never more than `distance`.
   double groove = 0;
-  std::string groove_terms;  ///< the groove's terms, for a message
+  std::string groove_terms; ///< the groove's terms, for a message
   /// m: `distance` − (radius + clearance): how much more than the clearance the skin is kept
   /// away from the muscle for the groove's sake (0 unless groove_clearance + the silicone beside
   /// the groove exceeds the clearance).

@@ -9,13 +9,14 @@
 #include "core/units.hpp"
 #include "mesh/surface_distance.hpp"
 #include "stages/design_simulation.hpp"
+#include "stages/plausible_pose.hpp"
 
 namespace fibermold {
 
 std::vector<PosedRegion> target_poses(const Design& d, const Target& t, const TetMesh& mesh)
 {
   const SimulationOptions held = simulation_options(d, mesh);
-  std::vector<int> owner(static_cast<std::size_t>(mesh.nodes.rows()), -1);  // -1 free, ≥ 0 a pose, -2 − r fixed r
+  std::vector<int> owner(static_cast<std::size_t>(mesh.nodes.rows()), -1); // -1 free, ≥ 0 a pose, -2 − r fixed r
   for (std::size_t r = 0; r < held.fixed_nodes.size(); ++r)
     for (int n : held.fixed_nodes[r]) owner[n] = -2 - static_cast<int>(r);
   std::vector<PosedRegion> out;
@@ -28,20 +29,25 @@ std::vector<PosedRegion> target_poses(const Design& d, const Target& t, const Te
       const Eigen::Vector3d lo = mesh.nodes.colwise().minCoeff(), hi = mesh.nodes.colwise().maxCoeff();
       throw InputError(design_problem(
           d, r.key,
-          p.region.box ? fmt::format("the box {} to {} selects no node of the mesh, which spans {} to {}: widen it to at least the "
-                                     "mesh's edge length, or give vertices = [...]",
-                                     format_mm((*p.region.box)[0]), format_mm((*p.region.box)[1]), format_mm(lo), format_mm(hi))
-                       : fmt::format("the region selects no node of the mesh, which spans {} to {}", format_mm(lo), format_mm(hi))));
+          p.region.box
+              ? fmt::format(
+                    "the box {} to {} selects no node of the mesh, which spans {} to {}: widen it to at least the "
+                    "mesh's edge length, or give vertices = [...]",
+                    format_mm((*p.region.box)[0]), format_mm((*p.region.box)[1]), format_mm(lo), format_mm(hi))
+              : fmt::format("the region selects no node of the mesh, which spans {} to {}", format_mm(lo),
+                            format_mm(hi))));
     }
     int shared = 0, with = -1;
     for (int n : r.nodes)
       if (owner[n] != -1) ++shared, with = owner[n];
     if (shared > 0) {
-      const std::string other = with >= 0 ? fmt::format("[target.{}].pose[{}]", t.name, with + 1)
-                                          : fmt::format("[fixed.{}]", d.fixed[static_cast<std::size_t>(-2 - with)].name);
+      const std::string other = with >= 0
+                                    ? fmt::format("[target.{}].pose[{}]", t.name, with + 1)
+                                    : fmt::format("[fixed.{}]", d.fixed[static_cast<std::size_t>(-2 - with)].name);
       throw InputError(design_problem(
-          d, r.key, fmt::format("the region shares {} node(s) with {}: a node cannot be held in two places; shrink one of them",
-                                shared, other)));
+          d, r.key,
+          fmt::format("the region shares {} node(s) with {}: a node cannot be held in two places; shrink one of them",
+                      shared, other)));
     }
     for (int n : r.nodes) owner[n] = static_cast<int>(i);
     r.axis = p.axis.normalized();
@@ -60,27 +66,11 @@ std::vector<PosedRegion> target_poses(const Design& d, const Target& t, const Te
   return out;
 }
 
-void require_plausible_pose(const Design& d, const std::string& key, const Pose& p, const Eigen::MatrixX3d& region,
-                            const Eigen::MatrixX3d& body)
-{
-  if (region.rows() == 0) return;
-  const Eigen::Vector3d about = p.about ? *p.about : Eigen::Vector3d(region.colwise().mean().transpose());
-  const RigidMotion m = rotation_about(p.axis, p.angle, about, p.translation);
-  double farthest = 0;
-  for (Eigen::Index i = 0; i < region.rows(); ++i)
-    farthest = std::max(farthest, (m.apply(region.row(i).transpose()) - region.row(i).transpose()).norm());
-  const double size = (body.colwise().maxCoeff() - body.colwise().minCoeff()).norm();
-  if (farthest > 2 * size)
-    throw InputError(design_problem(d, key,
-                                    fmt::format("the pose moves the region up to {:.4g} mm, more than twice the body's {:.4g} mm "
-                                                "diagonal: no soft body gets there; check `about` and `translation` (mm)",
-                                                farthest / units::mm, size / units::mm)));
-}
-
 namespace {
 
 /// The pose of a set of nodes: the displacement of their centroid, the rotation fitted to them.
-ReachedPose region_pose(std::string place, const std::vector<int>& nodes, const TetMesh& mesh, const Eigen::MatrixX3d& deformed)
+ReachedPose region_pose(std::string place, const std::vector<int>& nodes, const TetMesh& mesh,
+                        const Eigen::MatrixX3d& deformed)
 {
   ReachedPose p;
   p.place = std::move(place);
@@ -118,8 +108,8 @@ nlohmann::ordered_json mm(const Eigen::Vector3d& v)
 
 } // namespace
 
-std::vector<ReachedPose> reached_poses(const Design& d, const Target& t, const Simulation& sim, const Eigen::VectorXd& x,
-                                       const std::vector<PosedRegion>& asked)
+std::vector<ReachedPose> reached_poses(const Design& d, const Target& t, const Simulation& sim,
+                                       const Eigen::VectorXd& x, const std::vector<PosedRegion>& asked)
 {
   const TetMesh& mesh = sim.mesh();
   const Eigen::MatrixX3d deformed = sim.deformed_nodes(x);
@@ -128,8 +118,10 @@ std::vector<ReachedPose> reached_poses(const Design& d, const Target& t, const S
     for (std::size_t i = 0; i < t.loads.size(); ++i) {
       const std::string place = fmt::format("load[{}]", i + 1);
       const Region& r = t.loads[i].region;
-      if (r.point) out.push_back(point_pose(place, *r.point, sim, x));
-      else out.push_back(region_pose(place, region_nodes(r, mesh, d, "[target." + t.name + "]." + place), mesh, deformed));
+      if (r.point)
+        out.push_back(point_pose(place, *r.point, sim, x));
+      else
+        out.push_back(region_pose(place, region_nodes(r, mesh, d, "[target." + t.name + "]." + place), mesh, deformed));
     }
   for (std::size_t i = 0; i < asked.size(); ++i) {
     out.push_back(region_pose(fmt::format("pose[{}]", i + 1), asked[i].nodes, mesh, deformed));

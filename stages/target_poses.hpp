@@ -18,11 +18,11 @@ namespace fibermold {
 
 /// One region of a pose target on the mesh: its nodes and the motion asked of them.
 struct PosedRegion {
-  std::string key;          ///< e.g. "[target.curl].pose[1]"
+  std::string key; ///< e.g. "[target.curl].pose[1]"
   std::vector<int> nodes;
-  Eigen::Vector3d axis;     ///< unit
-  double angle = 0;         ///< rad
-  Eigen::Vector3d about;    ///< m
+  Eigen::Vector3d axis;  ///< unit
+  double angle = 0;      ///< rad
+  Eigen::Vector3d about; ///< m
   Eigen::Vector3d translation;
   /// The motion a fraction s of the way: turned by s·angle about the same line, moved by s·translation.
   RigidMotion at(double s) const { return rotation_about(axis, s * angle, about, s * translation); }
@@ -32,26 +32,21 @@ struct PosedRegion {
 /// nodes with a [[fixed]] region or another pose (a node cannot be held in two places).
 std::vector<PosedRegion> target_poses(const Design& d, const Target& t, const TetMesh& mesh);
 
-/// Refuses a pose that moves a point of its region (rows, m) more than twice the diagonal of the
-/// body (rows, m) away: a wrong unit or a misplaced `about`, which no soft body follows.
-void require_plausible_pose(const Design& d, const std::string& key, const Pose& p, const Eigen::MatrixX3d& region,
-                            const Eigen::MatrixX3d& body);
-
 /// Where a region, a point or a tracking curve's end went: its displacement (of the centroid, m)
 /// and its rotation (fitted to the region's nodes, or the material's at a point).
 struct ReachedPose {
-  std::string place;                   ///< "load[1]", "pose[1]", "centreline, last point"
-  int nodes = 0;                       ///< 0 for a point
-  Eigen::Vector3d rest = Eigen::Vector3d::Zero();          ///< the point, or the nodes' centroid, m
+  std::string place;                              ///< "load[1]", "pose[1]", "centreline, last point"
+  int nodes = 0;                                  ///< 0 for a point
+  Eigen::Vector3d rest = Eigen::Vector3d::Zero(); ///< the point, or the nodes' centroid, m
   Eigen::Vector3d displacement = Eigen::Vector3d::Zero();
   RigidMotion motion;
-  const PosedRegion* asked = nullptr;  ///< for a pose target's region: what it was asked
+  const PosedRegion* asked = nullptr; ///< for a pose target's region: what it was asked
 };
 
 /// The poses reached in deformation x of `sim` by target t's load or pose regions and by both
 /// ends of every tracking curve.
-std::vector<ReachedPose> reached_poses(const Design& d, const Target& t, const Simulation& sim, const Eigen::VectorXd& x,
-                                       const std::vector<PosedRegion>& asked);
+std::vector<ReachedPose> reached_poses(const Design& d, const Target& t, const Simulation& sim,
+                                       const Eigen::VectorXd& x, const std::vector<PosedRegion>& asked);
 
 /// A reached pose for a report: translation in mm, rotation in degrees and its axis; for a pose
 /// region also the angle asked and the angle reached about the asked axis.

@@ -50,7 +50,7 @@ std::vector<std::pair<int, Eigen::Vector3d>> target_surface(const Design& d, con
 struct Solved {
   Eigen::VectorXd x;
   NewtonSummary summary;
-  double held_error = 0;  ///< surface and pose targets: largest distance of a prescribed node from its place, m
+  double held_error = 0; ///< surface and pose targets: largest distance of a prescribed node from its place, m
   std::vector<PosedRegion> poses;
 };
 
@@ -80,27 +80,30 @@ Solved solve_target(const Design& d, const Target& t, const TetMesh& mesh, const
 {
   if (t.strain_penalty > 0)
     throw InputError(design_problem(d, fmt::format("[target.{}].strain_penalty", t.name),
-                                "the large-strain penalty is not available yet; remove the key"));
+                                    "the large-strain penalty is not available yet; remove the key"));
   Solved out;
   if (t.kind == TargetKind::surface) {
     const auto moved = target_surface(d, t, mesh);
-    SimulationOptions o = simulation_options(d, mesh, false);  // the whole surface is prescribed
+    SimulationOptions o = simulation_options(d, mesh, false); // the whole surface is prescribed
     o.gravity = Eigen::Vector3d::Zero();
     o.moved_nodes = moved;
     sim = std::make_unique<Simulation>(mesh, o);
     std::vector<int> nodes;
     for (const auto& [node, position] : moved) nodes.push_back(node);
-    solve_in_steps(*sim, out, nodes, 4, [&](double s) {
-      std::vector<Eigen::Vector3d> at;
-      for (const auto& [node, position] : moved) {
-        const Eigen::Vector3d rest = mesh.nodes.row(node).transpose();
-        at.push_back(rest + (position - rest) * s);
-      }
-      return at;
-    }, ctx.progress);
+    solve_in_steps(
+        *sim, out, nodes, 4,
+        [&](double s) {
+          std::vector<Eigen::Vector3d> at;
+          for (const auto& [node, position] : moved) {
+            const Eigen::Vector3d rest = mesh.nodes.row(node).transpose();
+            at.push_back(rest + (position - rest) * s);
+          }
+          return at;
+        },
+        ctx.progress);
   } else if (t.kind == TargetKind::pose) {
     out.poses = target_poses(d, t, mesh);
-    SimulationOptions o = simulation_options(d, mesh);  // under gravity, held by [[fixed]]
+    SimulationOptions o = simulation_options(d, mesh); // under gravity, held by [[fixed]]
     std::vector<int> nodes;
     double largest_angle = 0;
     for (const PosedRegion& r : out.poses) {
@@ -113,14 +116,17 @@ Solved solve_target(const Design& d, const Target& t, const TetMesh& mesh, const
     sim = std::make_unique<Simulation>(mesh, o);
     // A step per 10° of the largest turn, at least 4.
     const int steps = std::max(4, static_cast<int>(std::ceil(largest_angle / (10 * units::degree))));
-    solve_in_steps(*sim, out, nodes, steps, [&](double s) {
-      std::vector<Eigen::Vector3d> at;
-      for (const PosedRegion& r : out.poses) {
-        const RigidMotion m = r.at(s);
-        for (int n : r.nodes) at.push_back(m.apply(mesh.nodes.row(n).transpose()));
-      }
-      return at;
-    }, ctx.progress);
+    solve_in_steps(
+        *sim, out, nodes, steps,
+        [&](double s) {
+          std::vector<Eigen::Vector3d> at;
+          for (const PosedRegion& r : out.poses) {
+            const RigidMotion m = r.at(s);
+            for (int n : r.nodes) at.push_back(m.apply(mesh.nodes.row(n).transpose()));
+          }
+          return at;
+        },
+        ctx.progress);
   } else {
     sim = std::make_unique<Simulation>(mesh, simulation_options(d, mesh));
     if (t.kind == TargetKind::forces) sim->add_energy(std::make_unique<ExternalForces>(target_forces(d, t, *sim)));
@@ -143,14 +149,15 @@ SurfaceMesh read_target_surface(const Design& d, const Target& t, Eigen::Index v
   const SurfaceMesh s = import_surface(t.surface, d.design.surface_scale);
   if (s.num_vertices() != vertices)
     throw InputError(design_problem(d, key,
-                                fmt::format("{} has {} vertices, the body's surface {}: a target surface must be a "
-                                            "deformed copy of the body's surface (same vertices, same order)",
-                                            t.surface.filename().string(), s.num_vertices(), vertices)));
+                                    fmt::format("{} has {} vertices, the body's surface {}: a target surface must be a "
+                                                "deformed copy of the body's surface (same vertices, same order)",
+                                                t.surface.filename().string(), s.num_vertices(), vertices)));
   if (face_set(s.faces) != face_set(faces))
-    throw InputError(design_problem(d, key,
-                                fmt::format("{} connects its vertices differently from the body's surface: the vertex "
-                                            "order changed (export it from the same mesh without reordering)",
-                                            t.surface.filename().string())));
+    throw InputError(
+        design_problem(d, key,
+                       fmt::format("{} connects its vertices differently from the body's surface: the vertex "
+                                   "order changed (export it from the same mesh without reordering)",
+                                   t.surface.filename().string())));
   return s;
 }
 
@@ -178,10 +185,11 @@ void TargetsStage::run(StageContext& ctx) const
     std::unique_ptr<Simulation> sim;
     const Solved solved = solve_target(d, t, mesh, model, ctx, muscles, deformed, sim);
     save_array(ctx.output_dir / (t.name + ".positions"), "positions", solved.x);
-    nlohmann::ordered_json nodes = nlohmann::ordered_json::array();  // for report.html: the target beside the robot
+    nlohmann::ordered_json nodes = nlohmann::ordered_json::array(); // for report.html: the target beside the robot
     for (Eigen::Index i = 0; i < deformed.rows(); ++i)
       nodes.push_back({deformed(i, 0) / units::mm, deformed(i, 1) / units::mm, deformed(i, 2) / units::mm});
-    write_json_atomic(ctx.output_dir / (t.name + ".json"), nlohmann::ordered_json{{"target", t.name}, {"nodes_mm", std::move(nodes)}});
+    write_json_atomic(ctx.output_dir / (t.name + ".json"),
+                      nlohmann::ordered_json{{"target", t.name}, {"nodes_mm", std::move(nodes)}});
     write_deformed(ctx.output_dir / (t.name + ".vtu"), *sim, solved.x, muscles, lame);
     const double max_mm = (deformed - mesh.nodes).rowwise().norm().maxCoeff() / units::mm;
     report[t.name] = {{"kind", choice_name(t.kind)},
@@ -190,12 +198,14 @@ void TargetsStage::run(StageContext& ctx) const
                       {"residual_N", solved.summary.residual}};
     if (t.kind == TargetKind::surface) report[t.name]["max_surface_error_mm"] = solved.held_error / units::mm;
     if (t.kind == TargetKind::pose) report[t.name]["max_pose_error_mm"] = solved.held_error / units::mm;
-    ctx.log.info("target {} ({}): max displacement {:.3f} mm; {}", t.name, choice_name(t.kind), max_mm, solved.summary.brief());
+    ctx.log.info("target {} ({}): max displacement {:.3f} mm; {}", t.name, choice_name(t.kind), max_mm,
+                 solved.summary.brief());
     nlohmann::ordered_json poses = nlohmann::ordered_json::array();
     for (const ReachedPose& p : reached_poses(d, t, *sim, solved.x, solved.poses)) {
       poses.push_back(pose_report(p));
-      ctx.log.info("  {}: moved {:.2f} mm, turned {:.2f}° about ({:.3f}, {:.3f}, {:.3f})", p.place, p.displacement.norm() / units::mm,
-                   p.motion.angle() / units::degree, p.motion.axis().x(), p.motion.axis().y(), p.motion.axis().z());
+      ctx.log.info("  {}: moved {:.2f} mm, turned {:.2f}° about ({:.3f}, {:.3f}, {:.3f})", p.place,
+                   p.displacement.norm() / units::mm, p.motion.angle() / units::degree, p.motion.axis().x(),
+                   p.motion.axis().y(), p.motion.axis().z());
     }
     report[t.name]["poses"] = std::move(poses);
   }

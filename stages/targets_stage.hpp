@@ -23,7 +23,10 @@ class TargetsStage final : public Stage {
 public:
   std::string name() const override { return "targets"; }
   std::vector<std::string> upstream() const override { return {"mesh"}; }
-  int version() const override { return 3; }  ///< 2: pose targets, each target's reached poses in the report; 3: <name>.json
+  int version() const override
+  {
+    return 3;
+  } ///< 2: pose targets, each target's reached poses in the report; 3: <name>.json
   std::vector<std::string> design_keys() const override
   {
     return {"design.units", "material", "sim", "fixed", "muscle", "fiber", "tracking_curve", "target"};

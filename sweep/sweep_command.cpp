@@ -407,7 +407,8 @@ int run_sweep(const SweepRequest& request, const Runner& runner)
     // Polling squeue: every second at first, then less often (a cluster's controller is shared).
     // Slept in tenths of a second, so that Ctrl-C is answered within one.
     for (int wait = 1; !queued(jobs, build_dir).empty(); wait = std::min(2 * wait, 5)) {
-      for (int tenth = 0; tenth < 10 * wait && !interrupt_requested(); ++tenth) std::this_thread::sleep_for(std::chrono::milliseconds(100));
+      for (int tenth = 0; tenth < 10 * wait && !interrupt_requested(); ++tenth)
+        std::this_thread::sleep_for(std::chrono::milliseconds(100));
       if (interrupt_requested()) {
         fmt::print(stderr, "fibermold: stopped waiting; the jobs stay queued (`fibermold sweep {} --status`)\n",
                    request.sweep.string());

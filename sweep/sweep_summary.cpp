@@ -94,7 +94,7 @@ namespace {
 struct Summary {
   std::vector<std::string> targets, pressure_columns, columns;
   std::vector<Row> rows;
-  std::map<std::string, std::size_t> best;  ///< per target: the case of least RMSE after collide
+  std::map<std::string, std::size_t> best; ///< per target: the case of least RMSE after collide
 
   std::string best_for(std::size_t i) const
   {

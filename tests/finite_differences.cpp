@@ -9,7 +9,8 @@ double central_difference(const ScalarFunction& f, const Eigen::VectorXd& x, con
   return (f(x + h * d) - f(x - h * d)) / (2 * h);
 }
 
-Eigen::VectorXd central_difference(const VectorFunction& f, const Eigen::VectorXd& x, const Eigen::VectorXd& d, double h)
+Eigen::VectorXd central_difference(const VectorFunction& f, const Eigen::VectorXd& x, const Eigen::VectorXd& d,
+                                   double h)
 {
   return (f(x + h * d) - f(x - h * d)) / (2 * h);
 }
@@ -32,21 +33,22 @@ Eigen::MatrixXd fd_jacobian(const VectorFunction& f, const Eigen::VectorXd& x, d
   return J;
 }
 
-::testing::AssertionResult matches_fd(const Eigen::MatrixXd& analytic, const Eigen::MatrixXd& fd, double rtol, double atol)
+::testing::AssertionResult matches_fd(const Eigen::MatrixXd& analytic, const Eigen::MatrixXd& fd, double rtol,
+                                      double atol)
 {
   if (analytic.rows() != fd.rows() || analytic.cols() != fd.cols())
-    return ::testing::AssertionFailure() << "sizes differ: " << analytic.rows() << "×" << analytic.cols() << " analytic, " << fd.rows()
-                                         << "×" << fd.cols() << " by differences";
+    return ::testing::AssertionFailure() << "sizes differ: " << analytic.rows() << "×" << analytic.cols()
+                                         << " analytic, " << fd.rows() << "×" << fd.cols() << " by differences";
   if (analytic.size() == 0) return ::testing::AssertionFailure() << "nothing to compare";
   if (!analytic.allFinite() || !fd.allFinite()) return ::testing::AssertionFailure() << "a derivative is not finite";
-  const double error = (analytic - fd).cwiseAbs().maxCoeff(), scale = std::max(analytic.cwiseAbs().maxCoeff(), fd.cwiseAbs().maxCoeff());
-  if (error <= rtol * scale + atol)
-    return ::testing::AssertionSuccess() << "error " << error << " of " << scale;
+  const double error = (analytic - fd).cwiseAbs().maxCoeff(),
+               scale = std::max(analytic.cwiseAbs().maxCoeff(), fd.cwiseAbs().maxCoeff());
+  if (error <= rtol * scale + atol) return ::testing::AssertionSuccess() << "error " << error << " of " << scale;
   Eigen::Index r = 0, c = 0;
   (analytic - fd).cwiseAbs().maxCoeff(&r, &c);
-  return ::testing::AssertionFailure() << "max |analytic − difference| = " << error << " > " << rtol << " × " << scale << " + " << atol
-                                       << "; worst at (" << r << ", " << c << "): " << analytic(r, c) << " analytic, " << fd(r, c)
-                                       << " by differences";
+  return ::testing::AssertionFailure() << "max |analytic − difference| = " << error << " > " << rtol << " × " << scale
+                                       << " + " << atol << "; worst at (" << r << ", " << c << "): " << analytic(r, c)
+                                       << " analytic, " << fd(r, c) << " by differences";
 }
 
 Eigen::VectorXd stacked(const std::vector<std::vector<Eigen::Vector3d>>& lists)

@@ -23,8 +23,9 @@ struct Ran {
 Ran run(const fs::path& dir, const std::string& arguments, int seconds)
 {
   const fs::path err = dir / "stderr.txt";
-  const std::string command = "cd '" + dir.string() + "' && timeout -s KILL " + std::to_string(seconds) + " '" FIBERMOLD_BINARY "' " + arguments +
-                              " </dev/null >/dev/null 2>'" + err.string() + "'";
+  const std::string command = "cd '" + dir.string() + "' && timeout -s KILL " + std::to_string(seconds) +
+                              " '" FIBERMOLD_BINARY "' " + arguments + " </dev/null >/dev/null 2>'" + err.string() +
+                              "'";
   const int status = std::system(command.c_str());
   Ran r;
   r.code = WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);
@@ -47,7 +48,7 @@ std::string bad_json(const fs::path& dir)
   for (const auto& entry : fs::recursive_directory_iterator(dir, ec)) {
     if (!entry.is_regular_file() || entry.path().extension() != ".json") continue;
     const std::string rel = fs::relative(entry.path(), dir).string();
-    if (rel.find(".staging") != std::string::npos) continue;  // a killed stage's leftovers, not outputs
+    if (rel.find(".staging") != std::string::npos) continue; // a killed stage's leftovers, not outputs
     const auto j = nlohmann::json::parse(read_file(entry.path()), nullptr, false);
     if (j.is_discarded()) return rel + " is not JSON";
     if (const auto at = first_non_finite(j)) return rel + " holds null or a non-finite number at " + *at;
@@ -69,9 +70,12 @@ FuzzRun fuzz_run(const fs::path& dir, bool make_too, int check_seconds, int make
   if (check.code != 0 || !make_too) return result;
   const Ran make = run(dir, "make design.toml --build-dir out", make_seconds);
   result.make = make.code;
-  if (make.code > 2) result.problem = describe("make", make);
-  else if (make.code == 2) result.problem = "check passed, but make refused the input: " + make.err;
-  else if (const std::string bad = bad_json(dir / "out"); !bad.empty()) result.problem = bad;
+  if (make.code > 2)
+    result.problem = describe("make", make);
+  else if (make.code == 2)
+    result.problem = "check passed, but make refused the input: " + make.err;
+  else if (const std::string bad = bad_json(dir / "out"); !bad.empty())
+    result.problem = bad;
   return result;
 }
 

@@ -10,9 +10,9 @@
 namespace fibermold::test {
 
 struct FuzzRun {
-  int check = -1;       ///< check's exit code
-  int make = -1;        ///< make's exit code; -1: not run
-  std::string problem;  ///< the rule broken, with what was printed; empty: none
+  int check = -1;      ///< check's exit code
+  int make = -1;       ///< make's exit code; -1: not run
+  std::string problem; ///< the rule broken, with what was printed; empty: none
 };
 
 /// Runs check on `dir`/design.toml (and make when `make_too` and check passed, into `dir`/out),

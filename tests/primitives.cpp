@@ -76,14 +76,19 @@ SurfaceMesh voxel_body(const Eigen::Vector3d& lo, double cell, const Eigen::Vect
               return at(c);
             };
             // (u, w, axis) is right-handed: p00 → p10 → p11 turns about +axis.
-            if (side == 1) b.quad(p(0, 0), p(1, 0), p(1, 1), p(0, 1));
-            else b.quad(p(0, 0), p(0, 1), p(1, 1), p(1, 0));
+            if (side == 1)
+              b.quad(p(0, 0), p(1, 0), p(1, 1), p(0, 1));
+            else
+              b.quad(p(0, 0), p(0, 1), p(1, 1), p(1, 0));
           }
       }
   return b.mesh();
 }
 
-SurfaceMesh box(const Eigen::Vector3d& lo, const Eigen::Vector3d& hi, int n) { return box(lo, hi, Eigen::Vector3i(n, n, n)); }
+SurfaceMesh box(const Eigen::Vector3d& lo, const Eigen::Vector3d& hi, int n)
+{
+  return box(lo, hi, Eigen::Vector3i(n, n, n));
+}
 
 SurfaceMesh box(const Eigen::Vector3d& lo, const Eigen::Vector3d& hi, const Eigen::Vector3i& cells)
 {
@@ -112,8 +117,10 @@ SurfaceMesh box(const Eigen::Vector3d& lo, const Eigen::Vector3d& hi, const Eige
             return at(c[0], c[1], c[2]);
           };
           // (u, w, axis) is right-handed: p00 → p10 → p11 turns about +axis.
-          if (side == c[axis]) b.quad(p(0, 0), p(1, 0), p(1, 1), p(0, 1));
-          else b.quad(p(0, 0), p(0, 1), p(1, 1), p(1, 0));
+          if (side == c[axis])
+            b.quad(p(0, 0), p(1, 0), p(1, 1), p(0, 1));
+          else
+            b.quad(p(0, 0), p(0, 1), p(1, 1), p(1, 0));
         }
   }
   return b.mesh();
@@ -151,7 +158,8 @@ SurfaceMesh sphere(double radius, int segments, int stacks)
     const double phi = -M_PI / 2 + M_PI * k / stacks;
     for (int s = 0; s < segments; ++s) {
       const double a = 2 * M_PI * s / segments;
-      ring[k - 1].push_back(b.add(radius * Eigen::Vector3d(std::cos(phi) * std::cos(a), std::cos(phi) * std::sin(a), std::sin(phi))));
+      ring[k - 1].push_back(
+          b.add(radius * Eigen::Vector3d(std::cos(phi) * std::cos(a), std::cos(phi) * std::sin(a), std::sin(phi))));
     }
   }
   const int north = b.add({0, 0, radius});
@@ -223,19 +231,22 @@ void write_off(const std::filesystem::path& path, const SurfaceMesh& s, double k
     out << fmt::format("OFF\n{} {} 0\n", s.num_vertices(), s.num_faces());
     for (Eigen::Index v = 0; v < s.num_vertices(); ++v)
       out << fmt::format("{:.9g} {:.9g} {:.9g}\n", s.vertices(v, 0) * k, s.vertices(v, 1) * k, s.vertices(v, 2) * k);
-    for (Eigen::Index f = 0; f < s.num_faces(); ++f) out << fmt::format("3 {} {} {}\n", s.faces(f, 0), s.faces(f, 1), s.faces(f, 2));
+    for (Eigen::Index f = 0; f < s.num_faces(); ++f)
+      out << fmt::format("3 {} {} {}\n", s.faces(f, 0), s.faces(f, 1), s.faces(f, 2));
   });
 }
 
 void write_ply(const std::filesystem::path& path, const SurfaceMesh& s, double k)
 {
   write_with(path, [&](std::ofstream& out) {
-    out << fmt::format("ply\nformat ascii 1.0\nelement vertex {}\nproperty float x\nproperty float y\nproperty float z\n"
-                       "element face {}\nproperty list uchar int vertex_indices\nend_header\n",
-                       s.num_vertices(), s.num_faces());
+    out << fmt::format(
+        "ply\nformat ascii 1.0\nelement vertex {}\nproperty float x\nproperty float y\nproperty float z\n"
+        "element face {}\nproperty list uchar int vertex_indices\nend_header\n",
+        s.num_vertices(), s.num_faces());
     for (Eigen::Index v = 0; v < s.num_vertices(); ++v)
       out << fmt::format("{:.9g} {:.9g} {:.9g}\n", s.vertices(v, 0) * k, s.vertices(v, 1) * k, s.vertices(v, 2) * k);
-    for (Eigen::Index f = 0; f < s.num_faces(); ++f) out << fmt::format("3 {} {} {}\n", s.faces(f, 0), s.faces(f, 1), s.faces(f, 2));
+    for (Eigen::Index f = 0; f < s.num_faces(); ++f)
+      out << fmt::format("3 {} {} {}\n", s.faces(f, 0), s.faces(f, 1), s.faces(f, 2));
   });
 }
 

@@ -52,7 +52,8 @@ CommandResult run_fibermold(const std::string& arguments, const fs::path& cwd, c
   const fs::path out = capture / "stdout", err = capture / "stderr";
   std::string command;
   if (!cwd.empty()) command += "cd '" + cwd.string() + "' && ";
-  command += launcher + " '" FIBERMOLD_BINARY "' " + arguments + " </dev/null >'" + out.string() + "' 2>'" + err.string() + "'";
+  command += launcher + " '" FIBERMOLD_BINARY "' " + arguments + " </dev/null >'" + out.string() + "' 2>'" +
+             err.string() + "'";
   const int status = std::system(command.c_str());
   CommandResult result;
   result.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);
@@ -79,8 +80,9 @@ std::pair<int, std::string> run_command(const std::string& command)
 
 BrowserView open_in_browser(const fs::path& page, const fs::path& screenshot)
 {
-  const std::string browser = "chromium --headless=new --no-sandbox --enable-unsafe-swiftshader --use-angle=swiftshader "
-                              "--virtual-time-budget=4000 --enable-logging=stderr --v=0 ";
+  const std::string browser =
+      "chromium --headless=new --no-sandbox --enable-unsafe-swiftshader --use-angle=swiftshader "
+      "--virtual-time-budget=4000 --enable-logging=stderr --v=0 ";
   const std::string url = "'file://" + fs::absolute(page).string() + "'";
   auto [code, dom] = run_command(browser + "--dump-dom " + url);
   if (code == 0 && !screenshot.empty())

@@ -27,8 +27,8 @@ std::string read_text(const std::filesystem::path& path);
 /// Result of running a command: exit code and what it printed.
 struct CommandResult {
   int exit_code = -1;
-  std::string out;  ///< stdout
-  std::string err;  ///< stderr
+  std::string out; ///< stdout
+  std::string err; ///< stderr
 };
 
 /// Runs the fibermold binary under test with `arguments` (a shell-quoted string), in `cwd`, under
@@ -67,7 +67,6 @@ name = "s"
 kind = "fibers"
 fibers = [{ name = "m1", pressure = 300, points = [[0, 0, 0], [20, 0, 3], [40, 0, -3], [60, 0, 0]] }]
 )";
-
 
 /// Runs a shell command: its exit status and what it printed (stdout and stderr together).
 std::pair<int, std::string> run_command(const std::string& command);

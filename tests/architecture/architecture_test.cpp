@@ -1,11 +1,14 @@
 // The rules of the house that the source tree itself must keep (docs/architecture.md): the module
 // order, no folder holding the bulk of the code, short functions, third-party headers out of the
-// public ones, nothing cited from outside the repository, and the last commit's lines formatted.
+// public ones, nothing cited from outside the repository, every file formatted and no line over 120
+// columns.
 
+#include <algorithm>
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <functional>
 #include <map>
 #include <regex>
 #include <set>
@@ -70,10 +73,50 @@ TEST(Architecture, IncludesFollowTheModuleOrder)
       const std::string to = (*it)[1];
       if (to == module) continue;
       ++checked;
-      EXPECT_TRUE(allowed().at(module).contains(to)) << fs::relative(file, kSource) << " includes " << to << "/: against the module order";
+      EXPECT_TRUE(allowed().at(module).contains(to))
+          << fs::relative(file, kSource) << " includes " << to << "/: against the module order";
     }
   }
   EXPECT_GT(checked, 200);
+}
+
+/// The concepts of one folder (a .hpp with its .cpp) include each other without a cycle: a file
+/// that needs another's header while that one needs its own is one concept split in two, or a
+/// third one hidden in them.
+TEST(Architecture, NoConceptsOfAFolderIncludeEachOtherInACycle)
+{
+  const std::regex include(R"re(#include "([a-z_]+)/([a-z0-9_]+)\.hpp")re");
+  std::map<std::string, std::map<std::string, std::set<std::string>>> graphs; // folder → concept → included
+  for (const fs::path& file : module_sources()) {
+    const std::string module = module_of(file), from = file.stem().string(), text = text_of(file);
+    auto& graph = graphs[module];
+    graph[from];
+    for (auto it = std::sregex_iterator(text.begin(), text.end(), include); it != std::sregex_iterator(); ++it)
+      if ((*it)[1] == module && (*it)[2] != from) graph[from].insert((*it)[2]);
+  }
+  for (const auto& [module, graph] : graphs) {
+    std::map<std::string, int> state; // 1 on the path, 2 done
+    std::vector<std::string> path;
+    std::function<void(const std::string&)> visit = [&](const std::string& c) {
+      state[c] = 1;
+      path.push_back(c);
+      for (const std::string& next : graph.at(c)) {
+        if (!graph.contains(next)) continue; // a header without a concept of its own here
+        if (state[next] == 1) {
+          std::string cycle;
+          for (auto i = std::find(path.begin(), path.end(), next); i != path.end(); ++i) cycle += *i + " → ";
+          ADD_FAILURE() << module << "/: the includes go round " << cycle << next;
+        } else if (state[next] == 0) {
+          visit(next);
+        }
+      }
+      path.pop_back();
+      state[c] = 2;
+    };
+    for (const auto& [concept_name, included] : graph)
+      if (state[concept_name] == 0) visit(concept_name);
+  }
+  EXPECT_GE(graphs.size(), allowed().size());
 }
 
 TEST(Architecture, NoFolderHoldsAQuarterOfTheCode)
@@ -102,7 +145,8 @@ TEST(Architecture, NoFunctionIsLongerThanAHundredLines)
     int start = 0, number = 0;
     while (std::getline(in, line)) {
       ++number;
-      if (line == "{") start = number, signature = previous;
+      if (line == "{")
+        start = number, signature = previous;
       else if (line == "}" && start > 0) {
         ++functions;
         EXPECT_LE(number - start + 1, 100) << fs::relative(file, kSource) << ":" << start << ": " << signature << " is "
@@ -137,13 +181,14 @@ TEST(Architecture, NothingCitesFilesOutsideTheRepository)
       continue;
     }
     const std::string ext = it->path().extension().string();
-    if (!it->is_regular_file() || !(ext == ".cpp" || ext == ".hpp" || ext == ".md" || ext == ".txt" || ext == ".cmake" || ext == ".toml"))
+    if (!it->is_regular_file() ||
+        !(ext == ".cpp" || ext == ".hpp" || ext == ".md" || ext == ".txt" || ext == ".cmake" || ext == ".toml"))
       continue;
     ++files;
     const std::string text = text_of(it->path());
     // Spelt in pieces, so that this file does not cite them itself.
-    for (const std::string& outside : {std::string("DESIGN") + ".md", std::string("STYLE") + ".md", std::string("../") + "shared",
-                                      std::string("DEPENDENCIES") + ".md"})
+    for (const std::string& outside : {std::string("DESIGN") + ".md", std::string("STYLE") + ".md",
+                                       std::string("../") + "shared", std::string("DEPENDENCIES") + ".md"})
       EXPECT_EQ(text.find(outside), std::string::npos) << fs::relative(it->path(), kSource) << " cites " << outside;
   }
   EXPECT_GT(files, 200);
@@ -161,20 +206,46 @@ std::string output_of(const std::string& command)
   return out;
 }
 
-/// Formatting is kept by the tool, a change at a time: the lines the last commit changed (and any
-/// not yet committed) are as .clang-format has them (`git clang-format HEAD~1` fixes them).
-/// Skipped outside a git checkout with history; scripts/setup installs clang-format.
-TEST(Architecture, TheLastCommitsChangedLinesAreFormatted)
+/// Every .cpp and .hpp the project holds: the module folders, tests/ and bench/.
+std::vector<fs::path> all_sources()
 {
-  const std::string git = "git -C '" + kSource.string() + "'";
-  if (output_of(git + " rev-parse --verify -q HEAD~1 2>/dev/null").empty())
-    GTEST_SKIP() << "not a git checkout with a parent commit";
-  ASSERT_EQ(std::system("command -v git-clang-format > /dev/null 2>&1"), 0)
-      << "git-clang-format is missing: run scripts/setup";
-  const std::string diff = output_of(git + " clang-format --diff --extensions cpp,hpp HEAD~1 2>&1");
-  EXPECT_EQ(diff.find("@@"), std::string::npos) << "lines changed since HEAD~1 that .clang-format would reformat "
-                                                   "(run git clang-format HEAD~1):\n"
-                                                << diff;
+  std::vector<fs::path> out = module_sources();
+  for (const char* folder : {"tests", "bench"})
+    for (const auto& e : fs::recursive_directory_iterator(kSource / folder))
+      if (e.path().extension() == ".cpp" || e.path().extension() == ".hpp") out.push_back(e.path());
+  std::sort(out.begin(), out.end());
+  return out;
+}
+
+/// Formatting is kept by the tool: every source file is as .clang-format has it
+/// (`clang-format -i FILE` fixes one). scripts/setup installs clang-format.
+TEST(Architecture, EverySourceFileIsAsClangFormatHasIt)
+{
+  ASSERT_EQ(std::system("command -v clang-format > /dev/null 2>&1"), 0) << "clang-format is missing: run scripts/setup";
+  std::string command = "cd '" + kSource.string() + "' && clang-format --dry-run -Werror";
+  for (const fs::path& p : all_sources()) command += " '" + fs::relative(p, kSource).string() + "'";
+  const std::string out = output_of(command + " 2>&1");
+  EXPECT_TRUE(out.empty()) << "files .clang-format would reformat (run clang-format -i on them):\n" << out;
+}
+
+/// No line is longer than .clang-format's ColumnLimit, 120 characters (UTF-8 code points, as
+/// clang-format counts them), raw strings (embedded script, regular expressions) included.
+TEST(Architecture, NoLineIsLongerThan120Columns)
+{
+  constexpr std::size_t kColumns = 120;
+  std::string over;
+  for (const fs::path& p : all_sources()) {
+    std::istringstream in(text_of(p));
+    int number = 0;
+    for (std::string line; std::getline(in, line);) {
+      ++number;
+      const auto columns = static_cast<std::size_t>(std::count_if(
+          line.begin(), line.end(), [](char c) { return (static_cast<unsigned char>(c) & 0xC0) != 0x80; }));
+      if (columns > kColumns)
+        over += fmt::format("{}:{}: {} columns\n", fs::relative(p, kSource).string(), number, columns);
+    }
+  }
+  EXPECT_TRUE(over.empty()) << over;
 }
 
 } // namespace

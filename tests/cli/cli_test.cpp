@@ -39,7 +39,7 @@ TEST(Cli, CheckNamesMisspelledKeyLineAndClosestKey)
   const auto r = test::run_fibermold("check bad.toml", dir.path());
   EXPECT_EQ(r.exit_code, 2);
   EXPECT_THAT(r.err, HasSubstr((dir / "bad.toml").string() + ":6:1: [mold].voxle: unknown key 'voxle' in [mold]; "
-                                                              "did you mean 'voxel'?"));
+                                                             "did you mean 'voxel'?"));
 }
 
 TEST(Cli, MissingDesignFileExits2)

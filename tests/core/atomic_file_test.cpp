@@ -27,7 +27,7 @@ TEST(AtomicFile, UnwritableFolderNamesThePath)
   test::TempDir dir;
   test::write_text(dir / "file", "x");
   try {
-    write_file_atomic(dir / "file" / "sub" / "out", "y");  // a file where a folder should be
+    write_file_atomic(dir / "file" / "sub" / "out", "y"); // a file where a folder should be
     FAIL() << "expected an exception";
   } catch (const std::exception& e) {
     EXPECT_THAT(e.what(), ::testing::HasSubstr((dir / "file").string()));
@@ -35,10 +35,7 @@ TEST(AtomicFile, UnwritableFolderNamesThePath)
   EXPECT_EQ(read_file(dir / "file"), "x");
 }
 
-TEST(AtomicFile, ReadingAMissingFileNamesIt)
-{
-  EXPECT_THROW(read_file("/nonexistent/fibermold"), std::runtime_error);
-}
+TEST(AtomicFile, ReadingAMissingFileNamesIt) { EXPECT_THROW(read_file("/nonexistent/fibermold"), std::runtime_error); }
 
 } // namespace
 } // namespace fibermold

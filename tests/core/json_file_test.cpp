@@ -14,7 +14,8 @@ using ::testing::HasSubstr;
 
 TEST(JsonFile, NaNInfinityAndNullAreFoundByTheirPlace)
 {
-  nlohmann::ordered_json j{{"shots", {{"shot1", {{"silicone_mass_g", 12.5}, {"volume_mL", 3.0}}}}}, {"list", {1.0, 2.0}}};
+  nlohmann::ordered_json j{{"shots", {{"shot1", {{"silicone_mass_g", 12.5}, {"volume_mL", 3.0}}}}},
+                           {"list", {1.0, 2.0}}};
   EXPECT_FALSE(first_non_finite(j).has_value());
   j["shots"]["shot1"]["silicone_mass_g"] = std::nan("");
   EXPECT_EQ(first_non_finite(j).value_or(""), "/shots/shot1/silicone_mass_g");

@@ -78,7 +78,7 @@ TEST_F(DesignFileTest, DemoParsesIntoSIUnits)
 TEST_F(DesignFileTest, DefaultsFillEverySectionAndAreRecorded)
 {
   const Design d = parse(kMinimal);
-  EXPECT_EQ(d.design.name, dir_.path().filename().string());  // design.toml: named after its folder
+  EXPECT_EQ(d.design.name, dir_.path().filename().string()); // design.toml: named after its folder
   EXPECT_EQ(d.sim.basis, BasisKind::mls_linear);
   EXPECT_DOUBLE_EQ(d.sim.mls_radius, 1.7);
   EXPECT_FALSE(d.mesh.edge_length.has_value());
@@ -121,7 +121,8 @@ TEST_F(DesignFileTest, WrongTypesAndRangesNameKeyLineAndBound)
 {
   EXPECT_THAT(problem(std::string(kMinimal) + "[mold]\nkeys = \"four\"\n"),
               HasSubstr(":5:8: [mold].keys: expected an integer, got a string"));
-  EXPECT_THAT(problem(std::string(kMinimal) + "[mold]\nwall = -1\n"), HasSubstr("[mold].wall: must be in (0, 1000] mm, got -1"));
+  EXPECT_THAT(problem(std::string(kMinimal) + "[mold]\nwall = -1\n"),
+              HasSubstr("[mold].wall: must be in (0, 1000] mm, got -1"));
   EXPECT_THAT(problem(std::string(kMinimal) + "[material]\npoisson_ratio = 0.5\n"),
               HasSubstr("[material].poisson_ratio: must be in [0, 0.5)"));
   EXPECT_THAT(problem(std::string(kMinimal) + "[sim]\nbasis = \"mls-linaer\"\n"),
@@ -179,8 +180,9 @@ TEST_F(DesignFileTest, TargetsAreCheckedByKind)
   EXPECT_THAT(problem(std::string(kMinimal) +
                       "[[target]]\nname = \"t\"\nkind = \"forces\"\nload = [{ point = [0,0,0], torque = [1,0,0] }]\n"),
               HasSubstr("a point load takes a force, not a torque"));
-  EXPECT_THAT(problem(std::string(kMinimal) + "[[target]]\nname = \"t\"\nkind = \"forces\"\n"
-                                              "load = [{ box = { min = [0,0,0], max = [1,1,1] }, vertices = [1], force = [1,0,0] }]\n"),
+  EXPECT_THAT(problem(std::string(kMinimal) +
+                      "[[target]]\nname = \"t\"\nkind = \"forces\"\n"
+                      "load = [{ box = { min = [0,0,0], max = [1,1,1] }, vertices = [1], force = [1,0,0] }]\n"),
               HasSubstr("give exactly one of box"));
 }
 
@@ -188,22 +190,26 @@ TEST_F(DesignFileTest, TargetActuatorsNameFibers)
 {
   const std::string fibers = "[[fiber]]\nname = \"a\"\npoints = [[0,0,0],[10,0,0]]\n"
                              "[[fiber]]\nname = \"b\"\npoints = [[0,1,0],[10,1,0]]\n";
-  const std::string target = "[[target]]\nname = \"t\"\nkind = \"forces\"\nload = [{ point = [0,0,0], force = [1,0,0] }]\n";
+  const std::string target =
+      "[[target]]\nname = \"t\"\nkind = \"forces\"\nload = [{ point = [0,0,0], force = [1,0,0] }]\n";
   const Design d = parse(std::string(kMinimal) + fibers + target + "actuators = [\"b\"]\n");
   EXPECT_EQ(d.targets[0].actuators, std::vector<std::string>{"b"});
   EXPECT_EQ(d.values.at("[target.t].actuators"), "[\"b\"]");
   EXPECT_TRUE(parse(std::string(kMinimal) + fibers + target).targets[0].actuators.empty());
   EXPECT_THAT(problem(std::string(kMinimal) + fibers + target + "actuators = [\"c\"]\n"),
               HasSubstr("[target.t].actuators: expected the name of a [[fiber]]"));
-  EXPECT_THAT(problem(std::string(kMinimal) + fibers + target + "actuators = [\"a\"]\n[optimize]\nstrategy = \"sequential\"\n"),
-              HasSubstr("the sequential strategy assigns fiber k to target k"));
+  EXPECT_THAT(
+      problem(std::string(kMinimal) + fibers + target + "actuators = [\"a\"]\n[optimize]\nstrategy = \"sequential\"\n"),
+      HasSubstr("the sequential strategy assigns fiber k to target k"));
 }
 
 TEST_F(DesignFileTest, NamesMustBeSafeFileNames)
 {
-  EXPECT_THAT(problem("[design]\nsurface = \"body.stl\"\nname = \"..\"\n"), HasSubstr(":3:8: [design].name: \"..\" cannot name a file"));
+  EXPECT_THAT(problem("[design]\nsurface = \"body.stl\"\nname = \"..\"\n"),
+              HasSubstr(":3:8: [design].name: \"..\" cannot name a file"));
   EXPECT_THAT(problem("[design]\nsurface = \"body.stl\"\nname = \"/tmp/x\"\n"), HasSubstr("cannot name a file"));
-  EXPECT_THAT(problem(std::string(kMinimal) + "[[target]]\nname = \"a/b\"\nkind = \"forces\"\nload = [{ point = [0,0,0], force = [1,0,0] }]\n"),
+  EXPECT_THAT(problem(std::string(kMinimal) +
+                      "[[target]]\nname = \"a/b\"\nkind = \"forces\"\nload = [{ point = [0,0,0], force = [1,0,0] }]\n"),
               HasSubstr("[target.a/b].name: \"a/b\" cannot name a file"));
 }
 
@@ -225,7 +231,8 @@ TEST_F(DesignFileTest, MuscleModelMustStayMeaningful)
 TEST_F(DesignFileTest, NamesMustBeUnique)
 {
   const std::string fiber = "[[fiber]]\nname = \"m1\"\npoints = [[0,0,0],[10,0,0]]\n";
-  EXPECT_THAT(problem(std::string(kMinimal) + fiber + fiber), HasSubstr(":8:8: [fiber.m1]: the name \"m1\" is used twice"));
+  EXPECT_THAT(problem(std::string(kMinimal) + fiber + fiber),
+              HasSubstr(":8:8: [fiber.m1]: the name \"m1\" is used twice"));
 }
 
 TEST_F(DesignFileTest, MoldWallBelowPrinterMinimumIsRejected)
@@ -236,8 +243,9 @@ TEST_F(DesignFileTest, MoldWallBelowPrinterMinimumIsRejected)
 
 TEST_F(DesignFileTest, PartingPlaneAndFormats)
 {
-  const Design d = parse(std::string(kMinimal) +
-                         "[mold]\nparting = { point = [0, 0, 5], normal = [0, 0, 2] }\n[export]\nformats = [\"stl\", \"3mf\"]\n");
+  const Design d =
+      parse(std::string(kMinimal) +
+            "[mold]\nparting = { point = [0, 0, 5], normal = [0, 0, 2] }\n[export]\nformats = [\"stl\", \"3mf\"]\n");
   ASSERT_TRUE(d.mold.parting.has_value());
   EXPECT_DOUBLE_EQ(d.mold.parting->point.z(), 5e-3);
   EXPECT_DOUBLE_EQ(d.mold.parting->normal.z(), 1.0);
@@ -250,7 +258,8 @@ TEST_F(DesignFileTest, PartingPlaneAndFormats)
 TEST_F(DesignFileTest, EveryDocumentedRangeIsTheOneChecked)
 {
   const std::string doc = test::read_text(fs::path(FIBERMOLD_SOURCE_DIR) / "docs" / "design-file.md");
-  const std::regex row(R"(\| `\[(material|mesh|sim|muscle|optimize|collide|mold|export)\] (\w+)` \| ([\[(])(-?[0-9.e]+), (-?[0-9.e]+)([\])]) \|)");
+  const std::regex row(R"(\| `\[(material|mesh|sim|muscle|optimize|collide|mold|export)\] (\w+)` \| )"
+                       R"(([\[(])(-?[0-9.e]+), (-?[0-9.e]+)([\])]) \|)");
   int rows = 0;
   for (auto it = std::sregex_iterator(doc.begin(), doc.end(), row); it != std::sregex_iterator(); ++it, ++rows) {
     const std::smatch& m = *it;
@@ -259,12 +268,13 @@ TEST_F(DesignFileTest, EveryDocumentedRangeIsTheOneChecked)
     const bool lo_open = m[3] == "(", hi_open = m[6] == ")";
     const auto text = [&](double v) { return fmt::format("{}[{}]\n{} = {}\n", kMinimal, section, key, v); };
     const bool integer = std::floor(lo) == lo && std::floor(hi) == hi && hi - lo >= 8 && hi <= 1e8 &&
-                         (key == "max_tets" || key.find("iterations") != std::string::npos || key == "keys" || key == "vents" ||
-                          key == "screw_holes");
+                         (key == "max_tets" || key.find("iterations") != std::string::npos || key == "keys" ||
+                          key == "vents" || key == "screw_holes");
     const double step = integer ? 1 : std::max(std::abs(hi - lo), 1.0) * 1e-6;
     const double below = lo_open ? lo : lo - step, above = hi_open ? hi : hi + step;
     for (const double bad : {below, above}) {
-      const std::string p = problem(integer ? fmt::format("{}[{}]\n{} = {}\n", kMinimal, section, key, static_cast<long long>(bad)) : text(bad));
+      const std::string p = problem(
+          integer ? fmt::format("{}[{}]\n{} = {}\n", kMinimal, section, key, static_cast<long long>(bad)) : text(bad));
       EXPECT_THAT(p, HasSubstr(fmt::format(":5:{}: [{}].{}: must be", key.size() + 4, section, key))) << p;
       if (!integer) {
         EXPECT_THAT(p, HasSubstr(fmt::format("{}{}, {}{}", lo_open ? "(" : "[", lo, hi, hi_open ? ")" : "]"))) << p;
@@ -273,7 +283,9 @@ TEST_F(DesignFileTest, EveryDocumentedRangeIsTheOneChecked)
     // Inside: the geometric mean of positive bounds (a value from the middle of a range of decades),
     // else up to 1 (a larger one would meet the checks between keys: a min_wall above the wall).
     const double inside = lo > 0 ? std::sqrt(lo * hi) : hi_open ? (lo + hi) / 2 : std::min(hi, 1.0);
-    const std::string ok = integer ? fmt::format("{}[{}]\n{} = {}\n", kMinimal, section, key, static_cast<long long>(std::round(inside))) : text(inside);
+    const std::string ok =
+        integer ? fmt::format("{}[{}]\n{} = {}\n", kMinimal, section, key, static_cast<long long>(std::round(inside)))
+                : text(inside);
     EXPECT_NO_THROW(parse(ok)) << ok;
   }
   EXPECT_GE(rows, 40);
@@ -284,7 +296,8 @@ std::vector<double> numbers_in(const std::string& text)
 {
   std::vector<double> out;
   const std::regex number(R"(-?[0-9]+(\.[0-9]+)?(e-?[0-9]+)?)");
-  for (auto it = std::sregex_iterator(text.begin(), text.end(), number); it != std::sregex_iterator(); ++it) out.push_back(std::stod(it->str()));
+  for (auto it = std::sregex_iterator(text.begin(), text.end(), number); it != std::sregex_iterator(); ++it)
+    out.push_back(std::stod(it->str()));
   return out;
 }
 
@@ -305,23 +318,28 @@ TEST_F(DesignFileTest, EveryDocumentedDefaultIsTheOneTheCodeTakes)
       section = m[1];
       continue;
     }
-    if (line.starts_with("## ")) section.clear();  // an array section, or the end of the keys
+    if (line.starts_with("## ")) section.clear(); // an array section, or the end of the keys
     if (section.empty() || !std::regex_search(line, m, row)) continue;
     const std::string key = fmt::format("[{}].{}", section, std::string(m[1]));
     std::string documented = m[2];
     documented.erase(documented.find_last_not_of(' ') + 1);
     const bool text = documented.starts_with("`\"") && documented.ends_with("\"`");
     const bool flag = documented == "false" || documented == "true";
-    const bool number = !numbers_in(documented).empty() && documented.find_first_not_of("0123456789.e-[], ") == std::string::npos;
-    if (!text && !flag && !number) continue;  // "auto", "**required**", a sentence
+    const bool number =
+        !numbers_in(documented).empty() && documented.find_first_not_of("0123456789.e-[], ") == std::string::npos;
+    if (!text && !flag && !number) continue; // "auto", "**required**", a sentence
     ASSERT_TRUE(d.values.contains(key)) << key << " is documented but the code records no such key";
     const std::string value = d.values.at(key);
-    if (text) EXPECT_EQ(value, documented.substr(1, documented.size() - 2)) << key;
-    else if (flag) EXPECT_EQ(value, documented) << key;
+    if (text)
+      EXPECT_EQ(value, documented.substr(1, documented.size() - 2)) << key;
+    else if (flag)
+      EXPECT_EQ(value, documented) << key;
     else {
       const std::vector<double> want = numbers_in(documented), got = numbers_in(value);
       ASSERT_EQ(want.size(), got.size()) << key << ": documented " << documented << ", the code's " << value;
-      for (std::size_t i = 0; i < want.size(); ++i) EXPECT_NEAR(got[i], want[i], 1e-9 * std::abs(want[i])) << key << ": documented " << documented << ", the code's " << value;
+      for (std::size_t i = 0; i < want.size(); ++i)
+        EXPECT_NEAR(got[i], want[i], 1e-9 * std::abs(want[i]))
+            << key << ": documented " << documented << ", the code's " << value;
     }
     ++checked;
   }
@@ -331,13 +349,16 @@ TEST_F(DesignFileTest, EveryDocumentedDefaultIsTheOneTheCodeTakes)
 TEST_F(DesignFileTest, CoordinatesStringsAndNamesHaveLimits)
 {
   const std::string fiber = std::string(kMinimal) + "[[fiber]]\nname = \"m\"\npoints = [[0, 0, 0], [1e308, 0, 0]]\n";
-  EXPECT_THAT(problem(fiber), HasSubstr(":6:22: [fiber.m].points[2]: every coordinate must be in [-10000, 10000] mm, got [1e+308, 0, 0]"));
+  EXPECT_THAT(
+      problem(fiber),
+      HasSubstr(":6:22: [fiber.m].points[2]: every coordinate must be in [-10000, 10000] mm, got [1e+308, 0, 0]"));
   EXPECT_THAT(problem(std::string(kMinimal) + "[material]\ngravity = [0, 0, -1e4]\n"),
               HasSubstr("[material].gravity: every coordinate must be in [-1000, 1000] m/s²"));
   EXPECT_THAT(problem(std::string(kMinimal) + "[mold]\nparting = { point = [0, 0, 2e4], normal = [0, 0, 1] }\n"),
               HasSubstr("[mold].parting.point: every coordinate must be in [-10000, 10000] mm"));
   // A NUL would cut a path short, and a megabyte of value is not echoed back whole.
-  EXPECT_THAT(problem("[design]\nsurface = \"body\\u0000.stl\"\n"), HasSubstr("[design].surface: \"body\" contains a NUL character"));
+  EXPECT_THAT(problem("[design]\nsurface = \"body\\u0000.stl\"\n"),
+              HasSubstr("[design].surface: \"body\" contains a NUL character"));
   const std::string huge(8 << 20, 'x');
   const std::string p = problem(std::string(kMinimal) + "[sim]\nbasis = \"" + huge + "\"\n");
   EXPECT_THAT(p, HasSubstr("(8388608 characters) is longer than 4096 characters"));
@@ -345,9 +366,13 @@ TEST_F(DesignFileTest, CoordinatesStringsAndNamesHaveLimits)
   EXPECT_THAT(problem("[design]\nsurface = \"body.stl\"\nname = \"" + std::string(101, 'a') + "\"\n"),
               HasSubstr("is longer than 100 characters: it names files and folders"));
   // A wrong value of a required choice is reported once, as wrong, not also as missing.
-  const auto kind = problems(std::string(kMinimal) + "[[target]]\nname = \"t\"\nkind = \"Forces\"\nload = [{ point = [0, 0, 0], force = [1, 0, 0] }]\n");
+  const auto kind =
+      problems(std::string(kMinimal) +
+               "[[target]]\nname = \"t\"\nkind = \"Forces\"\nload = [{ point = [0, 0, 0], force = [1, 0, 0] }]\n");
   ASSERT_EQ(kind.size(), 1u);
-  EXPECT_THAT(kind.front().to_string(), HasSubstr("unknown value \"Forces\"; expected one of: forces, surface, fibers, pose (did you mean \"forces\"?)"));
+  EXPECT_THAT(
+      kind.front().to_string(),
+      HasSubstr("unknown value \"Forces\"; expected one of: forces, surface, fibers, pose (did you mean \"forces\"?)"));
 }
 
 TEST(DesignKeyMatches, SectionAndKeyPrefixes)

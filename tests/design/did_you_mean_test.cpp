@@ -12,7 +12,7 @@ TEST(EditDistance, CountsInsertionsDeletionsSubstitutions)
   EXPECT_EQ(edit_distance("wal", "wall"), 1u);
   EXPECT_EQ(edit_distance("kitten", "sitting"), 3u);
   EXPECT_EQ(edit_distance("", "abc"), 3u);
-  EXPECT_EQ(edit_distance("voxle", "voxel"), 1u);  // a transposition counts once
+  EXPECT_EQ(edit_distance("voxle", "voxel"), 1u); // a transposition counts once
 }
 
 TEST(ClosestMatch, SuggestsOnlyPlausibleMisspellings)

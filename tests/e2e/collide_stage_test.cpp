@@ -120,7 +120,9 @@ TEST_F(CollideE2E, CrossingFibersArePartedBeforeOptimizingAndCollideHasNothingLe
   // a and b cross 1 mm apart (centre to centre): the optimize stage parts them to the clearance
   // before its first iteration and its barrier keeps them there, so collide changes nothing, and
   // simulates the targets from rest under the routing as it is (before = after).
-  const std::string routing = std::string(kCrossing) + kLiftTarget + R"(fibers = [{ name = "a", pressure = 200, points = [[0, 0, -0.5], [30, 0, -0.5], [60, 0, -0.5]] },
+  const std::string routing =
+      std::string(kCrossing) + kLiftTarget +
+      R"(fibers = [{ name = "a", pressure = 200, points = [[0, 0, -0.5], [30, 0, -0.5], [60, 0, -0.5]] },
           { name = "b", pressure = 200, points = [[30, -30, 0.5], [30, 0, 0.5], [30, 30, 0.5]] }]
 actuators = ["a"]
 [optimize]
@@ -129,8 +131,10 @@ max_iterations = 2
   design(routing);
   auto r = make();
   ASSERT_EQ(r.exit_code, 0) << r.err;
-  EXPECT_THAT(test::read_text(dir_ / "build" / "logs" / "optimize.log"),
-              ::testing::ContainsRegex("moved apart before optimizing, in [0-9]+ rounds: the smallest clearance went from -2.000 mm to 1.1"));
+  EXPECT_THAT(
+      test::read_text(dir_ / "build" / "logs" / "optimize.log"),
+      ::testing::ContainsRegex(
+          "moved apart before optimizing, in [0-9]+ rounds: the smallest clearance went from -2.000 mm to 1.1"));
   EXPECT_TRUE(json("optimize", "report.json")["fibers_kept_apart"].get<bool>());
   const auto report = json("collide", "report.json");
   EXPECT_FALSE(report["changed"].get<bool>());
@@ -155,7 +159,8 @@ TEST_F(CollideE2E, FibersThatStartClearAreKeptClearByTheOptimizer)
   // the optimizer pulls it up, as far as the clearance barrier lets it.
   std::string routing = kCrossing;
   routing.replace(routing.find("[30, 0, -0.5]"), 13, "[30, 0, -4.5]");
-  design(routing + kLiftTarget + R"(fibers = [{ name = "a", pressure = 200, points = [[0, 0, -0.5], [30, 0, -0.5], [60, 0, -0.5]] }]
+  design(routing + kLiftTarget +
+         R"(fibers = [{ name = "a", pressure = 200, points = [[0, 0, -0.5], [30, 0, -0.5], [60, 0, -0.5]] }]
 actuators = ["a"]
 [optimize]
 max_iterations = 15
@@ -170,7 +175,7 @@ max_iterations = 15
   const double a_z = fibers["fibers"][0]["points_mm"][1][2].get<double>();
   std::printf("kept apart: a's middle point rose from -4.5 to %.3f mm; smallest clearance %.3f mm\n", a_z, smallest);
   EXPECT_GE(smallest, 1.0 - 1e-3);
-  EXPECT_GT(a_z, -4.0);  // it did move toward b
+  EXPECT_GT(a_z, -4.0); // it did move toward b
 }
 
 TEST_F(CollideE2E, CollideEditsRerunCollideAndWhatFollows)
@@ -179,8 +184,10 @@ TEST_F(CollideE2E, CollideEditsRerunCollideAndWhatFollows)
   ASSERT_EQ(make().exit_code, 0);
   design(std::string(kCrossing) + "[optimize]\nenabled = false\n[collide]\nsmoothness = 20\n");
   // Optimize reads it too: where fibers start closer than the clearance it parts them first, as collide would.
-  EXPECT_THAT(status(), HasSubstr("optimize  stale ([collide].smoothness changed (10 → 20))\ncollide   stale (upstream optimize is "
-                                  "stale; [collide].smoothness changed (10 → 20))"));
+  EXPECT_THAT(
+      status(),
+      HasSubstr("optimize  stale ([collide].smoothness changed (10 → 20))\ncollide   stale (upstream optimize is "
+                "stale; [collide].smoothness changed (10 → 20))"));
   const auto r = make();
   EXPECT_THAT(r.out, HasSubstr("collide: done"));
   EXPECT_THAT(r.out, HasSubstr("2 stage(s) ran"));

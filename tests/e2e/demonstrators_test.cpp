@@ -91,8 +91,8 @@ TEST(Demonstrators, RecoveryFindsTheSShapedMuscleAgainAndMakesMolds)
   test::TempDir dir;
   nlohmann::json report;
   ASSERT_NO_FATAL_FAILURE(make_example(
-      "recovery", dir.path(), {{"edge_length = 5.0", "edge_length = 8.0"}, {"max_iterations = 400", "max_iterations = 150"}},
-      report));
+      "recovery", dir.path(),
+      {{"edge_length = 5.0", "edge_length = 8.0"}, {"max_iterations = 400", "max_iterations = 150"}}, report));
   const auto t = report["targets"]["s-bend"];
   std::printf("recovery: centreline RMSE %.3f → %.4f mm, max %.3f → %.4f mm (paper 0.10, 0.20)\n",
               t["start"]["rmse_mm"].get<double>(), t["rmse_mm"].get<double>(), t["start"]["max_error_mm"].get<double>(),
@@ -138,7 +138,7 @@ TEST(Demonstrators, ContinuumRobotBendsInSpaceMakesMoldsAndRerunsOnlyMoldsAfterA
   std::printf("continuum robot: tracking RMSE %.2f → %.2f mm, max %.2f → %.2f mm (paper 1.7, 3.2)\n",
               t["start"]["rmse_mm"].get<double>(), t["rmse_mm"].get<double>(), t["start"]["max_error_mm"].get<double>(),
               t["max_error_mm"].get<double>());
-  EXPECT_GT(t["start"]["rmse_mm"].get<double>(), 80.0);  // the target moves the tip 221 mm
+  EXPECT_GT(t["start"]["rmse_mm"].get<double>(), 80.0); // the target moves the tip 221 mm
   EXPECT_LT(t["rmse_mm"].get<double>(), 1.5 * 1.7);
   EXPECT_LT(t["max_error_mm"].get<double>(), 1.5 * 3.2);
 
@@ -170,9 +170,8 @@ TEST(Demonstrators, TentacleErrorsWithinThePapersTipOnlyMatchesLessOfTheBodyAndF
   std::map<std::string, nlohmann::json> result;
   for (const auto& [condition, cwd] : {std::pair{"full", dir.path()}, std::pair{"tip", dir / "tip"}}) {
     const bool molds = condition == std::string("full");
-    const auto r = test::run_fibermold(std::string("make ") + condition + ".toml" + (molds ? "" : " collide") +
-                                           " --build-dir build",
-                                       cwd);
+    const auto r = test::run_fibermold(
+        std::string("make ") + condition + ".toml" + (molds ? "" : " collide") + " --build-dir build", cwd);
     ASSERT_EQ(r.exit_code, 0) << r.err;
     if (molds) expect_parts_pass(cwd / "build");
     result[condition] = read_json(cwd / "build" / "optimize" / "report.json")["targets"]["curl"];
@@ -243,10 +242,11 @@ TEST(Demonstrators, NotchedFingerCurlsTowardItsPoseAndSaysHowMuchAndMakesMolds)
   EXPECT_NEAR(targets["rotation_about_asked_axis_deg"].get<double>(), 60, 1.0);
   const auto& pose = report["targets"]["curl"]["poses"][0];
   const double reached = pose["rotation_about_asked_axis_deg"].get<double>();
-  std::printf("notched finger: the pose target turns the tip %.2f°; the optimized muscle %.2f° of 60° (%.0f %%) at %.0f kPa\n",
-              targets["rotation_about_asked_axis_deg"].get<double>(), reached, pose["rotation_reached_percent"].get<double>(),
-              report["targets"]["curl"]["pressure_kPa"]["flexor"].get<double>());
-  EXPECT_GT(reached, 50);  // measured 56.9° after 40 iterations on 6 mm edges (docs/targets.md)
+  std::printf(
+      "notched finger: the pose target turns the tip %.2f°; the optimized muscle %.2f° of 60° (%.0f %%) at %.0f kPa\n",
+      targets["rotation_about_asked_axis_deg"].get<double>(), reached, pose["rotation_reached_percent"].get<double>(),
+      report["targets"]["curl"]["pressure_kPa"]["flexor"].get<double>());
+  EXPECT_GT(reached, 50); // measured 56.9° after 40 iterations on 6 mm edges (docs/targets.md)
   EXPECT_LT(reached, 62);
   const std::string html = test::read_text(dir / "build" / "export" / "report.html");
   EXPECT_THAT(html, HasSubstr("turn reached"));

@@ -23,7 +23,8 @@ namespace fs = std::filesystem;
 
 /// The bar with its muscle, curve and target; two optimizer iterations and coarse molds keep a
 /// whole make near 10 s.
-const std::string kDesign = std::string(test::kBarDesign) + test::kBarMuscle + test::kBarTrackingCurve + test::kBarTarget +
+const std::string kDesign = std::string(test::kBarDesign) + test::kBarMuscle + test::kBarTrackingCurve +
+                            test::kBarTarget +
                             "[optimize]\nmax_iterations = 2\n[mold]\nvoxel = 0.6\nwall = 3\nkeys = 2\n";
 
 SurfaceMesh bar() { return test::box({0, -0.008, -0.008}, {0.06, 0.008, 0.008}, Eigen::Vector3i(10, 3, 3)); }
@@ -31,7 +32,7 @@ SurfaceMesh bar() { return test::box({0, -0.008, -0.008}, {0.06, 0.008, 0.008}, 
 /// Runs every mutant; `make_limit`: how many of those check passes go on through make.
 std::map<int, int> fuzz(const std::vector<test::Mutant>& mutants, bool mesh, int make_limit)
 {
-  std::map<int, int> codes;  // check's exit code → count; make's as 100 + code
+  std::map<int, int> codes; // check's exit code → count; make's as 100 + code
   int made = 0;
   for (const test::Mutant& m : mutants) {
     test::TempDir dir;
@@ -55,7 +56,8 @@ TEST(FuzzE2E, DesignMutantsKeepTheExitCodesAndWriteNoNull)
 {
   const auto mutants = test::design_mutants(kDesign, 240, 28);
   const auto codes = fuzz(mutants, false, 6);
-  for (const auto& [code, count] : codes) fmt::print("  {} {}: {}\n", code >= 100 ? "make" : "check", code % 100, count);
+  for (const auto& [code, count] : codes)
+    fmt::print("  {} {}: {}\n", code >= 100 ? "make" : "check", code % 100, count);
   // The generator is not toothless: it makes both designs check refuses and designs it passes
   // (24 of 240 pass since [muscle] min_bend_radius: a moved control point of the bar's muscle, whose
   // tightest bend is 11.4 mm, often bends it under 9 mm; 30 or more passed before).
@@ -69,7 +71,8 @@ TEST(FuzzE2E, MeshMutantsKeepTheExitCodes)
   write_stl(dir / "bar.stl", bar());
   const auto mutants = test::mesh_mutants(test::read_text(dir / "bar.stl"), 80, 28);
   const auto codes = fuzz(mutants, true, 2);
-  for (const auto& [code, count] : codes) fmt::print("  {} {}: {}\n", code >= 100 ? "make" : "check", code % 100, count);
+  for (const auto& [code, count] : codes)
+    fmt::print("  {} {}: {}\n", code >= 100 ? "make" : "check", code % 100, count);
   EXPECT_GT(codes.count(2) ? codes.at(2) : 0, 20);
 }
 
@@ -121,7 +124,8 @@ TEST(FuzzE2E, CheckRefusesWhatOptimizeWouldRefuse)
   test::write_text(dir / "design.toml", design);
   const auto out = test::run_fibermold("check design.toml", dir.path());
   EXPECT_EQ(out.exit_code, 2) << out.out << out.err;
-  EXPECT_THAT(out.err, ::testing::ContainsRegex("design\\.toml:[0-9]+:[0-9]+: \\[tracking_curve\\.centre\\]: the curve leaves the body at"));
+  EXPECT_THAT(out.err, ::testing::ContainsRegex(
+                           "design\\.toml:[0-9]+:[0-9]+: \\[tracking_curve\\.centre\\]: the curve leaves the body at"));
 }
 
 /// The rule on the designs users start from: mutants of each example's design (made cheap: coarse
@@ -134,12 +138,32 @@ TEST(FuzzE2E, MutantsOfEveryExampleThatCheckPassesMakeDoesNotRefuse)
     std::vector<std::pair<std::string, std::string>> cheap;
   };
   const std::vector<Example> examples = {
-      {"twisting-bar", "design.toml", {{"max_iterations = 400", "max_iterations = 2"}, {"route_only_iterations = 30 ", "route_only_iterations = 1 "}, {"voxel = 0.2 ", "voxel = 0.6 "}}},
-      {"hand-routed-twist", "design.toml", {{"voxel = 0.25", "voxel = 0.6"}, {"\"../twisting-bar/bar.stl\"", "\"" + (fs::path(FIBERMOLD_SOURCE_DIR) / "examples" / "twisting-bar" / "bar.stl").string() + "\""}}},
-      {"recovery", "design.toml", {{"edge_length = 5.0", "edge_length = 8.0"}, {"max_iterations = 400", "max_iterations = 2"}}},
-      {"walking-robot", "design.toml", {{"edge_length = 5.0", "edge_length = 6.0"}, {"max_iterations = 300", "max_iterations = 2"}, {"voxel = 0.2 ", "voxel = 0.5 "}}},
-      {"notched-finger", "design.toml", {{"edge_length = 4.0", "edge_length = 6.0"}, {"max_iterations = 200", "max_iterations = 2"}, {"voxel = 0.25", "voxel = 0.6"}}},
-      {"continuum-robot", "design.toml", {{"max_iterations = 200", "max_iterations = 2"}, {"voxel = 0.25", "voxel = 0.8"}}},
+      {"twisting-bar",
+       "design.toml",
+       {{"max_iterations = 400", "max_iterations = 2"},
+        {"route_only_iterations = 30 ", "route_only_iterations = 1 "},
+        {"voxel = 0.2 ", "voxel = 0.6 "}}},
+      {"hand-routed-twist",
+       "design.toml",
+       {{"voxel = 0.25", "voxel = 0.6"},
+        {"\"../twisting-bar/bar.stl\"",
+         "\"" + (fs::path(FIBERMOLD_SOURCE_DIR) / "examples" / "twisting-bar" / "bar.stl").string() + "\""}}},
+      {"recovery",
+       "design.toml",
+       {{"edge_length = 5.0", "edge_length = 8.0"}, {"max_iterations = 400", "max_iterations = 2"}}},
+      {"walking-robot",
+       "design.toml",
+       {{"edge_length = 5.0", "edge_length = 6.0"},
+        {"max_iterations = 300", "max_iterations = 2"},
+        {"voxel = 0.2 ", "voxel = 0.5 "}}},
+      {"notched-finger",
+       "design.toml",
+       {{"edge_length = 4.0", "edge_length = 6.0"},
+        {"max_iterations = 200", "max_iterations = 2"},
+        {"voxel = 0.25", "voxel = 0.6"}}},
+      {"continuum-robot",
+       "design.toml",
+       {{"max_iterations = 200", "max_iterations = 2"}, {"voxel = 0.25", "voxel = 0.8"}}},
   };
   std::map<int, int> codes;
   for (const Example& e : examples) {
@@ -162,7 +186,8 @@ TEST(FuzzE2E, MutantsOfEveryExampleThatCheckPassesMakeDoesNotRefuse)
     }
     EXPECT_GE(made, 1) << e.folder << ": no mutant passed check";
   }
-  for (const auto& [code, count] : codes) fmt::print("  {} {}: {}\n", code >= 100 ? "make" : "check", code % 100, count);
+  for (const auto& [code, count] : codes)
+    fmt::print("  {} {}: {}\n", code >= 100 ? "make" : "check", code % 100, count);
 }
 
 TEST(FuzzE2E, ABuildFolderThatIsAFileIsBadInputAndABusyOneHasItsOwnCode)
@@ -177,8 +202,9 @@ TEST(FuzzE2E, ABuildFolderThatIsAFileIsBadInputAndABusyOneHasItsOwnCode)
   // Another process holds the build folder's lock (flock(1) holds it while its command runs): exit 3, not 1.
   fs::create_directories(dir / "out");
   test::write_text(dir / "out" / ".lock", "");
-  const auto held = test::run_command(fmt::format("cd '{}' && flock out/.lock -c \"'{}' make design.toml mesh --build-dir out; echo rc=\\$?\"",
-                                                  dir.path().string(), FIBERMOLD_BINARY));
+  const auto held = test::run_command(
+      fmt::format("cd '{}' && flock out/.lock -c \"'{}' make design.toml mesh --build-dir out; echo rc=\\$?\"",
+                  dir.path().string(), FIBERMOLD_BINARY));
   EXPECT_THAT(held.second, HasSubstr("rc=3")) << held.second;
   EXPECT_THAT(held.second, HasSubstr("is working in out"));
 }

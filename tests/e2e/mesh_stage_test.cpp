@@ -76,22 +76,23 @@ TEST_F(MeshStageE2E, ACadBoxOfTwelveTrianglesSagsAsAConvergedSolverSays)
   write_stl(dir_ / "box.stl", test::box({0, -7.5e-3, -7.5e-3}, {0.1, 7.5e-3, 7.5e-3}, 1));
   ASSERT_EQ(test::box({0, 0, 0}, {1, 1, 1}, 1).num_faces(), 12);
   for (const auto& [basis, tolerance] : {std::pair{"mls-linear", 0.03}, std::pair{"fem-p2", 0.02}}) {
-    test::write_text(dir_ / "design.toml", fmt::format("[design]\nname = \"body\"\nsurface = \"box.stl\"\n[mesh]\nedge_length = 3\n"
-                                                       "[sim]\nbasis = \"{}\"\n",
-                                                       basis));
+    test::write_text(dir_ / "design.toml",
+                     fmt::format("[design]\nname = \"body\"\nsurface = \"box.stl\"\n[mesh]\nedge_length = 3\n"
+                                 "[sim]\nbasis = \"{}\"\n",
+                                 basis));
     const auto r = make();
     ASSERT_EQ(r.exit_code, 0) << r.err;
     const auto report = nlohmann::json::parse(test::read_text(dir_ / "build" / "mesh" / "report.json"))["mesh"];
     EXPECT_TRUE(report["surface_triangles"]["split"].get<bool>());
     EXPECT_GT(report["surface_triangles"]["points_added"].get<int>(), 500);
-    EXPECT_LT(report["surface_triangles"]["deviation_mm"].get<double>(), 1e-9);  // the points lie on the input's faces
+    EXPECT_LT(report["surface_triangles"]["deviation_mm"].get<double>(), 1e-9); // the points lie on the input's faces
     // TetGen's quality refinement on the surface makes the tets finer than the volume bound alone
     // (a mean edge of 2.22 mm, 19,573 tets until session 25): the bound is rescaled to the edge length.
     EXPECT_NEAR(report["edge_length_mm"]["mean"].get<double>(), 3.0, kEdgeLengthTolerance * 3.0);
     EXPECT_GT(report["sizing"]["tetgen_runs"].get<int>(), 1);
     const TetMesh mesh = load_tet_mesh(dir_ / "build" / "mesh" / "body.tetmesh");
     EXPECT_NEAR(mesh.volume(), 22.5e-6, 1e-6 * 22.5e-6);
-    SimulationOptions o;  // the design file's defaults: EcoFlex, gravity −z
+    SimulationOptions o; // the design file's defaults: EcoFlex, gravity −z
     o.basis = *value_in(kBasisNames, basis);
     o.fixed_nodes = {nodes_in_box(mesh.nodes, {-1e-3, -1, -1}, {1e-9, 1, 1})};
     Simulation sim(mesh, o);
@@ -102,7 +103,8 @@ TEST_F(MeshStageE2E, ACadBoxOfTwelveTrianglesSagsAsAConvergedSolverSays)
     const Eigen::Vector3d tip(0.1, 0, 0);
     const double sag = -(sim.basis().at(tip, 0).position(x) - tip).z();
     std::printf("12-triangle box, %s: %ld nodes, %ld tets, tip %.2f mm down (converged: 58.9 mm, %.1f %%)\n", basis,
-                static_cast<long>(mesh.nodes.rows()), static_cast<long>(mesh.num_tets()), sag * 1e3, 100 * (sag / kConverged - 1));
+                static_cast<long>(mesh.nodes.rows()), static_cast<long>(mesh.num_tets()), sag * 1e3,
+                100 * (sag / kConverged - 1));
     EXPECT_NEAR(sag, kConverged, tolerance * kConverged) << basis;
   }
 }
@@ -159,7 +161,8 @@ TEST_F(MeshStageE2E, EditingMeshOptionsRerunsTheStage)
   write_stl(dir_ / "box.stl", box_);
   design("box.stl");
   ASSERT_EQ(make().exit_code, 0);
-  EXPECT_THAT(test::run_fibermold("status design.toml --build-dir build", dir_.path()).out, ContainsRegex("mesh +fresh"));
+  EXPECT_THAT(test::run_fibermold("status design.toml --build-dir build", dir_.path()).out,
+              ContainsRegex("mesh +fresh"));
   design("box.stl", "edge_length = 4.0");
   EXPECT_THAT(test::run_fibermold("status design.toml --build-dir build", dir_.path()).out,
               HasSubstr("stale ([mesh].edge_length changed (5 → 4))"));
@@ -243,10 +246,11 @@ TEST_F(MeshStageE2E, AClosedInternalCavityIsRefusedByCheckAndMake)
   // A 40 × 20 × 20 mm block with a closed 20 × 8 × 8 mm chamber inside (a PneuNet's, sealed): a
   // valid solid, but a two-part mold cannot cast the void.
   SurfaceMesh chamber = test::box({0.01, 0.006, 0.006}, {0.03, 0.014, 0.014}, 2);
-  chamber.faces.col(1).swap(chamber.faces.col(2));  // pointing into the void
+  chamber.faces.col(1).swap(chamber.faces.col(2)); // pointing into the void
   write_stl(dir_ / "hollow.stl", test::combine(box_, chamber));
   design("hollow.stl");
-  const std::string message = "surface hollow.stl has a closed internal cavity of 1280 mm³ around (20.0, 10.0, 10.0) mm: a two-part mold cannot cast it";
+  const std::string message = "surface hollow.stl has a closed internal cavity of 1280 mm³ around (20.0, 10.0, 10.0) "
+                              "mm: a two-part mold cannot cast it";
   const auto checked = test::run_fibermold("check design.toml", dir_.path());
   EXPECT_EQ(checked.exit_code, 2) << checked.err;
   EXPECT_THAT(checked.err, HasSubstr(message));
@@ -256,9 +260,10 @@ TEST_F(MeshStageE2E, AClosedInternalCavityIsRefusedByCheckAndMake)
 TEST_F(MeshStageE2E, NonManifoldEdge)
 {
   write_stl(dir_ / "edge.stl", test::combine(test::box({0, 0, 0}, {0.01, 0.01, 0.01}, 1),
-                                              test::box({0.01, 0.01, 0}, {0.02, 0.02, 0.01}, 1)));
+                                             test::box({0.01, 0.01, 0}, {0.02, 0.02, 0.01}, 1)));
   design("edge.stl");
-  expect_rejected("surface edge.stl is not manifold: 1 edges shared by more than two faces, e.g. at (10.0, 10.0, 5.0) mm");
+  expect_rejected(
+      "surface edge.stl is not manifold: 1 edges shared by more than two faces, e.g. at (10.0, 10.0, 5.0) mm");
 }
 
 TEST_F(MeshStageE2E, InterpenetratingBoxes)
@@ -304,12 +309,14 @@ TEST_F(MeshStageE2E, UnsupportedExtension)
 
 TEST_F(MeshStageE2E, WrongUnitsAreRefusedBeforeMeshing)
 {
-  write_stl(dir_ / "box.stl", box_);  // in mm, declared as m: a 40 m box, beyond any robot
+  write_stl(dir_ / "box.stl", box_); // in mm, declared as m: a 40 m box, beyond any robot
   test::write_text(dir_ / "design.toml", "[design]\nsurface = \"box.stl\"\nunits = \"m\"\n[mesh]\nedge_length = 5.0\n");
-  expect_rejected("box.stl: the surface spans 4.9e+04 mm corner to corner (0 to 40 in the file's units): a body is between 0.1 mm "
-                  "and 10 m across; check [design].units");
+  expect_rejected(
+      "box.stl: the surface spans 4.9e+04 mm corner to corner (0 to 40 in the file's units): a body is between 0.1 mm "
+      "and 10 m across; check [design].units");
   // Declared as cm: a 400 mm box, at 2 mm edges about 2e7 tets.
-  test::write_text(dir_ / "design.toml", "[design]\nsurface = \"box.stl\"\nunits = \"cm\"\n[mesh]\nedge_length = 2.0\n");
+  test::write_text(dir_ / "design.toml",
+                   "[design]\nsurface = \"box.stl\"\nunits = \"cm\"\n[mesh]\nedge_length = 2.0\n");
   expect_rejected(
       "design.toml:5:15: [mesh].edge_length: 2 mm for a body of 1.6e+07 mm³ would make about 2.12e+07 tets, more than "
       "[mesh].max_tets = 2000000; raise edge_length, or check [design].units");
@@ -323,12 +330,16 @@ void write_gltf_tetrahedron(const fs::path& dir, float a)
   std::string bin(reinterpret_cast<const char*>(p), sizeof p);
   bin.append(reinterpret_cast<const char*>(idx), sizeof idx);
   test::write_text(dir / "tet.bin", bin);
-  test::write_text(dir / "tet.gltf", fmt::format(R"({{"asset": {{"version": "2.0"}}, "scene": 0, "scenes": [{{"nodes": [0]}}],
+  test::write_text(dir / "tet.gltf",
+                   fmt::format(R"({{"asset": {{"version": "2.0"}}, "scene": 0, "scenes": [{{"nodes": [0]}}],
  "nodes": [{{"mesh": 0}}], "meshes": [{{"primitives": [{{"attributes": {{"POSITION": 0}}, "indices": 1}}]}}],
  "buffers": [{{"uri": "tet.bin", "byteLength": 72}}],
- "bufferViews": [{{"buffer": 0, "byteOffset": 0, "byteLength": 48}}, {{"buffer": 0, "byteOffset": 48, "byteLength": 24}}],
- "accessors": [{{"bufferView": 0, "componentType": 5126, "count": 4, "type": "VEC3", "min": [0, 0, 0], "max": [{0}, {0}, {0}]}},
-               {{"bufferView": 1, "componentType": 5123, "count": 12, "type": "SCALAR"}}]}})", a));
+ "bufferViews": [{{"buffer": 0, "byteOffset": 0, "byteLength": 48}},
+                 {{"buffer": 0, "byteOffset": 48, "byteLength": 24}}],
+ "accessors": [{{"bufferView": 0, "componentType": 5126, "count": 4, "type": "VEC3",
+                 "min": [0, 0, 0], "max": [{0}, {0}, {0}]}},
+               {{"bufferView": 1, "componentType": 5123, "count": 12, "type": "SCALAR"}}]}})",
+                               a));
 }
 
 TEST_F(MeshStageE2E, GltfExternalBufferIsAnInput)
@@ -337,10 +348,11 @@ TEST_F(MeshStageE2E, GltfExternalBufferIsAnInput)
   design("tet.gltf");
   ASSERT_EQ(make().exit_code, 0) << make().err;
   const auto volume = [&] {
-    return nlohmann::json::parse(test::read_text(dir_ / "build" / "mesh" / "report.json"))["mesh"]["volume_mm3"].get<double>();
+    return nlohmann::json::parse(test::read_text(dir_ / "build" / "mesh" / "report.json"))["mesh"]["volume_mm3"]
+        .get<double>();
   };
   EXPECT_NEAR(volume(), 30.0 * 30 * 30 / 6, 1e-6);
-  write_gltf_tetrahedron(dir_.path(), 40);  // only the .bin's content changes
+  write_gltf_tetrahedron(dir_.path(), 40); // only the .bin's content changes
   EXPECT_THAT(test::run_fibermold("status design.toml --build-dir build", dir_.path()).out,
               ContainsRegex("mesh +stale \\(file tet.bin changed"));
   ASSERT_EQ(make().exit_code, 0);
@@ -377,18 +389,18 @@ TEST_F(MeshStageE2E, ADenseScanCoarsensToTheAskedEdgeLengthAndSagsAsAConvergedSo
   EXPECT_EQ(triangles["treatment"], "remesh");
   EXPECT_NEAR(triangles["input_mean_edge_mm"].get<double>(), 0.57, 0.01);
   EXPECT_NEAR(triangles["remeshed"]["mean_edge_mm"].get<double>(), 3.0, 0.25 * 3.0);
-  EXPECT_LT(triangles["deviation_mm"].get<double>(), 1e-6);  // flat faces, sharp edges kept
+  EXPECT_LT(triangles["deviation_mm"].get<double>(), 1e-6); // flat faces, sharp edges kept
   EXPECT_EQ(triangles["remeshed"]["input_vertices_off"].get<int>(), 0);
   const double mean = report["edge_length_mm"]["mean"].get<double>();
-  std::printf("dense scan: %d → %d faces; mesh mean edge %.2f mm (asked 3)\n", triangles["remeshed"]["input_faces"].get<int>(),
-              triangles["remeshed"]["faces"].get<int>(), mean);
+  std::printf("dense scan: %d → %d faces; mesh mean edge %.2f mm (asked 3)\n",
+              triangles["remeshed"]["input_faces"].get<int>(), triangles["remeshed"]["faces"].get<int>(), mean);
   EXPECT_NEAR(mean, 3.0, 0.25 * 3.0);
   const TetMesh mesh = load_tet_mesh(dir_ / "build" / "mesh" / "body.tetmesh");
   EXPECT_LT(mesh.nodes.rows(), scan.num_vertices() / 3);
-  EXPECT_EQ(mesh.surface_vertices.rows(), scan.num_vertices());  // the scan as given, for the molds
+  EXPECT_EQ(mesh.surface_vertices.rows(), scan.num_vertices()); // the scan as given, for the molds
   EXPECT_NEAR(mesh.volume(), 22.5e-6, 1e-6 * 22.5e-6);
 
-  SimulationOptions o;  // the design file's defaults: EcoFlex, gravity −z, mls-linear
+  SimulationOptions o; // the design file's defaults: EcoFlex, gravity −z, mls-linear
   o.fixed_nodes = {nodes_in_box(mesh.nodes, {-1e-3, -1, -1}, {1e-9, 1, 1})};
   Simulation sim(mesh, o);
   Eigen::VectorXd x = sim.rest();
@@ -407,13 +419,16 @@ TEST_F(MeshStageE2E, AFeatureTheEdgeLengthCannotHoldIsWarnedAboutWhereItIs)
   SurfaceMesh s = test::box({0, 0, 0}, {0.04, 0.02, 0.01}, Eigen::Vector3i(80, 40, 20));
   for (Eigen::Index v = 0; v < s.num_vertices(); ++v)
     if (s.vertices(v, 2) > 0.01 - 1e-12)
-      s.vertices(v, 2) += 0.003 * std::exp(-(std::pow(s.vertices(v, 0) - 0.03, 2) + std::pow(s.vertices(v, 1) - 0.01, 2)) / 4.5e-6);
+      s.vertices(v, 2) +=
+          0.003 * std::exp(-(std::pow(s.vertices(v, 0) - 0.03, 2) + std::pow(s.vertices(v, 1) - 0.01, 2)) / 4.5e-6);
   write_stl(dir_ / "bumped.stl", s);
   design("bumped.stl", "edge_length = 6");
   const auto r = make();
   ASSERT_EQ(r.exit_code, 0) << r.err;
-  EXPECT_THAT(r.err, ContainsRegex("input vertices lie more than 1.5 mm from the mesh's surface \\(up to 2\\.[0-9]+ mm, near "
-                                   "\\((29|30)\\.[0-9], (9|10)\\.[0-9], 1[23]\\.[0-9]\\) mm\\): features smaller than the edge length"));
+  EXPECT_THAT(r.err,
+              ContainsRegex(
+                  "input vertices lie more than 1.5 mm from the mesh's surface \\(up to 2\\.[0-9]+ mm, near "
+                  "\\((29|30)\\.[0-9], (9|10)\\.[0-9], 1[23]\\.[0-9]\\) mm\\): features smaller than the edge length"));
   const auto report = nlohmann::json::parse(test::read_text(dir_ / "build" / "mesh" / "report.json"))["mesh"];
   EXPECT_GT(report["surface_triangles"]["remeshed"]["input_vertices_off"].get<int>(), 0);
   EXPECT_GT(report["surface_triangles"]["deviation_mm"].get<double>(), 1.5);

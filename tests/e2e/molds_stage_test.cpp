@@ -28,7 +28,8 @@ const std::string kDesign = std::string(test::kBarDesign) + "[optimize]\nenabled
 class MoldsE2E : public ::testing::Test {
 protected:
   void SetUp() override { test::write_bar(dir_.path()); }
-  void design(const std::string& extra, const std::string& fiber = "[[fiber]]\nname = \"m1\"\npoints = [[0, 0, 0], [60, 0, 0]]\n")
+  void design(const std::string& extra,
+              const std::string& fiber = "[[fiber]]\nname = \"m1\"\npoints = [[0, 0, 0], [60, 0, 0]]\n")
   {
     test::write_text(dir_ / "design.toml", kDesign + fiber + extra);
   }
@@ -58,7 +59,7 @@ std::map<std::string, int> admesh(const fs::path& stl)
   FILE* pipe = popen(("admesh '" + stl.string() + "' 2>&1").c_str(), "r");
   if (!pipe) return counts;
   char line[512];
-  const std::regex entry(R"(^\s*([A-Za-z ]+?)\s*:\s*(-?\d+)(\s|$))");  // "Number of parts : 1   Volume : ..."
+  const std::regex entry(R"(^\s*([A-Za-z ]+?)\s*:\s*(-?\d+)(\s|$))"); // "Number of parts : 1   Volume : ..."
   while (fgets(line, sizeof line, pipe)) {
     std::cmatch m;
     if (std::regex_search(line, m, entry)) counts[m[1]] = std::stoi(m[2]);
@@ -78,9 +79,10 @@ TEST_F(MoldsE2E, HandRoutedBarBecomesFourCheckedParts)
     EXPECT_TRUE(p["fits_printer_as_placed"].get<bool>()) << p["name"];
     ASSERT_TRUE(fs::exists(out(p["file"].get<std::string>())));
   }
-  const double shot1 = manifest["shots"]["shot1"]["silicone_volume_mL"], shot2 = manifest["shots"]["shot2"]["silicone_volume_mL"];
+  const double shot1 = manifest["shots"]["shot1"]["silicone_volume_mL"],
+               shot2 = manifest["shots"]["shot2"]["silicone_volume_mL"];
   std::printf("bar molds: shot 1 %.2f mL, shot 2 %.2f mL of silicone\n", shot1, shot2);
-  EXPECT_NEAR(shot1 + shot2, 60 * 16 * 16 * 1e-3 - 60 * M_PI * 1.5 * 1.5 * 1e-3, 0.3);  // body minus the muscle
+  EXPECT_NEAR(shot1 + shot2, 60 * 16 * 16 * 1e-3 - 60 * M_PI * 1.5 * 1.5 * 1e-3, 0.3); // body minus the muscle
   const std::string guide = test::read_text(out("README.txt"));
   EXPECT_THAT(guide, HasSubstr("Shot 2, the overmold"));
   EXPECT_THAT(guide, HasSubstr("Trim the cast's sprue and vent stubs"));
@@ -103,7 +105,8 @@ TEST_F(MoldsE2E, HandRoutedBarBecomesFourCheckedParts)
     EXPECT_NEAR(signed_volume(body), signed_volume(printed), 1e-3 * signed_volume(body)) << name;
   }
 
-  if (std::system("command -v admesh >/dev/null 2>&1") != 0) GTEST_SKIP() << "admesh is not installed (scripts/setup installs it)";
+  if (std::system("command -v admesh >/dev/null 2>&1") != 0)
+    GTEST_SKIP() << "admesh is not installed (scripts/setup installs it)";
   for (const auto& p : manifest["parts"]) {
     const auto a = admesh(out(p["file"].get<std::string>()));
     const std::string name = p["name"];
@@ -143,7 +146,8 @@ std::vector<double> layer_heights(const fs::path& gcode)
 
 TEST_F(MoldsE2E, ExportedPartsSliceInPrusaSlicer)
 {
-  if (std::system("command -v prusa-slicer >/dev/null 2>&1") != 0) GTEST_SKIP() << "prusa-slicer is not installed (scripts/setup installs it)";
+  if (std::system("command -v prusa-slicer >/dev/null 2>&1") != 0)
+    GTEST_SKIP() << "prusa-slicer is not installed (scripts/setup installs it)";
   design("[export]\nformats = [\"stl\", \"3mf\"]\n");
   ASSERT_EQ(make().exit_code, 0);
   const auto manifest = nlohmann::json::parse(test::read_text(out("manifest.json")));
@@ -154,12 +158,14 @@ TEST_F(MoldsE2E, ExportedPartsSliceInPrusaSlicer)
     const fs::path stl = out(p["file"].get<std::string>()), gcode = dir_ / (name + ".gcode");
 
     // The 3MF holds the same part: PrusaSlicer measures the same volume in it.
-    const auto [three_mf_code, three_mf_info] = run_command("prusa-slicer --info '" + out(name + ".3mf").string() + "'");
+    const auto [three_mf_code, three_mf_info] =
+        run_command("prusa-slicer --info '" + out(name + ".3mf").string() + "'");
     ASSERT_EQ(three_mf_code, 0) << name << ": " << three_mf_info;
     EXPECT_THAT(three_mf_info, HasSubstr("manifold = yes")) << name;
     std::smatch three_mf_volume;
     ASSERT_TRUE(std::regex_search(three_mf_info, three_mf_volume, std::regex(R"(volume = ([0-9.]+))"))) << name;
-    EXPECT_NEAR(std::stod(three_mf_volume[1]) * 1e-3, p["volume_mL"].get<double>(), 1e-3 * p["volume_mL"].get<double>()) << name;
+    EXPECT_NEAR(std::stod(three_mf_volume[1]) * 1e-3, p["volume_mL"].get<double>(), 1e-3 * p["volume_mL"].get<double>())
+        << name;
 
     const auto [info_code, info] = run_command("prusa-slicer --info '" + stl.string() + "'");
     ASSERT_EQ(info_code, 0) << name << ": " << info;
@@ -169,13 +175,14 @@ TEST_F(MoldsE2E, ExportedPartsSliceInPrusaSlicer)
     ASSERT_TRUE(std::regex_search(info, volume, std::regex(R"(volume = ([0-9.]+))"))) << name;
     EXPECT_NEAR(std::stod(volume[1]) * 1e-3, p["volume_mL"].get<double>(), 1e-3 * p["volume_mL"].get<double>()) << name;
 
-    const auto [slice_code, log] = run_command("prusa-slicer --export-gcode '" + stl.string() + "' --output '" + gcode.string() + "'");
+    const auto [slice_code, log] =
+        run_command("prusa-slicer --export-gcode '" + stl.string() + "' --output '" + gcode.string() + "'");
     ASSERT_EQ(slice_code, 0) << name << ": " << log;
     EXPECT_THAT(log, ::testing::Not(HasSubstr("error"))) << name;
     const auto z = layer_heights(gcode);
     ASSERT_FALSE(z.empty()) << name;
     const double height = p["size_mm"][2];
-    EXPECT_NEAR(z.back(), height, 0.35) << name << ": the top layer is not at the part's height";  // a 0.3 mm layer
+    EXPECT_NEAR(z.back(), height, 0.35) << name << ": the top layer is not at the part's height"; // a 0.3 mm layer
     EXPECT_GE(z.size(), static_cast<std::size_t>(height / 0.3)) << name;
   }
 }
@@ -192,7 +199,8 @@ TEST_F(MoldsE2E, ReportOpensInAHeadlessBrowser)
   ASSERT_EQ(test::run_fibermold("clean design.toml export --build-dir build", dir_.path()).exit_code, 0);
   ASSERT_EQ(make().exit_code, 0);
   EXPECT_EQ(test::read_text(out("report.html")), html);
-  if (std::system("command -v chromium >/dev/null 2>&1") != 0) GTEST_SKIP() << "chromium is not installed (scripts/setup installs it)";
+  if (std::system("command -v chromium >/dev/null 2>&1") != 0)
+    GTEST_SKIP() << "chromium is not installed (scripts/setup installs it)";
 
   // The page draws the groove body and shot 1's parts (shot 2's are switched off), and they cover a
   // good part of the view.
@@ -215,7 +223,8 @@ TEST_F(MoldsE2E, ReportOpensInAHeadlessBrowser)
   const auto [code, dom] = test::open_in_browser(out("report.html"), png);
   ASSERT_EQ(code, 0) << dom;
   std::smatch status;
-  ASSERT_TRUE(std::regex_search(dom, status, std::regex(R"(<p id="status">drawn (\d+) of (\d+) triangles, (\d+) of (\d+) pixels painted</p>)")))
+  ASSERT_TRUE(std::regex_search(
+      dom, status, std::regex(R"(<p id="status">drawn (\d+) of (\d+) triangles, (\d+) of (\d+) pixels painted</p>)")))
       << "the view did not draw: " << dom.substr(0, 2000);
   EXPECT_EQ(std::stol(status[1]), shown);
   EXPECT_EQ(std::stol(status[2]), all);
@@ -229,7 +238,8 @@ TEST_F(MoldsE2E, DraftAngleLeansTheCavitiesAndTheirPartsPass)
   // A 2° draft: both shots share shot 1's plane; the overmold cavity is the bar grown by
   // r(z) = (reach − |z − plane|) tan 2° (walls within two voxels of the plane stay upright), of volume
   // ∫ A + P r + π r² dz over the bar's height plus the slab its nearer end face moves out by.
-  test::write_text(dir_ / "design.toml", kDesign + "draft_deg = 2\n[[fiber]]\nname = \"m1\"\npoints = [[0, 0, 0], [60, 0, 0]]\n");
+  test::write_text(dir_ / "design.toml",
+                   kDesign + "draft_deg = 2\n[[fiber]]\nname = \"m1\"\npoints = [[0, 0, 0], [60, 0, 0]]\n");
   const auto r = make();
   ASSERT_EQ(r.exit_code, 0) << r.err;
   const auto report = nlohmann::json::parse(test::read_text(dir_ / "build" / "molds" / "report.json"));
@@ -238,7 +248,7 @@ TEST_F(MoldsE2E, DraftAngleLeansTheCavitiesAndTheirPartsPass)
   const auto& shots = report["shots"];
   const double plane = shots["shot1"]["parting_point_mm"][2];
   EXPECT_EQ(shots["shot2"]["parting_point_mm"][2].get<double>(), plane);
-  EXPECT_LT(plane, -1.8);  // below the groove
+  EXPECT_LT(plane, -1.8); // below the groove
   const double t = std::tan(2 * M_PI / 180), reach = std::max(8 - plane, plane + 8), flat = 0.6;
   EXPECT_NEAR(report["draft_offset_mm"].get<double>(), (reach - flat) * t, 1e-9);
   const auto radius = [&](double z) { return std::max(0.0, reach - std::max(flat, std::abs(z - plane))) * t; };
@@ -248,10 +258,11 @@ TEST_F(MoldsE2E, DraftAngleLeansTheCavitiesAndTheirPartsPass)
     const double rz = radius(-8 + (k + 0.5) * 0.01);
     expected += (A + P * rz + M_PI * rz * rz) * 0.01;
   }
-  const double end_face = radius(plane < 0 ? -8 : 8);  // the end face nearer the plane moves out by δ = r − δ tan
+  const double end_face = radius(plane < 0 ? -8 : 8); // the end face nearer the plane moves out by δ = r − δ tan
   expected += A * end_face / (1 + t);
   const double cavity = shots["shot2"]["cavity_volume_mL"].get<double>() * 1e3;
-  std::printf("drafted bar: plane z = %.2f mm, shot 2 cavity %.1f mm³, expected %.1f (undrafted %.1f)\n", plane, cavity, expected, A * 16);
+  std::printf("drafted bar: plane z = %.2f mm, shot 2 cavity %.1f mm³, expected %.1f (undrafted %.1f)\n", plane, cavity,
+              expected, A * 16);
   EXPECT_NEAR(cavity, expected, 0.05 * (expected - A * 16));
 }
 
@@ -262,16 +273,18 @@ TEST_F(MoldsE2E, ShrinkScalesTheCavitiesAndThePartingPlane)
   design("");
   ASSERT_EQ(make().exit_code, 0);
   const auto nominal = nlohmann::json::parse(test::read_text(dir_ / "build" / "molds" / "report.json"));
-  test::write_text(dir_ / "design.toml", kDesign + "shrink = 0.02\n[[fiber]]\nname = \"m1\"\npoints = [[0, 0, 0], [60, 0, 0]]\n");
+  test::write_text(dir_ / "design.toml",
+                   kDesign + "shrink = 0.02\n[[fiber]]\nname = \"m1\"\npoints = [[0, 0, 0], [60, 0, 0]]\n");
   ASSERT_EQ(make().exit_code, 0);
   const auto shrunk = nlohmann::json::parse(test::read_text(dir_ / "build" / "molds" / "report.json"));
   const double g = 1 / 0.98;
   for (const char* shot : {"shot1", "shot2"}) {
     const auto& a = nominal["shots"][shot];
     const auto& b = shrunk["shots"][shot];
-    EXPECT_NEAR(b["cavity_volume_mL"].get<double>(), a["cavity_volume_mL"].get<double>() * g * g * g, 1e-3 * b["cavity_volume_mL"].get<double>())
+    EXPECT_NEAR(b["cavity_volume_mL"].get<double>(), a["cavity_volume_mL"].get<double>() * g * g * g,
+                1e-3 * b["cavity_volume_mL"].get<double>())
         << shot;
-    for (int k = 0; k < 3; ++k)  // about the body's centre (30, 0, 0) mm
+    for (int k = 0; k < 3; ++k) // about the body's centre (30, 0, 0) mm
       EXPECT_NEAR(b["parting_point_mm"][k].get<double>() - (k == 0 ? 30.0 : 0.0),
                   (a["parting_point_mm"][k].get<double>() - (k == 0 ? 30.0 : 0.0)) * g, 1e-6)
           << shot << " " << k;
@@ -284,12 +297,18 @@ TEST_F(MoldsE2E, MoldEditsRerunMoldsAndExportOnly)
 {
   design("");
   ASSERT_EQ(make().exit_code, 0);
-  test::write_text(dir_ / "design.toml", kDesign + "wall = 5.0\n[[fiber]]\nname = \"m1\"\npoints = [[0, 0, 0], [60, 0, 0]]\n");
+  test::write_text(dir_ / "design.toml",
+                   kDesign + "wall = 5.0\n[[fiber]]\nname = \"m1\"\npoints = [[0, 0, 0], [60, 0, 0]]\n");
   const auto status = test::run_fibermold("status design.toml --build-dir build", dir_.path()).out;
-  EXPECT_THAT(status, HasSubstr("optimize  fresh\ncollide   fresh\nmolds     stale ([mold].wall changed (4 → 5))\nexport    stale"));
-  test::write_text(dir_ / "design.toml", kDesign + "[collide]\nreoptimize = true\n[[fiber]]\nname = \"m1\"\npoints = [[0, 0, 0], [60, 0, 0]]\n");
-  EXPECT_THAT(test::run_fibermold("status design.toml --build-dir build", dir_.path()).out,
-              HasSubstr("optimize  fresh\ncollide   stale ([collide].reoptimize changed (false → true))\nmolds     stale"));
+  EXPECT_THAT(
+      status,
+      HasSubstr("optimize  fresh\ncollide   fresh\nmolds     stale ([mold].wall changed (4 → 5))\nexport    stale"));
+  test::write_text(dir_ / "design.toml",
+                   kDesign +
+                       "[collide]\nreoptimize = true\n[[fiber]]\nname = \"m1\"\npoints = [[0, 0, 0], [60, 0, 0]]\n");
+  EXPECT_THAT(
+      test::run_fibermold("status design.toml --build-dir build", dir_.path()).out,
+      HasSubstr("optimize  fresh\ncollide   stale ([collide].reoptimize changed (false → true))\nmolds     stale"));
 }
 
 TEST_F(MoldsE2E, BadInputsStopWithoutWritingParts)
@@ -307,7 +326,8 @@ TEST_F(MoldsE2E, BadInputsStopWithoutWritingParts)
   design("[collide]\nclearance = 0\n", "[[fiber]]\nname = \"m1\"\npoints = [[0, 0, 0], [30, 0, -6.5], [60, 0, 0]]\n");
   r = make();
   EXPECT_EQ(r.exit_code, 0) << r.err;
-  EXPECT_TRUE(nlohmann::json::parse(test::read_text(dir_ / "build" / "collide" / "report.json"))["changed"].get<bool>());
+  EXPECT_TRUE(
+      nlohmann::json::parse(test::read_text(dir_ / "build" / "collide" / "report.json"))["changed"].get<bool>());
 
   design("", "[[fiber]]\nname = \"m1\"\npoints = [[0, 0, 0], [30, 0, -12], [60, 0, 0]]\n");
   r = make();
@@ -361,7 +381,8 @@ TEST_F(MoldsE2E, SigtermWhileCarvingStopsWithinASecond)
   ASSERT_EQ(test::run_fibermold("make design.toml collide --build-dir build", dir_.path()).exit_code, 0);
   const std::string term_once_molds_runs =
       "bash -c '\"$@\" & pid=$!; for i in $(seq 1200); do [ -e build/logs/molds.log ] && break; "
-      "sleep 0.02; done; sleep 0.3; t0=$(date +%s%N); kill -TERM $pid; wait $pid; rc=$?; echo \"stopped in $(( ($(date +%s%N) - t0) / 1000000 )) ms\" >&2; "
+      "sleep 0.02; done; sleep 0.3; t0=$(date +%s%N); kill -TERM $pid; wait $pid; rc=$?; echo \"stopped in $(( ($(date "
+      "+%s%N) - t0) / 1000000 )) ms\" >&2; "
       "exit $rc' term";
   const auto r = test::run_fibermold("make design.toml molds --build-dir build", dir_.path(), term_once_molds_runs);
   EXPECT_EQ(r.exit_code, 130) << r.err;

@@ -46,31 +46,37 @@ TEST(ReportE2E, ShowsTheDeformedBodyTheErrorsAndTheOptimizationHistory)
   // Each fiber's smallest bend radius as collide left it, against the muscle's limit.
   const double limit = collide["min_bend_radius_mm"].get<double>();
   EXPECT_GT(limit, 0);
-  EXPECT_THAT(html, HasSubstr(fmt::format("Bend radius: each fiber's smallest, as built (the muscle takes {:.3f} mm)", limit)));
+  EXPECT_THAT(
+      html, HasSubstr(fmt::format("Bend radius: each fiber's smallest, as built (the muscle takes {:.3f} mm)", limit)));
   const auto& bend = collide["bends"]["m1"];
   if (bend.contains("min_bend_radius_mm")) {
     EXPECT_GE(bend["min_bend_radius_mm"].get<double>(), limit);
-    EXPECT_THAT(html, HasSubstr(fmt::format("<tr><td>m1</td><td>{:.3f}</td>", bend["min_bend_radius_mm"].get<double>())));
+    EXPECT_THAT(html,
+                HasSubstr(fmt::format("<tr><td>m1</td><td>{:.3f}</td>", bend["min_bend_radius_mm"].get<double>())));
   } else {
     EXPECT_THAT(html, HasSubstr("<tr><td>m1</td><td>straight</td>"));
   }
   // The casting guide says it too, where the muscles are laid into their grooves.
   const std::string guide = test::read_text(build / "export" / "README.txt");
   EXPECT_THAT(guide, HasSubstr(fmt::format("The muscles take bends no tighter than {:.1f} mm in radius", limit)));
-  EXPECT_THAT(guide, HasSubstr(bend.contains("min_bend_radius_mm")
-                                   ? fmt::format("  m1: {:.1f} mm, {:.1f} mm along it", bend["min_bend_radius_mm"].get<double>(), bend["along_mm"].get<double>())
-                                   : std::string("  m1: straight")));
+  EXPECT_THAT(guide,
+              HasSubstr(bend.contains("min_bend_radius_mm")
+                            ? fmt::format("  m1: {:.1f} mm, {:.1f} mm along it",
+                                          bend["min_bend_radius_mm"].get<double>(), bend["along_mm"].get<double>())
+                            : std::string("  m1: straight")));
 
   // The optimization: start and end errors, how much was reached, the pressure; its warnings (3
   // iterations: stopped at the limit) as the banner.
   const auto optimize = nlohmann::json::parse(test::read_text(build / "optimize" / "report.json"));
   const auto& o = optimize["targets"]["s"];
   EXPECT_THAT(html, HasSubstr("Optimization: iteration limit after 3 iterations"));
-  EXPECT_THAT(html, HasSubstr(fmt::format("<tr><td>s</td><td>{:.3f}</td><td>{:.3f}</td><td>{:.0f} %</td><td>{:.1f}</td></tr>",
-                                          o["start"]["rmse_mm"].get<double>(), o["rmse_mm"].get<double>(),
-                                          o["reached_percent"].get<double>(), o["pressure_kPa"]["m1"].get<double>())));
+  EXPECT_THAT(html,
+              HasSubstr(fmt::format("<tr><td>s</td><td>{:.3f}</td><td>{:.3f}</td><td>{:.0f} %</td><td>{:.1f}</td></tr>",
+                                    o["start"]["rmse_mm"].get<double>(), o["rmse_mm"].get<double>(),
+                                    o["reached_percent"].get<double>(), o["pressure_kPa"]["m1"].get<double>())));
   EXPECT_THAT(html, HasSubstr("<div id=\"warnings\"><strong>Warnings</strong>"));
-  EXPECT_THAT(html, HasSubstr("<li>the optimizer stopped before converging (iteration limit: 3 iterations, the limit)"));
+  EXPECT_THAT(html,
+              HasSubstr("<li>the optimizer stopped before converging (iteration limit: 3 iterations, the limit)"));
 
   // One plot point per optimizer iteration, for both series.
   const std::string history = test::read_text(build / "optimize" / "history.csv");
@@ -123,7 +129,8 @@ TEST(ReportE2E, ShowsTheDeformedBodyTheErrorsAndTheOptimizationHistory)
   EXPECT_THAT(dom, ::testing::Not(HasSubstr("Uncaught")));
   // A legend: every item of the 3D view has its colour beside its name, a square for a surface,
   // a dash for a line (the fiber m1 and the tracking curve among them).
-  const std::regex swatch(R"re(<label><input type="checkbox"><span class="swatch (surface|line)" style="background: rgb\((\d+), (\d+), (\d+)\);"></span>([^<]+)</label>)re");
+  const std::regex swatch(R"re(<label><input type="checkbox"><span class="swatch (surface|line)" )re"
+                          R"re(style="background: rgb\((\d+), (\d+), (\d+)\);"></span>([^<]+)</label>)re");
   int surfaces = 0, lines = 0;
   std::string names;
   for (auto it = std::sregex_iterator(dom.begin(), dom.end(), swatch); it != std::sregex_iterator(); ++it) {
@@ -131,7 +138,8 @@ TEST(ReportE2E, ShowsTheDeformedBodyTheErrorsAndTheOptimizationHistory)
     names += (*it)[5].str() + "|";
   }
   std::printf("report legend: %d surfaces, %d lines: %s\n", surfaces, lines, names.c_str());
-  EXPECT_EQ(surfaces, 1 + static_cast<int>(molds["parts"].size()) + 3);  // groove body, parts, deformed body, target, body at rest
+  EXPECT_EQ(surfaces,
+            1 + static_cast<int>(molds["parts"].size()) + 3); // groove body, parts, deformed body, target, body at rest
   EXPECT_THAT(names, HasSubstr("target s (asked) |"));
   EXPECT_GE(lines, 2);
   EXPECT_THAT(names, HasSubstr("m1 |"));

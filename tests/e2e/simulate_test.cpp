@@ -25,11 +25,12 @@ protected:
   void design(const std::string& fixed = "[[fixed]]\nbox = { min = [-1, -9, -9], max = [0.5, 9, 9] }\n",
               const std::string& fiber = "[[0, 0, 0], [30, 2, 0], [60, 0, 0]]")
   {
-    test::write_text(dir_ / "design.toml", "[design]\nname = \"bar\"\nsurface = \"bar.stl\"\n[mesh]\nedge_length = 6\n"
-                                           "[material]\ngravity = [0, 0, 0]\n" +
-                                               fixed + "[[fiber]]\nname = \"m1\"\npoints = " + fiber +
-                                               "\n[[target]]\nname = \"pull\"\nkind = \"forces\"\n"
-                                               "load = [{ box = { min = [59, -9, -9], max = [61, 9, 9] }, force = [0, 0, -0.05] }]\n");
+    test::write_text(dir_ / "design.toml",
+                     "[design]\nname = \"bar\"\nsurface = \"bar.stl\"\n[mesh]\nedge_length = 6\n"
+                     "[material]\ngravity = [0, 0, 0]\n" +
+                         fixed + "[[fiber]]\nname = \"m1\"\npoints = " + fiber +
+                         "\n[[target]]\nname = \"pull\"\nkind = \"forces\"\n"
+                         "load = [{ box = { min = [59, -9, -9], max = [61, 9, 9] }, force = [0, 0, -0.05] }]\n");
   }
   test::CommandResult simulate(const std::string& args)
   {
@@ -50,7 +51,7 @@ TEST_F(SimulateE2E, PressurizedMuscleDeformsTheBarAndWritesTheVtu)
   EXPECT_THAT(vtu, HasSubstr("Name=\"displacement_mm\""));
   EXPECT_THAT(vtu, HasSubstr("Name=\"von_mises_kPa\""));
   const double max_mm = std::stod(r.out.substr(r.out.find("max displacement") + 17));
-  EXPECT_GT(max_mm, 0.5);  // a 300 kPa muscle in a 60 mm EcoFlex bar moves it by millimetres
+  EXPECT_GT(max_mm, 0.5); // a 300 kPa muscle in a 60 mm EcoFlex bar moves it by millimetres
   EXPECT_LT(max_mm, 30);
 }
 
@@ -61,7 +62,8 @@ TEST_F(SimulateE2E, RefineReportsTheDiscretizationErrorAndItShrinksWithTheMesh)
   const auto refined = [&](double edge) {
     design();
     const std::string text = test::read_text(dir_ / "design.toml");
-    test::write_text(dir_ / "design.toml", std::regex_replace(text, std::regex("edge_length = 6"), fmt::format("edge_length = {}", edge)));
+    test::write_text(dir_ / "design.toml",
+                     std::regex_replace(text, std::regex("edge_length = 6"), fmt::format("edge_length = {}", edge)));
     const auto r = simulate("--target pull --refine");
     EXPECT_EQ(r.exit_code, 0) << r.err;
     std::smatch m;
@@ -70,7 +72,8 @@ TEST_F(SimulateE2E, RefineReportsTheDiscretizationErrorAndItShrinksWithTheMesh)
     return m.size() > 1 ? std::stod(m[1]) : 0.0;
   };
   const double coarse = refined(10), fine = refined(6);
-  std::printf("bar under a tip load: refinement changes the surface by up to %.3f mm at 10 mm edges, %.3f mm at 6 mm\n", coarse, fine);
+  std::printf("bar under a tip load: refinement changes the surface by up to %.3f mm at 10 mm edges, %.3f mm at 6 mm\n",
+              coarse, fine);
   EXPECT_GT(coarse, 0);
   EXPECT_GT(fine, 0);
   EXPECT_LT(fine, coarse);
@@ -126,14 +129,16 @@ TEST_F(SimulateE2E, BadLoadsAndFibersAreRefused)
 
   std::string text = test::read_text(dir_ / "design.toml");
   const std::string load = "load = [{ box = { min = [59, -9, -9], max = [61, 9, 9] }, force = [0, 0, -0.05] }]";
-  test::write_text(dir_ / "design.toml", std::string(text).replace(text.find(load), load.size(),
-                                                                    "load = [{ vertices = [5], torque = [0.001, 0, 0] }]"));
+  test::write_text(
+      dir_ / "design.toml",
+      std::string(text).replace(text.find(load), load.size(), "load = [{ vertices = [5], torque = [0.001, 0, 0] }]"));
   r = simulate("--target pull");
   EXPECT_EQ(r.exit_code, 2);
   EXPECT_THAT(r.err, HasSubstr("a torque needs at least 3 nodes that are not on one line; the region holds 1 node(s)"));
 
-  test::write_text(dir_ / "design.toml", std::string(text).replace(text.find(load), load.size(),
-                                                                    "load = [{ point = [60, 0, 40], force = [0, 0, -0.01] }]"));
+  test::write_text(dir_ / "design.toml",
+                   std::string(text).replace(text.find(load), load.size(),
+                                             "load = [{ point = [60, 0, 40], force = [0, 0, -0.01] }]"));
   r = simulate("--target pull");
   EXPECT_EQ(r.exit_code, 2);
   EXPECT_THAT(r.err, HasSubstr("the point (60.0, 0.0, 40.0) mm lies outside the body"));
@@ -143,7 +148,8 @@ TEST_F(SimulateE2E, LoadsDoNotDependOnDensity)
 {
   design();
   std::string text = test::read_text(dir_ / "design.toml");
-  test::write_text(dir_ / "design.toml", text.replace(text.find("gravity = [0, 0, 0]"), 19, "gravity = [0, 0, 0]\ndensity = 0"));
+  test::write_text(dir_ / "design.toml",
+                   text.replace(text.find("gravity = [0, 0, 0]"), 19, "gravity = [0, 0, 0]\ndensity = 0"));
   const auto r = simulate("--target pull");
   ASSERT_EQ(r.exit_code, 0) << r.err;
   EXPECT_THAT(r.out, HasSubstr("simulate pull: max displacement"));

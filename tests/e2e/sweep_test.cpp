@@ -27,8 +27,8 @@ namespace {
 using ::testing::HasSubstr;
 namespace fs = std::filesystem;
 
-const std::string kDesign =
-    std::string(test::kBarDesign) + test::kBarMuscle + test::kBarTrackingCurve + test::kBarTarget + "[mold]\nvoxel = 0.4\n";
+const std::string kDesign = std::string(test::kBarDesign) + test::kBarMuscle + test::kBarTrackingCurve +
+                            test::kBarTarget + "[mold]\nvoxel = 0.4\n";
 
 const char* kSweep = R"([sweep]
 design = "design.toml"
@@ -281,7 +281,8 @@ TEST_F(SweepE2E, SlurmJobArraysGiveTheLocalResultsAndAKilledTaskIsAllARerunBuild
   // A longer optimization, submitted without waiting; one of its two tasks is cancelled while it runs.
   // (40 iterations raced the cancel once the optimization ran on one BLAS thread: a task finished
   // before scancel reached it.)
-  test::write_text(dir_ / "sweep.toml", std::string(kSweep).replace(std::string(kSweep).find("[3, 5]"), 6, "[120, 121]"));
+  test::write_text(dir_ / "sweep.toml",
+                   std::string(kSweep).replace(std::string(kSweep).find("[3, 5]"), 6, "[120, 121]"));
   const auto submitted = sweep("--engine slurm --build-dir killed --no-wait", slurm.env());
   ASSERT_EQ(submitted.exit_code, 0) << submitted.out << submitted.err;
   std::smatch job;

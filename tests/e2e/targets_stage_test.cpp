@@ -77,9 +77,12 @@ fibers = [{ name = "m1", pressure = 300 }]
 TEST_F(TargetsE2E, SurfaceTargetIsFilledInAndFollowed)
 {
   // The bar bent upward: z += 0.05 x² / 60 mm (3 mm at the free end).
-  const auto bend = [](const Eigen::Vector3d& X) -> Eigen::Vector3d { return X + Eigen::Vector3d(0, 0, 0.05 * X.x() * X.x() / 0.06); };
+  const auto bend = [](const Eigen::Vector3d& X) -> Eigen::Vector3d {
+    return X + Eigen::Vector3d(0, 0, 0.05 * X.x() * X.x() / 0.06);
+  };
   SurfaceMesh bent = bar_;
-  for (Eigen::Index v = 0; v < bent.num_vertices(); ++v) bent.vertices.row(v) = bend(bar_.vertices.row(v).transpose()).transpose();
+  for (Eigen::Index v = 0; v < bent.num_vertices(); ++v)
+    bent.vertices.row(v) = bend(bar_.vertices.row(v).transpose()).transpose();
   write_stl(dir_ / "bent.stl", bent);
   design("[[target]]\nname = \"bend\"\nkind = \"surface\"\nsurface = \"bent.stl\"\n");
   const auto r = make();
@@ -108,10 +111,13 @@ TEST_F(TargetsE2E, SurfaceTargetIsFilledInAndFollowed)
 /// the mesh's nodes through their places on it. It bends the bar as the coarse skin's target does.
 TEST_F(TargetsE2E, ASurfaceTargetOnASkinTenTimesDenserThanTheMeshBendsTheSame)
 {
-  const auto bend = [](const Eigen::Vector3d& X) -> Eigen::Vector3d { return X + Eigen::Vector3d(0, 0, 0.05 * X.x() * X.x() / 0.06); };
+  const auto bend = [](const Eigen::Vector3d& X) -> Eigen::Vector3d {
+    return X + Eigen::Vector3d(0, 0, 0.05 * X.x() * X.x() / 0.06);
+  };
   const SurfaceMesh dense = test::box({0, -0.008, -0.008}, {0.06, 0.008, 0.008}, Eigen::Vector3i(100, 27, 27));
   SurfaceMesh bent = dense;
-  for (Eigen::Index v = 0; v < bent.num_vertices(); ++v) bent.vertices.row(v) = bend(dense.vertices.row(v).transpose()).transpose();
+  for (Eigen::Index v = 0; v < bent.num_vertices(); ++v)
+    bent.vertices.row(v) = bend(dense.vertices.row(v).transpose()).transpose();
   write_stl(dir_ / "bar.stl", dense);
   write_stl(dir_ / "bent.stl", bent);
   design("[[target]]\nname = \"bend\"\nkind = \"surface\"\nsurface = \"bent.stl\"\n");
@@ -133,8 +139,10 @@ TEST_F(TargetsE2E, ASurfaceTargetOnASkinTenTimesDenserThanTheMeshBendsTheSame)
   }
   const Eigen::Vector3d inside(0.045, 0.002, -0.001);
   const double inside_error = (basis.at(inside, 0).position(x) - bend(inside)).norm();
-  std::printf("surface target on a dense skin: %ld nodes for %ld skin vertices; error at the skin's vertices %.4f mm, inside %.4f mm\n",
-              static_cast<long>(mesh.nodes.rows()), static_cast<long>(dense.num_vertices()), surface_error * 1e3, inside_error * 1e3);
+  std::printf("surface target on a dense skin: %ld nodes for %ld skin vertices; error at the skin's vertices %.4f mm, "
+              "inside %.4f mm\n",
+              static_cast<long>(mesh.nodes.rows()), static_cast<long>(dense.num_vertices()), surface_error * 1e3,
+              inside_error * 1e3);
   EXPECT_LT(surface_error, 0.1e-3);
   EXPECT_LT(inside_error, 0.2e-3);
 }
@@ -176,7 +184,7 @@ TEST_F(TargetsE2E, SurfaceWithOtherVerticesIsRefused)
   EXPECT_EQ(r.exit_code, 2);
   EXPECT_THAT(r.err, HasSubstr("[target.bend].surface: other.stl has 26 vertices, the body's surface"));
 
-  SurfaceMesh shuffled = bar_;  // same vertices, faces in another order: the import order differs
+  SurfaceMesh shuffled = bar_; // same vertices, faces in another order: the import order differs
   shuffled.faces = bar_.faces.colwise().reverse();
   write_stl(dir_ / "shuffled.stl", shuffled);
   design("[[target]]\nname = \"bend\"\nkind = \"surface\"\nsurface = \"shuffled.stl\"\n");
@@ -190,7 +198,7 @@ TEST_F(TargetsE2E, SurfaceWithOtherVerticesIsRefused)
 /// the deformed end face itself turned by 30° within 1°.
 TEST_F(TargetsE2E, APoseTargetOfAKnownRotationIsReachedWithinADegree)
 {
-  const double L = 60, theta = 30 * M_PI / 180, R = L / theta;  // mm; the arc of a uniform curl
+  const double L = 60, theta = 30 * M_PI / 180, R = L / theta; // mm; the arc of a uniform curl
   const Eigen::Vector3d shift(R * std::sin(theta) - L, R * (1 - std::cos(theta)), 0);
   design(fmt::format("[[target]]\nname = \"curl\"\nkind = \"pose\"\n"
                      "pose = [{{ box = {{ min = [59, -9, -9], max = [61, 9, 9] }}, axis = [0, 0, 1], angle_deg = 30, "
@@ -222,7 +230,8 @@ TEST_F(TargetsE2E, APoseTargetOfAKnownRotationIsReachedWithinADegree)
   const MlsBasis basis(mesh.nodes, {false, 1.7 * mesh_quality(mesh).mean_edge_length});
   const Eigen::Vector3d a = basis.at({0.06, -0.008, 0}, 0).position(x), b = basis.at({0.06, 0.008, 0}, 0).position(x);
   const double turned = std::atan2(-(b - a).x(), (b - a).y()) * 180 / M_PI;
-  std::printf("pose target: asked 30°, reached %.3f° (report), the end face's edge %.3f°; end moved (%.2f, %.2f) mm of (%.2f, %.2f)\n",
+  std::printf("pose target: asked 30°, reached %.3f° (report), the end face's edge %.3f°; end moved (%.2f, %.2f) mm of "
+              "(%.2f, %.2f)\n",
               pose["rotation_about_asked_axis_deg"].get<double>(), turned, pose["translation_mm"][0].get<double>(),
               pose["translation_mm"][1].get<double>(), shift.x(), shift.y());
   EXPECT_NEAR(turned, 30, 1.0);
@@ -245,8 +254,9 @@ TEST_F(TargetsE2E, AForcesTargetReportsTheTwistItsTorqueCauses)
   EXPECT_EQ(load["place"], "load[1]");
   std::printf("torque 2e-4 N·m: the end region turned %.3f° about (%.3f, %.3f, %.3f), the centre line's end %.3f°; "
               "Saint-Venant %.3f°\n",
-              load["rotation_deg"].get<double>(), load["rotation_axis"][0].get<double>(), load["rotation_axis"][1].get<double>(),
-              load["rotation_axis"][2].get<double>(), rep["poses"][2]["rotation_deg"].get<double>(), expected);
+              load["rotation_deg"].get<double>(), load["rotation_axis"][0].get<double>(),
+              load["rotation_axis"][1].get<double>(), load["rotation_axis"][2].get<double>(),
+              rep["poses"][2]["rotation_deg"].get<double>(), expected);
   EXPECT_NEAR(load["rotation_deg"].get<double>(), expected, 0.15 * expected);
   EXPECT_GT(load["rotation_axis"][0].get<double>(), 0.99);
   EXPECT_NEAR(rep["poses"][2]["rotation_deg"].get<double>(), expected, 0.15 * expected);
@@ -277,8 +287,10 @@ TEST_F(TargetsE2E, CheckRefusesRegionsAndSurfacesTheTargetsStageWouldRefuse)
          "pose = [{ box = { min = [70, -9, -9], max = [75, 9, 9] }, axis = [0, 0, 1], angle_deg = 10 }]\n");
   auto r = check();
   EXPECT_EQ(r.exit_code, 2);
-  EXPECT_THAT(r.err, HasSubstr("[target.curl].pose[1]: the region selects no node of the mesh: the box (70.0, -9.0, -9.0) mm to "
-                               "(75.0, 9.0, 9.0) mm misses the body, which spans (0.0, -8.0, -8.0) mm to (60.0, 8.0, 8.0) mm"));
+  EXPECT_THAT(
+      r.err,
+      HasSubstr("[target.curl].pose[1]: the region selects no node of the mesh: the box (70.0, -9.0, -9.0) mm to "
+                "(75.0, 9.0, 9.0) mm misses the body, which spans (0.0, -8.0, -8.0) mm to (60.0, 8.0, 8.0) mm"));
   design("[[target]]\nname = \"droop\"\nkind = \"forces\"\nload = [{ vertices = [9999], force = [0, 0, -0.05] }]\n");
   r = check();
   EXPECT_EQ(r.exit_code, 2);
@@ -296,20 +308,25 @@ TEST_F(TargetsE2E, CheckRefusesRegionsAndSurfacesTheTargetsStageWouldRefuse)
          "pose = [{ box = { min = [-1, -9, -9], max = [3, 9, 9] }, axis = [0, 0, 1], angle_deg = 10 }]\n");
   r = check();
   EXPECT_EQ(r.exit_code, 2);
-  EXPECT_THAT(r.err, ContainsRegex("\\[target.curl\\].pose\\[1\\]: the region shares [0-9]+ surface vertices with \\[fixed.fixed1\\]: "
-                                   "a node cannot be held in two places"));
+  EXPECT_THAT(
+      r.err,
+      ContainsRegex("\\[target.curl\\].pose\\[1\\]: the region shares [0-9]+ surface vertices with \\[fixed.fixed1\\]: "
+                    "a node cannot be held in two places"));
   // A translation given in metres instead of mm moves the end 3 m: refused, naming the units.
   design("[[target]]\nname = \"curl\"\nkind = \"pose\"\n"
          "pose = [{ box = { min = [59, -9, -9], max = [61, 9, 9] }, translation = [0, 3000, 0] }]\n");
   r = check();
   EXPECT_EQ(r.exit_code, 2);
-  EXPECT_THAT(r.err, HasSubstr("[target.curl].pose[1]: the pose moves the region up to 3000 mm, more than twice the body's"));
+  EXPECT_THAT(r.err,
+              HasSubstr("[target.curl].pose[1]: the pose moves the region up to 3000 mm, more than twice the body's"));
   // Two poses that hold the same vertices.
   design("[[target]]\nname = \"curl\"\nkind = \"pose\"\n"
-         "pose = [{ box = { min = [59, -9, -9], max = [61, 9, 9] }, angle_deg = 10 }, { box = { min = [55, -9, -9], max = [61, 9, 9] }, angle_deg = 5 }]\n");
+         "pose = [{ box = { min = [59, -9, -9], max = [61, 9, 9] }, angle_deg = 10 }, { box = { min = [55, -9, -9], "
+         "max = [61, 9, 9] }, angle_deg = 5 }]\n");
   r = check();
   EXPECT_EQ(r.exit_code, 2);
-  EXPECT_THAT(r.err, ContainsRegex("\\[target.curl\\].pose\\[2\\]: the region shares [0-9]+ surface vertices with \\[target.curl\\].pose\\[1\\]"));
+  EXPECT_THAT(r.err, ContainsRegex("\\[target.curl\\].pose\\[2\\]: the region shares [0-9]+ surface vertices with "
+                                   "\\[target.curl\\].pose\\[1\\]"));
   // A box between the nodes of the mesh: found by the targets stage, which names the box and the fix.
   design("[[target]]\nname = \"curl\"\nkind = \"pose\"\n"
          "pose = [{ box = { min = [41.1, -9, -9], max = [41.2, 9, 9] }, angle_deg = 10 }]\n");
@@ -331,7 +348,8 @@ TEST_F(TargetsE2E, EditsRerunExactlyTheStagesThatReadThem)
   design(target);
   ASSERT_EQ(make().exit_code, 0);
   const auto status = [&] { return test::run_fibermold("status design.toml --build-dir build", dir_.path()).out; };
-  test::write_text(dir_ / "design.toml", std::string(kDesign).replace(std::string(kDesign).find("wall = 4.0"), 10, "wall = 5.0") + target);
+  test::write_text(dir_ / "design.toml",
+                   std::string(kDesign).replace(std::string(kDesign).find("wall = 4.0"), 10, "wall = 5.0") + target);
   EXPECT_THAT(status(), HasSubstr("mesh      fresh\ntargets   fresh"));
   design(std::string(target).replace(target.find("-0.05"), 5, "-0.08"));
   EXPECT_THAT(status(), HasSubstr("mesh      fresh\ntargets   stale ([target.droop].load"));

@@ -24,7 +24,7 @@ TEST(Writers, ThreeMfReadsBackInMillimetres)
   write_3mf(dir / "part.3mf", part, "shot1-lower");
   const SurfaceMesh back = import_surface(dir / "part.3mf", units::mm);
   EXPECT_EQ(back.num_faces(), part.num_faces());
-  EXPECT_EQ(back.num_vertices(), part.num_vertices());  // indexed: shared vertices stay shared
+  EXPECT_EQ(back.num_vertices(), part.num_vertices()); // indexed: shared vertices stay shared
   EXPECT_NEAR(signed_volume(back), 40e-3 * 20e-3 * 10e-3, 1e-12);
   EXPECT_NEAR(back.vertices.col(0).maxCoeff(), 0.040, 1e-9);
   for (const auto& entry : std::filesystem::directory_iterator(dir.path()))
@@ -70,14 +70,15 @@ TEST(Report, PageCarriesTheMeshesInMillimetresAndTheTables)
   const auto begin = html.find("const SCENE = ") + 14, end = html.find(";\n", begin);
   const auto scene = nlohmann::json::parse(html.substr(begin, end - begin));
   ASSERT_EQ(scene["meshes"].size(), 1u);
-  const std::string positions = unbase64(scene["meshes"][0]["positions"]), indices = unbase64(scene["meshes"][0]["indices"]);
+  const std::string positions = unbase64(scene["meshes"][0]["positions"]),
+                    indices = unbase64(scene["meshes"][0]["indices"]);
   ASSERT_EQ(positions.size(), static_cast<std::size_t>(part.mesh.num_vertices()) * 3 * sizeof(float));
   ASSERT_EQ(indices.size(), static_cast<std::size_t>(part.mesh.num_faces()) * 3 * sizeof(std::uint32_t));
   std::vector<float> p(positions.size() / sizeof(float));
   std::memcpy(p.data(), positions.data(), positions.size());
   for (Eigen::Index i = 0; i < part.mesh.num_vertices(); ++i) {
     EXPECT_FLOAT_EQ(p[3 * i], static_cast<float>(part.mesh.vertices(i, 0) * 1e3));
-    EXPECT_FLOAT_EQ(p[3 * i + 2], static_cast<float>((part.mesh.vertices(i, 2) + 0.005) * 1e3));  // drawn at its offset
+    EXPECT_FLOAT_EQ(p[3 * i + 2], static_cast<float>((part.mesh.vertices(i, 2) + 0.005) * 1e3)); // drawn at its offset
   }
   EXPECT_EQ(scene["lines"][0]["name"], fiber.name);
   const std::string line = unbase64(scene["lines"][0]["points"]);

@@ -33,7 +33,7 @@ public:
     std::string name;
     std::vector<std::string> upstream;
     std::vector<std::string> keys;
-    std::vector<std::string> output_keys;  ///< keys whose values reach the output; empty: all of `keys`
+    std::vector<std::string> output_keys; ///< keys whose values reach the output; empty: all of `keys`
     bool reads_surface = false;
     int version = 1;
   };
@@ -195,24 +195,24 @@ TEST_F(RunnerTest, EachKindOfInputChangeMakesExactlyTheRightStagesStale)
   const Runner r = runner();
   make(r);
 
-  edit("max_iterations = 10", "max_iterations = 20");  // a design value of a middle stage
+  edit("max_iterations = 10", "max_iterations = 20"); // a design value of a middle stage
   EXPECT_EQ(stale(r).at("optimize"), "[optimize].max_iterations changed (10 → 20)");
   EXPECT_THAT(make(r), ElementsAre("optimize", "collide", "molds", "export"));
 
-  edit("[10, 0, 0]", "[12, 0, 0]");  // an array-of-tables entry
+  edit("[10, 0, 0]", "[12, 0, 0]"); // an array-of-tables entry
   EXPECT_THAT(stale(r).at("optimize"), HasSubstr("[fiber.m1].points changed"));
   EXPECT_THAT(make(r), ElementsAre("optimize", "collide", "molds", "export"));
 
-  test::write_text(dir_ / "body.stl", "surface v2\n");  // an input file's content
+  test::write_text(dir_ / "body.stl", "surface v2\n"); // an input file's content
   EXPECT_EQ(stale(r).at("mesh"), "file body.stl changed");
   EXPECT_EQ(stale(r).size(), 6u);
   EXPECT_EQ(make(r).size(), 6u);
 
-  edit("[collide]\nclearance = 1.0", "[collide]\nclearance = 1.0\nreoptimize = true");  // a key added
+  edit("[collide]\nclearance = 1.0", "[collide]\nclearance = 1.0\nreoptimize = true"); // a key added
   EXPECT_EQ(stale(r).at("collide"), "[collide].reoptimize changed (false → true)");
   EXPECT_THAT(make(r), ElementsAre("collide", "molds", "export"));
 
-  edit("[[fiber]]\nname = \"m1\"\npoints = [[0, 0, 0], [12, 0, 0]]\n", "");  // an entry removed
+  edit("[[fiber]]\nname = \"m1\"\npoints = [[0, 0, 0], [12, 0, 0]]\n", ""); // an entry removed
   EXPECT_EQ(stale(r).at("optimize"), "[fiber.m1].name removed");
   EXPECT_THAT(make(r), ElementsAre("optimize", "collide", "molds", "export"));
   EXPECT_THAT(stale(r), IsEmpty());
@@ -233,7 +233,7 @@ TEST_F(RunnerTest, UnchangedUpstreamOutputDoesNotRerunDownstream)
 {
   const Runner r = runner();
   make(r);
-  edit("repair = false", "repair = true");  // mesh reads it, but its output does not change
+  edit("repair = false", "repair = true"); // mesh reads it, but its output does not change
   EXPECT_THAT(make(r), ElementsAre("mesh"));
   EXPECT_THAT(stale(r), IsEmpty());
 }
@@ -244,7 +244,7 @@ TEST_F(RunnerTest, ModifiedOrMissingOutputMakesItsStageStale)
   make(r);
   test::write_text(build_ / "collide" / "out.txt", "tampered");
   EXPECT_EQ(stale(r).at("collide"), "output collide/out.txt was modified");
-  EXPECT_THAT(make(r), ElementsAre("collide"));  // the rerun restores the same output
+  EXPECT_THAT(make(r), ElementsAre("collide")); // the rerun restores the same output
   fs::remove(build_ / "molds" / "out.txt");
   EXPECT_EQ(stale(r).at("molds"), "output molds/out.txt is missing");
   EXPECT_THAT(make(r), ElementsAre("molds"));
@@ -310,7 +310,7 @@ TEST_F(RunnerTest, FailedStageKeepsPreviousOutputsByteIdenticalAndStaysStale)
     EXPECT_THAT(test::read_text(e.log()), HasSubstr("the cavity is not closed"));
   }
   EXPECT_EQ(output("molds"), before);
-  EXPECT_EQ(runs_["export"], 1);  // not run after the failure
+  EXPECT_EQ(runs_["export"], 1); // not run after the failure
   EXPECT_EQ(stale(r).at("molds"), "last run failed or was interrupted");
   EXPECT_THAT(test::read_text(Runner::make_log_path(build_)), HasSubstr("molds failed"));
 
@@ -327,7 +327,7 @@ TEST_F(RunnerTest, InterruptedStageKeepsPreviousOutputsAndStaysStale)
   edit("max_iterations = 10", "max_iterations = 11");
   hooks_["optimize"] = [](StageContext& ctx) {
     test::write_text(ctx.output_dir / "out.txt", "partial");
-    request_interrupt();  // as the SIGINT handler does
+    request_interrupt(); // as the SIGINT handler does
     ctx.progress.checkpoint(0.5, "iteration 5");
   };
   EXPECT_THROW(make(r), Interrupted);
@@ -354,7 +354,7 @@ TEST_F(RunnerTest, StageKilledMidWriteLeavesPreviousOutputsByteIdentical)
       test::write_text(ctx.output_dir / "out.txt", "half writt");
       const char ready = 'w';
       [[maybe_unused]] auto n = ::write(pipe_fds[1], &ready, 1);
-      for (;;) ::pause();  // killed here, mid-stage
+      for (;;) ::pause(); // killed here, mid-stage
     };
     try {
       r.make(d, {build_, {}, false});
@@ -374,7 +374,7 @@ TEST_F(RunnerTest, StageKilledMidWriteLeavesPreviousOutputsByteIdentical)
   EXPECT_EQ(output("molds"), before);
   EXPECT_EQ(stale(r).at("molds"), "last run failed or was interrupted");
   EXPECT_EQ(stale(r).at("export"), "upstream molds is stale");
-  EXPECT_THAT(make(r), ElementsAre("molds", "export"));  // the lock died with the child
+  EXPECT_THAT(make(r), ElementsAre("molds", "export")); // the lock died with the child
   EXPECT_THAT(output("molds"), HasSubstr("[mold].wall=7"));
   EXPECT_FALSE(fs::exists(build_ / ".staging" / "molds"));
 }
@@ -388,7 +388,7 @@ TEST_F(RunnerTest, SecondConcurrentMakeIsRefused)
   const pid_t child = ::fork();
   ASSERT_GE(child, 0);
   if (child == 0) {
-    BuildLock lock(build_);  // as a running make holds it
+    BuildLock lock(build_); // as a running make holds it
     const char ready = 'l';
     [[maybe_unused]] auto w = ::write(to_parent[1], &ready, 1);
     char done = 0;

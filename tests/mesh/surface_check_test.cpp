@@ -86,7 +86,8 @@ TEST(SurfaceCheck, BoxesSharingAnEdgeAreNotManifold)
 
 TEST(SurfaceCheck, InterpenetratingBoxesIntersect)
 {
-  const SurfaceMesh s = test::combine(test::box({0, 0, 0}, {0.02, 0.02, 0.02}, 2), test::box({0.01, 0.005, 0.005}, {0.03, 0.015, 0.015}, 2));
+  const SurfaceMesh s = test::combine(test::box({0, 0, 0}, {0.02, 0.02, 0.02}, 2),
+                                      test::box({0.01, 0.005, 0.005}, {0.03, 0.015, 0.015}, 2));
   const SurfaceProblem p = only_problem(s);
   EXPECT_THAT(p.message, HasSubstr("intersects itself"));
   EXPECT_FALSE(p.repairable);

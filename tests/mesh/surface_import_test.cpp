@@ -47,7 +47,7 @@ TEST_F(SurfaceImport, EveryFormatGivesTheSameWeldedSurface)
   for (const char* name : {"binary.stl", "ascii.stl", "mesh.obj", "mesh.off", "mesh.ply"}) {
     SCOPED_TRACE(name);
     const SurfaceMesh s = import_surface(dir_ / name, 1e-3);
-    EXPECT_EQ(s.num_vertices(), torus_.num_vertices());  // STL's per-face vertices are welded
+    EXPECT_EQ(s.num_vertices(), torus_.num_vertices()); // STL's per-face vertices are welded
     EXPECT_EQ(s.num_faces(), torus_.num_faces());
     EXPECT_NEAR(signed_volume(s), volume_, 1e-6 * volume_);
     EXPECT_TRUE(check_surface(s).ok());
@@ -56,7 +56,7 @@ TEST_F(SurfaceImport, EveryFormatGivesTheSameWeldedSurface)
 
 TEST_F(SurfaceImport, UnitsScaleTheCoordinates)
 {
-  test::write_obj(dir_ / "cm.obj", torus_, 100.0);  // written in cm
+  test::write_obj(dir_ / "cm.obj", torus_, 100.0); // written in cm
   const SurfaceMesh s = import_surface(dir_ / "cm.obj", 1e-2);
   EXPECT_NEAR(s.vertices.col(0).maxCoeff(), torus_.vertices.col(0).maxCoeff(), 1e-9);
 }
@@ -89,9 +89,10 @@ TEST_F(SurfaceImport, UnsupportedExtension)
 
 TEST_F(SurfaceImport, FaceIndexOutOfRange)
 {
-  test::write_text(dir_ / "oob.ply", "ply\nformat ascii 1.0\nelement vertex 4\nproperty float x\nproperty float y\n"
-                                     "property float z\nelement face 4\nproperty list uchar int vertex_indices\nend_header\n"
-                                     "0 0 0\n1 0 0\n0 1 0\n0 0 1\n3 0 2 1\n3 0 1 3\n3 0 3 2\n3 1 2 99999\n");
+  test::write_text(dir_ / "oob.ply",
+                   "ply\nformat ascii 1.0\nelement vertex 4\nproperty float x\nproperty float y\n"
+                   "property float z\nelement face 4\nproperty list uchar int vertex_indices\nend_header\n"
+                   "0 0 0\n1 0 0\n0 1 0\n0 0 1\n3 0 2 1\n3 0 1 3\n3 0 3 2\n3 1 2 99999\n");
   EXPECT_THAT(import_error(dir_ / "oob.ply"), HasSubstr("oob.ply: "));
 }
 

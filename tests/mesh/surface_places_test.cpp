@@ -34,10 +34,12 @@ Placed placed(const SurfaceMesh& input, SurfaceTriangles policy, double edge)
 void expect_affine_carried(const Placed& p)
 {
   Eigen::MatrixX3d deformed = p.input.vertices;
-  for (Eigen::Index v = 0; v < deformed.rows(); ++v) deformed.row(v) = affine(p.input.vertices.row(v).transpose()).transpose();
+  for (Eigen::Index v = 0; v < deformed.rows(); ++v)
+    deformed.row(v) = affine(p.input.vertices.row(v).transpose()).transpose();
   const auto carried = carried_surface(p.mesh, deformed);
   std::vector<bool> on(static_cast<std::size_t>(p.mesh.nodes.rows()), false);
-  for (Eigen::Index i = 0; i < p.mesh.boundary_faces.size(); ++i) on[static_cast<std::size_t>(p.mesh.boundary_faces(i))] = true;
+  for (Eigen::Index i = 0; i < p.mesh.boundary_faces.size(); ++i)
+    on[static_cast<std::size_t>(p.mesh.boundary_faces(i))] = true;
   EXPECT_EQ(carried.size(), static_cast<std::size_t>(std::count(on.begin(), on.end(), true)));
   double worst = 0;
   for (const auto& [node, position] : carried) {
@@ -56,7 +58,8 @@ void expect_face_selected(const Placed& p)
   const std::vector<int> nodes = nodes_of_vertices(p.mesh, vertices);
   std::vector<int> expected;
   std::vector<bool> on(static_cast<std::size_t>(p.mesh.nodes.rows()), false);
-  for (Eigen::Index i = 0; i < p.mesh.boundary_faces.size(); ++i) on[static_cast<std::size_t>(p.mesh.boundary_faces(i))] = true;
+  for (Eigen::Index i = 0; i < p.mesh.boundary_faces.size(); ++i)
+    on[static_cast<std::size_t>(p.mesh.boundary_faces(i))] = true;
   for (Eigen::Index i = 0; i < p.mesh.nodes.rows(); ++i)
     if (on[static_cast<std::size_t>(i)] && p.mesh.nodes(i, 0) < 1e-9) expected.push_back(static_cast<int>(i));
   EXPECT_GT(expected.size(), 3u);
@@ -65,9 +68,10 @@ void expect_face_selected(const Placed& p)
 
 TEST(SurfacePlaces, KeptTrianglesPlaceEachVertexNodeOnItself)
 {
-  const Placed p = placed(test::box({0, 0, 0}, {0.03, 0.01, 0.01}, Eigen::Vector3i(6, 2, 2)), SurfaceTriangles::automatic, 0.005);
+  const Placed p =
+      placed(test::box({0, 0, 0}, {0.03, 0.01, 0.01}, Eigen::Vector3i(6, 2, 2)), SurfaceTriangles::automatic, 0.005);
   ASSERT_EQ(p.treatment, SurfaceTriangles::keep);
-  EXPECT_EQ(p.mesh.surface_vertices.rows(), 0);  // the input's vertices are the first nodes
+  EXPECT_EQ(p.mesh.surface_vertices.rows(), 0); // the input's vertices are the first nodes
   for (Eigen::Index v = 0; v < p.input.num_vertices(); ++v) {
     ASSERT_EQ(p.mesh.surface_to_node(v), v);
     EXPECT_EQ(p.mesh.place_weights.row(v).maxCoeff(), 1.0);
@@ -89,9 +93,9 @@ TEST(SurfacePlaces, AutoRemeshesDenseSurfacesSplitsLargeTrianglesAndKeepsTheRest
 {
   const Eigen::Vector3d lo(0, 0, 0), hi(0.03, 0.01, 0.01);
   const auto treatment = [](const SurfaceMesh& s) { return surface_treatment(SurfaceTriangles::automatic, s, 0.004); };
-  EXPECT_EQ(treatment(test::box(lo, hi, 1)), SurfaceTriangles::split);                           // 12 triangles, 30 mm edges
-  EXPECT_EQ(treatment(test::box(lo, hi, Eigen::Vector3i(8, 3, 3))), SurfaceTriangles::keep);    // 3.3–3.75 mm edges
-  SurfaceMesh dense = test::box(lo, hi, Eigen::Vector3i(60, 20, 20));                             // 0.5 mm grid
+  EXPECT_EQ(treatment(test::box(lo, hi, 1)), SurfaceTriangles::split); // 12 triangles, 30 mm edges
+  EXPECT_EQ(treatment(test::box(lo, hi, Eigen::Vector3i(8, 3, 3))), SurfaceTriangles::keep); // 3.3–3.75 mm edges
+  SurfaceMesh dense = test::box(lo, hi, Eigen::Vector3i(60, 20, 20));                        // 0.5 mm grid
   EXPECT_EQ(treatment(dense), SurfaceTriangles::remesh);
   // A dense scan with a few long triangles (a corner pulled 20 mm out): remeshed, which splits
   // them too; split, it would keep every one of its vertices.
@@ -102,10 +106,11 @@ TEST(SurfacePlaces, AutoRemeshesDenseSurfacesSplitsLargeTrianglesAndKeepsTheRest
 
 TEST(SurfacePlaces, ARemeshedDenseSurfaceIsPlacedOnTheInput)
 {
-  const Placed p = placed(test::box({0, 0, 0}, {0.03, 0.01, 0.01}, Eigen::Vector3i(60, 20, 20)), SurfaceTriangles::automatic, 0.004);
+  const Placed p =
+      placed(test::box({0, 0, 0}, {0.03, 0.01, 0.01}, Eigen::Vector3i(60, 20, 20)), SurfaceTriangles::automatic, 0.004);
   ASSERT_EQ(p.treatment, SurfaceTriangles::remesh);
   EXPECT_LT(p.mesh.nodes.rows(), p.input.num_vertices());
-  EXPECT_EQ(p.mesh.surface_vertices, p.input.vertices);  // kept for the molds: the body as given
+  EXPECT_EQ(p.mesh.surface_vertices, p.input.vertices); // kept for the molds: the body as given
   EXPECT_EQ(p.mesh.surface_faces, p.input.faces);
   expect_affine_carried(p);
   expect_face_selected(p);

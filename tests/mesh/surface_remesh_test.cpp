@@ -21,7 +21,7 @@ TEST(SurfaceRemesh, ACoarseBoxIsRefinedToTheEdgeLengthWithItsCorners)
   EXPECT_EQ(report.sharp_edges, 12);
   EXPECT_GT(r.num_faces(), 100);
   EXPECT_NEAR(mean_edge_length(r), 0.004, 0.25 * 0.004);
-  EXPECT_NEAR(signed_volume(r), 8e-6, 1e-9 * 8e-6);  // sharp edges kept: still the cube
+  EXPECT_NEAR(signed_volume(r), 8e-6, 1e-9 * 8e-6); // sharp edges kept: still the cube
 }
 
 TEST(SurfaceRemesh, ADenseBoxCoarsensToTheEdgeLengthAndKeepsItsShape)
@@ -31,8 +31,9 @@ TEST(SurfaceRemesh, ADenseBoxCoarsensToTheEdgeLengthAndKeepsItsShape)
   RemeshReport report;
   const SurfaceMesh r = remesh_surface(s, 0.003, report);
   ASSERT_TRUE(check_surface(r).ok());
-  std::printf("dense box: %lld → %lld faces, mean edge %.3f mm (input %.3f mm)\n", static_cast<long long>(s.num_faces()),
-              static_cast<long long>(r.num_faces()), mean_edge_length(r) * 1e3, mean_edge_length(s) * 1e3);
+  std::printf("dense box: %lld → %lld faces, mean edge %.3f mm (input %.3f mm)\n",
+              static_cast<long long>(s.num_faces()), static_cast<long long>(r.num_faces()), mean_edge_length(r) * 1e3,
+              mean_edge_length(s) * 1e3);
   EXPECT_NEAR(mean_edge_length(r), 0.003, 0.25 * 0.003);
   EXPECT_LT(r.num_faces(), s.num_faces() / 10);
   EXPECT_NEAR(signed_volume(r), signed_volume(s), 1e-9 * signed_volume(s));
@@ -63,7 +64,8 @@ TEST(SurfaceRemesh, ASharpNotchNarrowerThanTheEdgeLengthIsKept)
 {
   // A 40 × 20 × 10 mm block of 1 mm cubes with a slot 1 mm wide and 8 mm deep at x = 20 mm,
   // remeshed at 6 mm: the slot's edges are sharp (90°), stay constrained, and the slot stays.
-  const SurfaceMesh s = test::voxel_body({0, 0, 0}, 1e-3, {40, 20, 10}, [](int i, int j, int) { return !(i == 20 && j >= 12); });
+  const SurfaceMesh s =
+      test::voxel_body({0, 0, 0}, 1e-3, {40, 20, 10}, [](int i, int j, int) { return !(i == 20 && j >= 12); });
   ASSERT_TRUE(check_surface(s).ok());
   RemeshReport report;
   const SurfaceMesh r = remesh_surface(s, 0.006, report);
@@ -93,9 +95,10 @@ TEST(SurfaceRemesh, ASmoothBumpSmallerThanTheEdgeLengthIsFoundWhereItIs)
   RemeshReport report;
   const SurfaceMesh r = remesh_surface(s, 0.006, report);
   const SurfaceDeviation d = surface_deviation(s, r, 0.25 * 0.006);
-  std::printf("bump: input up to %.2f mm from the remeshed surface, at (%.1f, %.1f, %.1f) mm, %lld vertices beyond 1.5 mm\n",
-              d.input_from_remeshed * 1e3, d.worst_at.x() * 1e3, d.worst_at.y() * 1e3, d.worst_at.z() * 1e3,
-              static_cast<long long>(d.input_vertices_beyond));
+  std::printf(
+      "bump: input up to %.2f mm from the remeshed surface, at (%.1f, %.1f, %.1f) mm, %lld vertices beyond 1.5 mm\n",
+      d.input_from_remeshed * 1e3, d.worst_at.x() * 1e3, d.worst_at.y() * 1e3, d.worst_at.z() * 1e3,
+      static_cast<long long>(d.input_vertices_beyond));
   EXPECT_GT(d.input_vertices_beyond, 0);
   EXPECT_NEAR(d.worst_at.x(), 0.03, 1.5e-3);
   EXPECT_NEAR(d.worst_at.y(), 0.01, 1.5e-3);

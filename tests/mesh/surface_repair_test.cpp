@@ -60,7 +60,7 @@ TEST(SurfaceRepair, InsideOutIsTurnedOutward)
 
 TEST(SurfaceRepair, CavityShellIsTurnedInward)
 {
-  const SurfaceMesh s = test::combine(test::sphere(0.02), test::sphere(0.01));  // both outward: wrong
+  const SurfaceMesh s = test::combine(test::sphere(0.02), test::sphere(0.01)); // both outward: wrong
   RepairReport report;
   const SurfaceCheck c = check_surface(repair_surface(s, {}, report));
   EXPECT_TRUE(c.ok());

@@ -65,7 +65,7 @@ TEST_P(Tetrahedralize, KeepsVolumeOrientationAndTheSurfaceExactly)
 
   const MeshQuality q = mesh_quality(mesh);
   EXPECT_EQ(q.inverted_tets, 0);
-  EXPECT_GT(q.min_dihedral_deg, 1.0);  // slivers at the skin are bounded by the input faces (-Y)
+  EXPECT_GT(q.min_dihedral_deg, 1.0); // slivers at the skin are bounded by the input faces (-Y)
   EXPECT_LT(q.mean_edge_length, 1.5 * c.edge);
 }
 
@@ -102,7 +102,8 @@ TEST(TetrahedralizeQuadratic, TenNodeTetsHaveEdgeMidpointsInVtkOrder)
   constexpr int kEdges[6][2] = {{0, 1}, {1, 2}, {0, 2}, {0, 3}, {1, 3}, {2, 3}};
   for (Eigen::Index t = 0; t < mesh.num_tets(); ++t)
     for (int e = 0; e < 6; ++e) {
-      const Eigen::RowVector3d mid = (mesh.nodes.row(mesh.tets(t, kEdges[e][0])) + mesh.nodes.row(mesh.tets(t, kEdges[e][1]))) / 2;
+      const Eigen::RowVector3d mid =
+          (mesh.nodes.row(mesh.tets(t, kEdges[e][0])) + mesh.nodes.row(mesh.tets(t, kEdges[e][1]))) / 2;
       ASSERT_LT((mesh.nodes.row(mesh.tets(t, 4 + e)) - mid).norm(), 1e-12) << "tet " << t << " edge " << e;
     }
   EXPECT_NEAR(mesh.volume(), signed_volume(test::sphere(0.015)), 1e-9 * mesh.volume());

@@ -23,8 +23,7 @@ namespace {
 constexpr double mm = 1e-3, mm3 = 1e-9;
 
 /// A region of 1 mm voxels, `size` of them, inside where `in(i, j, k)`.
-template <class F>
-VoxelRegion voxels(const Eigen::Vector3i& size, F&& in)
+template <class F> VoxelRegion voxels(const Eigen::Vector3i& size, F&& in)
 {
   VoxelRegion r;
   r.voxel = 1 * mm;
@@ -78,7 +77,8 @@ TEST(FillSimulation, UShapedCavityWithOneVentTrapsTheOtherLeg)
   EXPECT_TRUE(f.vent_open[0]);
 
   // A vent on each leg: nothing is trapped.
-  const FillResult vented = simulate_fill(r, {from_below(r, 6, 1, 0)}, {from_above(r, 1, 1, 11), from_above(r, 10, 1, 11)});
+  const FillResult vented =
+      simulate_fill(r, {from_below(r, 6, 1, 0)}, {from_above(r, 1, 1, 11), from_above(r, 10, 1, 11)});
   EXPECT_EQ(vented.pockets.size(), 0u);
   EXPECT_EQ(vented.trapped_volume, 0);
 }
@@ -124,7 +124,7 @@ TEST(FillPlan, VentsTheUShapedCavitysSecondLeg)
       plan_fill(r, cavity, {{from_below(r, 6, 1, 0)}, {from_above(r, 1, 1, 11)}}, 1 * mm, 1 * mm, 1 * mm, false);
   ASSERT_EQ(plan.ports.vents.size(), 2u);
   EXPECT_GE(plan.ports.vents[1].mouth.x(), r.centre(9, 0, 0).x() - 1e-9);
-  EXPECT_NEAR(plan.ports.vents[1].mouth.z(), 12 * mm - r.voxel / 2, 1e-9);  // the top of the leg
+  EXPECT_NEAR(plan.ports.vents[1].mouth.z(), 12 * mm - r.voxel / 2, 1e-9); // the top of the leg
   EXPECT_EQ(plan.fill.trapped_volume, 0);
   EXPECT_TRUE(plan.fill.vent_open[1]);
 }
@@ -139,7 +139,7 @@ TEST(FillPlan, APocketUnderCuredSiliconeCannotBeVented)
     for (int j = 0; j < 3; ++j) r.cells[static_cast<std::size_t>(r.index(i, j, 6))] = VoxelRegion::solid;
   const SurfaceMesh cavity = boxes({{{0, 0, 0}, {11, 2, 1}}, {{0, 0, 0}, {3, 2, 6}}, {{8, 0, 0}, {11, 2, 9}}});
   const FillPlan plan = plan_fill(r, cavity, {{from_below(r, 6, 1, 0)}, {}}, 1 * mm, 1 * mm, 1 * mm, false);
-  ASSERT_EQ(plan.ports.vents.size(), 1u);  // the leg's
+  ASSERT_EQ(plan.ports.vents.size(), 1u); // the leg's
   EXPECT_GE(plan.ports.vents[0].mouth.x(), r.centre(8, 0, 0).x() - 1e-9);
   ASSERT_EQ(plan.fill.pockets.size(), 1u);
   EXPECT_FALSE(plan.fill.pockets[0].ventable);
@@ -167,18 +167,21 @@ struct GrooveBox {
 TEST(FillPlan, Shot2SprueGoesToTheGrooveFromAbove)
 {
   const GrooveBox b;
-  const double z0 = 2 * mm;  // the fiber: its groove's bottom is 12 mm above the body's at −10 mm
+  const double z0 = 2 * mm; // the fiber: its groove's bottom is 12 mm above the body's at −10 mm
   // The slot from the fiber up to the top (2r wide, with its round bottom), less the muscle. The
   // crescent between muscle and groove is 0.6 mm at its widest: sampled at 0.1 mm.
-  const double slot = 60 * mm * (2 * b.radius * (10.05 * mm - z0) + M_PI * b.radius * b.radius / 2 - M_PI * b.muscle * b.muscle);
-  const VoxelRegion fine = fill_regions(b.body, {GrooveBox::fiber(0, z0)}, b.radius, b.muscle, {0, 0, 1}, 0.1 * mm).shot2;
+  const double slot =
+      60 * mm * (2 * b.radius * (10.05 * mm - z0) + M_PI * b.radius * b.radius / 2 - M_PI * b.muscle * b.muscle);
+  const VoxelRegion fine =
+      fill_regions(b.body, {GrooveBox::fiber(0, z0)}, b.radius, b.muscle, {0, 0, 1}, 0.1 * mm).shot2;
   std::printf("groove space %.1f mm³, analytic %.1f mm³\n", fine.volume() / mm3, slot / mm3);
   EXPECT_NEAR(fine.volume(), slot, 0.01 * slot);
 
   const FillRegions regions = fill_regions(b.body, {GrooveBox::fiber(0, z0)}, b.radius, b.muscle, {0, 0, 1}, b.voxel);
   const VoxelRegion& r = regions.shot2;
   // Shot 1 fills the rest of the body.
-  EXPECT_NEAR(regions.shot1.volume(), signed_volume(b.body) - slot - 60 * mm * M_PI * b.muscle * b.muscle, 0.01 * signed_volume(b.body));
+  EXPECT_NEAR(regions.shot1.volume(), signed_volume(b.body) - slot - 60 * mm * M_PI * b.muscle * b.muscle,
+              0.01 * signed_volume(b.body));
   // The body's lowest point, from below, reaches none of it: the cured shot-1 body lies there.
   const FillResult old = simulate_fill(r, {{{30 * mm, 0, -10 * mm}, 4 * mm, false}}, {});
   EXPECT_FALSE(old.sprue_open[0]);
@@ -187,11 +190,11 @@ TEST(FillPlan, Shot2SprueGoesToTheGrooveFromAbove)
   const FillPlan plan = plan_fill(r, b.body, {}, 4 * mm, 1.5 * mm, 1 * mm, true);
   ASSERT_EQ(plan.ports.sprues.size(), 1u);
   const Port& sprue = plan.ports.sprues[0];
-  std::printf("sprue at (%.2f, %.2f, %.2f) mm, %zu vents, %.3f mm³ trapped\n", sprue.mouth.x() / mm, sprue.mouth.y() / mm,
-              sprue.mouth.z() / mm, plan.ports.vents.size(), plan.fill.trapped_volume / mm3);
+  std::printf("sprue at (%.2f, %.2f, %.2f) mm, %zu vents, %.3f mm³ trapped\n", sprue.mouth.x() / mm,
+              sprue.mouth.y() / mm, sprue.mouth.z() / mm, plan.ports.vents.size(), plan.fill.trapped_volume / mm3);
   EXPECT_TRUE(sprue.upward);
-  EXPECT_LT(std::abs(sprue.mouth.y() - 0.05 * mm), b.radius);  // over the groove
-  EXPECT_NEAR(sprue.mouth.z(), 10 * mm, b.voxel);          // at the skin
+  EXPECT_LT(std::abs(sprue.mouth.y() - 0.05 * mm), b.radius); // over the groove
+  EXPECT_NEAR(sprue.mouth.z(), 10 * mm, b.voxel);             // at the skin
   // All but the wedges along the muscle's line of contact (under 1 % of it).
   EXPECT_NEAR(plan.fill.reachable_volume + plan.fill.crevice_volume, plan.fill.fill_volume, 1e-15);
   EXPECT_LT(plan.fill.crevice_volume, 0.01 * plan.fill.fill_volume);
@@ -199,7 +202,7 @@ TEST(FillPlan, Shot2SprueGoesToTheGrooveFromAbove)
   ASSERT_GE(plan.ports.vents.size(), 1u);
   for (std::size_t k = 0; k < plan.ports.vents.size(); ++k) {
     EXPECT_TRUE(plan.fill.vent_open[k]);
-    EXPECT_LT(std::abs(plan.ports.vents[k].mouth.y() - 0.05 * mm), b.radius);  // over the groove
+    EXPECT_LT(std::abs(plan.ports.vents[k].mouth.y() - 0.05 * mm), b.radius); // over the groove
   }
 }
 
@@ -236,11 +239,12 @@ TEST(FillPlan, NoHoleRunsDownASlotCloserThanMinWallToItsSides)
 TEST(FillPlan, SeparateGrooveBasinsGetASprueAndAVentEach)
 {
   const GrooveBox b;
-  const VoxelRegion r = fill_regions(b.body, {GrooveBox::fiber(-5 * mm, 0), GrooveBox::fiber(5 * mm, 3 * mm)}, b.radius, b.muscle,
-                                     {0, 0, 1}, b.voxel).shot2;
+  const VoxelRegion r = fill_regions(b.body, {GrooveBox::fiber(-5 * mm, 0), GrooveBox::fiber(5 * mm, 3 * mm)}, b.radius,
+                                     b.muscle, {0, 0, 1}, b.voxel)
+                            .shot2;
   const FillPlan plan = plan_fill(r, b.body, {}, 4 * mm, 1.5 * mm, 1 * mm, true);
   ASSERT_EQ(plan.ports.sprues.size(), 2u);
-  EXPECT_LT(plan.ports.sprues[0].mouth.y() * plan.ports.sprues[1].mouth.y(), 0);  // one over each groove
+  EXPECT_LT(plan.ports.sprues[0].mouth.y() * plan.ports.sprues[1].mouth.y(), 0); // one over each groove
   EXPECT_NEAR(plan.fill.reachable_volume + plan.fill.crevice_volume, plan.fill.fill_volume, 1e-15);
   EXPECT_LE(plan.fill.trapped_volume, kTrappedAirTolerance);
   int left = 0, right = 0;
@@ -259,20 +263,23 @@ TEST(FillPlan, AGrooveAlongARoundArmsTopGetsAVentOnEachRidge)
   const std::vector<Eigen::Vector3d> axis{{0, 0, 2.5 * mm}, {80 * mm, 0, 2.5 * mm}};
   const GrooveBody g = groove_body(arm, {axis}, 1.8 * mm, {0, 0, 1}, 0.25 * mm);
   const VoxelRegion r = fill_regions(arm, {axis}, 1.8 * mm, 1.5 * mm, {0, 0, 1}, fill_voxel(0.25 * mm, 1.8 * mm)).shot1;
-  const Ports start = cavity_ports(g.mesh, {0, 0, 1}, 2 * mm, 2, 1.5 * mm, 1 * mm, "shot1");  // a 4 mm circle fits the round bottom
+  const Ports start =
+      cavity_ports(g.mesh, {0, 0, 1}, 2 * mm, 2, 1.5 * mm, 1 * mm, "shot1"); // a 4 mm circle fits the round bottom
   const FillResult before = simulate_fill(r, start.sprues, start.vents);
   const Parting parting = choose_parting(g.mesh, {0, 0, 1});
   std::printf("parting at z = %.2f mm\n", parting.point.z() / mm);
   const FillPlan plan = plan_fill(r, g.mesh, start, 2 * mm, 1.5 * mm, 1 * mm, false);
-  std::printf("trapped %.1f mm³ with the %zu vents that fit along the top, %.3f mm³ with %zu vents\n", before.trapped_volume / mm3,
-              start.vents.size(), plan.fill.trapped_volume / mm3, plan.ports.vents.size());
+  std::printf("trapped %.1f mm³ with the %zu vents that fit along the top, %.3f mm³ with %zu vents\n",
+              before.trapped_volume / mm3, start.vents.size(), plan.fill.trapped_volume / mm3, plan.ports.vents.size());
   int left = 0, right = 0;
   for (const Port& v : plan.ports.vents) {
     (v.mouth.y() < 0 ? left : right)++;
-    std::printf("vent at (%.2f, %.2f, %.2f) mm, cut %.2f mm deep\n", v.mouth.x() / mm, v.mouth.y() / mm, v.mouth.z() / mm, v.dip() / mm);
+    std::printf("vent at (%.2f, %.2f, %.2f) mm, cut %.2f mm deep\n", v.mouth.x() / mm, v.mouth.y() / mm,
+                v.mouth.z() / mm, v.dip() / mm);
   }
   for (const Port& v : plan.ports.sprues)
-    std::printf("sprue at (%.2f, %.2f, %.2f) mm, cut %.2f mm deep\n", v.mouth.x() / mm, v.mouth.y() / mm, v.mouth.z() / mm, v.dip() / mm);
+    std::printf("sprue at (%.2f, %.2f, %.2f) mm, cut %.2f mm deep\n", v.mouth.x() / mm, v.mouth.y() / mm,
+                v.mouth.z() / mm, v.dip() / mm);
   EXPECT_GE(left, 1);
   EXPECT_GE(right, 1);
   EXPECT_LE(plan.fill.trapped_volume, kTrappedAirTolerance);

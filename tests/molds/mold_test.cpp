@@ -22,7 +22,7 @@ const Eigen::Vector3d kPrinter(0.25, 0.21, 0.21);
 struct BoxBody {
   SurfaceMesh body = box_solid({0, -10 * mm, -10 * mm}, {100 * mm, 10 * mm, 10 * mm});
   std::vector<Eigen::Vector3d> fiber{{0, 0, 0}, {50 * mm, 0, 0}, {100 * mm, 0, 0}};
-  double radius = 1.5 * mm + 0.3 * mm;  // muscle radius + groove clearance
+  double radius = 1.5 * mm + 0.3 * mm; // muscle radius + groove clearance
 };
 
 void expect_parts_ok(const Mold& mold)
@@ -40,16 +40,17 @@ TEST(Molds, GrooveShotOfABoxWithAStraightFiber)
   const BoxBody b;
   const GrooveBody g = groove_body(b.body, {b.fiber}, b.radius, {0, 0, 1}, 0.25 * mm);
   const double expected = signed_volume(b.body) - 100 * mm * (2 * b.radius * 10 * mm + M_PI * b.radius * b.radius / 2);
-  std::printf("groove body %.1f mm³ (mesh %.1f), analytic %.1f; %ld faces\n", g.volume / 1e-9, signed_volume(g.mesh) / 1e-9,
-              expected / 1e-9, static_cast<long>(g.mesh.num_faces()));
+  std::printf("groove body %.1f mm³ (mesh %.1f), analytic %.1f; %ld faces\n", g.volume / 1e-9,
+              signed_volume(g.mesh) / 1e-9, expected / 1e-9, static_cast<long>(g.mesh.num_faces()));
   EXPECT_NEAR(g.volume, expected, 0.01 * expected);
   EXPECT_NEAR(signed_volume(g.mesh), expected, 0.01 * expected);
 
   // The groove opens upward: the parting must lie below the groove's bottom (z = −1.8 mm).
   const Parting parting = choose_parting(g.mesh, {0, 0, 1});
-  std::printf("shot 1 parting at z = %.2f mm, undercut %.3f mm²\n", parting.point.z() / mm, parting.undercut_area / 1e-6);
+  std::printf("shot 1 parting at z = %.2f mm, undercut %.3f mm²\n", parting.point.z() / mm,
+              parting.undercut_area / 1e-6);
   EXPECT_LT(parting.point.z(), -1.8 * mm);
-  EXPECT_LT(parting.undercut_area, 0.5e-6);  // facets only: a groove's worth would be 360 mm²
+  EXPECT_LT(parting.undercut_area, 0.5e-6); // facets only: a groove's worth would be 360 mm²
   const Mold mold = make_mold(g.mesh, parting, {}, {}, "shot1");
   ASSERT_EQ(mold.parts.size(), 2u);
   expect_parts_ok(mold);
@@ -69,10 +70,11 @@ TEST(Molds, GrooveRibBelowThePartingPlaneStaysWithTheUpperHalf)
   const double radius = 1.8 * mm;
   const GrooveBody g = groove_body(body, {fiber}, radius, {0, 0, 1}, 0.25 * mm);
   const Parting parting = choose_parting(g.mesh, {0, 0, 1});
-  std::printf("round bar: shot 1 parting at z = %.2f mm, groove bottom at %.2f mm\n", parting.point.z() / mm, (-4 * mm - radius) / mm);
+  std::printf("round bar: shot 1 parting at z = %.2f mm, groove bottom at %.2f mm\n", parting.point.z() / mm,
+              (-4 * mm - radius) / mm);
   ASSERT_GT(parting.point.z(), -4 * mm - radius);
   MoldBlockOptions o;
-  o.sprue_diameter = 2 * mm;  // the bottom is round
+  o.sprue_diameter = 2 * mm; // the bottom is round
   const Mold mold = make_mold(g.mesh, parting, {}, o, "shot1");
   ASSERT_EQ(mold.parts.size(), 2u);
   expect_parts_ok(mold);
@@ -105,14 +107,16 @@ TEST(Molds, GroovesOfCrossingFibersMatchTheirDenseSweep)
   // a voxel) and meshes adaptively: its volume must match a sweep of the dense polylines, and its
   // mesh must be a valid solid of the same volume.
   const SurfaceMesh block = box_solid({0, -10 * mm, -7 * mm}, {42 * mm, 10 * mm, 7 * mm});
-  const std::vector<std::vector<Eigen::Vector3d>> fibers{{{0, 0, 0}, {21 * mm, 0, 0}, {42 * mm, 0, 0}}, helix(1), helix(-1)};
+  const std::vector<std::vector<Eigen::Vector3d>> fibers{
+      {{0, 0, 0}, {21 * mm, 0, 0}, {42 * mm, 0, 0}}, helix(1), helix(-1)};
   const double r = 1.8 * mm, voxel = 0.1 * mm;
   const GrooveBody g = groove_body(block, fibers, r, {0, 0, 1}, voxel);
   LevelSet dense = LevelSet::from_mesh(block, voxel), grooves(voxel);
   for (const auto& f : fibers) grooves.add_swept_tube(f, r, 20 * mm);
   dense.subtract(grooves);
-  std::printf("crossing grooves: %.1f mm³ (mesh %.1f, %ld faces, adaptivity %g); dense sweep %.1f mm³\n", g.volume / 1e-9,
-              signed_volume(g.mesh) / 1e-9, static_cast<long>(g.mesh.num_faces()), g.adaptivity, dense.volume() / 1e-9);
+  std::printf("crossing grooves: %.1f mm³ (mesh %.1f, %ld faces, adaptivity %g); dense sweep %.1f mm³\n",
+              g.volume / 1e-9, signed_volume(g.mesh) / 1e-9, static_cast<long>(g.mesh.num_faces()), g.adaptivity,
+              dense.volume() / 1e-9);
   EXPECT_NEAR(g.volume, dense.volume(), 1e-3 * dense.volume());
   EXPECT_NEAR(signed_volume(g.mesh), g.volume, 1e-3 * g.volume);
   EXPECT_EQ(g.adaptivity, kGrooveAdaptivity);
@@ -135,7 +139,8 @@ TEST(Molds, DraftedShotsShareTheirPartingAndShot1FitsShot2)
   const GrooveBody shot1 = groove_body(b.body, {b.fiber}, b.radius, pull, voxel, kGrooveAdaptivity, &draft);
   const GrooveBody shot2 = groove_body(b.body, {}, b.radius, pull, voxel, kGrooveAdaptivity, &draft);
   const double outside = signed_volume(mesh_difference(shot1.mesh, shot2.mesh));
-  std::printf("drafted: parting z = %.2f mm, offset at the plane %.2f mm; shot 1 %.1f mm³, shot 2 %.1f mm³, shot 1 outside shot 2 %.3f mm³\n",
+  std::printf("drafted: parting z = %.2f mm, offset at the plane %.2f mm; shot 1 %.1f mm³, shot 2 %.1f mm³, shot 1 "
+              "outside shot 2 %.3f mm³\n",
               parting.point.z() / mm, draft.most() / mm, shot1.volume / 1e-9, shot2.volume / 1e-9, outside / 1e-9);
   EXPECT_LT(outside, 1e-3 * shot1.volume);
   EXPECT_GT(shot2.volume, signed_volume(b.body) + 240 * mm * draft.reach * draft.reach * draft.slope / 2);
@@ -149,9 +154,9 @@ TEST(Molds, OvermoldShotPartsPutBackTogetherMakeTheBlockMinusTheCavity)
 {
   const BoxBody b;
   const Parting parting = choose_parting(b.body, {0, 0, 1});
-  EXPECT_NEAR(parting.point.z(), 0, 1e-9);  // a box: no undercut anywhere, the middle is chosen
+  EXPECT_NEAR(parting.point.z(), 0, 1e-9); // a box: no undercut anywhere, the middle is chosen
   MoldBlockOptions o;
-  o.keys = 0;  // pins and sockets would not cancel exactly (the fit clearance)
+  o.keys = 0; // pins and sockets would not cancel exactly (the fit clearance)
   o.vents = 1;
   const Channel end{{1 * mm, 0, 0}, {-1, 0, 0}, 4 * mm};
   const Mold mold = make_mold(b.body, parting, {end}, o, "shot2");
@@ -162,9 +167,10 @@ TEST(Molds, OvermoldShotPartsPutBackTogetherMakeTheBlockMinusTheCavity)
   const double block = (hi - lo + 2 * grow).prod();
   const double holes = signed_volume(b.body);
   const double together_volume = signed_volume(together);
-  std::printf("shot 2: lower %.1f + upper %.1f = %.1f mm³; block − cavity %.1f mm³ (sprue, vent and channel %.1f mm³)\n",
-              signed_volume(mold.parts[0].mesh) / 1e-9, signed_volume(mold.parts[1].mesh) / 1e-9, together_volume / 1e-9,
-              (block - holes) / 1e-9, (block - holes - together_volume) / 1e-9);
+  std::printf(
+      "shot 2: lower %.1f + upper %.1f = %.1f mm³; block − cavity %.1f mm³ (sprue, vent and channel %.1f mm³)\n",
+      signed_volume(mold.parts[0].mesh) / 1e-9, signed_volume(mold.parts[1].mesh) / 1e-9, together_volume / 1e-9,
+      (block - holes) / 1e-9, (block - holes - together_volume) / 1e-9);
   EXPECT_NEAR(signed_volume(mold.parts[0].mesh) + signed_volume(mold.parts[1].mesh), together_volume, 1e-12);
   EXPECT_NEAR(together_volume, block - holes, 0.005 * (block - holes));
 }
@@ -185,7 +191,9 @@ TEST(Molds, EndChannelIsASocketThenAHoleForTheTube)
   };
   const double plain = mold_volume({});
   const double stepped = mold_volume({{{1 * mm, 0, 0}, {-1, 0, 0}, 4 * mm, 3 * mm, 3 * mm}});
-  const auto prism = [](double radius, double length, int n) { return n / 2.0 * radius * radius * std::sin(2 * M_PI / n) * length; };
+  const auto prism = [](double radius, double length, int n) {
+    return n / 2.0 * radius * radius * std::sin(2 * M_PI / n) * length;
+  };
   const double expected = prism(2 * mm, 2 * mm, 24) + prism(1.5 * mm, 2 * mm, 20);
   std::printf("end channel takes %.2f mm³ of the mold (expected %.2f)\n", (plain - stepped) / 1e-9, expected / 1e-9);
   EXPECT_NEAR(plain - stepped, expected, 0.002 * expected);
@@ -206,10 +214,10 @@ TEST(Molds, SprueFindsTheFlatOfABottomWhoseLowestVerticesAreOnItsRim)
   ASSERT_EQ(mold.sprues.size(), 1u);
   const Eigen::Vector3d& sprue = mold.sprues.front();
   std::printf("sprue at (%.2f, %.2f, %.2f) mm\n", sprue.x() / mm, sprue.y() / mm, sprue.z() / mm);
-  EXPECT_GE(sprue.x(), 3 * mm);  // the whole circle on the bottom
+  EXPECT_GE(sprue.x(), 3 * mm); // the whole circle on the bottom
   EXPECT_LE(sprue.x(), 10 * mm - 3 * mm);
   EXPECT_LE(std::abs(sprue.y()), 2 * mm);
-  EXPECT_NEAR(sprue.z(), sprue.x() * 2 / 40, 1.1 * mm);  // on the bottom face (the hole dips 1 mm in)
+  EXPECT_NEAR(sprue.z(), sprue.x() * 2 / 40, 1.1 * mm); // on the bottom face (the hole dips 1 mm in)
 }
 
 TEST(Molds, ScrewHolesGoThroughBothHalvesInTheRim)
@@ -228,7 +236,8 @@ TEST(Molds, ScrewHolesGoThroughBothHalvesInTheRim)
   const auto volume = [](const Mold& m) { return signed_volume(m.parts[0].mesh) + signed_volume(m.parts[1].mesh); };
   const double height = 20 * mm + 2 * 4 * mm, r = 1.7 * mm;
   const double expected = 4 * 12 * r * r * std::sin(2 * M_PI / 24) * height;
-  std::printf("4 screw holes take %.1f mm³ (expected %.1f)\n", (volume(plain) - volume(screwed)) / 1e-9, expected / 1e-9);
+  std::printf("4 screw holes take %.1f mm³ (expected %.1f)\n", (volume(plain) - volume(screwed)) / 1e-9,
+              expected / 1e-9);
   EXPECT_NEAR(volume(plain) - volume(screwed), expected, 0.002 * expected);
   for (const Eigen::Vector3d& s : screwed.screws) {
     for (const Eigen::Vector3d& k : screwed.keys) EXPECT_GE((s - k).norm(), 3 * mm + 0.2 * mm + r + 1 * mm);
@@ -260,7 +269,7 @@ SurfaceMesh polygonal_arm(double length, double r0, double r1, int sides, int ri
   int f = 0;
   for (int k = 0; k < sides; ++k) {
     const int k1 = (k + 1) % sides;
-    m.faces.row(f++) << n, k1, k;  // the end at x = 0 faces −x
+    m.faces.row(f++) << n, k1, k; // the end at x = 0 faces −x
     m.faces.row(f++) << n + 1, rings * sides + k, rings * sides + k1;
     for (int i = 0; i < rings; ++i) {
       const int a = i * sides, b = a + sides;
@@ -300,7 +309,8 @@ TEST(Molds, KeysFitTheirSocketsWithTheClearance)
   eight.keys = 8;
   const Mold with_channel = make_mold(b.body, parting, {{{1 * mm, 0, 0}, {-1, 0, 0}, 4 * mm}}, eight, "shot2");
   EXPECT_EQ(with_channel.keys.size(), 7u);
-  for (const Eigen::Vector3d& k : with_channel.keys) EXPECT_FALSE(k.x() < 0 && std::abs(k.y()) < 1e-9) << "key on the channel";
+  for (const Eigen::Vector3d& k : with_channel.keys)
+    EXPECT_FALSE(k.x() < 0 && std::abs(k.y()) < 1e-9) << "key on the channel";
   expect_parts_ok(with_channel);
 }
 
@@ -313,7 +323,9 @@ TEST(Parting, UprightShareOfTheUpperHalfsContact)
   // Sides leaning 10° off the pull (a frustum) are not within 3° of it: only the top is above.
   SurfaceMesh frustum = cube;
   for (Eigen::Index i = 0; i < frustum.num_vertices(); ++i)
-    if (frustum.vertices(i, 2) > 0) frustum.vertices.row(i).head<2>() = (frustum.vertices.row(i).head<2>().array() - 5 * mm) * (1 - 2 * std::tan(10 * M_PI / 180)) + 5 * mm;
+    if (frustum.vertices(i, 2) > 0)
+      frustum.vertices.row(i).head<2>() =
+          (frustum.vertices.row(i).head<2>().array() - 5 * mm) * (1 - 2 * std::tan(10 * M_PI / 180)) + 5 * mm;
   EXPECT_NEAR(upright_share(frustum, {0, 0, 5 * mm}, {0, 0, 1}, 3), 0.0, 1e-12);
 }
 

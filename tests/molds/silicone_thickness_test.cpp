@@ -36,11 +36,12 @@ TEST(SiliconeThickness, AGrooveNearTheSideLeavesAThinWeb)
   // The groove's wall at y = 9.7 mm, the skin at 10: a 0.3 mm web along the whole groove.
   const double voxel = 0.1 * mm;
   const SiliconeThickness thin = b.at(10 * mm - 0.3 * mm - b.radius, 0, voxel);
-  std::printf("web %.3f mm at (%.1f, %.1f, %.1f) mm; over the muscle %.3f mm\n", thin.groove_web / mm, thin.groove_web_at.x() / mm,
-              thin.groove_web_at.y() / mm, thin.groove_web_at.z() / mm, thin.overmold / mm);
+  std::printf("web %.3f mm at (%.1f, %.1f, %.1f) mm; over the muscle %.3f mm\n", thin.groove_web / mm,
+              thin.groove_web_at.x() / mm, thin.groove_web_at.y() / mm, thin.groove_web_at.z() / mm,
+              thin.overmold / mm);
   EXPECT_NEAR(thin.groove_web, 0.3 * mm, 1.5 * voxel);
-  EXPECT_GT(thin.groove_web_at.y(), 9 * mm);  // on the side toward the skin
-  EXPECT_GT(thin.groove_web_at.x(), 5 * mm);  // not at the ends, which are exempt
+  EXPECT_GT(thin.groove_web_at.y(), 9 * mm); // on the side toward the skin
+  EXPECT_GT(thin.groove_web_at.x(), 5 * mm); // not at the ends, which are exempt
   EXPECT_LT(thin.groove_web_at.x(), 25 * mm);
 
   // On the axis the walls are 8.2 mm from the sides and the floor 8.2 mm above the bottom: no

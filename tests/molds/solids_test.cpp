@@ -28,7 +28,7 @@ TEST(Solids, VolumesOfPrimitives)
   expect_valid_solid(box, "box");
   EXPECT_NEAR(signed_volume(box), 0.1 * 0.02 * 0.03, 1e-15);
   const int n = 64;
-  const double polygon = 0.5 * n * std::sin(2 * M_PI / n);  // area of the inscribed n-gon / r²
+  const double polygon = 0.5 * n * std::sin(2 * M_PI / n); // area of the inscribed n-gon / r²
   const SurfaceMesh cyl = cylinder_solid({0, 0, 0}, {0, 0, 0.01}, 0.002, n);
   expect_valid_solid(cyl, "cylinder");
   EXPECT_NEAR(signed_volume(cyl), polygon * 4e-6 * 0.01, 1e-15);
@@ -53,7 +53,7 @@ TEST(MeshBoolean, DifferenceAndSplitConserveVolume)
   EXPECT_NEAR(signed_volume(below) + signed_volume(above), signed_volume(carved), 1e-12);
   EXPECT_LT(below.vertices.col(2).maxCoeff(), 0.003 + 1e-12);
   EXPECT_GT(above.vertices.col(2).minCoeff(), 0.003 - 1e-12);
-  EXPECT_EQ(count_shells(carved), 2);  // the box and the closed hole inside it
+  EXPECT_EQ(count_shells(carved), 2); // the box and the closed hole inside it
   EXPECT_EQ(count_shells(below), 1);
   EXPECT_EQ(count_shells(mesh_union(box_solid({0, 0, 0}, {1, 1, 1}), box_solid({2, 0, 0}, {3, 1, 1}))), 2);
 }
@@ -114,7 +114,8 @@ TEST(LevelSet, GrooveVolumeMatchesTheAnalyticValue)
   EXPECT_NEAR(body.volume(), expected, 0.01 * expected);
   auto t0 = std::chrono::steady_clock::now();
   const SurfaceMesh m = body.mesh(0.0);
-  std::printf("mesh %.2f s, %ld faces\n", std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count(), (long)m.num_faces());
+  std::printf("mesh %.2f s, %ld faces\n", std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count(),
+              (long)m.num_faces());
   expect_valid_solid(m, "groove body mesh");
   EXPECT_NEAR(signed_volume(m), expected, 0.01 * expected);
 }
@@ -165,15 +166,16 @@ TEST(LevelSet, DraftedBoxLeansItsWallsByTheAngle)
   const double expected = 2 * reach * A + P * reach * reach * t + M_PI * 2 * reach * reach * reach * t * t / 3;
   const SurfaceMesh m = box.mesh(0);
   expect_valid_solid(m, "drafted box");
-  std::printf("drafted box: %.1f mm³ (mesh %.1f), analytic %.1f (undrafted %.1f)\n", box.volume() / 1e-9, signed_volume(m) / 1e-9,
-              expected / 1e-9, 2 * reach * A / 1e-9);
+  std::printf("drafted box: %.1f mm³ (mesh %.1f), analytic %.1f (undrafted %.1f)\n", box.volume() / 1e-9,
+              signed_volume(m) / 1e-9, expected / 1e-9, 2 * reach * A / 1e-9);
   EXPECT_NEAR(box.volume(), expected, 0.002 * expected);
   EXPECT_NEAR(signed_volume(m), expected, 0.002 * expected);
   // The end wall x = 100 mm, measured along y = 0: 100 mm + r(z).
   for (const double z : {-8.0, -4.0, 0.0, 4.0, 8.0}) {
     double x = 0;
     for (Eigen::Index i = 0; i < m.num_vertices(); ++i)
-      if (std::abs(m.vertices(i, 1)) < 2 * mm && std::abs(m.vertices(i, 2) - z * mm) < voxel) x = std::max(x, m.vertices(i, 0));
+      if (std::abs(m.vertices(i, 1)) < 2 * mm && std::abs(m.vertices(i, 2) - z * mm) < voxel)
+        x = std::max(x, m.vertices(i, 0));
     EXPECT_NEAR(x, 100 * mm + (reach - std::abs(z * mm)) * t, voxel / 4) << "z = " << z << " mm";
   }
 }

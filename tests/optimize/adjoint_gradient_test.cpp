@@ -39,7 +39,8 @@ struct Problem {
   {
     Simulation sim(mesh, options());
     const HermiteSpline spline(points, tangents);
-    auto muscle = std::make_unique<MuscleEnergy>(sim.basis(), model, spline, segment_parameters(HermiteSpline(points), 24), p);
+    auto muscle =
+        std::make_unique<MuscleEnergy>(sim.basis(), model, spline, segment_parameters(HermiteSpline(points), 24), p);
     const MuscleEnergy* m = muscle.get();
     sim.add_energy(std::move(muscle));
     Eigen::VectorXd x = warm.size() ? warm : sim.rest();
@@ -56,7 +57,8 @@ struct Problem {
 TEST(AdjointGradient, MatchesFiniteDifferencesThroughEquilibrium)
 {
   Problem pr;
-  const std::vector<Eigen::Vector3d> points{{0, 0.001, 0}, {0.014, 0.003, 0.001}, {0.027, -0.002, 0.002}, {kL, 0.001, 0}};
+  const std::vector<Eigen::Vector3d> points{
+      {0, 0.001, 0}, {0.014, 0.003, 0.001}, {0.027, -0.002, 0.002}, {kL, 0.001, 0}};
   const std::vector<Eigen::Vector3d> tangents = HermiteSpline(points).tangents();
   // The target: the same body bent by a differently routed fiber.
   {
@@ -74,21 +76,26 @@ TEST(AdjointGradient, MatchesFiniteDifferencesThroughEquilibrium)
 
   // Central differences: interior points, all tangents, the pressure. Each difference is taken
   // through an equilibrium solved to its tolerance: 1e-5 of the largest entry.
-  const std::size_t interior = points.size() - 2;  // the end points stay fixed
+  const std::size_t interior = points.size() - 2; // the end points stay fixed
   const test::ScalarFunction f = [&](const Eigen::VectorXd& v) {
     const auto lists = test::unstacked(v, {interior, tangents.size()});
     auto P = points;
     std::copy(lists[0].begin(), lists[0].end(), P.begin() + 1);
     return pr.evaluate(P, lists[1], p);
   };
-  const std::vector<Eigen::Vector3d> inner(points.begin() + 1, points.end() - 1), inner_analytic(analytic.points.begin() + 1, analytic.points.end() - 1);
+  const std::vector<Eigen::Vector3d> inner(points.begin() + 1, points.end() - 1),
+      inner_analytic(analytic.points.begin() + 1, analytic.points.end() - 1);
   const Eigen::VectorXd AN = test::stacked({inner_analytic, analytic.tangents});
   const Eigen::VectorXd FD = test::fd_gradient(f, test::stacked({inner, tangents}), 1e-6);
-  const test::ScalarFunction in_pressure = [&](const Eigen::VectorXd& q) { return pr.evaluate(points, tangents, q[0]); };
-  const double FD_p = test::central_difference(in_pressure, Eigen::VectorXd::Constant(1, p), Eigen::VectorXd::Ones(1), 10.0);
+  const test::ScalarFunction in_pressure = [&](const Eigen::VectorXd& q) {
+    return pr.evaluate(points, tangents, q[0]);
+  };
+  const double FD_p =
+      test::central_difference(in_pressure, Eigen::VectorXd::Constant(1, p), Eigen::VectorXd::Ones(1), 10.0);
   ASSERT_GT(AN.norm(), 0);
-  std::printf("adjoint gradient: relative error %.2e (routing, %ld values), %.2e (pressure)\n", (FD - AN).norm() / AN.norm(),
-              static_cast<long>(AN.size()), std::abs(FD_p - analytic.pressure) / std::abs(analytic.pressure));
+  std::printf("adjoint gradient: relative error %.2e (routing, %ld values), %.2e (pressure)\n",
+              (FD - AN).norm() / AN.norm(), static_cast<long>(AN.size()),
+              std::abs(FD_p - analytic.pressure) / std::abs(analytic.pressure));
   EXPECT_TRUE(test::matches_fd(AN, FD, 1e-5));
   EXPECT_TRUE(test::matches_fd(analytic.pressure, FD_p, 1e-5));
 }
@@ -100,7 +107,8 @@ TEST(TrackingCurve, SamplesEquallySpacedWithOrthonormalFrames)
   EXPECT_LT((s.points.front() - Eigen::Vector3d(0, 0, 0)).norm(), 1e-15);
   EXPECT_LT((s.points.back() - Eigen::Vector3d(0.1, 0, 0.01)).norm(), 1e-12);
   const double step = (s.points[1] - s.points[0]).norm();
-  for (std::size_t j = 1; j < s.points.size(); ++j) EXPECT_NEAR((s.points[j] - s.points[j - 1]).norm(), step, 0.02 * step);
+  for (std::size_t j = 1; j < s.points.size(); ++j)
+    EXPECT_NEAR((s.points[j] - s.points[j - 1]).norm(), step, 0.02 * step);
   for (const Eigen::Matrix3d& A : s.frames) {
     EXPECT_LT((A.transpose() * A - Eigen::Matrix3d::Identity()).norm(), 1e-12);
     EXPECT_NEAR(A.determinant(), 1.0, 1e-12);

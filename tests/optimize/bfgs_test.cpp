@@ -25,8 +25,9 @@ TEST(Bfgs, FindsTheRosenbrockMinimum)
   o.gradient_tolerance = 1e-8;
   o.relative_tolerance = 0;
   int callbacks = 0;
-  const MinimizerResult r = minimize_bfgs(rosenbrock, Eigen::Vector2d(-1.2, 1), o,
-                                     [&](const MinimizerIteration& it, const Eigen::VectorXd&) { callbacks = it.iteration; }, progress);
+  const MinimizerResult r = minimize_bfgs(
+      rosenbrock, Eigen::Vector2d(-1.2, 1), o,
+      [&](const MinimizerIteration& it, const Eigen::VectorXd&) { callbacks = it.iteration; }, progress);
   EXPECT_TRUE(r.converged()) << r.message;
   EXPECT_LT((r.x - Eigen::Vector2d(1, 1)).norm(), 1e-6);
   EXPECT_LT(r.iterations, 100);
@@ -89,7 +90,7 @@ TEST(Bfgs, SaysWhyItStoppedAndCallsOnlyAVanishingGradientConverged)
   NullProgress progress;
   MinimizerOptions o;
   o.gradient_tolerance = 1e-12;
-  o.relative_tolerance = 1e6;  // any fall over 10 iterations counts as stalling: met at iteration 11
+  o.relative_tolerance = 1e6; // any fall over 10 iterations counts as stalling: met at iteration 11
   const MinimizerResult stalled = minimize_bfgs(rosenbrock, Eigen::Vector2d(-1.2, 1), o, nullptr, progress);
   EXPECT_EQ(stalled.termination, Termination::stalled) << stalled.message;
   EXPECT_FALSE(stalled.converged());

@@ -22,12 +22,12 @@ TEST(LevenbergMarquardt, ConvergesOnTheRosenbrockValleyByTheModelsDecrease)
   o.gradient_tolerance = 0;
   o.decrease_tolerance = 1e-14;
   int callbacks = 0;
-  const MinimizerResult r = minimize_levenberg_marquardt(rosenbrock, Eigen::Vector2d(-1.2, 1), o,
-                                                         [&](const MinimizerIteration& it, const Eigen::VectorXd&) { callbacks = it.iteration; },
-                                                         progress);
-  EXPECT_TRUE(r.converged()) << r.message;  // by the model's decrease, or at a zero gradient
+  const MinimizerResult r = minimize_levenberg_marquardt(
+      rosenbrock, Eigen::Vector2d(-1.2, 1), o,
+      [&](const MinimizerIteration& it, const Eigen::VectorXd&) { callbacks = it.iteration; }, progress);
+  EXPECT_TRUE(r.converged()) << r.message; // by the model's decrease, or at a zero gradient
   EXPECT_LT((r.x - Eigen::Vector2d(1, 1)).norm(), 1e-6);
-  EXPECT_LT(r.iterations, 40);  // BFGS takes 30–40 on it; a zero-residual problem is Gauss-Newton's best case
+  EXPECT_LT(r.iterations, 40); // BFGS takes 30–40 on it; a zero-residual problem is Gauss-Newton's best case
   EXPECT_EQ(callbacks, r.iterations);
 }
 
@@ -128,7 +128,7 @@ TEST(LevenbergMarquardt, AWallTheModelDoesNotKnowEndsTheRunAtTheBestPointNotConv
   EXPECT_EQ(r.termination, Termination::line_search) << r.message;
   EXPECT_LE(r.x[0], 1);
   EXPECT_GT(r.x[0], 0.99);
-  EXPECT_LT(r.value, 2.5);  // f at the start
+  EXPECT_LT(r.value, 2.5); // f at the start
 }
 
 TEST(LevenbergMarquardt, ThrowsWhenTheStartIsNotFinite)

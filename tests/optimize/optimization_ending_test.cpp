@@ -13,7 +13,8 @@ using ::testing::HasSubstr;
 constexpr double kDeg = M_PI / 180;
 
 /// One target, one fiber at `pressure` (Pa) of max 425 kPa, tracking-curve RMSE `start` → `end` (m).
-OptimizationEnding ending(double pressure, double start, double end, const std::vector<AngleReach>& turns, bool converged = true)
+OptimizationEnding ending(double pressure, double start, double end, const std::vector<AngleReach>& turns,
+                          bool converged = true)
 {
   RoutingResult r;
   r.routing.pressures = Eigen::MatrixXd::Constant(1, 1, pressure);
@@ -25,7 +26,8 @@ OptimizationEnding ending(double pressure, double start, double end, const std::
   TargetErrors before, after;
   before.rmse = start;
   after.rmse = end;
-  return optimization_ending(r, ActuatorMask::Constant(1, 1, true), s, {before}, {after}, {turns}, {"curl"}, {"flexor"});
+  return optimization_ending(r, ActuatorMask::Constant(1, 1, true), s, {before}, {after}, {turns}, {"curl"},
+                             {"flexor"});
 }
 
 TEST(OptimizationEnding, APoseTargetIsJudgedByItsTurnNotItsTrackingCurves)
@@ -35,26 +37,33 @@ TEST(OptimizationEnding, APoseTargetIsJudgedByItsTurnNotItsTrackingCurves)
   // 38° of 60° is: the warning names the region, both angles and the share.
   const OptimizationEnding far = ending(230e3, 4.9e-3, 1e-3, {{"pose[1]", 60 * kDeg, 38 * kDeg}});
   ASSERT_EQ(far.warnings.size(), 1u);
-  EXPECT_THAT(far.warnings[0], HasSubstr("target curl is far from reached: pose[1] turned 38.0° of the 60.0° asked (63 %)"));
+  EXPECT_THAT(far.warnings[0],
+              HasSubstr("target curl is far from reached: pose[1] turned 38.0° of the 60.0° asked (63 %)"));
   // A turn the other way says what to check.
   const OptimizationEnding back = ending(230e3, 4.9e-3, 1e-3, {{"pose[1]", 45 * kDeg, -28.7 * kDeg}});
   ASSERT_EQ(back.warnings.size(), 1u);
-  EXPECT_THAT(back.warnings[0], HasSubstr("pose[1] turned -28.7° of the 45.0° asked (-64 %: the other way; check the sign of the pose's axis"));
+  EXPECT_THAT(
+      back.warnings[0],
+      HasSubstr("pose[1] turned -28.7° of the 45.0° asked (-64 %: the other way; check the sign of the pose's axis"));
   // Two regions short of their turns are both named.
-  const OptimizationEnding two = ending(230e3, 4.9e-3, 1e-3, {{"pose[1]", 60 * kDeg, 30 * kDeg}, {"pose[2]", -40 * kDeg, -10 * kDeg}});
+  const OptimizationEnding two =
+      ending(230e3, 4.9e-3, 1e-3, {{"pose[1]", 60 * kDeg, 30 * kDeg}, {"pose[2]", -40 * kDeg, -10 * kDeg}});
   ASSERT_EQ(two.warnings.size(), 1u);
-  EXPECT_THAT(two.warnings[0], HasSubstr("pose[1] turned 30.0° of the 60.0° asked (50 %), pose[2] turned -10.0° of the -40.0° asked (25 %)"));
+  EXPECT_THAT(
+      two.warnings[0],
+      HasSubstr("pose[1] turned 30.0° of the 60.0° asked (50 %), pose[2] turned -10.0° of the -40.0° asked (25 %)"));
 }
 
 TEST(OptimizationEnding, ATargetWithoutATurnIsJudgedByItsTrackingCurvesAndALimitIsNamed)
 {
-  EXPECT_TRUE(ending(230e3, 3e-3, 0.9e-3, {}).warnings.empty());  // 70 % of the way
+  EXPECT_TRUE(ending(230e3, 3e-3, 0.9e-3, {}).warnings.empty()); // 70 % of the way
   const OptimizationEnding far = ending(424e3, 3e-3, 1.5e-3, {}, false);
   ASSERT_EQ(far.warnings.size(), 3u);
   EXPECT_THAT(far.warnings[0], HasSubstr("stopped before converging (iteration limit: test)"));
   EXPECT_THAT(far.warnings[1], HasSubstr("fiber flexor ends at 424.0 kPa, at its limit"));
-  EXPECT_THAT(far.warnings[2], HasSubstr("far from reached: 50 % of the way (tracking-curve RMSE 3.00 → 1.50 mm); its muscles are at "
-                                         "max_pressure"));
+  EXPECT_THAT(far.warnings[2],
+              HasSubstr("far from reached: 50 % of the way (tracking-curve RMSE 3.00 → 1.50 mm); its muscles are at "
+                        "max_pressure"));
   ASSERT_EQ(far.limits.size(), 1u);
   EXPECT_TRUE(far.limits[0].at_max);
 }

@@ -22,8 +22,12 @@ TEST(Barrier, DerivativesAndSupport)
     const Eigen::VectorXd x = Eigen::VectorXd::Constant(1, d), one = Eigen::VectorXd::Ones(1);
     const test::ScalarFunction b = [&](const Eigen::VectorXd& y) { return barrier(y[0], dhat); };
     const test::ScalarFunction db = [&](const Eigen::VectorXd& y) { return barrier_gradient(y[0], dhat); };
-    EXPECT_TRUE(test::matches_fd(barrier_gradient(d, dhat), test::central_difference(b, x, one, 1e-8 * d), test::kFdTolerance, 1e-12)) << d;
-    EXPECT_TRUE(test::matches_fd(barrier_hessian(d, dhat), test::central_difference(db, x, one, 1e-8 * d), test::kFdTolerance, 1e-9)) << d;
+    EXPECT_TRUE(test::matches_fd(barrier_gradient(d, dhat), test::central_difference(b, x, one, 1e-8 * d),
+                                 test::kFdTolerance, 1e-12))
+        << d;
+    EXPECT_TRUE(test::matches_fd(barrier_hessian(d, dhat), test::central_difference(db, x, one, 1e-8 * d),
+                                 test::kFdTolerance, 1e-9))
+        << d;
     ++checked;
   }
   EXPECT_EQ(checked, 5);
@@ -31,8 +35,8 @@ TEST(Barrier, DerivativesAndSupport)
   EXPECT_EQ(pb.value(200e3), 0);
   EXPECT_GT(pb.value(1e3), 0);
   EXPECT_GT(pb.value(424e3), 0);
-  EXPECT_LT(pb.gradient(1e3), 0);  // pushes up from 0
-  EXPECT_GT(pb.gradient(424e3), 0);  // and down from p_max
+  EXPECT_LT(pb.gradient(1e3), 0);   // pushes up from 0
+  EXPECT_GT(pb.gradient(424e3), 0); // and down from p_max
   EXPECT_EQ(pb.value(-1), HUGE_VAL);
 }
 
@@ -42,8 +46,9 @@ TEST(FiberCurvature, CircleAndStraightLineAndGradient)
   EXPECT_NEAR(fiber_curvature(HermiteSpline({{0, 0, 0}, {0.05, 0, 0}, {0.1, 0, 0}})), 0, 1e-12);
   // A quarter circle of radius r: ∫ κ² ds = (1/r²)(π r / 2) = π / (2 r), within the cubic's accuracy.
   const double r = 0.02, a = r * M_PI / 4;
-  const HermiteSpline arc({{r, 0, 0}, {r / std::sqrt(2.0), r / std::sqrt(2.0), 0}, {0, r, 0}},
-                          {Eigen::Vector3d(0, a, 0), Eigen::Vector3d(-a, a, 0) / std::sqrt(2.0), Eigen::Vector3d(-a, 0, 0)});
+  const HermiteSpline arc(
+      {{r, 0, 0}, {r / std::sqrt(2.0), r / std::sqrt(2.0), 0}, {0, r, 0}},
+      {Eigen::Vector3d(0, a, 0), Eigen::Vector3d(-a, a, 0) / std::sqrt(2.0), Eigen::Vector3d(-a, 0, 0)});
   EXPECT_NEAR(fiber_curvature(arc), M_PI / (2 * r), 0.02 * M_PI / (2 * r));
 
   const std::vector<Eigen::Vector3d> P{{0, 0, 0}, {0.03, 0.01, 0.002}, {0.06, -0.005, 0.01}, {0.1, 0, 0}};
@@ -55,15 +60,17 @@ TEST(FiberCurvature, CircleAndStraightLineAndGradient)
     return fiber_curvature(HermiteSpline(lists[0], lists[1]));
   };
   ASSERT_GT(test::stacked({g.points, g.tangents}).cwiseAbs().maxCoeff(), 0);
-  EXPECT_TRUE(test::matches_fd(test::stacked({g.points, g.tangents}), test::fd_gradient(curvature, test::stacked({P, T}), 1e-8)));
+  EXPECT_TRUE(test::matches_fd(test::stacked({g.points, g.tangents}),
+                               test::fd_gradient(curvature, test::stacked({P, T}), 1e-8)));
 }
 
 /// A quarter circle of radius r in the xy-plane, as a two-span Hermite spline.
 HermiteSpline quarter_circle(double r)
 {
   const double a = r * M_PI / 4;
-  return HermiteSpline({{r, 0, 0}, {r / std::sqrt(2.0), r / std::sqrt(2.0), 0}, {0, r, 0}},
-                       {Eigen::Vector3d(0, a, 0), Eigen::Vector3d(-a, a, 0) / std::sqrt(2.0), Eigen::Vector3d(-a, 0, 0)});
+  return HermiteSpline(
+      {{r, 0, 0}, {r / std::sqrt(2.0), r / std::sqrt(2.0), 0}, {0, r, 0}},
+      {Eigen::Vector3d(0, a, 0), Eigen::Vector3d(-a, a, 0) / std::sqrt(2.0), Eigen::Vector3d(-a, 0, 0)});
 }
 
 TEST(BendRadius, SmallestBendOfACircleAndALineAndWhere)
@@ -82,7 +89,7 @@ TEST(BendRadius, SmallestBendOfACircleAndALineAndWhere)
   const SmallestBend coarse = smallest_bend(kink, 8), fine = smallest_bend(kink, 2000);
   EXPECT_NEAR(coarse.radius, fine.radius, 1e-6 * fine.radius);
   EXPECT_NEAR(coarse.where.x(), 0.05, 1e-3);
-  EXPECT_NEAR(coarse.arc_length, 0.05 + 0.0013, 0.002);  // half the length, a little more for the bump
+  EXPECT_NEAR(coarse.arc_length, 0.05 + 0.0013, 0.002); // half the length, a little more for the bump
   EXPECT_NEAR(1 / curvature(kink, coarse.t), coarse.radius, 1e-12);
 }
 
@@ -95,8 +102,8 @@ TEST(BendRadius, BarrierIsInfiniteAtTheRadiusAndZeroFarAboveIt)
   // Two control points bunched into a near-cusp (the tangents no longer fit the 0.5 mm between
   // them): the curve bends through a sub-millimetre radius and the barrier is infinite.
   const HermiteSpline cusp({{0, 0, 0}, {0.05, 0, 0}, {0.0505, 0, 0}, {0.1, 0, 0}},
-                           {Eigen::Vector3d(0.05, 0, 0), Eigen::Vector3d(0.03, 0.02, 0), Eigen::Vector3d(0.03, -0.02, 0),
-                            Eigen::Vector3d(0.05, 0, 0)});
+                           {Eigen::Vector3d(0.05, 0, 0), Eigen::Vector3d(0.03, 0.02, 0),
+                            Eigen::Vector3d(0.03, -0.02, 0), Eigen::Vector3d(0.05, 0, 0)});
   EXPECT_LT(smallest_bend(cusp).radius, 1.5e-3);
   EXPECT_EQ(BendBarrier(0.009).value(cusp), HUGE_VAL);
 }
@@ -106,7 +113,7 @@ TEST(BendRadius, BarrierGradientMatchesFiniteDifferences)
   const std::vector<Eigen::Vector3d> P{{0, 0, 0}, {0.03, 0.01, 0.002}, {0.06, -0.005, 0.01}, {0.1, 0, 0}};
   const HermiteSpline s(P);
   const std::vector<Eigen::Vector3d> T = s.tangents();
-  const double R = 0.95 * smallest_bend(s).radius;  // the tightest bend inside the band
+  const double R = 0.95 * smallest_bend(s).radius; // the tightest bend inside the band
   const BendBarrier barrier(R);
   ASSERT_GT(barrier.value(s), 0);
   ASSERT_LT(barrier.value(s), HUGE_VAL);
@@ -116,7 +123,8 @@ TEST(BendRadius, BarrierGradientMatchesFiniteDifferences)
     return barrier.value(HermiteSpline(lists[0], lists[1]));
   };
   ASSERT_GT(test::stacked({g.points, g.tangents}).cwiseAbs().maxCoeff(), 0);
-  EXPECT_TRUE(test::matches_fd(test::stacked({g.points, g.tangents}), test::fd_gradient(f, test::stacked({P, T}), 1e-9)));
+  EXPECT_TRUE(
+      test::matches_fd(test::stacked({g.points, g.tangents}), test::fd_gradient(f, test::stacked({P, T}), 1e-9)));
 }
 
 } // namespace

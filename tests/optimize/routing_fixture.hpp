@@ -31,14 +31,15 @@ struct RoutingFixture {
   }
 
   /// The equilibrium under the given fibers (Catmull–Rom routes) and pressures.
-  Eigen::VectorXd actuated(const std::vector<std::vector<Eigen::Vector3d>>& fibers, const std::vector<double>& pressures,
-                           double segments_per_length = 500)
+  Eigen::VectorXd actuated(const std::vector<std::vector<Eigen::Vector3d>>& fibers,
+                           const std::vector<double>& pressures, double segments_per_length = 500)
   {
     std::vector<std::unique_ptr<Energy>> muscles;
     for (std::size_t f = 0; f < fibers.size(); ++f) {
       const HermiteSpline s(fibers[f]);
       const int count = segment_count(s, segments_per_length);
-      muscles.push_back(std::make_unique<MuscleEnergy>(sim->basis(), model, s, segment_parameters(s, count), pressures[f]));
+      muscles.push_back(
+          std::make_unique<MuscleEnergy>(sim->basis(), model, s, segment_parameters(s, count), pressures[f]));
     }
     sim->set_variable_energies(std::move(muscles));
     Eigen::VectorXd x = sim->rest();

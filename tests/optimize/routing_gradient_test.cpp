@@ -24,15 +24,19 @@ TEST(RoutingProblem, GradientMatchesFiniteDifferencesAtRandomDesigns)
       fx.actuated({{{0, 0, -0.003}, {0.013, 0.003, 0}, {0.026, 0, 0.003}, {kL, -0.003, 0}}}, {300e3})};
   std::mt19937 rng(7);
   std::uniform_real_distribution<double> jitter(-0.001, 0.001);
-  const auto wiggle = [&](Eigen::Vector3d p) { return Eigen::Vector3d(p.x(), p.y() + jitter(rng), p.z() + jitter(rng)); };
+  const auto wiggle = [&](Eigen::Vector3d p) {
+    return Eigen::Vector3d(p.x(), p.y() + jitter(rng), p.z() + jitter(rng));
+  };
   Routing start;
   // Fiber a passes 2 mm from the skin (y = 4 mm of 6): the skin barrier (from 1 mm, over 1.5 mm) is active.
-  start.routes = {test::RoutingFixture::route("a", {{0, 0.001, 0}, wiggle({0.014, 0.004, 0.001}), wiggle({0.027, -0.002, 0.002}), {kL, 0.001, 0}}),
-                  test::RoutingFixture::route("b", {{0, -0.002, -0.001}, wiggle({0.02, -0.001, 0.002}), {kL, -0.002, 0.001}})};
+  start.routes = {
+      test::RoutingFixture::route(
+          "a", {{0, 0.001, 0}, wiggle({0.014, 0.004, 0.001}), wiggle({0.027, -0.002, 0.002}), {kL, 0.001, 0}}),
+      test::RoutingFixture::route("b", {{0, -0.002, -0.001}, wiggle({0.02, -0.001, 0.002}), {kL, -0.002, 0.001}})};
   for (Route& r : start.routes)
     for (Eigen::Vector3d& t : r.tangents) t += Eigen::Vector3d(0, jitter(rng), jitter(rng));
   start.pressures.resize(2, 2);
-  start.pressures << 180e3, 418e3,  // 418 kPa: within 2 % of the 425 kPa bound, the barrier acts
+  start.pressures << 180e3, 418e3, // 418 kPa: within 2 % of the 425 kPa bound, the barrier acts
       90e3, 240e3;
   RoutingSettings settings;
   settings.weight_curvature = 1e-3;
@@ -61,7 +65,7 @@ TEST(RoutingProblem, GradientMatchesFiniteDifferencesAtRandomDesigns)
   // through equilibria solved to their tolerance: 1e-5 of the largest entry.
   const test::ScalarFunction f = [&](const Eigen::VectorXd& v) { return problem.evaluate(v); };
   const Eigen::VectorXd fd = test::fd_gradient(f, z, 1e-3);
-  const Eigen::Index np = 4;  // the last four variables are the pressures
+  const Eigen::Index np = 4; // the last four variables are the pressures
   const Eigen::Index nr = z.size() - np;
   const double routing_error = (fd.head(nr) - analytic.head(nr)).norm() / analytic.head(nr).norm();
   const double pressure_error = (fd.tail(np) - analytic.tail(np)).norm() / analytic.tail(np).norm();
@@ -76,9 +80,11 @@ TEST(RoutingProblem, SensitivitiesAndModelHessianMatchFiniteDifferences)
   // The forward sensitivities dx/dz of Levenberg-Marquardt's model against central differences of
   // the equilibria, and its Gauss-Newton Hessian Σ SᵀQS against the one built from those differences.
   test::RoutingFixture fx(kL, kA, 0.004, 12, 0.1, 1e-11);
-  const std::vector<Eigen::VectorXd> targets{fx.actuated({{{0, 0.003, 0}, {0.02, 0.004, -0.003}, {kL, 0.003, 0}}}, {250e3})};
+  const std::vector<Eigen::VectorXd> targets{
+      fx.actuated({{{0, 0.003, 0}, {0.02, 0.004, -0.003}, {kL, 0.003, 0}}}, {250e3})};
   Routing start;
-  start.routes = {test::RoutingFixture::route("a", {{0, 0.001, 0}, {0.014, 0.003, 0.001}, {0.027, -0.002, 0.002}, {kL, 0.001, 0}})};
+  start.routes = {
+      test::RoutingFixture::route("a", {{0, 0.001, 0}, {0.014, 0.003, 0.001}, {0.027, -0.002, 0.002}, {kL, 0.001, 0}})};
   start.pressures = Eigen::MatrixXd::Constant(1, 1, 180e3);
   RoutingProblem problem(*fx.sim, fx.model, *fx.skin, targets, fx.curves, start, {});
   const Eigen::VectorXd z = problem.variables(start);
@@ -90,7 +96,7 @@ TEST(RoutingProblem, SensitivitiesAndModelHessianMatchFiniteDifferences)
   ASSERT_EQ(S.cols(), z.size());
   Eigen::MatrixXd fd(x.size(), z.size());
   for (Eigen::Index i = 0; i < z.size(); ++i) {
-    const double h = 1e-3;  // 1 µm or 10 Pa
+    const double h = 1e-3; // 1 µm or 10 Pa
     Eigen::VectorXd up = z, down = z;
     up[i] += h;
     down[i] -= h;
@@ -107,7 +113,7 @@ TEST(RoutingProblem, SensitivitiesAndModelHessianMatchFiniteDifferences)
   const Eigen::MatrixXd regularizers = problem.regularizer_hessian(z);
   const double model_error = (model - regularizers - gn).norm() / gn.norm();
   std::printf("Gauss-Newton Hessian: relative error %.2e\n", model_error);
-  EXPECT_LT(model_error, 6e-3);  // 1.8e-3: twice the sensitivities' error
+  EXPECT_LT(model_error, 6e-3); // 1.8e-3: twice the sensitivities' error
 }
 
 } // namespace

@@ -33,7 +33,8 @@ void recover_s_shape(Method method)
   const std::vector<Eigen::Vector3d> s_shape{{0, 0, 0}, {0.025, 0, 0.004}, {0.05, 0, 0}, {0.075, 0, -0.004}, {L, 0, 0}};
   const std::vector<Eigen::VectorXd> targets{fx.actuated({s_shape}, {300e3})};
   Routing start;
-  start.routes = {test::RoutingFixture::route("m1", {{0, 0, 0}, {0.025, 0.003, -0.003}, {0.05, -0.003, 0.002}, {0.075, 0, 0.003}, {L, 0, 0}})};
+  start.routes = {test::RoutingFixture::route(
+      "m1", {{0, 0, 0}, {0.025, 0.003, -0.003}, {0.05, -0.003, 0.002}, {0.075, 0, 0.003}, {L, 0, 0}})};
   start.pressures = Eigen::MatrixXd::Constant(1, 1, 200e3);
   RoutingProblem problem(*fx.sim, fx.model, *fx.skin, targets, fx.curves, start, {});
 
@@ -44,9 +45,10 @@ void recover_s_shape(Method method)
   o.method = method;
   const RoutingResult r = optimize_routing(problem, Strategy::simultaneous, o, nullptr, progress);
   const Errors after = errors(problem, r.routing, 0);
-  std::printf("recovery (%s): RMSE %.3f → %.4f mm, max %.3f → %.4f mm, %d iterations, %d evaluations, p = %.1f kPa (%s)\n",
-              std::string(choice_name(method)).c_str(), before.rmse / mm, after.rmse / mm, before.max / mm, after.max / mm, r.iterations, r.evaluations,
-              r.routing.pressures(0, 0) / 1e3, r.message.c_str());
+  std::printf(
+      "recovery (%s): RMSE %.3f → %.4f mm, max %.3f → %.4f mm, %d iterations, %d evaluations, p = %.1f kPa (%s)\n",
+      std::string(choice_name(method)).c_str(), before.rmse / mm, after.rmse / mm, before.max / mm, after.max / mm,
+      r.iterations, r.evaluations, r.routing.pressures(0, 0) / 1e3, r.message.c_str());
   EXPECT_GT(before.rmse, 1 * mm) << "the perturbed start should deform the bar visibly differently";
   EXPECT_LE(after.rmse, 0.10 * mm);
   EXPECT_LE(after.max, 0.20 * mm);
@@ -83,12 +85,13 @@ void bend_and_twist(Strategy strategy)
   const RoutingResult r = optimize_routing(problem, strategy, o, nullptr, progress);
   const Errors after[2] = {errors(problem, r.routing, 0), errors(problem, r.routing, 1)};
   for (int t = 0; t < 2; ++t) {
-    std::printf("%s, target %s: RMSE %.3f → %.3f mm (%.1f×), max %.3f → %.3f mm; %d iterations (%s)\n", std::string(choice_name(strategy)).c_str(),
-                t == 0 ? "bend" : "twist", before[t].rmse / mm, after[t].rmse / mm, before[t].rmse / after[t].rmse,
-                before[t].max / mm, after[t].max / mm, r.iterations, r.message.c_str());
+    std::printf("%s, target %s: RMSE %.3f → %.3f mm (%.1f×), max %.3f → %.3f mm; %d iterations (%s)\n",
+                std::string(choice_name(strategy)).c_str(), t == 0 ? "bend" : "twist", before[t].rmse / mm,
+                after[t].rmse / mm, before[t].rmse / after[t].rmse, before[t].max / mm, after[t].max / mm, r.iterations,
+                r.message.c_str());
     EXPECT_LE(after[t].rmse, before[t].rmse / 5) << "target " << t;
   }
-  if (strategy == Strategy::sequential) {  // orthogonal actuators: one pressurized per target
+  if (strategy == Strategy::sequential) { // orthogonal actuators: one pressurized per target
     EXPECT_EQ(r.routing.pressures(0, 1), 0);
     EXPECT_EQ(r.routing.pressures(1, 0), 0);
   }

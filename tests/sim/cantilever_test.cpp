@@ -66,7 +66,7 @@ TEST(Cantilever, MlsLinearMatchesFemP2AtLeastAsWellAsThePaper)
               "(paper: 1.01, 1.82)\n",
               tip * 1e3, static_cast<long>(fem.mesh.num_tets()), static_cast<long>(mls.mesh.num_tets()), rmse * 1e3,
               worst * 1e3);
-  EXPECT_GT(tip, 0.03);  // a large, non-linear deflection
+  EXPECT_GT(tip, 0.03); // a large, non-linear deflection
   EXPECT_LE(rmse, 1.01e-3);
   EXPECT_LE(worst, 1.82e-3);
 }

@@ -7,13 +7,13 @@
 #include <Eigen/Geometry>
 #include <gtest/gtest.h>
 
+#include "finite_differences.hpp"
 #include "mesh/mesh_quality.hpp"
 #include "sim/external_forces.hpp"
 #include "sim/mls_basis.hpp"
 #include "sim/muscle_energy.hpp"
 #include "sim/neo_hookean.hpp"
 #include "sim/soft_dirichlet.hpp"
-#include "finite_differences.hpp"
 #include "sim_fixtures.hpp"
 
 namespace fibermold {
@@ -49,7 +49,10 @@ struct Named {
 std::vector<Named> energies()
 {
   return {
-      {"neo_hookean", [](const Body& b) { return std::make_unique<NeoHookean>(b.qp, b.n, LameParameters::from_young_poisson(86.4e3, 0.47)); }},
+      {"neo_hookean",
+       [](const Body& b) {
+         return std::make_unique<NeoHookean>(b.qp, b.n, LameParameters::from_young_poisson(86.4e3, 0.47));
+       }},
       {"soft_dirichlet",
        [](const Body& b) {
          std::vector<ShapeEval> at;
@@ -66,7 +69,10 @@ std::vector<Named> energies()
          const HermiteSpline fiber({{0.001, 0.003, 0.004}, {0.01, 0.006, 0.005}, {0.019, 0.004, 0.007}});
          return std::make_unique<MuscleEnergy>(b.basis, model, fiber, segment_parameters(fiber, 12), 300e3);
        }},
-      {"gravity", [](const Body& b) { return std::make_unique<ExternalForces>(gravity_forces(nodal_masses(b.qp, b.n, 1070), {0, 0, -9.81})); }},
+      {"gravity",
+       [](const Body& b) {
+         return std::make_unique<ExternalForces>(gravity_forces(nodal_masses(b.qp, b.n, 1070), {0, 0, -9.81}));
+       }},
   };
 }
 
@@ -106,9 +112,11 @@ TEST_P(EnergyDerivatives, GradientAndHessianMatchFiniteDifferences)
       Eigen::VectorXd d(x.size());
       for (Eigen::Index k = 0; k < d.size(); ++k) d[k] = normal(random);
       d.normalize();
-      EXPECT_TRUE(test::matches_fd(g.dot(d), test::central_difference(value, x, d, h), test::kFdTolerance, 1e-6 * g.norm() + 1e-12))
+      EXPECT_TRUE(test::matches_fd(g.dot(d), test::central_difference(value, x, d, h), test::kFdTolerance,
+                                   1e-6 * g.norm() + 1e-12))
           << "gradient, trial " << trial;
-      EXPECT_TRUE(test::matches_fd(Hd * d, test::central_difference(gradient, x, d, h), test::kFdTolerance, 1e-15 * Hd.norm() + 1e-12))
+      EXPECT_TRUE(test::matches_fd(Hd * d, test::central_difference(gradient, x, d, h), test::kFdTolerance,
+                                   1e-15 * Hd.norm() + 1e-12))
           << "Hessian, trial " << trial;
     }
     EXPECT_LE((Hd - Hd.transpose()).norm(), 1e-12 * std::max(1.0, Hd.norm()));
@@ -127,10 +135,12 @@ TEST(NeoHookean, StressIsTheDerivativeOfTheDensity)
   const auto matrix = [](const Eigen::VectorXd& f) { return Eigen::Matrix3d(f.reshaped<Eigen::RowMajor>(3, 3)); };
   const Eigen::VectorXd f = F.reshaped<Eigen::RowMajor>();
   const test::ScalarFunction density = [&](const Eigen::VectorXd& y) { return neo_hookean_density(matrix(y), l); };
-  const test::VectorFunction stress = [&](const Eigen::VectorXd& y) { return Eigen::VectorXd(neo_hookean_stress(matrix(y), l).reshaped<Eigen::RowMajor>()); };
+  const test::VectorFunction stress = [&](const Eigen::VectorXd& y) {
+    return Eigen::VectorXd(neo_hookean_stress(matrix(y), l).reshaped<Eigen::RowMajor>());
+  };
   EXPECT_TRUE(test::matches_fd(P.reshaped<Eigen::RowMajor>(), test::fd_gradient(density, f, 1e-7)));
   EXPECT_TRUE(test::matches_fd(D, test::fd_jacobian(stress, f, 1e-7)));
-  EXPECT_EQ(neo_hookean_density(-Eigen::Matrix3d::Identity(), l), HUGE_VAL);  // inverted: no energy defined
+  EXPECT_EQ(neo_hookean_density(-Eigen::Matrix3d::Identity(), l), HUGE_VAL); // inverted: no energy defined
 }
 
 TEST(NeoHookean, ClosedFormProjectionEqualsTheEigendecomposition)
@@ -157,7 +167,7 @@ TEST(NeoHookean, ClosedFormProjectionEqualsTheEigendecomposition)
     EXPECT_LE((closed_form - reference).norm(), 1e-10 * reference.norm()) << F;
     projected += (reference - neo_hookean_stress_derivative(F, l)).norm() > 1e-6 * reference.norm();
   }
-  EXPECT_GE(projected, 20);  // most states have a negative mode to remove
+  EXPECT_GE(projected, 20); // most states have a negative mode to remove
 }
 
 TEST(NeoHookean, RigidMotionHasZeroEnergyAndForce)
@@ -166,7 +176,8 @@ TEST(NeoHookean, RigidMotionHasZeroEnergyAndForce)
   const NeoHookean e(body.qp, body.n, LameParameters::from_young_poisson(86.4e3, 0.47));
   const Eigen::Matrix3d R = Eigen::AngleAxisd(0.7, Eigen::Vector3d(1, 2, 3).normalized()).toRotationMatrix();
   Eigen::VectorXd x(3 * body.n);
-  for (Eigen::Index i = 0; i < body.n; ++i) x.segment<3>(3 * i) = R * body.mesh.nodes.row(i).transpose() + Eigen::Vector3d(0.1, -0.2, 0.3);
+  for (Eigen::Index i = 0; i < body.n; ++i)
+    x.segment<3>(3 * i) = R * body.mesh.nodes.row(i).transpose() + Eigen::Vector3d(0.1, -0.2, 0.3);
   EXPECT_NEAR(e.value(x), 0, 1e-15);
   Eigen::VectorXd g = Eigen::VectorXd::Zero(x.size());
   e.add_gradient(x, g);

@@ -25,7 +25,7 @@ TEST(ExternalForces, RegionForceAndTorqueHaveTheirTotals)
     moment += Eigen::Vector3d(X.row(i)).cross(Eigen::Vector3d(t.segment<3>(3 * i)));
   }
   EXPECT_LT(sum.norm(), 1e-12);
-  EXPECT_LT((moment - T).norm(), 1e-12);  // about any point, as Σ f = 0
+  EXPECT_LT((moment - T).norm(), 1e-12); // about any point, as Σ f = 0
 
   EXPECT_THROW(region_torque({0, 1}, w, X, T), std::invalid_argument);
   Eigen::MatrixX3d line(3, 3);

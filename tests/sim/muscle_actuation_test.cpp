@@ -21,7 +21,8 @@ struct Actuated {
 };
 
 /// A straight fiber along the centre line of a block with one end face held, pressurized to p.
-Actuated actuate(const std::string& basis, double youngs_modulus, double p, const MuscleModel& model, double edge = 0.004)
+Actuated actuate(const std::string& basis, double youngs_modulus, double p, const MuscleModel& model,
+                 double edge = 0.004)
 {
   Actuated r;
   r.mesh = test::box_mesh({0, -kA / 2, -kA / 2}, {kL, kA / 2, kA / 2}, edge);
@@ -30,8 +31,8 @@ Actuated actuate(const std::string& basis, double youngs_modulus, double p, cons
   o.youngs_modulus = youngs_modulus;
   o.poisson_ratio = 0.3;
   o.gravity = Eigen::Vector3d::Zero();
-  o.dirichlet_penalty = 1e4 * 86.4e3 / youngs_modulus;  // clamps as stiff as for EcoFlex: they hold the muscle
-  o.fixed_nodes = {nodes_in_box(r.mesh.nodes, {-1, -1, -1}, {1e-9, 1, 1})};  // one end face held
+  o.dirichlet_penalty = 1e4 * 86.4e3 / youngs_modulus; // clamps as stiff as for EcoFlex: they hold the muscle
+  o.fixed_nodes = {nodes_in_box(r.mesh.nodes, {-1, -1, -1}, {1e-9, 1, 1})}; // one end face held
   r.sim = std::make_unique<Simulation>(r.mesh, o);
   const HermiteSpline fiber({{0, 0, 0}, {kL, 0, 0}});
   auto muscle = std::make_unique<MuscleEnergy>(r.sim->basis(), model, fiber, segment_parameters(fiber, 30), p);
@@ -47,7 +48,7 @@ TEST(MuscleActuation, FreeFiberInAVerySoftBlockContractsByTheRestStrain)
 {
   const MuscleModel model;
   for (double p : {200e3, 425e3}) {
-    const Actuated r = actuate("mls-linear", 5.0, p, model);  // 5 Pa: the block barely resists
+    const Actuated r = actuate("mls-linear", 5.0, p, model); // 5 Pa: the block barely resists
     ASSERT_TRUE(r.summary.converged) << r.summary.brief();
     // Strain of the fiber relative to its unpressurized length: l / |d| − 1 over all segments.
     double l = 0, d = 0;
@@ -58,7 +59,8 @@ TEST(MuscleActuation, FreeFiberInAVerySoftBlockContractsByTheRestStrain)
       d += r.muscle->segments().vectors[j].norm();
     }
     const double contraction = l / d - 1;
-    std::printf("p = %.0f kPa: contraction %.4f %%, ε_L %.4f %%\n", p / 1e3, 100 * contraction, 100 * model.rest_strain(p));
+    std::printf("p = %.0f kPa: contraction %.4f %%, ε_L %.4f %%\n", p / 1e3, 100 * contraction,
+                100 * model.rest_strain(p));
     EXPECT_NEAR(contraction / model.rest_strain(p), 1.0, 0.01) << p;
   }
 }
@@ -86,7 +88,8 @@ TEST(MuscleActuation, AMeshOfHalfTheEdgeShortensTheBlockByTheSameAmount)
         }
       shortening[level] = -sum / count;
     }
-    std::printf("%s: the free end moves %.3f mm on 4 mm edges, %.3f mm on 2 mm\n", basis.c_str(), 1e3 * shortening[0], 1e3 * shortening[1]);
+    std::printf("%s: the free end moves %.3f mm on 4 mm edges, %.3f mm on 2 mm\n", basis.c_str(), 1e3 * shortening[0],
+                1e3 * shortening[1]);
     EXPECT_GT(shortening[0], 1e-3) << basis;
     EXPECT_NEAR(shortening[1] / shortening[0], 1.0, 0.1) << basis;
   }

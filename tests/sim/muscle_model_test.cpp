@@ -31,7 +31,7 @@ TEST(SmoothedTwoPieceLine, FollowsItsAsymptotesAndItsDerivatives)
 TEST(MuscleModel, PaperFitAt425kPa)
 {
   const MuscleModel m;
-  EXPECT_NEAR(m.rest_strain(425e3), -0.2176, 1e-12);  // contracts by 21.8 %
+  EXPECT_NEAR(m.rest_strain(425e3), -0.2176, 1e-12); // contracts by 21.8 %
   EXPECT_NEAR(m.max_strain(425e3), 1 / (1 - 0.2176) - 1, 1e-12);
   EXPECT_NEAR(m.parameters().area(), M_PI * 9e-6 / 4, 1e-18);
   // σ is linear below ε_max and C¹ across it.
@@ -40,23 +40,25 @@ TEST(MuscleModel, PaperFitAt425kPa)
   EXPECT_NEAR(m.stress(300e3, 0.5 * em), E * 0.5 * em, 1e-9 * E);
   const double below = m.stress(300e3, em - 1e-9), above = m.stress(300e3, em + 1e-9);
   EXPECT_NEAR(below, above, 1e-6 * std::abs(below));
-  EXPECT_GT(m.stress(300e3, em + 0.1), E * (em + 0.1));  // taut: stiffer
+  EXPECT_GT(m.stress(300e3, em + 0.1), E * (em + 0.1)); // taut: stiffer
 }
 
 TEST(MuscleModel, DensityDerivativesMatchFiniteDifferencesAcrossTheJoint)
 {
   const MuscleModel m;
-  for (double p : {5e3, 80e3, 119e3, 200e3, 425e3}) {  // p ≥ 0: at p = 0, ε = 0 the taut branch starts
+  for (double p : {5e3, 80e3, 119e3, 200e3, 425e3}) { // p ≥ 0: at p = 0, ε = 0 the taut branch starts
     const double em = m.max_strain(p);
     for (double eps : {-0.2, 0.0, em - 0.01, em, em + 1e-4, em + 0.05, 0.4}) {
       const MuscleDensity d = m.density(p, eps);
-      const double he = 1e-9, hp = 1e-3;  // small: the third derivative jumps at the joint
-      const Eigen::VectorXd x = Eigen::Vector2d(p, eps), along_p = Eigen::Vector2d(1, 0), along_eps = Eigen::Vector2d(0, 1);
+      const double he = 1e-9, hp = 1e-3; // small: the third derivative jumps at the joint
+      const Eigen::VectorXd x = Eigen::Vector2d(p, eps), along_p = Eigen::Vector2d(1, 0),
+                            along_eps = Eigen::Vector2d(0, 1);
       const auto of = [&](double MuscleDensity::*field) -> test::ScalarFunction {
         return [&m, field](const Eigen::VectorXd& y) { return m.density(y[0], y[1]).*field; };
       };
       const auto check = [&](double analytic, double fd, double floor) {
-        EXPECT_TRUE(test::matches_fd(analytic, fd, test::kFdTolerance, 1e-6 * floor + 1e-9)) << "p " << p << ", ε " << eps;
+        EXPECT_TRUE(test::matches_fd(analytic, fd, test::kFdTolerance, 1e-6 * floor + 1e-9))
+            << "p " << p << ", ε " << eps;
       };
       check(d.d_eps, test::central_difference(of(&MuscleDensity::psi), x, along_eps, he), 0);
       check(d.d_eps_eps, test::central_difference(of(&MuscleDensity::d_eps), x, along_eps, he), 0);

@@ -5,10 +5,10 @@
 
 #include <gtest/gtest.h>
 
+#include "finite_differences.hpp"
 #include "mesh/mesh_quality.hpp"
 #include "sim/mls_basis.hpp"
 #include "sim/muscle_energy.hpp"
-#include "finite_differences.hpp"
 #include "sim_fixtures.hpp"
 
 namespace fibermold {
@@ -18,7 +18,8 @@ struct Fixture {
   TetMesh mesh = test::box_mesh({0, 0, 0}, {0.03, 0.012, 0.012}, 0.004);
   MlsBasis basis{mesh.nodes, {false, 1.7 * mesh_quality(mesh).mean_edge_length}};
   MuscleModel model;
-  std::vector<Eigen::Vector3d> points{{0.002, 0.006, 0.006}, {0.012, 0.004, 0.007}, {0.021, 0.007, 0.005}, {0.028, 0.006, 0.006}};
+  std::vector<Eigen::Vector3d> points{
+      {0.002, 0.006, 0.006}, {0.012, 0.004, 0.007}, {0.021, 0.007, 0.005}, {0.028, 0.006, 0.006}};
   std::vector<Eigen::Vector3d> tangents = HermiteSpline(points).tangents();
   std::vector<double> t = segment_parameters(HermiteSpline(points), 16);
   Eigen::VectorXd x, lambda;
@@ -31,11 +32,13 @@ struct Fixture {
     lambda.resize(x.size());
     for (Eigen::Index i = 0; i < mesh.nodes.rows(); ++i) {
       const Eigen::Vector3d X = mesh.nodes.row(i).transpose();
-      x.segment<3>(3 * i) = Eigen::Vector3d(0.95 * X.x(), X.y() + 0.1 * X.x(), X.z()) + Eigen::Vector3d(noise(random), noise(random), noise(random));
+      x.segment<3>(3 * i) = Eigen::Vector3d(0.95 * X.x(), X.y() + 0.1 * X.x(), X.z()) +
+                            Eigen::Vector3d(noise(random), noise(random), noise(random));
       lambda.segment<3>(3 * i) = 1e3 * Eigen::Vector3d(noise(random), noise(random), noise(random));
     }
   }
-  MuscleEnergy energy(const std::vector<Eigen::Vector3d>& p, const std::vector<Eigen::Vector3d>& tg, double pressure) const
+  MuscleEnergy energy(const std::vector<Eigen::Vector3d>& p, const std::vector<Eigen::Vector3d>& tg,
+                      double pressure) const
   {
     return MuscleEnergy(basis, model, HermiteSpline(p, tg), t, pressure);
   }
@@ -58,9 +61,13 @@ void check(const Fixture& fx, const FiberParameterGradient& analytic, double pre
   ASSERT_GT(test::stacked({analytic.points, analytic.tangents}).cwiseAbs().maxCoeff(), 0) << "nothing to check";
   EXPECT_TRUE(test::matches_fd(test::stacked({analytic.points, analytic.tangents}),
                                test::fd_gradient(at, test::stacked({fx.points, fx.tangents}), 1e-7)));
-  const test::ScalarFunction in_pressure = [&](const Eigen::VectorXd& p) { return f(fx.energy(fx.points, fx.tangents, p[0])); };
-  EXPECT_TRUE(test::matches_fd(analytic.pressure, test::central_difference(in_pressure, Eigen::VectorXd::Constant(1, pressure), Eigen::VectorXd::Ones(1), 1.0),
-                               test::kFdTolerance, 1e-15));
+  const test::ScalarFunction in_pressure = [&](const Eigen::VectorXd& p) {
+    return f(fx.energy(fx.points, fx.tangents, p[0]));
+  };
+  EXPECT_TRUE(test::matches_fd(
+      analytic.pressure,
+      test::central_difference(in_pressure, Eigen::VectorXd::Constant(1, pressure), Eigen::VectorXd::Ones(1), 1.0),
+      test::kFdTolerance, 1e-15));
   EXPECT_NE(analytic.pressure, 0);
 }
 
@@ -120,7 +127,9 @@ TEST(MuscleParameters, MixedColumnsForTheForwardSensitivities)
     const Eigen::VectorXd fd = (force(fx.energy(fx.points, up, p)) - force(fx.energy(fx.points, down, p))) / (2 * h);
     EXPECT_LT((M.col(6 + 3 + 1) - fd).norm(), 1e-5 * fd.norm());
     const double hp = 1e-3 * p;
-    const Eigen::VectorXd fdp = (force(fx.energy(fx.points, fx.tangents, p + hp)) - force(fx.energy(fx.points, fx.tangents, p - hp))) / (2 * hp);
+    const Eigen::VectorXd fdp =
+        (force(fx.energy(fx.points, fx.tangents, p + hp)) - force(fx.energy(fx.points, fx.tangents, p - hp))) /
+        (2 * hp);
     EXPECT_LT((M.col(M.cols() - 1) - fdp).norm(), 1e-5 * fdp.norm());
   }
 }

@@ -54,7 +54,7 @@ TEST(NewtonSolver, FollowsASoftModeOfNegativeCurvatureToTheMinimum)
   NewtonOptions options;
   options.tolerance = 1e-12;
   options.quasi_newton_pairs = 0;
-  options.reuse_contraction = 0;  // one assembly per step
+  options.reuse_contraction = 0; // one assembly per step
   const NewtonSummary s = solver.solve(x, options, progress);
   ASSERT_TRUE(s.converged) << s.brief();
   EXPECT_NEAR(x[0], 1.0, 1e-10);
@@ -73,7 +73,7 @@ TEST(NewtonSolver, FarFromDefiniteFallsBackToTheProjectedHessian)
   NullProgress progress;
   NewtonOptions options;
   options.quasi_newton_pairs = 0;
-  options.reuse_contraction = 0;  // one exact assembly per step, and one more where it is projected
+  options.reuse_contraction = 0; // one exact assembly per step, and one more where it is projected
   const NewtonSummary s = solver.solve(x, options, progress);
   ASSERT_TRUE(s.converged) << s.brief();
   EXPECT_NEAR(x[0], -1.0, 1e-9);
@@ -117,13 +117,14 @@ TEST_F(MuscleBar, FinishingOnAFreshStepLandsFarBelowTheToleranceAndServesTheAdjo
   const NewtonSummary s = sim.solve(x, progress);
   ASSERT_TRUE(s.converged) << s.brief();
   EXPECT_LT(s.factorizations, s.iterations) << "some steps should reuse a factorization";
-  const double goal = o.newton.tolerance * (sim.solver().gradient(sim.rest()).norm() + o.youngs_modulus * std::pow(sim.mean_edge_length(), 2));
+  const double goal = o.newton.tolerance * (sim.solver().gradient(sim.rest()).norm() +
+                                            o.youngs_modulus * std::pow(sim.mean_edge_length(), 2));
   EXPECT_LT(s.residual, 1e-2 * goal) << s.brief();
 
   const Eigen::VectorXd b = Eigen::VectorXd::Random(x.size());
   Eigen::VectorXd reused, assembled;
   ASSERT_TRUE(sim.solver().solve_with_hessian(x, b, reused));
-  set_muscle(250e3);  // the same muscle again: the factorization is forgotten
+  set_muscle(250e3); // the same muscle again: the factorization is forgotten
   // The pattern is kept (MLS), so the muscle's far pairs are lumped, and the assembled solve is
   // conjugate gradients on the exact Hessian's products, preconditioned by that factorization.
   ASSERT_TRUE(sim.solver().solve_with_hessian(x, b, assembled));

@@ -39,7 +39,7 @@ TEST(TetQuadrature, IntegratesEveryMonomialUpToItsDegreeExactly)
   double sum = 0;
   for (std::size_t k = 0; k < 8; ++k) sum += q8.weights[k] * std::pow(q8.barycentric[k][1], 4);
   EXPECT_GT(std::abs(sum - exact(0, 4, 0, 0)), 1e-6);
-  for (const auto& l : q8.barycentric) EXPECT_GT(l.minCoeff(), 0);  // all points inside
+  for (const auto& l : q8.barycentric) EXPECT_GT(l.minCoeff(), 0); // all points inside
   EXPECT_THROW(tet_quadrature(5), std::invalid_argument);
 }
 

@@ -31,8 +31,9 @@ TEST(RigidMotion, ARotationAboutAPointKeepsThePointAndTurnsByItsAngle)
 TEST(RigidMotion, TheFitRecoversAMotionFromItsPointsAndTheTwistIgnoresASwing)
 {
   const Eigen::MatrixX3d X = grid_points();
-  const Eigen::Matrix3d R = (Eigen::AngleAxisd(40 * kDeg, Eigen::Vector3d::UnitZ()) *
-                             Eigen::AngleAxisd(5 * kDeg, Eigen::Vector3d::UnitX())).toRotationMatrix();
+  const Eigen::Matrix3d R =
+      (Eigen::AngleAxisd(40 * kDeg, Eigen::Vector3d::UnitZ()) * Eigen::AngleAxisd(5 * kDeg, Eigen::Vector3d::UnitX()))
+          .toRotationMatrix();
   const Eigen::Vector3d t(0.01, -0.02, 0.003);
   const Eigen::MatrixX3d x = ((X * R.transpose()).rowwise() + t.transpose()).eval();
   const RigidMotion m = fitted_rigid_motion(X, x);
@@ -40,7 +41,7 @@ TEST(RigidMotion, TheFitRecoversAMotionFromItsPointsAndTheTwistIgnoresASwing)
   EXPECT_LT((m.translation - t).norm(), 1e-14);
   // Twist about z of swing(x, 5°) · twist(z, 40°)... composed the other way round: within 0.1°.
   EXPECT_NEAR(m.angle_about({0, 0, 1}) / kDeg, 40, 0.1);
-  EXPECT_GT(m.angle() / kDeg, 40);  // the swing adds to the whole angle
+  EXPECT_GT(m.angle() / kDeg, 40); // the swing adds to the whole angle
 }
 
 TEST(RigidMotion, TooFewPointsForARotationGiveOnlyTheTranslation)

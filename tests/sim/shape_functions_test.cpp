@@ -3,10 +3,10 @@
 
 #include <gtest/gtest.h>
 
+#include "finite_differences.hpp"
 #include "mesh/mesh_quality.hpp"
 #include "sim/fem_basis.hpp"
 #include "sim/mls_basis.hpp"
-#include "finite_differences.hpp"
 #include "sim_fixtures.hpp"
 
 namespace fibermold {
@@ -15,7 +15,7 @@ namespace {
 struct BasisSetup {
   TetMesh mesh;
   std::unique_ptr<Basis> basis;
-  int degree;  ///< polynomial degree reproduced exactly
+  int degree; ///< polynomial degree reproduced exactly
 };
 
 BasisSetup make(const std::string& kind)
@@ -64,7 +64,7 @@ TEST_P(ShapeFunctions, ReproducePolynomialsOfTheirDegreeExactly)
     EXPECT_LT((f.position(x) - field(X)).norm(), 1e-10 * 0.03);
     const Eigen::Matrix3d F = A + 2 * c * X.dot(e) * e.transpose();
     EXPECT_LT((f.deformation_gradient(x) - F).norm(), 1e-9);
-    Eigen::Matrix3d second_sum = Eigen::Matrix3d::Zero();  // Σ_i x_i,0 ∇∇N_i = ∇∇q_0
+    Eigen::Matrix3d second_sum = Eigen::Matrix3d::Zero(); // Σ_i x_i,0 ∇∇N_i = ∇∇q_0
     for (Eigen::Index k = 0; k < f.size(); ++k) second_sum += x[3 * f.nodes[k]] * f.ddN[k];
     EXPECT_LT((second_sum - 2 * c[0] * e * e.transpose()).norm(), 1e-6);
   }
@@ -78,15 +78,19 @@ TEST_P(ShapeFunctions, DerivativesMatchFiniteDifferences)
     const ShapeEval f = s.basis->at(X, 2);
     const Eigen::Index tet = GetParam().starts_with("fem") ? dynamic_cast<const FemBasis&>(*s.basis).locate(X) : -1;
     for (int k = 0; k < 3; ++k)
-      for (int side : {-1, 1}) ASSERT_EQ(s.basis->at(X + side * h * Eigen::Vector3d::Unit(k), 1, tet).nodes, f.nodes) << "support changed within the step";
+      for (int side : {-1, 1})
+        ASSERT_EQ(s.basis->at(X + side * h * Eigen::Vector3d::Unit(k), 1, tet).nodes, f.nodes)
+            << "support changed within the step";
     // N and ∇N as functions of X, each node's entries in a row.
     const test::VectorFunction N = [&](const Eigen::VectorXd& Y) { return Eigen::VectorXd(s.basis->at(Y, 1, tet).N); };
-    const test::VectorFunction dN = [&](const Eigen::VectorXd& Y) { return Eigen::VectorXd(s.basis->at(Y, 1, tet).dN.reshaped<Eigen::RowMajor>()); };
+    const test::VectorFunction dN = [&](const Eigen::VectorXd& Y) {
+      return Eigen::VectorXd(s.basis->at(Y, 1, tet).dN.reshaped<Eigen::RowMajor>());
+    };
     const Eigen::VectorXd at = X;
     ASSERT_GT(f.dN.cwiseAbs().maxCoeff(), 0);
     EXPECT_TRUE(test::matches_fd(f.dN, test::fd_jacobian(N, at, h)));
     if (s.degree == 2 || GetParam().starts_with("mls")) {
-      Eigen::MatrixXd ddN(3 * f.size(), 3);  // row 3 i + a: ∂²N_i / ∂X_a ∂X_k in column k
+      Eigen::MatrixXd ddN(3 * f.size(), 3); // row 3 i + a: ∂²N_i / ∂X_a ∂X_k in column k
       for (Eigen::Index i = 0; i < f.size(); ++i) ddN.middleRows(3 * i, 3) = f.ddN[i];
       ASSERT_GT(ddN.cwiseAbs().maxCoeff(), 0);
       EXPECT_TRUE(test::matches_fd(ddN, test::fd_jacobian(dN, at, h)));
@@ -120,7 +124,7 @@ TEST(FemBasis, LocatesAPointInALargeTetBesideManySmallOnes)
   const Eigen::Vector3d X(0.001, 0.002, 0.002);
   EXPECT_EQ(basis.locate(X), 0);
   EXPECT_GE(basis.barycentric(basis.locate(X), X).minCoeff(), 0.0);
-  const Eigen::Vector3d outside(-0.01, 0.002, 0.002);  // outside every tet: the least-outside one
+  const Eigen::Vector3d outside(-0.01, 0.002, 0.002); // outside every tet: the least-outside one
   EXPECT_LT(basis.barycentric(basis.locate(outside), outside).minCoeff(), 0.0);
 }
 
@@ -140,7 +144,7 @@ TEST(MlsBasis, SmoothAcrossTheSupportBoundary)
       ++found;
       EXPECT_LT(std::abs(inside.N[k]), 1e-15);
       EXPECT_LT(inside.dN.row(k).norm(), 1e-8);
-      EXPECT_LT(inside.ddN[k].norm(), 1e-5 / (r * r));  // typical |∇∇N| ~ 1/r²
+      EXPECT_LT(inside.ddN[k].norm(), 1e-5 / (r * r)); // typical |∇∇N| ~ 1/r²
     }
   EXPECT_EQ(found, 1);
   const ShapeEval outside = mls.at(node + (r + 1e-7) * direction, 2);
@@ -152,7 +156,7 @@ TEST(MlsBasis, TooFewNodesWidenTheRadiusAndNeverReturnNaN)
   const BasisSetup s = make("mls-quadratic");
   MlsOptions o;
   o.quadratic = true;
-  o.radius = 0.4 * mesh_quality(s.mesh).mean_edge_length;  // far too small for 10 monomials
+  o.radius = 0.4 * mesh_quality(s.mesh).mean_edge_length; // far too small for 10 monomials
   const MlsBasis tight(s.mesh.nodes, o);
   const ShapeEval f = tight.at(Eigen::Vector3d(0.011, 0.009, 0.012), 2);
   EXPECT_TRUE(f.N.allFinite());

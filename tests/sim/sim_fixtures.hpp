@@ -24,7 +24,8 @@ inline TetMesh box_mesh(const Eigen::Vector3d& lo, const Eigen::Vector3d& hi, do
 inline TetMesh skin_grid_twisting_bar(double edge)
 {
   NullProgress progress;
-  return tetrahedralize(box({0, -0.01, -0.01}, {0.129, 0.01, 0.01}, Eigen::Vector3i(30, 5, 5)), {edge, 1.5, 10, false}, progress);
+  return tetrahedralize(box({0, -0.01, -0.01}, {0.129, 0.01, 0.01}, Eigen::Vector3i(30, 5, 5)), {edge, 1.5, 10, false},
+                        progress);
 }
 
 /// The twisting bar at 4× the example's DoFs: 6 mm edges (3,851 tets, 2,922 DoFs). The example used

@@ -54,11 +54,11 @@ TEST(TwistingBar, HelicalFiberTwistsTheFreeEndByItsHandedness)
   const double right = twist_with_helix(mesh, +1, 300e3), left = twist_with_helix(mesh, -1, 300e3);
   std::printf("twisting bar, 300 kPa: free end twists %.2f° (right-handed helix), %.2f° (left-handed)\n",
               right * 180 / M_PI, left * 180 / M_PI);
-  EXPECT_LT(right, 0);  // a contracting right-handed helix turns the free end clockwise about +x
+  EXPECT_LT(right, 0); // a contracting right-handed helix turns the free end clockwise about +x
   EXPECT_GT(left, 0);
   EXPECT_NEAR(right, -left, 0.1 * std::abs(right));
   EXPECT_GT(std::abs(right) * 180 / M_PI, 5);  // visibly twisted...
-  EXPECT_LT(std::abs(right) * 180 / M_PI, 90);  // ...and not absurdly
+  EXPECT_LT(std::abs(right) * 180 / M_PI, 90); // ...and not absurdly
 }
 
 } // namespace

@@ -40,9 +40,9 @@ TEST(VariableEnergies, ReplacedMusclesGiveTheSameEquilibriumAsAFreshSimulation)
   Eigen::VectorXd x = moving.rest();
   ASSERT_TRUE(moving.solve(x, progress).converged);
   m.clear();
-  m.push_back(muscle(moving, model, second));  // on the far side: new node pairs in the pattern
+  m.push_back(muscle(moving, model, second)); // on the far side: new node pairs in the pattern
   moving.set_variable_energies(std::move(m));
-  ASSERT_TRUE(moving.solve(x, progress).converged);  // warm-started from the first equilibrium
+  ASSERT_TRUE(moving.solve(x, progress).converged); // warm-started from the first equilibrium
 
   Simulation fresh(mesh, held(mesh));
   fresh.add_energy(muscle(fresh, model, second));
@@ -60,7 +60,7 @@ TEST(SparseHessian, GrowsToFitNewStencilsKeepingTheOldPairs)
   const SparseHessian grown(base, {{1, 2, 4}});
   EXPECT_TRUE(grown.contains({{0, 1}, {2, 3}, {1, 2, 4}}));
   EXPECT_FALSE(grown.contains({{0, 4}}));
-  EXPECT_EQ(grown.matrix().nonZeros(), 9 * (5 + 2 + 3));  // diagonal blocks, the old pairs, the new pairs
+  EXPECT_EQ(grown.matrix().nonZeros(), 9 * (5 + 2 + 3)); // diagonal blocks, the old pairs, the new pairs
   EXPECT_EQ(grown.matrix().norm(), 0);
 }
 
@@ -93,7 +93,8 @@ int analyses_after_moving_the_muscle(Simulation& sim)
   const MuscleModel model;
   NullProgress progress;
   Eigen::VectorXd x = sim.rest();
-  for (const HermiteSpline& s : {HermiteSpline({{0, -0.004, 0}, {kL, -0.004, 0}}), HermiteSpline({{0, 0.004, 0.003}, {kL, 0.004, -0.003}})}) {
+  for (const HermiteSpline& s :
+       {HermiteSpline({{0, -0.004, 0}, {kL, -0.004, 0}}), HermiteSpline({{0, 0.004, 0.003}, {kL, 0.004, -0.003}})}) {
     std::vector<std::unique_ptr<Energy>> m;
     m.push_back(muscle(sim, model, s));
     sim.set_variable_energies(std::move(m));

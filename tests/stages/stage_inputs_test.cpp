@@ -81,11 +81,14 @@ TEST(StageInputs, EditingEveryKeyMakesStaleExactlyTheStagesThatSeeIt)
       Design edited = d;
       edited.values[key] = value + " (edited)";
       for (const auto& stage : stages) {
-        const bool stale = design_view(edited, stage->design_keys()).values != design_view(d, stage->design_keys()).values;
+        const bool stale =
+            design_view(edited, stage->design_keys()).values != design_view(d, stage->design_keys()).values;
         bool sees = false;
         for (const std::string& prefix : stage->design_keys()) sees = sees || view_part_under(part_of(key), prefix);
         EXPECT_EQ(stale, sees) << file.filename() << ": editing " << key << " " << (stale ? "makes" : "leaves") << " "
-                               << stage->name() << (stale ? " stale, though its view does not hold it" : " fresh, though its view holds it");
+                               << stage->name()
+                               << (stale ? " stale, though its view does not hold it"
+                                         : " fresh, though its view holds it");
       }
       ++edits;
     }
