@@ -6,6 +6,7 @@
 
 #include <fmt/format.h>
 
+#include "core/elapsed.hpp"
 #include "core/units.hpp"
 #include "molds/draft.hpp"
 #include "molds/fill_simulation.hpp"
@@ -15,8 +16,6 @@ namespace fibermold {
 namespace {
 
 using Clock = std::chrono::steady_clock;
-
-double since(Clock::time_point t) { return std::chrono::duration<double>(Clock::now() - t).count(); }
 
 SurfaceMesh scaled_about(SurfaceMesh m, const Eigen::Vector3d& centre, double factor)
 {

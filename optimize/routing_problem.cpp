@@ -7,6 +7,7 @@
 #include <Eigen/Eigenvalues>
 #include <fmt/format.h>
 
+#include "core/elapsed.hpp"
 #include "core/units.hpp"
 #include "optimize/adjoint_gradient.hpp"
 #include "optimize/barrier.hpp"
@@ -24,7 +25,6 @@ constexpr int kSolverSlots = 4;
 int solver_slot(int target) { return target % kSolverSlots; }
 
 using Clock = std::chrono::steady_clock;
-double since(Clock::time_point t) { return std::chrono::duration<double>(Clock::now() - t).count(); }
 
 constexpr double kPressureUnit = 10e3; // Pa per optimizer unit
 /// The skin barrier's samples per muscle segment (0.5 mm apart at the default 2 mm segments): the

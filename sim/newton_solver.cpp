@@ -6,13 +6,13 @@
 
 #include <fmt/format.h>
 
+#include "core/elapsed.hpp"
 #include "sim/lbfgs_correction.hpp"
 
 namespace fibermold {
 
 namespace {
 using Clock = std::chrono::steady_clock;
-double since(Clock::time_point t) { return std::chrono::duration<double>(Clock::now() - t).count(); }
 
 /// |∇E| within this factor of the tolerance: steps on the exact Hessian there converge.
 constexpr double kNearTolerance = 1e3;

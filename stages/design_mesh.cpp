@@ -5,6 +5,7 @@
 
 #include <fmt/format.h>
 
+#include "core/elapsed.hpp"
 #include "core/input_error.hpp"
 #include "core/units.hpp"
 #include "mesh/surface_import.hpp"
@@ -14,7 +15,6 @@ namespace fibermold {
 namespace {
 
 using Clock = std::chrono::steady_clock;
-double since(Clock::time_point t) { return std::chrono::duration<double>(Clock::now() - t).count(); }
 
 /// A closed void inside the body cannot be cast in a two-part mold: nothing would hold it open
 /// (it takes a core, which fibermold does not make).

@@ -8,6 +8,7 @@
 #include <spdlog/spdlog.h>
 
 #include "core/atomic_file.hpp"
+#include "core/elapsed.hpp"
 #include "core/input_error.hpp"
 #include "core/json_file.hpp"
 #include "core/units.hpp"
@@ -30,7 +31,6 @@ namespace fibermold {
 namespace {
 
 using Clock = std::chrono::steady_clock;
-double since(Clock::time_point t) { return std::chrono::duration<double>(Clock::now() - t).count(); }
 
 /// The share of tets outside the quality bounds above which the mesh stage warns.
 constexpr double kQualityMissWarning = 0.01;

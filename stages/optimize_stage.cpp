@@ -9,6 +9,7 @@
 
 #include "core/array_file.hpp"
 #include "core/atomic_file.hpp"
+#include "core/elapsed.hpp"
 #include "core/input_error.hpp"
 #include "core/json_file.hpp"
 #include "core/units.hpp"
@@ -31,7 +32,6 @@ namespace {
 using Clock = std::chrono::steady_clock;
 /// Iterations of the pressure-only run at most: a few variables, each a pressure.
 constexpr int kBaselineIterations = 50;
-double since(Clock::time_point t) { return std::chrono::duration<double>(Clock::now() - t).count(); }
 
 [[noreturn]] void bad(const Design& d, const std::string& key, const std::string& message)
 {
