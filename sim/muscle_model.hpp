@@ -27,7 +27,8 @@ struct MuscleParameters {
   double smoothing = 10e3; ///< ρ, Pa
   double diameter = 3e-3;  ///< m
 
-  double area() const; ///< A_act = π d² / 4
+  double area() const;                           ///< A_act = π d² / 4
+  double radius() const { return diameter / 2; } ///< m
 };
 
 /// Ψ_act(p, ε) and its derivatives in ε and p.

@@ -98,7 +98,7 @@ std::vector<TargetErrors> errors_under(RoutingProblem& problem, DesignRouting& d
 Routing reoptimize(StageContext& ctx, RoutingProblem& problem, const FiberClearance& measure, const Routing& resolved)
 {
   const Design& d = ctx.design;
-  const ClearanceBarrier barrier(measure, resolved.routes, d.collide.clearance, d.muscle.model.diameter / 2);
+  const ClearanceBarrier barrier(measure, resolved.routes, d.collide.clearance, d.muscle.model.radius());
   problem.set_base(resolved);
   problem.set_clearance_barrier(&barrier, kClearanceBarrierWeight);
   const MinimizerOptions o = minimizer_options(d);

@@ -55,8 +55,7 @@ bool keep_fibers_apart(StageContext& ctx, RoutingProblem& problem, const Surface
   if (start.routes.size() < 2) return false;
   measure = std::make_unique<FiberClearance>(design_clearance(d, skin, start.routes, start.routes));
   if (!measure->contacts(measure->lines(start.routes), d.collide.clearance, false).empty()) return false;
-  barrier =
-      std::make_unique<ClearanceBarrier>(*measure, start.routes, d.collide.clearance, d.muscle.model.diameter / 2);
+  barrier = std::make_unique<ClearanceBarrier>(*measure, start.routes, d.collide.clearance, d.muscle.model.radius());
   problem.set_clearance_barrier(barrier.get(), kClearanceBarrierWeight);
   ctx.log.info("the fibers start clear of each other; a barrier keeps them {:.2f} mm apart",
                d.collide.clearance / units::mm);

@@ -88,7 +88,7 @@ RoutingSettings routing_settings(const Design& d)
   s.max_pressure = d.muscle.max_pressure;
   s.segments_per_length = d.muscle.segments_per_length;
   s.skin_distance = skin_distance(d).distance;
-  s.skin_band = d.muscle.model.diameter / 2;
+  s.skin_band = d.muscle.model.radius();
   s.weight_curvature = d.optimize.weight_curvature;
   s.min_bend_radius = d.muscle.min_bend_radius;
   s.weight_skin = d.optimize.weight_skin_barrier;
@@ -134,7 +134,7 @@ std::vector<HeldStretch> skin_held(const Design& d, const SurfaceDistance& skin,
 FiberClearance design_clearance(const Design& d, const SurfaceDistance& skin, const std::vector<Route>& routes,
                                 const std::vector<Route>& start)
 {
-  return FiberClearance(skin, routes, d.muscle.model.diameter / 2, d.collide.clearance, d.collide.samples_per_length,
+  return FiberClearance(skin, routes, d.muscle.model.radius(), d.collide.clearance, d.collide.samples_per_length,
                         skin_distance(d).groove_margin, skin_held(d, skin, start));
 }
 

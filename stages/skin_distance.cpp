@@ -10,7 +10,7 @@ namespace fibermold {
 
 SkinDistance skin_distance(const Design& d)
 {
-  const double radius = d.muscle.model.diameter / 2, clearance = d.collide.clearance, groove = d.mold.groove_clearance;
+  const double radius = d.muscle.model.radius(), clearance = d.collide.clearance, groove = d.mold.groove_clearance;
   // Beside the groove: half the clearance, and no less silicone than the molds' thickness check asks.
   const double web = std::max(clearance / 2, d.mold.min_silicone);
   SkinDistance s;
