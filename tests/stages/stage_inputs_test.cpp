@@ -3,6 +3,9 @@
 
 #include <cstdio>
 #include <filesystem>
+#include <fstream>
+#include <map>
+#include <regex>
 #include <set>
 
 #include <fmt/format.h>
@@ -116,6 +119,38 @@ TEST(StageInputs, AViewHoldsTheDeclaredValuesAndDefaultsForTheRest)
   for (const auto& [key, value] : molds.values)
     EXPECT_TRUE(design_key_matches(key, "mold") || design_key_matches(key, "muscle.diameter")) << key;
   EXPECT_EQ(molds.values.count("[muscle].max_pressure"), 0u);
+}
+
+/// docs/architecture.md's stage table, row by row: each stage's upstream stages and the design keys
+/// it declares are the code's (Stage::upstream, Stage::design_keys), so that the table cannot drift.
+TEST(StageInputs, TheArchitectureDocsStageTableIsTheCodes)
+{
+  std::ifstream in(fs::path(FIBERMOLD_SOURCE_DIR) / "docs" / "architecture.md");
+  const std::regex row(R"(^\| (\w+) \| ([^|]+) \| ([^|]+) \|$)"), key("`([a-z_.]+)`");
+  std::map<std::string, std::pair<std::string, std::set<std::string>>> table; // stage → upstream, keys
+  for (std::string line; std::getline(in, line);) {
+    std::smatch m;
+    if (!std::regex_match(line, m, row) || m[1] == "stage" || m[1] == "folder") continue;
+    std::set<std::string> keys;
+    const std::string listed = m[3].str().substr(0, m[3].str().find(" ("));
+    for (auto it = std::sregex_iterator(listed.begin(), listed.end(), key); it != std::sregex_iterator(); ++it)
+      keys.insert((*it)[1]);
+    table[m[1]] = {m[2], keys};
+  }
+  const auto stages = shipped_stages();
+  ASSERT_EQ(table.size(), stages.size()) << "docs/architecture.md's stage table has a row per stage";
+  for (const auto& s : stages) {
+    ASSERT_TRUE(table.contains(s->name())) << s->name() << " has no row";
+    const auto& [upstream, keys] = table.at(s->name());
+    const std::vector<std::string> declared = s->design_keys();
+    EXPECT_EQ(keys, std::set<std::string>(declared.begin(), declared.end())) << s->name() << "'s design keys";
+    std::string code = s->upstream().empty() ? "—" : "";
+    for (const std::string& u : s->upstream()) code += (code.empty() ? "" : ", ") + u;
+    if (s != stages.back()) {
+      EXPECT_EQ(upstream, code) << s->name() << "'s upstream";
+    }
+  }
+  EXPECT_EQ(table.at("export").first, "all") << "the last stage reads every stage's outputs";
 }
 
 } // namespace
