@@ -51,13 +51,18 @@ std::string text_of(const fs::path& p)
   return s.str();
 }
 
+/// Adds every .cpp and .hpp under `folder` to `out`.
+void add_sources(const fs::path& folder, std::vector<fs::path>& out)
+{
+  for (const auto& e : fs::recursive_directory_iterator(folder))
+    if (e.path().extension() == ".cpp" || e.path().extension() == ".hpp") out.push_back(e.path());
+}
+
 /// Every .cpp and .hpp of the module folders.
 std::vector<fs::path> module_sources()
 {
   std::vector<fs::path> out;
-  for (const auto& [module, deps] : allowed())
-    for (const auto& e : fs::recursive_directory_iterator(kSource / module))
-      if (e.path().extension() == ".cpp" || e.path().extension() == ".hpp") out.push_back(e.path());
+  for (const auto& [module, deps] : allowed()) add_sources(kSource / module, out);
   return out;
 }
 
@@ -210,9 +215,7 @@ std::string output_of(const std::string& command)
 std::vector<fs::path> all_sources()
 {
   std::vector<fs::path> out = module_sources();
-  for (const char* folder : {"tests", "bench"})
-    for (const auto& e : fs::recursive_directory_iterator(kSource / folder))
-      if (e.path().extension() == ".cpp" || e.path().extension() == ".hpp") out.push_back(e.path());
+  for (const char* folder : {"tests", "bench"}) add_sources(kSource / folder, out);
   std::sort(out.begin(), out.end());
   return out;
 }
