@@ -77,6 +77,24 @@ double TetMesh::volume() const
   return v;
 }
 
+SurfaceMesh boundary_surface(const TetMesh& mesh, const Eigen::MatrixX3d& nodes)
+{
+  Eigen::VectorXi vertex = Eigen::VectorXi::Constant(nodes.rows(), -1);
+  SurfaceMesh skin{Eigen::MatrixX3d(nodes.rows(), 3), mesh.boundary_faces, {}};
+  int used = 0;
+  for (Eigen::Index f = 0; f < skin.faces.rows(); ++f)
+    for (int k = 0; k < 3; ++k) {
+      int& v = vertex(mesh.boundary_faces(f, k));
+      if (v < 0) {
+        v = used++;
+        skin.vertices.row(v) = nodes.row(mesh.boundary_faces(f, k));
+      }
+      skin.faces(f, k) = v;
+    }
+  skin.vertices.conservativeResize(used, 3);
+  return skin;
+}
+
 void save_tet_mesh(const TetMesh& mesh, const std::filesystem::path& path)
 {
   std::string payload;

@@ -6,6 +6,8 @@
 
 #include <Eigen/Core>
 
+#include "mesh/surface_mesh.hpp"
+
 namespace fibermold {
 
 struct TetMesh {
@@ -25,6 +27,10 @@ struct TetMesh {
   double tet_volume(Eigen::Index t) const;
   double volume() const;
 };
+
+/// The mesh's skin (its boundary faces) over only the nodes it uses, placed at `nodes` (the mesh's
+/// nodes, at rest or deformed): a closed surface to write as STL.
+SurfaceMesh boundary_surface(const TetMesh& mesh, const Eigen::MatrixX3d& nodes);
 
 /// Binary artifact for later stages (mesh/body.tetmesh): little-endian, versioned, with a checksum.
 void save_tet_mesh(const TetMesh& mesh, const std::filesystem::path& path);

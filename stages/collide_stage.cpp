@@ -15,6 +15,7 @@
 #include "stages/design_simulation.hpp"
 #include "stages/fibers_file.hpp"
 #include "stages/routing_evaluation.hpp"
+#include "stages/target_poses.hpp"
 
 namespace fibermold {
 
@@ -180,6 +181,14 @@ void simulate_targets(StageContext& ctx, const FiberClearance& measure, const Fi
     targets[name] = {
         {"before", errors_json(before[t])}, {"after", errors_json(after[t])}, {"rmse_change_percent", change}};
     if (!resolved.empty()) targets[name]["resolved"] = errors_json(resolved[t]);
+    // Where the regions and the tracking curves' ends went: what a user measures on the cast robot.
+    const Target& target = d.targets[static_cast<std::size_t>(t)];
+    const std::vector<PosedRegion> asked =
+        target.kind == TargetKind::pose ? target_poses(d, target, dr.mesh) : std::vector<PosedRegion>{};
+    Json poses = Json::array();
+    for (const ReachedPose& p : reached_poses(d, target, problem.simulation(), states[t], asked))
+      poses.push_back(pose_report(p));
+    targets[name]["poses"] = std::move(poses);
     ctx.log.info("target {}: RMSE {:.3f} mm before, {:.3f} mm after ({:+.1f} %); max {:.3f} → {:.3f} mm on the "
                  "tracking curves; surface RMSE {:.3f} → {:.3f} mm",
                  name, before[t].rmse / units::mm, after[t].rmse / units::mm, change, before[t].max / units::mm,

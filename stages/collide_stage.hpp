@@ -35,8 +35,9 @@ public:
   /// 2: writes deformed-<target>.json for the report; 3: no null in report.json; 4: bends in the report, routes
   /// under min_bend_radius refused; 5: the bend barrier samples each span's tightest point, min_bend_radius_mm in the
   /// report; 6: Levenberg-Marquardt's secant term, method hybrid (the default); 7: the skin tested where the
-  /// optimizer's skin barrier held it (SkinBarrier::held)
-  int version() const override { return 7; }
+  /// optimizer's skin barrier held it (SkinBarrier::held); 8: each target's poses reached (where its regions and the
+  /// tracking curves' ends went)
+  int version() const override { return 8; }
   void run(StageContext& ctx) const override;
 };
 

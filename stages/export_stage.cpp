@@ -15,6 +15,7 @@
 #include "export/report_html.hpp"
 #include "export/stl_writer.hpp"
 #include "export/three_mf_writer.hpp"
+#include "mesh/surface_check.hpp"
 #include "mesh/surface_import.hpp"
 #include "mesh/tet_mesh.hpp"
 #include "optimize/tracking_curve.hpp"
@@ -26,6 +27,9 @@ namespace fibermold {
 namespace {
 
 using Json = nlohmann::ordered_json;
+
+// A place that moves less than this, and turns less, stays put: it is not worth comparing.
+constexpr double kStaysPut_mm = 0.5, kStaysPut_deg = 5.0;
 
 /// "the sprue hole", "the 2 sprue holes (one per groove system, one after the other)".
 std::string sprue_holes(const Json& sprues)
@@ -123,22 +127,30 @@ std::optional<Json> json_if_any(const std::filesystem::path& file)
   return j.is_discarded() ? std::nullopt : std::optional<Json>(std::move(j));
 }
 
-/// The body's surface with its nodes where `state` (a deformed-*.json or targets/<name>.json) puts them.
-std::optional<SurfaceMesh> deformed_body(const TetMesh& body, const std::optional<Json>& state)
+/// The body's nodes where `state` (a deformed-*.json or targets/<name>.json) puts them.
+std::optional<Eigen::MatrixX3d> deformed_nodes(const TetMesh& body, const std::optional<Json>& state)
 {
   if (!state || !state->contains("nodes_mm") || !(*state)["nodes_mm"].is_array() ||
       (*state)["nodes_mm"].size() != static_cast<std::size_t>(body.nodes.rows()))
     return std::nullopt;
-  SurfaceMesh deformed{Eigen::MatrixX3d(body.nodes.rows(), 3), body.boundary_faces, {}};
+  Eigen::MatrixX3d nodes(body.nodes.rows(), 3);
   for (Eigen::Index i = 0; i < body.nodes.rows(); ++i) {
     const Json& p = (*state)["nodes_mm"][static_cast<std::size_t>(i)];
     if (!p.is_array() || p.size() != 3) return std::nullopt;
     for (int k = 0; k < 3; ++k) {
       if (!p[static_cast<std::size_t>(k)].is_number()) return std::nullopt;
-      deformed.vertices(i, k) = p[static_cast<std::size_t>(k)].get<double>() * units::mm;
+      nodes(i, k) = p[static_cast<std::size_t>(k)].get<double>() * units::mm;
     }
   }
-  return deformed;
+  return nodes;
+}
+
+/// The body's skin where `state` puts its nodes.
+std::optional<SurfaceMesh> deformed_body(const TetMesh& body, const std::optional<Json>& state)
+{
+  const std::optional<Eigen::MatrixX3d> nodes = deformed_nodes(body, state);
+  if (!nodes) return std::nullopt;
+  return boundary_surface(body, *nodes);
 }
 
 /// The body at rest and, per target, deformed under the final routing (collide/deformed-*.json),
@@ -166,14 +178,82 @@ void add_bodies(const StageContext& ctx, const Eigen::Vector3d& offset, const Ei
     first = false;
   }
   // At rest: shown when no target's deformed state is (optimize disabled, or no targets).
-  meshes.push_back(
-      {"body at rest", SurfaceMesh{body.nodes, body.boundary_faces, {}}, {0.75F, 0.75F, 0.75F}, first, offset});
+  meshes.push_back({"body at rest", boundary_surface(body, body.nodes), {0.75F, 0.75F, 0.75F}, first, offset});
   for (const TrackingCurve& c : ctx.design.tracking_curves) {
     ReportLine line{"tracking curve " + c.name, {}, {0.1F, 0.3F, 0.9F}, true};
     for (const Eigen::Vector3d& p : sample_tracking_curve(c.points, std::max(c.samples, 64), 1, 0).points)
       line.points.push_back(offset + p);
     lines.push_back(std::move(line));
   }
+}
+
+/// What to compare on the cast robot for one target: where its regions and the tracking curves' ends
+/// went (collide's report), leaving out the places that stay put (a curve's clamped first point).
+std::string poses_to_compare(const Json& poses)
+{
+  std::string out;
+  for (const Json& p : poses) {
+    if (!p.is_object() || !p.contains("translation_mm") || !p["rotation_deg"].is_number()) continue;
+    const Eigen::Vector3d t(p["translation_mm"][0], p["translation_mm"][1], p["translation_mm"][2]);
+    const double turn = p["rotation_deg"].get<double>();
+    if (t.norm() < kStaysPut_mm && turn < kStaysPut_deg) continue;
+    out += fmt::format(
+        "    {}: moves {:.1f} mm ({:.1f}, {:.1f}, {:.1f}) and turns {:.1f}° about ({:.2f}, {:.2f}, {:.2f})",
+        p["place"].get<std::string>(), t.norm(), t.x(), t.y(), t.z(), turn, p["rotation_axis"][0].get<double>(),
+        p["rotation_axis"][1].get<double>(), p["rotation_axis"][2].get<double>());
+    if (p.contains("rotation_about_asked_axis_deg") && p.contains("asked_rotation_deg"))
+      out += fmt::format("; {:.1f}° about the axis asked (asked {:.1f}°)",
+                         p["rotation_about_asked_axis_deg"].get<double>(), p["asked_rotation_deg"].get<double>());
+    out += "\n";
+  }
+  return out.empty()
+             ? fmt::format("    nothing moves more than {} mm or turns more than {}°\n", kStaysPut_mm, kStaysPut_deg)
+             : out;
+}
+
+/// Per target, the body as simulated under the final routing (collide/deformed-<target>.json), as a
+/// printable STL in the body's frame, which is the frame of the robot as mounted (its [[fixed]]
+/// regions stay where they are at rest); README.txt's section on checking the cast robot with it,
+/// and the files for the manifest.
+std::string overlay_shapes(const StageContext& ctx, Json& files)
+{
+  const Design& d = ctx.design;
+  const TetMesh body = load_tet_mesh(ctx.upstream("mesh", "body.tetmesh"));
+  const auto collide = json_if_any(ctx.upstream("collide", "report.json"));
+  const FibersFile fibers = read_fibers_json(ctx.upstream("collide", "fibers.json"));
+  std::string text;
+  for (std::size_t t = 0; t < d.targets.size(); ++t) {
+    const std::string& name = d.targets[t].name;
+    std::optional<SurfaceMesh> deformed =
+        deformed_body(body, json_if_any(ctx.upstream("collide", "deformed-" + name + ".json")));
+    if (!deformed) continue;
+    const std::string file = "deformed-" + name + ".stl";
+    write_stl(ctx.output_dir / file, *deformed,
+              fmt::format("fibermold {} deformed, target {} (mm)", d.design.name, name));
+    const SurfaceCheck check = check_surface(*deformed);
+    Json entry{{"target", name}, {"file", file}, {"volume_mL", check.volume / 1e-6}, {"checks_passed", check.ok()}};
+    std::string pressures;
+    const auto row = std::find(fibers.targets.begin(), fibers.targets.end(), name) - fibers.targets.begin();
+    for (std::size_t f = 0; f < fibers.routing.routes.size() && row < std::ssize(fibers.targets); ++f)
+      pressures += fmt::format("{}{} {:.0f} kPa", pressures.empty() ? "" : ", ", fibers.routing.routes[f].name,
+                               fibers.routing.pressures(row, static_cast<Eigen::Index>(f)) / units::kPa);
+    text += fmt::format("\nTarget \"{}\": drive the muscles at {} (at most {:.0f} kPa, [muscle] max_pressure).\n"
+                        "  {} is the body as simulated at these pressures, in the frame of the robot as\n"
+                        "  mounted (its fixed faces where they are at rest). Print it, hold its fixed end against\n"
+                        "  the robot's mount beside the pressurized robot, and compare:\n",
+                        name, pressures.empty() ? "no pressure" : pressures, d.muscle.max_pressure / units::kPa, file);
+    if (collide && (*collide)["targets"].contains(name))
+      text += poses_to_compare((*collide)["targets"][name].value("poses", Json::array()));
+    for (const SurfaceProblem& problem : check.problems) {
+      text += fmt::format("  Note: the simulated body {} (e.g. at {}): the simulation has no self-contact; a slicer\n"
+                          "  merges the overlap.\n",
+                          problem.message, format_mm(problem.where));
+      ctx.log.warn("{}: the simulated body {} (e.g. at {})", file, problem.message, format_mm(problem.where));
+      entry["problems"].push_back(problem.message);
+    }
+    files.push_back(std::move(entry));
+  }
+  return text.empty() ? text : "\nChecking the cast robot against the simulation\n" + text;
 }
 
 /// README.txt's paragraph on the muscles' bends, from collide's report: the fibers as cast must not be
@@ -445,11 +525,15 @@ void ExportStage::run(StageContext& ctx) const
     shots[shot] = {{"silicone_volume_mL", info["silicone_volume_mL"]},
                    {"silicone_mass_g", info["silicone_mass_g"]},
                    {"fill", info["fill"]}};
-  const Json manifest{
-      {"design", d.design.name}, {"units", "mm"}, {"voxel_mm", molds["voxel_mm"]}, {"parts", parts}, {"shots", shots}};
+  ctx.progress.checkpoint(-1, "writing the deformed bodies");
+  Json deformed = Json::array();
+  const std::string checking = overlay_shapes(ctx, deformed);
+  const Json manifest{{"design", d.design.name}, {"units", "mm"},  {"voxel_mm", molds["voxel_mm"]},
+                      {"parts", parts},          {"shots", shots}, {"deformed", deformed}};
   write_json_atomic(ctx.output_dir / "manifest.json", manifest);
   write_file_atomic(ctx.output_dir / "README.txt",
-                    casting_guide(d.design.name, molds["shots"], d.export_.formats.front()) + muscle_bends_text(ctx));
+                    casting_guide(d.design.name, molds["shots"], d.export_.formats.front()) + muscle_bends_text(ctx) +
+                        checking);
   ctx.progress.checkpoint(-1, "writing the report");
   write_file_atomic(ctx.output_dir / "report.html", report(ctx, molds, parts, shots));
 }

@@ -13,17 +13,15 @@ class ExportStage final : public Stage {
 public:
   std::string name() const override { return "export"; }
   std::vector<std::string> upstream() const override { return {"mesh", "targets", "optimize", "collide", "molds"}; }
-  /// The report shows the tracking curves and names the targets.
+  /// The report shows the tracking curves and names the targets; README.txt gives the muscles' max pressure.
   std::vector<std::string> design_keys() const override
   {
-    return {"design.name", "export", "tracking_curve", "target"};
+    return {"design.name", "export", "muscle", "tracking_curve", "target"};
   }
-  int version() const override
-  {
-    return 6;
-  } ///< 2: the fill in the manifest and README.txt, parts' transforms; 3: no timings in report.html; 4: the
-    ///< optimization table and the warnings banner; 5: each target drawn beside the robot, the turns reached; 6: the
-    ///< bend radius table
+  /// 2: the fill in the manifest and README.txt, parts' transforms; 3: no timings in report.html; 4: the optimization
+  /// table and the warnings banner; 5: each target drawn beside the robot, the turns reached; 6: the bend radius
+  /// table; 7: deformed-<target>.stl and how to check the cast robot with it
+  int version() const override { return 7; }
   void run(StageContext& ctx) const override;
 };
 

@@ -6,6 +6,7 @@
 #include <cstdlib>
 #include <fstream>
 #include <random>
+#include <regex>
 #include <sstream>
 #include <stdexcept>
 
@@ -76,6 +77,18 @@ std::pair<int, std::string> run_command(const std::string& command)
   while (fgets(buffer, sizeof buffer, pipe)) text += buffer;
   const int status = pclose(pipe);
   return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, text};
+}
+
+std::map<std::string, int> admesh(const fs::path& stl)
+{
+  std::map<std::string, int> counts;
+  const std::regex entry(R"(^\s*([A-Za-z ]+?)\s*:\s*(-?\d+)(\s|$))"); // "Number of parts : 1   Volume : ..."
+  std::istringstream lines(run_command("admesh '" + stl.string() + "'").second);
+  for (std::string line; std::getline(lines, line);) {
+    std::smatch m;
+    if (std::regex_search(line, m, entry)) counts[m[1]] = std::stoi(m[2]);
+  }
+  return counts;
 }
 
 BrowserView open_in_browser(const fs::path& page, const fs::path& screenshot)

@@ -2,6 +2,7 @@
 // Helpers shared by the test suites: temporary folders, files, running the fibermold binary.
 
 #include <filesystem>
+#include <map>
 #include <string>
 #include <utility>
 
@@ -70,6 +71,10 @@ fibers = [{ name = "m1", pressure = 300, points = [[0, 0, 0], [20, 0, 3], [40, 0
 
 /// Runs a shell command: its exit status and what it printed (stdout and stderr together).
 std::pair<int, std::string> run_command(const std::string& command);
+
+/// admesh's verdict on an STL: the counts it prints ("Degenerate facets", "Edges fixed",
+/// "Facets removed", "Backwards edges", "Number of parts", ...); empty when it did not run.
+std::map<std::string, int> admesh(const std::filesystem::path& stl);
 
 /// A report page opened in headless Chromium (software WebGL): the page's DOM once its scripts
 /// have run, or the browser's output when it failed. Empty `screenshot`: no screenshot.

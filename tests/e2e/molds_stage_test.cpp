@@ -52,22 +52,6 @@ protected:
   test::TempDir dir_;
 };
 
-/// admesh's verdict on an STL: the counts it prints.
-std::map<std::string, int> admesh(const fs::path& stl)
-{
-  std::map<std::string, int> counts;
-  FILE* pipe = popen(("admesh '" + stl.string() + "' 2>&1").c_str(), "r");
-  if (!pipe) return counts;
-  char line[512];
-  const std::regex entry(R"(^\s*([A-Za-z ]+?)\s*:\s*(-?\d+)(\s|$))"); // "Number of parts : 1   Volume : ..."
-  while (fgets(line, sizeof line, pipe)) {
-    std::cmatch m;
-    if (std::regex_search(line, m, entry)) counts[m[1]] = std::stoi(m[2]);
-  }
-  pclose(pipe);
-  return counts;
-}
-
 TEST_F(MoldsE2E, HandRoutedBarBecomesFourCheckedParts)
 {
   design("");
@@ -108,7 +92,7 @@ TEST_F(MoldsE2E, HandRoutedBarBecomesFourCheckedParts)
   if (std::system("command -v admesh >/dev/null 2>&1") != 0)
     GTEST_SKIP() << "admesh is not installed (scripts/setup installs it)";
   for (const auto& p : manifest["parts"]) {
-    const auto a = admesh(out(p["file"].get<std::string>()));
+    const auto a = test::admesh(out(p["file"].get<std::string>()));
     const std::string name = p["name"];
     EXPECT_EQ(a.at("Degenerate facets"), 0) << name;
     EXPECT_EQ(a.at("Edges fixed"), 0) << name;

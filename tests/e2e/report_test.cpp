@@ -10,6 +10,8 @@
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
+#include "mesh/surface_import.hpp"
+#include "mesh/surface_mesh.hpp"
 #include "mesh/tet_mesh.hpp"
 #include "test_support.hpp"
 
@@ -103,6 +105,48 @@ TEST(ReportE2E, ShowsTheDeformedBodyTheErrorsAndTheOptimizationHistory)
                           rest.nodes(i, k) / 1e-3));
   std::printf("report: the deformed body's nodes moved up to %.2f mm\n", moved);
   EXPECT_GT(moved, 1.0);
+
+  // deformed-s.stl: that deformed skin to print and hold against the cast robot, in the body's
+  // frame (float32 mm), closed; the manifest lists it and README.txt says what to compare.
+  const SurfaceMesh overlay = import_surface(build / "export" / "deformed-s.stl", 1e-3);
+  EXPECT_EQ(overlay.num_faces(), rest.boundary_faces.rows());
+  Eigen::Vector3d lo = Eigen::Vector3d::Constant(1e9), hi = -lo;
+  for (Eigen::Index f = 0; f < rest.boundary_faces.rows(); ++f)
+    for (int k = 0; k < 3; ++k)
+      for (int c = 0; c < 3; ++c) {
+        const double v = deformed["nodes_mm"][static_cast<std::size_t>(rest.boundary_faces(f, k))][c].get<double>();
+        lo(c) = std::min(lo(c), v), hi(c) = std::max(hi(c), v);
+      }
+  EXPECT_LT((overlay.vertices.colwise().minCoeff().transpose() / 1e-3 - lo).norm(), 1e-3);
+  EXPECT_LT((overlay.vertices.colwise().maxCoeff().transpose() / 1e-3 - hi).norm(), 1e-3);
+  // Nearly incompressible silicone: the bent bar holds the rest volume within 2 %.
+  EXPECT_NEAR(signed_volume(overlay), rest.volume(), 0.02 * rest.volume());
+  const auto manifest = nlohmann::json::parse(test::read_text(build / "export" / "manifest.json"));
+  ASSERT_EQ(manifest["deformed"].size(), 1u);
+  EXPECT_EQ(manifest["deformed"][0]["file"], "deformed-s.stl");
+  EXPECT_TRUE(manifest["deformed"][0]["checks_passed"].get<bool>());
+  const auto fibers = nlohmann::json::parse(test::read_text(build / "collide" / "fibers.json"));
+  EXPECT_THAT(guide, HasSubstr(fmt::format("Target \"s\": drive the muscles at m1 {:.0f} kPa (at most 425 kPa",
+                                           fibers["fibers"][0]["pressure_kPa"]["s"].get<double>())));
+  bool compared = false;
+  for (const auto& pose : s["poses"])
+    if (pose["place"] == "centre, last point") {
+      const auto& t = pose["translation_mm"];
+      const double norm = std::hypot(t[0].get<double>(), t[1].get<double>(), t[2].get<double>());
+      EXPECT_GT(norm, 1.0);
+      EXPECT_THAT(guide, HasSubstr(fmt::format("    centre, last point: moves {:.1f} mm ({:.1f}, {:.1f}, {:.1f})", norm,
+                                               t[0].get<double>(), t[1].get<double>(), t[2].get<double>())));
+      compared = true;
+    }
+  EXPECT_TRUE(compared) << "collide reports where the tracking curve's end went";
+  if (std::system("command -v admesh >/dev/null 2>&1") == 0) {
+    const auto a = test::admesh(build / "export" / "deformed-s.stl");
+    EXPECT_EQ(a.at("Number of parts"), 1);
+    EXPECT_EQ(a.at("Degenerate facets"), 0);
+    EXPECT_EQ(a.at("Edges fixed"), 0);
+    EXPECT_EQ(a.at("Facets removed"), 0);
+    EXPECT_EQ(a.at("Backwards edges"), 0);
+  }
 
   if (std::system("command -v chromium >/dev/null 2>&1") != 0)
     GTEST_SKIP() << "chromium is not installed (scripts/setup installs it)";
