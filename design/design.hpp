@@ -34,7 +34,10 @@ struct DesignOptions {
 };
 
 struct MaterialOptions {
-  std::string model = "neo-hookean";                          ///< the only one: Neo-Hookean (neo_hookean.hpp)
+  std::string model = "neo-hookean"; ///< the only one: Neo-Hookean (neo_hookean.hpp)
+  /// A silicone of silicone_presets.hpp, whose stiffness and density are the defaults of the keys below and
+  /// whose handling README.txt gives; empty: the paper's EcoFlex 00-30 figures (kDefaultSilicone's handling).
+  std::string preset;
   double youngs_modulus = SimulationOptions{}.youngs_modulus; ///< Pa
   double poisson_ratio = SimulationOptions{}.poisson_ratio;
   double density = SimulationOptions{}.density; ///< kg/m³

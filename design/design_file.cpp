@@ -13,6 +13,7 @@
 #include "core/input_error.hpp"
 #include "core/units.hpp"
 #include "design/did_you_mean.hpp"
+#include "design/silicone_presets.hpp"
 
 namespace fibermold {
 
@@ -482,6 +483,15 @@ MaterialOptions read_material(Section s)
 {
   MaterialOptions o;
   o.model = s.choice("model", o.model, {"neo-hookean"});
+  std::vector<std::string> presets;
+  for (const SiliconePreset& p : silicone_presets()) presets.push_back(p.key);
+  o.preset = s.choice("preset", o.preset, presets);
+  // A preset's figures are the defaults; the keys written beside it override them.
+  if (const SiliconePreset* p = find_silicone_preset(o.preset)) {
+    o.youngs_modulus = p->youngs_modulus();
+    o.poisson_ratio = kPresetPoissonRatio;
+    o.density = p->density;
+  }
   o.youngs_modulus = s.number("youngs_modulus", o.youngs_modulus, closed(100, 1e10), kPa);
   o.poisson_ratio = s.number("poisson_ratio", o.poisson_ratio, {0.0, 0.5, false, true});
   o.density = s.number("density", o.density, closed(0, 3e4), {1.0, " kg/m³"});
