@@ -34,6 +34,7 @@ const std::vector<Part>& parts()
              to.design.surface_scale = from.design.surface_scale;
            }},
       FIBERMOLD_PART("material.model", material.model),
+      FIBERMOLD_PART("material.preset", material.preset),
       FIBERMOLD_PART("material.youngs_modulus", material.youngs_modulus),
       FIBERMOLD_PART("material.poisson_ratio", material.poisson_ratio),
       FIBERMOLD_PART("material.density", material.density),

@@ -1,5 +1,6 @@
 #include "stages/export_stage.hpp"
 
+#include <algorithm>
 #include <optional>
 #include <sstream>
 
@@ -11,15 +12,19 @@
 #include "core/atomic_file.hpp"
 #include "core/json_file.hpp"
 #include "core/units.hpp"
+#include "design/silicone_presets.hpp"
 #include "export/lay_flat.hpp"
+#include "export/muscle_cut.hpp"
 #include "export/report_html.hpp"
 #include "export/stl_writer.hpp"
 #include "export/three_mf_writer.hpp"
 #include "mesh/surface_check.hpp"
+#include "mesh/surface_distance.hpp"
 #include "mesh/surface_import.hpp"
 #include "mesh/tet_mesh.hpp"
 #include "optimize/tracking_curve.hpp"
 #include "sim/hermite_spline.hpp"
+#include "stages/design_simulation.hpp"
 #include "stages/fibers_file.hpp"
 
 namespace fibermold {
@@ -45,22 +50,129 @@ std::string vent_holes(const Json& vents)
   return vents.size() == 1 ? "the vent" : fmt::format("every one of the {} vents", vents.size());
 }
 
-std::string casting_guide(const std::string& design, const Json& shots, const std::string& format)
+std::vector<ReportLine> fiber_lines(const FibersFile& fibers);
+
+/// How much silicone to mix beyond a shot's volume: the cup's and the stirrer's film, the gun's nozzle.
+constexpr double kMixMargin = 0.2;
+
+/// The silicone whose handling README.txt gives: the preset's, or the default material's.
+const SiliconePreset& silicone(const Design& d)
+{
+  return *find_silicone_preset(d.material.preset.empty() ? kDefaultSilicone : d.material.preset);
+}
+
+/// `text` broken into lines of at most kLineWidth characters (code points) at spaces, the first line
+/// starting with `first`, the others with `rest`; ends with a newline.
+std::string wrapped(const std::string& text, const std::string& first, const std::string& rest)
+{
+  constexpr std::size_t kLineWidth = 100;
+  const auto width = [](const std::string& s) {
+    return static_cast<std::size_t>(std::count_if(s.begin(), s.end(), [](char c) { return (c & 0xC0) != 0x80; }));
+  };
+  std::string out, line = first;
+  std::istringstream words(text);
+  bool empty = true;
+  for (std::string word; words >> word;) {
+    if (!empty && width(line) + 1 + width(word) > kLineWidth) {
+      out += line + "\n";
+      line = rest;
+      empty = true;
+    }
+    line += (empty ? "" : " ") + word;
+    empty = false;
+  }
+  return out + line + "\n";
+}
+
+/// The silicone: which one, the figures the simulation used, and per shot how much to mix of each part.
+std::string silicone_text(const Design& d, const Json& shots)
+{
+  const MaterialOptions& m = d.material;
+  const SiliconePreset& s = silicone(d);
+  std::string text = wrapped(
+      fmt::format("Silicone: {} ({}), mixed {:g}A : {:g}B by weight; pot life {:.0f} min, demold after {:.0f} h at "
+                  "23 °C (the maker's data sheet). The simulation took E = {:.1f} kPa, Poisson's ratio {:.2f} and "
+                  "{:.0f} kg/m³ ({}).",
+                  s.name, s.hardness, s.mix_a, s.mix_b, s.pot_life / 60, s.demold_time / 3600,
+                  m.youngs_modulus / units::kPa, m.poisson_ratio, m.density,
+                  m.preset.empty() ? "[material]: the paper's figures; the handling here is Ecoflex 00-30's, the "
+                                     "default: name a [material] preset for another silicone"
+                                   : "[material] preset = \"" + m.preset + "\""),
+      "", "  ");
+  for (const auto& [shot, info] : shots.items()) {
+    const double grams = info["silicone_mass_g"].get<double>(), mix = (1 + kMixMargin) * grams;
+    text +=
+        wrapped(fmt::format("{}: {:.1f} mL, {:.1f} g; mix {:.1f} g ({:.1f} g of A and {:.1f} g of B: {:.0f} % "
+                            "more, for the cup and the nozzle).",
+                            shot == "shot1" ? "Shot 1" : "Shot 2", info["silicone_volume_mL"].get<double>(), grams, mix,
+                            mix * s.mix_a / (s.mix_a + s.mix_b), mix * s.mix_b / (s.mix_a + s.mix_b), 100 * kMixMargin),
+                "  ", "    ");
+  }
+  return text + wrapped(fmt::format("Before each shot: spray or brush mold release (one made for platinum silicone) "
+                                    "onto every cavity face; weigh A and B, stir for 3 minutes scraping the cup's "
+                                    "sides and bottom, {}, and inject within the pot life.",
+                                    s.degas_recommended ? "vacuum-degas it (the data sheet recommends it)"
+                                                        : "vacuum-degas it if you have a chamber"),
+                        "  ", "    ");
+}
+
+/// Each muscle: its cut length, diameter, which end takes the supply tube and which is sealed.
+std::string muscles_text(const std::vector<MuscleCut>& cuts, double diameter)
+{
+  std::string text =
+      fmt::format("\nMuscles ({:.1f} mm in diameter): cut each to its length inside the body.\n", diameter / units::mm);
+  for (const MuscleCut& c : cuts) {
+    if (!c.supply) {
+      text += wrapped(fmt::format("{}: {:.1f} mm. Neither end leaves the body: seal both; no channel leads a supply "
+                                  "tube out (route the fiber so that one end reaches the skin).",
+                                  c.name, c.length_inside / units::mm),
+                      "  ", "    ");
+      continue;
+    }
+    const MuscleEnd& supply = *c.supply == 0 ? c.start : c.end;
+    const MuscleEnd& sealed = *c.supply == 0 ? c.end : c.start;
+    text += wrapped(
+        fmt::format(
+            "{}: {:.1f} mm. Fit the supply tube (e.g. with a Luer lock fitting) to its {} end, which leaves the "
+            "body at {}; seal its {} end, {}.",
+            c.name, c.length_inside / units::mm, *c.supply == 0 ? "first" : "last", format_mm(supply.skin_point),
+            *c.supply == 0 ? "last" : "first",
+            sealed.leaves_body ? "which leaves the body at " + format_mm(sealed.skin_point) +
+                                     ": plug that channel's outer hole for shot 2 (e.g. with a short piece of "
+                                     "tube) and trim the cast flush there"
+                               : "buried in the body at " + format_mm(sealed.at)),
+        "  ", "    ");
+  }
+  return text;
+}
+
+/// "Close the two halves on their keys and clamp them", with the screws when the mold has them.
+std::string clamp_text(const Json& shot)
+{
+  const int screws = shot.value("screw_holes", 0);
+  return screws > 0 ? fmt::format("Close the two halves on their keys and bolt them through the {} screw holes", screws)
+                    : std::string("Close the two halves on their keys and clamp them (spring clamps or rubber bands)");
+}
+
+std::string casting_guide(const Design& d, const Json& shots, const std::string& format,
+                          const std::vector<MuscleCut>& cuts)
 {
   const std::string ext = "." + format, FORMAT = format == "3mf" ? "3MF file" : "STL";
   const auto ml = [&](const char* shot) { return shots[shot]["silicone_volume_mL"].get<double>(); };
   const auto g = [&](const char* shot) { return shots[shot]["silicone_mass_g"].get<double>(); };
   const auto fill = [&](const char* shot) -> const Json& { return shots[shot]["fill"]; };
+  const double cure = silicone(d).demold_time / 3600;
   return fmt::format(R"(fibermold mold parts for "{}"
 
 Print every {} as it lies (each stands on its largest flat face; units mm).
 
+{}{}
 Shot 1, the grooved body: shot1-lower{} and shot1-upper{}.
-  1. Close the two halves on their keys and clamp them. Stand the mold upright: lower half down,
-     the sprue hole underneath, the vents on top.
+  1. {}.
+     Stand the mold upright: lower half down, the sprue hole underneath, the vents on top.
   2. Inject about {:.1f} mL ({:.1f} g) of silicone through {} from below, slowly,
      until silicone comes out of {}; then plug the sprue.
-  3. Let it cure, and demold: the body has an open groove for each muscle.
+  3. Let it cure ({:.0f} h), and demold: the body has an open groove for each muscle.
   4. Trim the cast's sprue and vent stubs flush with its skin: shot 2's cavity is the body's
      own shape and has no room for them.
 
@@ -69,13 +181,14 @@ the grooves' ends.
 
 Shot 2, the overmold: shot2-lower{} and shot2-upper{}.
   5. Put the grooved body with its muscles into the lower half, grooves up, and route the supply
-     tubes out through the channels at the fibers' ends. Close on the keys and clamp.
+     tubes out through the channels at the fibers' ends.
+     {}.
   6. Stand the mold upright as in shot 1. In this shot the sprue comes in from the TOP of the
      upper half, straight over the lowest point of the grooves: the cured body lies below them,
      so they cannot be filled from below. Inject about {:.1f} mL ({:.1f} g) of silicone slowly
      through {}; it runs down into the grooves and rises around the muscles;
      go on until silicone comes out of {}.
-  7. Let it cure, demold and trim the stubs as in step 4.
+  7. Let it cure ({:.0f} h), demold and trim the stubs as in step 4.
 
 The fill of both shots was simulated (silicone rising level by level from the sprue): shot 1
 reaches {:.1f} % of its cavity and traps {:.2f} mm³ of air, shot 2 reaches {:.1f} % of the
@@ -84,12 +197,35 @@ grooves (the rest: crevices along the muscles thinner than the simulation's voxe
 and vent meets the cavity, each part's size, volume, checks and how its printed pose maps back to
 the body.
 )",
-                     design, FORMAT, ext, ext, ml("shot1"), g("shot1"), sprue_holes(fill("shot1")["sprues"]),
-                     vent_holes(fill("shot1")["vents"]), ext, ext, ml("shot2"), g("shot2"),
-                     sprue_holes(fill("shot2")["sprues"]), vent_holes(fill("shot2")["vents"]),
+                     d.design.name, FORMAT, silicone_text(d, shots), muscles_text(cuts, d.muscle.model.diameter), ext,
+                     ext, clamp_text(shots["shot1"]), ml("shot1"), g("shot1"), sprue_holes(fill("shot1")["sprues"]),
+                     vent_holes(fill("shot1")["vents"]), cure, ext, ext, clamp_text(shots["shot2"]), ml("shot2"),
+                     g("shot2"), sprue_holes(fill("shot2")["sprues"]), vent_holes(fill("shot2")["vents"]), cure,
                      fill("shot1")["reachable_percent"].get<double>(), fill("shot1")["trapped_air_mm3"].get<double>(),
                      fill("shot2")["reachable_percent"].get<double>(), fill("shot2")["trapped_air_mm3"].get<double>(),
                      fill("shot1")["trapped_air_tolerance_mm3"].get<double>());
+}
+
+/// Each fiber's cut: along its centre line as collide left it (10 points per mm), against the body's skin;
+/// an end leaves the body within the groove's radius of the skin (molds/report.json), and the supply end
+/// is the one nearest the [[fixed]] regions' centroid.
+std::vector<MuscleCut> muscle_cuts(const StageContext& ctx, const TetMesh& body, const Json& molds)
+{
+  const Design& d = ctx.design;
+  const SurfaceDistance skin(body.nodes, body.boundary_faces);
+  std::optional<Eigen::Vector3d> mount;
+  std::vector<int> held;
+  for (std::size_t i = 0; i < d.fixed.size(); ++i)
+    for (int n : region_nodes(d.fixed[i].region, body, d, fmt::format("fixed[{}]", i + 1))) held.push_back(n);
+  if (!held.empty()) {
+    mount = Eigen::Vector3d::Zero();
+    for (int n : held) *mount += body.nodes.row(n).transpose() / static_cast<double>(held.size());
+  }
+  const double reach = molds["groove_radius_mm"].get<double>() * units::mm;
+  std::vector<MuscleCut> cuts;
+  for (const ReportLine& line : fiber_lines(read_fibers_json(ctx.upstream("collide", "fibers.json"))))
+    cuts.push_back(muscle_cut(line.name, line.points, skin, reach, mount));
+  return cuts;
 }
 
 /// Each fiber's centre line, 10 points per mm.
@@ -420,10 +556,31 @@ std::optional<ReportPlot> optimization_history(const StageContext& ctx)
   return plot;
 }
 
+/// The muscles to cut, as README.txt gives them.
+ReportTable muscles_table(const Design& d, const std::vector<MuscleCut>& cuts)
+{
+  ReportTable t{fmt::format("Muscles to cut ({:.1f} mm in diameter)", d.muscle.model.diameter / units::mm),
+                {"fiber", "cut length: inside the body (mm)", "supply tube at", "sealed end at"},
+                {}};
+  for (const MuscleCut& c : cuts) {
+    if (!c.supply) {
+      t.rows.push_back(
+          {c.name, fixed(c.length_inside / units::mm, 1), "none: neither end leaves the body", "both ends"});
+      continue;
+    }
+    const MuscleEnd& supply = *c.supply == 0 ? c.start : c.end;
+    const MuscleEnd& sealed = *c.supply == 0 ? c.end : c.start;
+    t.rows.push_back({c.name, fixed(c.length_inside / units::mm, 1), format_mm(supply.skin_point),
+                      sealed.leaves_body ? format_mm(sealed.skin_point) : format_mm(sealed.at) + ", buried"});
+  }
+  return t;
+}
+
 /// The page users open first: the groove body with its muscles in the shot 1 mold (upper half
 /// lifted off along pull), the shot 2 mold beside it (hidden), the parts' checks and the silicone.
 /// No timings (they are in make's output and the stage logs): the same design gives the same page.
-std::string report(const StageContext& ctx, const Json& molds, const Json& parts, const Json& shots)
+std::string report(const StageContext& ctx, const Json& molds, const Json& parts, const Json& shots,
+                   const std::vector<MuscleCut>& cuts)
 {
   const Design& d = ctx.design;
   const auto load = [&](const std::string& file) { return import_surface(ctx.upstream("molds", file), units::mm); };
@@ -462,22 +619,29 @@ std::string report(const StageContext& ctx, const Json& molds, const Json& parts
                            p["fits_printer_as_placed"].get<bool>() ? "lying flat" : "turned",
                            p["checks_passed"].get<bool>() ? "passed" : "FAILED"});
   }
-  ReportTable silicone{"Silicone and its fill (simulated: rising level by level from the sprues)",
-                       {"shot", "volume (mL)", "mass (g)", "sprues", "vents", "fill reached", "air trapped (mm³)"},
-                       {}};
+  const SiliconePreset& s = silicone(d);
+  ReportTable silicone{
+      fmt::format("Silicone: {}, {:g}A : {:g}B by weight, pot life {:.0f} min, demold after {:.0f} h; its fill "
+                  "(simulated: rising level by level from the sprues)",
+                  s.name, s.mix_a, s.mix_b, s.pot_life / 60, s.demold_time / 3600),
+      {"shot", "volume (mL)", "mass (g)", fmt::format("mix, +{:.0f} % (g of A + g of B)", 100 * kMixMargin), "sprues",
+       "vents", "fill reached", "air trapped (mm³)"},
+      {}};
   for (const auto& [shot, info] : shots.items()) {
     const Json& f = info["fill"];
-    silicone.rows.push_back({shot, fixed(info["silicone_volume_mL"], 2), fixed(info["silicone_mass_g"], 2),
-                             fmt::format("{} from {}", f["sprues"].size(),
-                                         f["sprues"].empty() ? "" : f["sprues"][0]["from"].get<std::string>()),
-                             std::to_string(f["vents"].size()), fixed(f["reachable_percent"], 1) + " %",
-                             fixed(f["trapped_air_mm3"], 2)});
+    const double mix = (1 + kMixMargin) * info["silicone_mass_g"].get<double>();
+    silicone.rows.push_back(
+        {shot, fixed(info["silicone_volume_mL"], 2), fixed(info["silicone_mass_g"], 2),
+         fixed(mix * s.mix_a / (s.mix_a + s.mix_b), 1) + " + " + fixed(mix * s.mix_b / (s.mix_a + s.mix_b), 1),
+         fmt::format("{} from {}", f["sprues"].size(),
+                     f["sprues"].empty() ? "" : f["sprues"][0]["from"].get<std::string>()),
+         std::to_string(f["vents"].size()), fixed(f["reachable_percent"], 1) + " %", fixed(f["trapped_air_mm3"], 2)});
   }
   std::vector<std::string> warnings;
   std::vector<ReportTable> tables;
   if (auto optimized = optimization_table(ctx, warnings)) tables.push_back(std::move(*optimized));
   for (ReportTable& t : behaviour_tables(ctx)) tables.push_back(std::move(t));
-  tables.insert(tables.end(), {checks, silicone});
+  tables.insert(tables.end(), {checks, silicone, muscles_table(d, cuts)});
   std::vector<ReportPlot> plots;
   if (auto history = optimization_history(ctx)) plots.push_back(std::move(*history));
   return report_html("fibermold: " + d.design.name, meshes, lines, tables, plots, warnings);
@@ -531,11 +695,11 @@ void ExportStage::run(StageContext& ctx) const
   const Json manifest{{"design", d.design.name}, {"units", "mm"},  {"voxel_mm", molds["voxel_mm"]},
                       {"parts", parts},          {"shots", shots}, {"deformed", deformed}};
   write_json_atomic(ctx.output_dir / "manifest.json", manifest);
-  write_file_atomic(ctx.output_dir / "README.txt",
-                    casting_guide(d.design.name, molds["shots"], d.export_.formats.front()) + muscle_bends_text(ctx) +
-                        checking);
+  const std::vector<MuscleCut> cuts = muscle_cuts(ctx, load_tet_mesh(ctx.upstream("mesh", "body.tetmesh")), molds);
+  write_file_atomic(ctx.output_dir / "README.txt", casting_guide(d, molds["shots"], d.export_.formats.front(), cuts) +
+                                                       muscle_bends_text(ctx) + checking);
   ctx.progress.checkpoint(-1, "writing the report");
-  write_file_atomic(ctx.output_dir / "report.html", report(ctx, molds, parts, shots));
+  write_file_atomic(ctx.output_dir / "report.html", report(ctx, molds, parts, shots, cuts));
 }
 
 } // namespace fibermold

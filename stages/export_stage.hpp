@@ -13,15 +13,16 @@ class ExportStage final : public Stage {
 public:
   std::string name() const override { return "export"; }
   std::vector<std::string> upstream() const override { return {"mesh", "targets", "optimize", "collide", "molds"}; }
-  /// The report shows the tracking curves and names the targets; README.txt gives the muscles' max pressure.
+  /// The report shows the tracking curves and names the targets; README.txt gives the silicone (material), the
+  /// muscles' diameter and max pressure, and feeds each muscle from its end nearest the mount (fixed).
   std::vector<std::string> design_keys() const override
   {
-    return {"design.name", "export", "muscle", "tracking_curve", "target"};
+    return {"design.name", "export", "material", "fixed", "muscle", "tracking_curve", "target"};
   }
   /// 2: the fill in the manifest and README.txt, parts' transforms; 3: no timings in report.html; 4: the optimization
   /// table and the warnings banner; 5: each target drawn beside the robot, the turns reached; 6: the bend radius
-  /// table; 7: deformed-<target>.stl and how to check the cast robot with it
-  int version() const override { return 7; }
+  /// table; 7: deformed-<target>.stl and how to check the cast robot with it; 8: the casting sheet (silicone, muscles)
+  int version() const override { return 8; }
   void run(StageContext& ctx) const override;
 };
 

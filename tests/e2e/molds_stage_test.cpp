@@ -8,6 +8,7 @@
 #include <regex>
 #include <sstream>
 
+#include <fmt/format.h>
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
@@ -71,6 +72,24 @@ TEST_F(MoldsE2E, HandRoutedBarBecomesFourCheckedParts)
   EXPECT_THAT(guide, HasSubstr("Shot 2, the overmold"));
   EXPECT_THAT(guide, HasSubstr("Trim the cast's sprue and vent stubs"));
   EXPECT_THAT(guide, HasSubstr("the sprue comes in from the TOP of the\n     upper half"));
+  // The casting sheet: the silicone of the default material (the paper's Ecoflex 00-30), each shot's
+  // volume and mass as the fill simulation measured them and what to mix (20 % more, half A, half B);
+  // the muscle cut to its 60 mm inside the bar, fed at the clamped end x = 0 and sealed at x = 60.
+  const std::string sheet = std::regex_replace(guide, std::regex("\n +"), " "); // its paragraphs unwrapped
+  EXPECT_THAT(sheet, HasSubstr("Silicone: Smooth-On Ecoflex 00-30 (Shore 00-30), mixed 1A : 1B by weight; pot life "
+                               "45 min, demold after 4 h at 23 °C"));
+  for (const char* shot : {"shot1", "shot2"}) {
+    const double mL = manifest["shots"][shot]["silicone_volume_mL"], g = manifest["shots"][shot]["silicone_mass_g"];
+    EXPECT_THAT(sheet, HasSubstr(fmt::format(" Shot {}: {:.1f} mL, {:.1f} g; mix {:.1f} g ({:.1f} g of A and {:.1f} g "
+                                             "of B",
+                                             shot[4], mL, g, 1.2 * g, 0.6 * g, 0.6 * g)));
+  }
+  std::smatch cut;
+  ASSERT_TRUE(std::regex_search(guide, cut, std::regex(R"(\n  m1: ([0-9.]+) mm\. Fit the supply tube)"))) << guide;
+  EXPECT_NEAR(std::stod(cut[1]), 60.0, 1.0);
+  EXPECT_THAT(sheet, HasSubstr("to its first end, which leaves the body at (0.0, 0.0, 0.0) mm; seal its last end, "
+                               "which leaves the body at (60.0, 0.0, 0.0) mm"));
+  EXPECT_THAT(test::read_text(out("report.html")), HasSubstr(fmt::format("<tr><td>m1</td><td>{}</td>", cut[1].str())));
 
   // Each part's transform takes its body-frame mesh (molds/) onto the printed one (export/).
   for (const auto& p : manifest["parts"]) {
@@ -100,6 +119,20 @@ TEST_F(MoldsE2E, HandRoutedBarBecomesFourCheckedParts)
     EXPECT_EQ(a.at("Backwards edges"), 0) << name;
     EXPECT_EQ(a.at("Number of parts"), 1) << name;
   }
+}
+
+TEST_F(MoldsE2E, APresetsSiliconeIsTheOneTheCastingSheetGives)
+{
+  design("[material]\npreset = \"dragon-skin-10\"\n");
+  const auto r = make();
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const std::string guide = test::read_text(out("README.txt"));
+  const std::string sheet = std::regex_replace(guide, std::regex("\n +"), " "); // its paragraphs unwrapped
+  EXPECT_THAT(sheet, HasSubstr("Silicone: Smooth-On Dragon Skin 10 Medium (Shore 10A), mixed 1A : 1B by weight; pot "
+                               "life 20 min, demold after 5 h at 23 °C"));
+  EXPECT_THAT(sheet, HasSubstr("E = 137.9 kPa, Poisson's ratio 0.47 and 1070 kg/m³ ([material] preset ="));
+  EXPECT_THAT(sheet, HasSubstr("vacuum-degas it (the data sheet recommends it)"));
+  EXPECT_THAT(guide, HasSubstr("  3. Let it cure (5 h)"));
 }
 
 TEST_F(MoldsE2E, AFiberLeavingItsEndFaceAlmostAlongItGetsAChannelSquareToTheFace)

@@ -13,6 +13,7 @@
 #include "mesh/surface_import.hpp"
 #include "mesh/surface_mesh.hpp"
 #include "mesh/tet_mesh.hpp"
+#include "sim/hermite_spline.hpp"
 #include "test_support.hpp"
 
 namespace fibermold {
@@ -128,6 +129,26 @@ TEST(ReportE2E, ShowsTheDeformedBodyTheErrorsAndTheOptimizationHistory)
   const auto fibers = nlohmann::json::parse(test::read_text(build / "collide" / "fibers.json"));
   EXPECT_THAT(guide, HasSubstr(fmt::format("Target \"s\": drive the muscles at m1 {:.0f} kPa (at most 425 kPa",
                                            fibers["fibers"][0]["pressure_kPa"]["s"].get<double>())));
+  // The casting sheet cuts the muscle to its length inside the bar [0, 60] × [−8, 8]² mm, measured
+  // here on the spline itself: 20,000 chords, each counted when its midpoint is inside.
+  const auto& f = fibers["fibers"][0];
+  std::vector<Eigen::Vector3d> points, tangents;
+  for (std::size_t i = 0; i < f["points_mm"].size(); ++i) {
+    points.emplace_back(f["points_mm"][i][0], f["points_mm"][i][1], f["points_mm"][i][2]);
+    tangents.emplace_back(f["tangents_mm"][i][0], f["tangents_mm"][i][1], f["tangents_mm"][i][2]);
+  }
+  const HermiteSpline spline(points, tangents);
+  double inside = 0;
+  for (int i = 0; i < 20000; ++i) {
+    const Eigen::Vector3d a = spline.position(spline.spans() * i / 20000.0),
+                          b = spline.position(spline.spans() * (i + 1) / 20000.0), m = 0.5 * (a + b);
+    if (m.x() > 0 && m.x() < 60 && std::abs(m.y()) < 8 && std::abs(m.z()) < 8) inside += (b - a).norm();
+  }
+  std::smatch cut;
+  ASSERT_TRUE(std::regex_search(guide, cut, std::regex(R"(\n  m1: ([0-9.]+) mm\. Fit the supply tube)"))) << guide;
+  std::printf("report: m1 is cut to %s mm; inside the bar it runs %.2f mm\n", cut[1].str().c_str(), inside);
+  EXPECT_NEAR(std::stod(cut[1]), inside, 1.0);
+
   bool compared = false;
   for (const auto& pose : s["poses"])
     if (pose["place"] == "centre, last point") {
