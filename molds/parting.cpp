@@ -64,22 +64,22 @@ double upright_share(const SurfaceMesh& cavity, const Eigen::Vector3d& point, co
   return above > 0 ? upright / above : 0;
 }
 
-Parting choose_parting(const SurfaceMesh& cavity, const Eigen::Vector3d& pull_in)
+Parting choose_parting(const SurfaceMesh& cavity, const Eigen::Vector3d& pull_in, double ceiling)
 {
   const Eigen::Vector3d pull = pull_in.normalized();
   std::vector<Facing> faces = tilted_faces(cavity, pull);
   std::sort(faces.begin(), faces.end(), [](const Facing& a, const Facing& b) { return a.height < b.height; });
   // U(h) = Σ up-facing area below h + Σ down-facing area above h, piecewise constant between
-  // centroid heights; evaluate it on every interval.
+  // centroid heights; evaluate it on every interval below the ceiling.
   const Eigen::VectorXd heights = cavity.vertices * pull;
-  const double lo = heights.minCoeff(), hi = heights.maxCoeff();
+  const double lo = heights.minCoeff(), hi = std::max(lo + 1e-9, std::min(heights.maxCoeff(), ceiling));
   double down_above = 0;
   for (const Facing& f : faces)
     if (!f.up) down_above += f.area;
   double up_below = 0, best = HUGE_VAL, best_lo = lo, best_hi = hi;
   double start = lo;
   for (std::size_t k = 0; k <= faces.size(); ++k) {
-    const double end = k < faces.size() ? faces[k].height : hi;
+    const double end = k < faces.size() ? std::min(faces[k].height, hi) : hi;
     const double u = up_below + down_above;
     if (end > start && u < best - 1e-18) {
       best = u;
@@ -88,7 +88,7 @@ Parting choose_parting(const SurfaceMesh& cavity, const Eigen::Vector3d& pull_in
     } else if (end > start && std::abs(u - best) <= 1e-18 && start <= best_hi + 1e-12) {
       best_hi = end; // the same optimum continues: widen the range
     }
-    if (k == faces.size()) break;
+    if (k == faces.size() || end >= hi) break;
     (faces[k].up ? up_below : down_above) += faces[k].up ? faces[k].area : -faces[k].area;
     start = end;
   }
@@ -105,6 +105,32 @@ Parting choose_parting(const SurfaceMesh& cavity, const Eigen::Vector3d& pull_in
   for (int k = 1; k <= 8 && nudge > 0 && on_vertices(h); ++k) h = middle + ((k + 1) / 2) * (k % 2 ? nudge : -nudge);
   const Eigen::Vector3d centre = cavity.vertices.colwise().mean().transpose();
   return {centre + (h - centre.dot(pull)) * pull, pull, best};
+}
+
+PullSense pull_sense(const SurfaceMesh& body, const std::vector<std::vector<Eigen::Vector3d>>& fibers,
+                     double groove_radius, const Eigen::Vector3d& pull_in)
+{
+  const Eigen::Vector3d pull = pull_in.normalized();
+  double ceiling = HUGE_VAL;
+  for (const auto& line : fibers)
+    for (const Eigen::Vector3d& p : line) ceiling = std::min(ceiling, p.dot(pull) - groove_radius);
+  const Parting parting = choose_parting(body, pull, ceiling);
+  const Eigen::VectorXd heights = body.vertices * pull;
+  const double h = parting.point.dot(pull);
+  return {pull, parting, std::max(0.0, std::min(h - heights.minCoeff(), heights.maxCoeff() - h))};
+}
+
+std::vector<PullSense> choose_pull_sense(const SurfaceMesh& body,
+                                         const std::vector<std::vector<Eigen::Vector3d>>& fibers, double groove_radius,
+                                         const Eigen::Vector3d& pull, double undercut_slack)
+{
+  const PullSense given = pull_sense(body, fibers, groove_radius, pull),
+                  reverse = pull_sense(body, fibers, groove_radius, -pull);
+  const Eigen::VectorXd heights = body.vertices * given.pull;
+  const double plate = std::max(kPlateDepth, kPlateShare * (heights.maxCoeff() - heights.minCoeff()));
+  const bool reversed = given.thinner_half < plate && reverse.thinner_half >= given.thinner_half + kPlateDepth &&
+                        reverse.parting.undercut_area <= given.parting.undercut_area + undercut_slack;
+  return reversed ? std::vector{reverse, given} : std::vector{given, reverse};
 }
 
 } // namespace fibermold

@@ -23,10 +23,6 @@ SurfaceMesh scaled_about(SurfaceMesh m, const Eigen::Vector3d& centre, double fa
   return m;
 }
 
-/// An undercut below this projected area (m²) is facets of the meshed level set, not a shape the
-/// mold holds on to: it is logged but not warned about.
-constexpr double kUndercutWarning = 1e-6;
-
 /// An end of a fiber on the skin gets a channel out through the mold, square to the skin there (a
 /// channel meeting the skin at an angle would leave a knife edge of mold): from a point 1 mm
 /// inside, back along the fiber, to its nearest skin point. Where the fiber leaves the skin almost
@@ -104,6 +100,7 @@ public:
         if (auto c = end_channel(end, along, skin_, out_.groove_radius, m, job.muscle_diameter))
           channels_.push_back(*c);
     }
+    out_.pull = pull_;
     // Shrink compensation: cavities (and channel starts) scaled up about the body's centre.
     out_.grow = m.shrink > 0 ? 1 / (1 - m.shrink) : 1.0;
     out_.centre = job.body.vertices.colwise().mean().transpose();

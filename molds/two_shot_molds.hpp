@@ -90,11 +90,12 @@ struct CheckedPart {
 };
 
 struct TwoShotMolds {
-  std::vector<ShotMold> shots;    ///< shot1, shot2
-  std::vector<CheckedPart> parts; ///< every part of both shots, checked
-  GrooveBody groove;              ///< shot 1's cast: the body with its grooves (nominal size)
-  double groove_radius = 0;       ///< m
-  double draft_offset = 0;        ///< m, the most a draft grew a cavity (0: no draft)
+  std::vector<ShotMold> shots;                     ///< shot1, shot2
+  std::vector<CheckedPart> parts;                  ///< every part of both shots, checked
+  GrooveBody groove;                               ///< shot 1's cast: the body with its grooves (nominal size)
+  double groove_radius = 0;                        ///< m
+  double draft_offset = 0;                         ///< m, the most a draft grew a cavity (0: no draft)
+  Eigen::Vector3d pull = Eigen::Vector3d::UnitZ(); ///< unit: the pull the molds were made for
   SiliconeThickness thickness;
   /// What keeps the molds from casting, one line each naming the shot and where; empty: they cast.
   std::vector<std::string> failures;

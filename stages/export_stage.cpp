@@ -593,7 +593,10 @@ std::string report(const StageContext& ctx, const Json& molds, const Json& parts
     width = std::max(width, size.maxCoeff() * units::mm);
     height = std::max(height, size.minCoeff() * units::mm);
   }
-  const Eigen::Vector3d pull = d.mold.pull.normalized();
+  // The pull the molds were made for (molds/report.json): [mold] pull, or its reverse.
+  const Eigen::Vector3d pull = molds.contains("pull")
+                                   ? Eigen::Vector3d(molds["pull"][0], molds["pull"][1], molds["pull"][2])
+                                   : Eigen::Vector3d::UnitZ();
   const Eigen::Vector3d aside =
       (pull.cross(Eigen::Vector3d::UnitZ()).norm() > 0.5 ? pull.cross(Eigen::Vector3d::UnitZ())
                                                          : pull.cross(Eigen::Vector3d::UnitX()))

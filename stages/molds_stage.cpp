@@ -199,6 +199,49 @@ std::vector<std::vector<Eigen::Vector3d>> require_grooves_fit(const Design& d, c
   return lines;
 }
 
+namespace {
+
+/// With an "auto" parting plane, the sense of [mold] pull the molds are made for: its reverse when the
+/// given one leaves a half of shot 1 a plate and the reverse does not (choose_pull_sense), and every
+/// groove fits opening that way; both senses logged and into `senses` for the report.
+Eigen::Vector3d pull_sense(const StageContext& ctx, const MoldJob& job,
+                           const std::vector<std::vector<Eigen::Vector3d>>& lines, const SurfaceDistance& skin,
+                           Json& senses)
+{
+  const Design& d = ctx.design;
+  const Eigen::Vector3d given = d.mold.pull.normalized();
+  const std::vector<PullSense> both =
+      choose_pull_sense(job.body, lines, groove_radius(job.muscle_diameter, d.mold), given, kUndercutWarning);
+  for (const PullSense& p : both) {
+    ctx.log.info("shot 1 with pull ({:.3g}, {:.3g}, {:.3g}): the plane under the grooves through {}; the shallower "
+                 "half {:.2f} mm of the cavity, {:.1f} mm² of undercut",
+                 p.pull.x() + 0.0, p.pull.y() + 0.0, p.pull.z() + 0.0, format_mm(p.parting.point),
+                 p.thinner_half / units::mm, std::max(0.0, p.parting.undercut_area / 1e-6));
+    senses.push_back({{"pull", {p.pull.x() + 0.0, p.pull.y() + 0.0, p.pull.z() + 0.0}},
+                      {"parting_point_mm", vec_mm(p.parting.point)},
+                      {"shallower_half_mm", p.thinner_half / units::mm},
+                      {"undercut_area_mm2", std::max(0.0, p.parting.undercut_area / 1e-6)}});
+  }
+  const PullSense& chosen = both.front();
+  if (chosen.pull.dot(given) > 0) return given;
+  const SkinDistance rule = skin_distance(d);
+  for (std::size_t f = 0; f < lines.size(); ++f)
+    if (auto problem = groove_problem(lines[f], skin, rule.groove, rule.groove_terms, chosen.pull, job.exits[f])) {
+      ctx.log.info("the pull stays as given: reversed, the groove of fiber {} would not fit: {}", d.fibers[f].name,
+                   *problem);
+      return given;
+    }
+  ctx.log.warn(
+      "the pull is reversed to ({:.3g}, {:.3g}, {:.3g}): with [mold] pull as given, shot 1's plane has to pass "
+      "under the grooves and leaves a half {:.2f} mm of the cavity (a plate); reversed, {:.2f} mm. Give "
+      "[mold] parting to keep the pull as given",
+      chosen.pull.x() + 0.0, chosen.pull.y() + 0.0, chosen.pull.z() + 0.0, both.back().thinner_half / units::mm,
+      chosen.thinner_half / units::mm);
+  return chosen.pull;
+}
+
+} // namespace
+
 void MoldsStage::run(StageContext& ctx) const
 {
   const Design& d = ctx.design;
@@ -223,11 +266,15 @@ void MoldsStage::run(StageContext& ctx) const
   require_bend_radius(d, routes, "the route as collide left it");
   for (const Route& r : routes) job.fibers.push_back(mold_fiber(r, mold_line_step(m)));
   job.exits = exit_stretches(d, skin, routes);
-  require_mold_grids(d, job.body, require_grooves_fit(d, skin, routes, job.exits));
+  const std::vector<std::vector<Eigen::Vector3d>> lines = require_grooves_fit(d, skin, routes, job.exits);
+  require_mold_grids(d, job.body, lines);
+  MoldOptions made = m;
+  Json senses = Json::array();
+  if (!m.parting) made.pull = pull_sense(ctx, job, lines, skin, senses);
 
   const MoldLog log{[&](const std::string& s) { ctx.log.info("{}", s); },
                     [&](const std::string& s) { ctx.log.warn("{}", s); }};
-  const TwoShotMolds molds = two_shot_molds(job, m, ctx.progress, log);
+  const TwoShotMolds molds = two_shot_molds(job, made, ctx.progress, log);
   if (!molds.failures.empty()) {
     std::string list;
     for (const auto& f : molds.failures) list += "\n  " + f;
@@ -237,7 +284,10 @@ void MoldsStage::run(StageContext& ctx) const
   for (const CheckedPart& p : molds.parts)
     write_stl(ctx.output_dir / (p.part.name + ".stl"), p.part.mesh, "fibermold " + p.part.name + " (mm)");
   write_stl(ctx.output_dir / "groove-body.stl", molds.groove.mesh, "fibermold groove body, shot 1 (mm)");
-  write_json_atomic(ctx.output_dir / "report.json", molds_report(molds, d));
+  Json report = molds_report(molds, d);
+  report["pull"] = {molds.pull.x() + 0.0, molds.pull.y() + 0.0, molds.pull.z() + 0.0}; // + 0.0: no −0
+  if (!senses.empty()) report["pull_senses"] = senses;
+  write_json_atomic(ctx.output_dir / "report.json", report);
 }
 
 } // namespace fibermold

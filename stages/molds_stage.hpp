@@ -50,8 +50,8 @@ public:
   /// given; 4: the groove rule shared (skin_distance.hpp), 10 µm of placement tolerance; 5: routes under [muscle]
   /// min_bend_radius refused; 6: the stretches at the ends on the skin left out where the optimizer's skin barrier left
   /// them out (exit_stretches), not 2 × (diameter + clearance); 7: no sprue or vent within min_wall of a cavity wall
-  /// rising beside it
-  int version() const override { return 7; }
+  /// rising beside it; 8: with an "auto" parting plane, the pull reversed when it leaves a half of shot 1 a plate
+  int version() const override { return 8; }
   void run(StageContext& ctx) const override;
 };
 
