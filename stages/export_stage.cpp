@@ -556,6 +556,34 @@ std::optional<ReportPlot> optimization_history(const StageContext& ctx)
   return plot;
 }
 
+/// Which hole is which: each sprue and vent of a shot drawn as a line through its half, from where it
+/// meets the cavity out along the pull (a sprue from below: down through the lower half), named, the
+/// sprue orange and the vents cyan; the parts of the shot sit at `offset`, its upper half 1.5 ×
+/// `height` further along the pull (report()).
+void add_ports(const Json& fill, const std::string& shot, const Eigen::Vector3d& pull, double height,
+               const Eigen::Vector3d& offset, std::vector<ReportLine>& lines)
+{
+  const auto mouth = [](const Json& port) {
+    const Json& p = port["mouth_mm"];
+    const double x = p[0].get<double>(), y = p[1].get<double>(), z = p[2].get<double>();
+    return Eigen::Vector3d(x * units::mm, y * units::mm, z * units::mm);
+  };
+  const bool shown = shot == "shot1";
+  for (const Json& sprue : fill["sprues"]) {
+    const bool below = sprue.value("from", std::string("below")) == "below";
+    const Eigen::Vector3d at = mouth(sprue) + offset + (below ? 0.0 : 1.5 * height) * pull;
+    lines.push_back({fmt::format("{} sprue, from {}", shot, below ? "below" : "above"),
+                     {at, at + (below ? -height : height) * pull},
+                     {1.0F, 0.55F, 0.0F},
+                     shown});
+  }
+  int k = 0;
+  for (const Json& vent : fill["vents"]) {
+    const Eigen::Vector3d at = mouth(vent) + offset + 1.5 * height * pull;
+    lines.push_back({fmt::format("{} vent {}", shot, ++k), {at, at + height * pull}, {0.0F, 0.7F, 0.8F}, shown});
+  }
+}
+
 /// The muscles to cut, as README.txt gives them.
 ReportTable muscles_table(const Design& d, const std::vector<MuscleCut>& cuts)
 {
@@ -609,6 +637,8 @@ std::string report(const StageContext& ctx, const Json& molds, const Json& parts
   }
   const FibersFile fibers = read_fibers_json(ctx.upstream("collide", "fibers.json"));
   std::vector<ReportLine> lines = fiber_lines(fibers);
+  for (const auto& [shot, info] : molds["shots"].items())
+    add_ports(info["fill"], shot, pull, height, (shot == "shot1" ? 0.0 : 1.3 * width) * aside, lines);
   add_bodies(ctx, -1.3 * width * aside, -1.3 * width * aside, meshes, lines);
 
   ReportTable checks{"Mold parts",

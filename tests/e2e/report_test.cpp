@@ -46,6 +46,19 @@ TEST(ReportE2E, ShowsTheDeformedBodyTheErrorsAndTheOptimizationHistory)
   EXPECT_THAT(html, HasSubstr("Targets: error over the tracking curves and the surface (mm)"));
   EXPECT_THAT(html, HasSubstr(row));
   EXPECT_THAT(html, HasSubstr("none: every fiber was clear"));
+  // Which hole is which: each shot's sprue and vents drawn and named in the 3D view's legend.
+  const auto molds = nlohmann::json::parse(test::read_text(build / "molds" / "report.json"));
+  for (const char* shot : {"shot1", "shot2"}) {
+    const auto& fill = molds["shots"][shot]["fill"];
+    ASSERT_EQ(fill["sprues"].size(), 1u) << shot;
+    EXPECT_THAT(html,
+                HasSubstr(fmt::format("\"{} sprue, from {}\"", shot, fill["sprues"][0]["from"].get<std::string>())));
+    for (std::size_t k = 1; k <= fill["vents"].size(); ++k)
+      EXPECT_THAT(html, HasSubstr(fmt::format("\"{} vent {}\"", shot, k)));
+    EXPECT_THAT(html, ::testing::Not(HasSubstr(fmt::format("\"{} vent {}\"", shot, fill["vents"].size() + 1))));
+  }
+  EXPECT_EQ(molds["shots"]["shot1"]["fill"]["sprues"][0]["from"], "below");
+  EXPECT_EQ(molds["shots"]["shot2"]["fill"]["sprues"][0]["from"], "above");
   // Each fiber's smallest bend radius as collide left it, against the muscle's limit.
   const double limit = collide["min_bend_radius_mm"].get<double>();
   EXPECT_GT(limit, 0);
@@ -173,7 +186,6 @@ TEST(ReportE2E, ShowsTheDeformedBodyTheErrorsAndTheOptimizationHistory)
     GTEST_SKIP() << "chromium is not installed (scripts/setup installs it)";
   // Shown: the groove body, shot 1's parts, the deformed body and the target beside it; on the
   // page, also shot 2's parts and the body at rest.
-  const auto molds = nlohmann::json::parse(test::read_text(build / "molds" / "report.json"));
   const long body = load_tet_mesh(build / "mesh" / "body.tetmesh").boundary_faces.rows();
   const std::string groove = test::read_text(build / "molds" / "groove-body.stl");
   std::uint32_t groove_triangles = 0;
