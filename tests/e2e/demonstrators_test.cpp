@@ -16,6 +16,7 @@
 #include <nlohmann/json.hpp>
 
 #include "fill_checks.hpp"
+#include "mesh/tet_mesh.hpp"
 #include "test_support.hpp"
 
 namespace fibermold {
@@ -49,6 +50,19 @@ void expect_parts_pass(const fs::path& build)
   ASSERT_EQ(manifest["parts"].size(), 4u);
   for (const auto& part : manifest["parts"]) EXPECT_TRUE(part["checks_passed"].get<bool>()) << part["name"];
   test::expect_fills(manifest);
+  // Every target's deformed body to print beside the cast robot: a valid solid of the body's volume
+  // (the silicone is nearly incompressible: within 3 %).
+  const double body = load_tet_mesh(build / "mesh" / "body.tetmesh").volume() / 1e-6;
+  const auto collide = read_json(build / "collide" / "report.json");
+  EXPECT_EQ(manifest["deformed"].size(), collide["targets"].size());
+  for (const auto& d : manifest["deformed"]) {
+    std::printf("%s: %s %.2f mL (body %.2f mL), checks %s\n", build.parent_path().filename().c_str(),
+                d["file"].get<std::string>().c_str(), d["volume_mL"].get<double>(), body,
+                d["checks_passed"].get<bool>() ? "passed" : "FAILED");
+    EXPECT_TRUE(fs::exists(build / "export" / d["file"].get<std::string>()));
+    EXPECT_TRUE(d["checks_passed"].get<bool>()) << d["file"] << " " << d.value("problems", nlohmann::json()).dump();
+    EXPECT_NEAR(d["volume_mL"].get<double>(), body, 0.03 * body) << d["file"];
+  }
 }
 
 /// examples/<folder> with `edits` made to `design`, made to the end by `fibermold make` in `dir`:
