@@ -13,6 +13,9 @@ namespace fibermold {
 
 namespace {
 
+/// m: how deep a sprue's countersunk seat for the nozzle reaches into the block (at most half the wall).
+constexpr double kSeatDepth = 2e-3;
+
 /// Rotation taking `pull` to +z.
 Eigen::Matrix3d to_local(const Eigen::Vector3d& pull)
 {
@@ -118,6 +121,48 @@ key_and_screw_sites(const std::vector<Eigen::Vector2d>& sites, const std::vector
   return {keys, screws};
 }
 
+/// Cuts the sprues and vents out of `block`, in the frame where the pull is +z (`R` takes the body's
+/// frame there): each hole starts a little inside the cavity (its dip) so that the booleans meet no
+/// tangent faces, and runs out through the block's bottom (a sprue from below) or top.
+void cut_ports(SurfaceMesh& block, const Eigen::Matrix3d& R, const Ports& holes, const Eigen::Vector3d& box_lo,
+               const Eigen::Vector3d& box_hi, const MoldBlockOptions& o, Mold& mold)
+{
+  const auto cut = [&](const Port& p, int segments) {
+    const Eigen::Vector3d mouth = R * p.mouth, out = Eigen::Vector3d::UnitZ() * (p.upward ? 1 : -1);
+    const double end = p.upward ? box_hi.z() + 1e-3 : box_lo.z() - 1e-3;
+    block = mesh_difference(
+        block, cylinder_solid(mouth - p.dip() * out, {mouth.x(), mouth.y(), end}, p.diameter / 2, segments));
+    return p.mouth;
+  };
+  // A sprue's outer end is countersunk, a 45° seat for the dispenser's nozzle that tells it from the
+  // vents on the printed part, kSeatDepth deep where the holes beside it on the same face leave room
+  // (min_wall between the seat and them), shallower where not, and none under 0.5 mm. The cone crosses
+  // the hole's wall transversally: one meeting the cylinder along a circle would leave CGAL tangent faces.
+  const auto seat_depth = [&](const Port& p) {
+    double room = std::min(kSeatDepth, o.wall / 2);
+    const Eigen::Vector2d at = (R * p.mouth).head<2>();
+    for (const std::vector<Port>* others : {&holes.sprues, &holes.vents})
+      for (const Port& q : *others)
+        if (&q != &p && q.upward == p.upward)
+          room = std::min(room, ((R * q.mouth).head<2>() - at).norm() - q.diameter / 2 - o.min_wall - p.diameter / 2);
+    return room;
+  };
+  const auto countersink = [&](const Port& p) {
+    const double seat = seat_depth(p);
+    if (seat < 0.5e-3) return;
+    const Eigen::Vector3d mouth = R * p.mouth;
+    const double face = p.upward ? box_hi.z() : box_lo.z(), out = p.upward ? 1 : -1, r = p.diameter / 2;
+    const Eigen::Vector3d inner(mouth.x(), mouth.y(), face - out * (seat + 0.5e-3));
+    block = mesh_difference(
+        block, cone_solid(inner, {mouth.x(), mouth.y(), face + out * 1e-3}, r - 0.5e-3, r + seat + 1e-3, 20));
+  };
+  for (const Port& p : holes.sprues) {
+    mold.sprues.push_back(cut(p, 24));
+    countersink(p);
+  }
+  for (const Port& p : holes.vents) mold.vents.push_back(cut(p, 16));
+}
+
 } // namespace
 
 Mold make_mold(const SurfaceMesh& cavity_world, const Parting& parting, const std::vector<Channel>& channels,
@@ -135,21 +180,11 @@ Mold make_mold(const SurfaceMesh& cavity_world, const Parting& parting, const st
   SurfaceMesh block = mesh_difference(box_solid(box_lo, box_hi), cavity);
 
   Mold mold;
-  // Each hole starts a little inside the cavity (its dip) so that the booleans meet no tangent
-  // faces, and runs out through the block's bottom (a sprue from below) or top.
   const Ports own =
       ports ? Ports{}
             : cavity_ports(cavity_world, parting.normal, o.sprue_diameter, o.vents, o.vent_diameter, o.min_wall, shot);
   const Ports& holes = ports ? *ports : own;
-  const auto cut = [&](const Port& p, int segments) {
-    const Eigen::Vector3d mouth = R * p.mouth, out = Eigen::Vector3d::UnitZ() * (p.upward ? 1 : -1);
-    const double end = p.upward ? box_hi.z() + 1e-3 : box_lo.z() - 1e-3;
-    block = mesh_difference(
-        block, cylinder_solid(mouth - p.dip() * out, {mouth.x(), mouth.y(), end}, p.diameter / 2, segments));
-    return p.mouth;
-  };
-  for (const Port& p : holes.sprues) mold.sprues.push_back(cut(p, 24));
-  for (const Port& p : holes.vents) mold.vents.push_back(cut(p, 16));
+  cut_ports(block, R, holes, box_lo, box_hi, o, mold);
   const double reach = (box_hi - box_lo).norm();
   std::vector<Passage> passages;
   // Channels run parallel to the parting plane (one crossing it at an angle would leave a wedge of

@@ -170,6 +170,7 @@ Print every {} as it lies (each stands on its largest flat face; units mm).
 Shot 1, the grooved body: shot1-lower{} and shot1-upper{}.
   1. {}.
      Stand the mold upright: lower half down, the sprue hole underneath, the vents on top.
+     A sprue is the countersunk hole (its seat takes the dispenser's nozzle); the vents are plain.
   2. Inject about {:.1f} mL ({:.1f} g) of silicone through {} from below, slowly,
      until silicone comes out of {}; then plug the sprue.
   3. Let it cure ({:.0f} h), and demold: the body has an open groove for each muscle.

@@ -50,8 +50,9 @@ public:
   /// given; 4: the groove rule shared (skin_distance.hpp), 10 µm of placement tolerance; 5: routes under [muscle]
   /// min_bend_radius refused; 6: the stretches at the ends on the skin left out where the optimizer's skin barrier left
   /// them out (exit_stretches), not 2 × (diameter + clearance); 7: no sprue or vent within min_wall of a cavity wall
-  /// rising beside it; 8: with an "auto" parting plane, the pull reversed when it leaves a half of shot 1 a plate
-  int version() const override { return 8; }
+  /// rising beside it; 8: with an "auto" parting plane, the pull reversed when it leaves a half of shot 1 a plate; 9:
+  /// the sprues countersunk
+  int version() const override { return 9; }
   void run(StageContext& ctx) const override;
 };
 

@@ -175,6 +175,37 @@ TEST(Molds, OvermoldShotPartsPutBackTogetherMakeTheBlockMinusTheCavity)
   EXPECT_NEAR(together_volume, block - holes, 0.005 * (block - holes));
 }
 
+TEST(Molds, TheSprueIsCountersunkForTheNozzleAndTheVentsAreNot)
+{
+  // Shot 1 of the box: the sprue from below through the lower half's 4 mm floor, the vent up through
+  // the upper half's roof. On the outer face, the sprue's rim is the 45° seat's, 2 + 2 mm across the
+  // axis; the vent's is its own 0.75 mm.
+  const BoxBody b;
+  MoldBlockOptions o;
+  o.keys = 0;
+  o.vents = 1;
+  const Mold mold = make_mold(b.body, choose_parting(b.body, {0, 0, 1}), {}, o, "shot1");
+  expect_parts_ok(mold);
+  ASSERT_EQ(mold.sprues.size(), 1u);
+  ASSERT_EQ(mold.vents.size(), 1u);
+  // The widest rim within 6 mm of `axis` (x, y) among the vertices on the face z = `face`.
+  const auto rim = [](const SurfaceMesh& part, const Eigen::Vector3d& axis, double face) {
+    double widest = 0;
+    for (Eigen::Index v = 0; v < part.num_vertices(); ++v) {
+      const Eigen::Vector3d p = part.vertices.row(v);
+      const double r = (p - axis).head<2>().norm();
+      if (std::abs(p.z() - face) < 1e-6 && r < 6 * mm) widest = std::max(widest, r);
+    }
+    return widest;
+  };
+  const double sprue = rim(mold.parts[0].mesh, mold.sprues[0], -14 * mm),
+               vent = rim(mold.parts[1].mesh, mold.vents[0], 14 * mm);
+  std::printf("on the outer faces: the sprue's rim %.2f mm from its axis, the vent's %.2f mm\n", sprue / mm, vent / mm);
+  EXPECT_GT(sprue, 4 * mm * std::cos(M_PI / 20) - 1e-6); // the seat's polygon, 20 facets
+  EXPECT_LT(sprue, 4 * mm + 1e-6);
+  EXPECT_NEAR(vent, 0.75 * mm, 1e-6);
+}
+
 TEST(Molds, EndChannelIsASocketThenAHoleForTheTube)
 {
   // A channel leaving the box's end face 1 mm in from it, through the 4 mm wall: 4 mm wide for 2 mm
