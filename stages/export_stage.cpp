@@ -210,7 +210,8 @@ the body.
 /// Each fiber's cut: along its centre line as collide left it (10 points per mm), against the body's skin;
 /// an end leaves the body within the groove's radius of the skin (molds/report.json), and the supply end
 /// is the one nearest the [[fixed]] regions' centroid.
-std::vector<MuscleCut> muscle_cuts(const StageContext& ctx, const TetMesh& body, const Json& molds)
+std::vector<MuscleCut> muscle_cuts(const StageContext& ctx, const TetMesh& body, const FibersFile& fibers,
+                                   const Json& molds)
 {
   const Design& d = ctx.design;
   const SurfaceDistance skin(body.nodes, body.boundary_faces);
@@ -224,7 +225,7 @@ std::vector<MuscleCut> muscle_cuts(const StageContext& ctx, const TetMesh& body,
   }
   const double reach = molds["groove_radius_mm"].get<double>() * units::mm;
   std::vector<MuscleCut> cuts;
-  for (const ReportLine& line : fiber_lines(read_fibers_json(ctx.upstream("collide", "fibers.json"))))
+  for (const ReportLine& line : fiber_lines(fibers))
     cuts.push_back(muscle_cut(line.name, line.points, skin, reach, mount));
   return cuts;
 }
@@ -293,10 +294,9 @@ std::optional<SurfaceMesh> deformed_body(const TetMesh& body, const std::optiona
 /// The body at rest and, per target, deformed under the final routing (collide/deformed-*.json),
 /// with its fibers, at `offset`, and the target's own deformation (targets/<name>.json) beside it,
 /// `beside` further; the first target's shown, the rest switched off; the tracking curves at rest.
-void add_bodies(const StageContext& ctx, const Eigen::Vector3d& offset, const Eigen::Vector3d& beside,
-                std::vector<ReportMesh>& meshes, std::vector<ReportLine>& lines)
+void add_bodies(const StageContext& ctx, const TetMesh& body, const Eigen::Vector3d& offset,
+                const Eigen::Vector3d& beside, std::vector<ReportMesh>& meshes, std::vector<ReportLine>& lines)
 {
-  const TetMesh body = load_tet_mesh(ctx.upstream("mesh", "body.tetmesh"));
   bool first = true;
   for (const Target& target : ctx.design.targets) {
     const std::optional<Json> state = json_if_any(ctx.upstream("collide", "deformed-" + target.name + ".json"));
@@ -352,12 +352,10 @@ std::string poses_to_compare(const Json& poses)
 /// printable STL in the body's frame, which is the frame of the robot as mounted (its [[fixed]]
 /// regions stay where they are at rest); README.txt's section on checking the cast robot with it,
 /// and the files for the manifest.
-std::string overlay_shapes(const StageContext& ctx, Json& files)
+std::string overlay_shapes(const StageContext& ctx, const TetMesh& body, const FibersFile& fibers, Json& files)
 {
   const Design& d = ctx.design;
-  const TetMesh body = load_tet_mesh(ctx.upstream("mesh", "body.tetmesh"));
   const auto collide = json_if_any(ctx.upstream("collide", "report.json"));
-  const FibersFile fibers = read_fibers_json(ctx.upstream("collide", "fibers.json"));
   std::string text;
   for (std::size_t t = 0; t < d.targets.size(); ++t) {
     const std::string& name = d.targets[t].name;
@@ -608,8 +606,8 @@ ReportTable muscles_table(const Design& d, const std::vector<MuscleCut>& cuts)
 /// The page users open first: the groove body with its muscles in the shot 1 mold (upper half
 /// lifted off along pull), the shot 2 mold beside it (hidden), the parts' checks and the silicone.
 /// No timings (they are in make's output and the stage logs): the same design gives the same page.
-std::string report(const StageContext& ctx, const Json& molds, const Json& parts, const Json& shots,
-                   const std::vector<MuscleCut>& cuts)
+std::string report(const StageContext& ctx, const TetMesh& body, const FibersFile& fibers, const Json& molds,
+                   const Json& parts, const Json& shots, const std::vector<MuscleCut>& cuts)
 {
   const Design& d = ctx.design;
   const auto load = [&](const std::string& file) { return import_surface(ctx.upstream("molds", file), units::mm); };
@@ -636,11 +634,10 @@ std::string report(const StageContext& ctx, const Json& molds, const Json& parts
     meshes.push_back({name, load(info["file"].get<std::string>()),
                       upper ? std::array{0.55F, 0.65F, 0.8F} : std::array{0.45F, 0.55F, 0.7F}, shot1, offset});
   }
-  const FibersFile fibers = read_fibers_json(ctx.upstream("collide", "fibers.json"));
   std::vector<ReportLine> lines = fiber_lines(fibers);
   for (const auto& [shot, info] : molds["shots"].items())
     add_ports(info["fill"], shot, pull, height, (shot == "shot1" ? 0.0 : 1.3 * width) * aside, lines);
-  add_bodies(ctx, -1.3 * width * aside, -1.3 * width * aside, meshes, lines);
+  add_bodies(ctx, body, -1.3 * width * aside, -1.3 * width * aside, meshes, lines);
 
   ReportTable checks{"Mold parts",
                      {"part", "files", "triangles", "volume (mL)", "thinnest wall (mm)", "fits the printer", "checks"},
@@ -725,15 +722,17 @@ void ExportStage::run(StageContext& ctx) const
                    {"fill", info["fill"]}};
   ctx.progress.checkpoint(-1, "writing the deformed bodies");
   Json deformed = Json::array();
-  const std::string checking = overlay_shapes(ctx, deformed);
+  const TetMesh body = load_tet_mesh(ctx.upstream("mesh", "body.tetmesh"));
+  const FibersFile fibers = read_fibers_json(ctx.upstream("collide", "fibers.json"));
+  const std::string checking = overlay_shapes(ctx, body, fibers, deformed);
   const Json manifest{{"design", d.design.name}, {"units", "mm"},  {"voxel_mm", molds["voxel_mm"]},
                       {"parts", parts},          {"shots", shots}, {"deformed", deformed}};
   write_json_atomic(ctx.output_dir / "manifest.json", manifest);
-  const std::vector<MuscleCut> cuts = muscle_cuts(ctx, load_tet_mesh(ctx.upstream("mesh", "body.tetmesh")), molds);
+  const std::vector<MuscleCut> cuts = muscle_cuts(ctx, body, fibers, molds);
   write_file_atomic(ctx.output_dir / "README.txt", casting_guide(d, molds["shots"], d.export_.formats.front(), cuts) +
                                                        muscle_bends_text(ctx) + checking);
   ctx.progress.checkpoint(-1, "writing the report");
-  write_file_atomic(ctx.output_dir / "report.html", report(ctx, molds, parts, shots, cuts));
+  write_file_atomic(ctx.output_dir / "report.html", report(ctx, body, fibers, molds, parts, shots, cuts));
 }
 
 } // namespace fibermold
