@@ -8,7 +8,7 @@ namespace fibermold {
 
 MinimizerResult minimize_hybrid(const Objective& f, const ModelObjective& model, Eigen::VectorXd x0,
                                 const MinimizerOptions& options, const IterationCallback& on_iteration,
-                                Progress& progress)
+                                Progress& progress, const ExactPart& exact)
 {
   MinimizerOptions first = options;
   first.relative_tolerance = options.switch_tolerance;
@@ -23,7 +23,7 @@ MinimizerResult minimize_hybrid(const Objective& f, const ModelObjective& model,
     numbered.evaluations += bfgs.evaluations;
     if (on_iteration) on_iteration(numbered, x);
   };
-  MinimizerResult lm = minimize_levenberg_marquardt(model, bfgs.x, rest, numbered_on, progress);
+  MinimizerResult lm = minimize_levenberg_marquardt(model, bfgs.x, rest, numbered_on, progress, exact);
   if (lm.interrupted && !(lm.value < bfgs.value)) { // stopped before it found better
     lm.x = bfgs.x;
     lm.value = bfgs.value;

@@ -13,11 +13,11 @@
 namespace fibermold {
 
 /// BFGS on f; where it slowed down (switch_tolerance) or its line search failed with iterations left,
-/// Levenberg-Marquardt on `model` from BFGS's best point for the rest of max_iterations. Iterations are numbered on
-/// across the switch; the result's ending is the last run's, its message names both.
-/// Throws std::invalid_argument when f is not finite at x0.
+/// Levenberg-Marquardt on `model` (with `exact`) from BFGS's best point for the rest of max_iterations. Iterations are
+/// numbered on across the switch; the result's ending is the last run's, its message names both. Throws
+/// std::invalid_argument when f is not finite at x0.
 MinimizerResult minimize_hybrid(const Objective& f, const ModelObjective& model, Eigen::VectorXd x0,
                                 const MinimizerOptions& options, const IterationCallback& on_iteration,
-                                Progress& progress);
+                                Progress& progress, const ExactPart& exact = {});
 
 } // namespace fibermold

@@ -20,6 +20,16 @@
 // know); where it predicts less, the run goes on to converge. The objective may return +∞ (a
 // failed simulation, a barrier crossed): the step is then rejected. Steps are only taken
 // downhill, so x is always the best point.
+//
+// A barrier's wall is what a quadratic model cannot hold: it rises to +∞ within a step that the
+// model, built where the barrier was flat, takes whole. Where the objective has a part r that is
+// cheap to evaluate (for the routing problem: the curvature term and the barriers, no simulation),
+// the step is chosen along the ray x + αδ, α ∈ (0, 1], on the model with that part exact
+// (ray_model.hpp): the quadratic model less r's own second-order expansion along δ, plus r. So a
+// step stops short of a wall, or of where a barrier climbs faster than the model knew, before any
+// simulation is run there (as IPC's line search is filtered by the largest step that stays
+// feasible: Li et al., Incremental Potential Contact, 2020, §4.3), and the gain ratio compares f
+// with what that model predicts.
 
 #include "optimize/minimizer.hpp"
 
@@ -30,9 +40,12 @@ namespace fibermold {
 using ModelObjective =
     std::function<double(const Eigen::VectorXd& x, Eigen::VectorXd& gradient, Eigen::MatrixXd& model)>;
 
+/// The part of the objective that is cheap to evaluate (+∞ past a wall); empty: none.
+using ExactPart = std::function<double(const Eigen::VectorXd& x)>;
+
 /// Throws std::invalid_argument when f is not finite at x0.
 MinimizerResult minimize_levenberg_marquardt(const ModelObjective& f, Eigen::VectorXd x0,
                                              const MinimizerOptions& options, const IterationCallback& on_iteration,
-                                             Progress& progress);
+                                             Progress& progress, const ExactPart& exact = {});
 
 } // namespace fibermold

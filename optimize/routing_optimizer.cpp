@@ -23,12 +23,13 @@ MinimizerResult run(RoutingProblem& problem, int stage, const MinimizerOptions& 
   const ModelObjective model = [&](const Eigen::VectorXd& z, Eigen::VectorXd& g, Eigen::MatrixXd& B) {
     return problem.evaluate(z, &g, nullptr, &B);
   };
+  const ExactPart exact = [&](const Eigen::VectorXd& z) { return problem.regularizer_value(z); };
   const Eigen::VectorXd z0 = problem.variables(problem.base());
   switch (options.method) {
   case Method::levenberg_marquardt:
-    return minimize_levenberg_marquardt(model, z0, options, cb, progress);
+    return minimize_levenberg_marquardt(model, z0, options, cb, progress, exact);
   case Method::hybrid:
-    return minimize_hybrid(f, model, z0, options, cb, progress);
+    return minimize_hybrid(f, model, z0, options, cb, progress, exact);
   case Method::bfgs:
     break;
   }

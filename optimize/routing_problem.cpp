@@ -303,6 +303,16 @@ Eigen::MatrixXd RoutingProblem::regularizer_hessian(const Eigen::VectorXd& z) co
   return eigen.eigenvectors() * eigen.eigenvalues().cwiseMax(0).asDiagonal() * eigen.eigenvectors().transpose();
 }
 
+double RoutingProblem::regularizer_value(const Eigen::VectorXd& z) const
+{
+  const Routing r = routing(z);
+  RoutingTerms terms;
+  counting_refusals_ = false;
+  const double value = regularizers(r, nullptr, terms);
+  counting_refusals_ = true;
+  return std::isfinite(value) && fibers_inside(r) ? value : HUGE_VAL;
+}
+
 Eigen::MatrixXd RoutingProblem::mixed_columns(int t, const Eigen::VectorXd& x,
                                               const std::vector<const MuscleEnergy*>& muscles,
                                               std::vector<Eigen::Index>& columns) const

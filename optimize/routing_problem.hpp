@@ -105,6 +105,10 @@ public:
   /// variables; the clearance barrier all), the pressure barrier's exactly; projected to be
   /// positive semi-definite.
   Eigen::MatrixXd regularizer_hessian(const Eigen::VectorXd& z) const;
+  /// The curvature, skin, bend, pressure and clearance terms at z, which need no simulation: +∞
+  /// past a wall (as evaluate scores it) or with a fiber outside the body. The exact part of
+  /// Levenberg-Marquardt's ray model (ray_model.hpp). Counts no refusal.
+  double regularizer_value(const Eigen::VectorXd& z) const;
 
   /// The terms of the finite evaluation whose total is `value`: the last one, or the best one
   /// since set_free (the two points a line search can accept).
@@ -179,10 +183,11 @@ private:
   double weight_clearance_ = 0;
   NewtonTotals newton_;
   mutable std::map<std::string, int> refusals_;
+  mutable bool counting_refusals_ = true; ///< false while regularizer_value probes a design
   /// Counts a refused design under `why` and returns its score, +∞.
   double refuse(const char* why) const
   {
-    ++refusals_[why];
+    if (counting_refusals_) ++refusals_[why];
     return HUGE_VAL;
   }
   double seconds_simulation_ = 0, seconds_adjoint_ = 0, seconds_model_ = 0;
