@@ -5,6 +5,7 @@
 #include <cctype>
 #include <cmath>
 #include <filesystem>
+#include <map>
 #include <stdexcept>
 #include <unordered_map>
 
@@ -21,6 +22,8 @@ extern "C" {
 }
 
 #include "molds/mesh_boolean.hpp"
+#include "molds/part_checks.hpp"
+#include "molds/solids.hpp"
 
 namespace fibermold {
 
@@ -73,6 +76,35 @@ double segment_distance(const Eigen::Vector2d& q, const Eigen::Vector2d& a, cons
   const Eigen::Vector2d ab = b - a;
   const double t = ab.squaredNorm() > 0 ? std::clamp((q - a).dot(ab) / ab.squaredNorm(), 0.0, 1.0) : 0.0;
   return (q - a - t * ab).norm();
+}
+
+/// Whether segments ab and cd cross or touch.
+bool segments_meet(const Eigen::Vector2d& a, const Eigen::Vector2d& b, const Eigen::Vector2d& c,
+                   const Eigen::Vector2d& d)
+{
+  const auto side = [](const Eigen::Vector2d& p, const Eigen::Vector2d& q, const Eigen::Vector2d& r) {
+    const double z = (q - p).x() * (r - p).y() - (q - p).y() * (r - p).x();
+    return (z > 0) - (z < 0);
+  };
+  return side(a, b, c) * side(a, b, d) < 0 && side(c, d, a) * side(c, d, b) < 0;
+}
+
+/// The least distance between the strokes `a` and the strokes `b` moved by `shift` (HUGE_VAL when either is empty).
+double strokes_distance(const std::vector<std::vector<Eigen::Vector2d>>& a,
+                        const std::vector<std::vector<Eigen::Vector2d>>& b, const Eigen::Vector2d& shift)
+{
+  double least = HUGE_VAL;
+  for (const auto& p : a)
+    for (const auto& q : b)
+      for (std::size_t i = 0; i < p.size(); ++i)
+        for (std::size_t j = 0; j < q.size(); ++j) {
+          const Eigen::Vector2d a0 = p[i], a1 = p[std::min(i + 1, p.size() - 1)];
+          const Eigen::Vector2d b0 = q[j] + shift, b1 = q[std::min(j + 1, q.size() - 1)] + shift;
+          if (segments_meet(a0, a1, b0, b1)) return 0;
+          least = std::min({least, segment_distance(a0, b0, b1), segment_distance(a1, b0, b1),
+                            segment_distance(b0, a0, a1), segment_distance(b1, a0, a1)});
+        }
+  return least;
 }
 
 /// A sampled field on a grid of square pixels: f(i, j) at origin + pixel · (i, j).
@@ -353,21 +385,56 @@ std::vector<Eigen::Vector2d> candidate_centres(const Eigen::Vector2d& size, cons
 
 } // namespace
 
-std::vector<std::vector<Eigen::Vector2d>> text_strokes(const std::string& text, double height)
+/// Whether the label's lands print: cut into a plain slab, the part checks find no wall under min_wall
+/// (a pinch between two strokes' ends that the closing leaves, such as a G's mouth at small heights).
+bool lands_print(const std::string& text, double height, const LabelStyle& style, double min_wall)
+{
+  const PlacedLabel l{text,
+                      "test",
+                      Eigen::Vector3d::Zero(),
+                      Eigen::Vector3d::UnitZ(),
+                      Eigen::Vector3d::UnitY(),
+                      height,
+                      Eigen::Vector2d::Zero(),
+                      style.depth};
+  const Eigen::Vector2d size = unit_box(text_strokes(text, height, style.stroke + kLandFactor * min_wall)).second;
+  const double margin = 2 * (min_wall + style.depth) + style.stroke;
+  const SurfaceMesh slab = box_solid({-size.x() / 2 - margin, -size.y() / 2 - margin, -3 * (min_wall + style.depth)},
+                                     {size.x() / 2 + margin, size.y() / 2 + margin, 0});
+  try {
+    const PartCheck c = check_part(engrave(slab, {l}, style, min_wall), min_wall, Eigen::Vector3d::Constant(HUGE_VAL));
+    return c.ok();
+  } catch (const std::exception&) {
+    return false;
+  }
+}
+
+std::vector<std::vector<Eigen::Vector2d>> text_strokes(const std::string& text, double height, double gap)
 {
   const std::array<Glyph, 128>& glyphs = font();
   const double scale = height / kCapUnits;
-  std::vector<std::vector<Eigen::Vector2d>> strokes;
-  double x = 0;
+  std::vector<std::vector<Eigen::Vector2d>> strokes, previous;
+  double x = 0; // m, where the letter's box starts
   for (const char ch : text) {
     int c = std::toupper(static_cast<unsigned char>(ch));
     if (c < 32 || c > 126) c = '?';
+    std::vector<std::vector<Eigen::Vector2d>> letter;
     for (const auto& path : glyphs[c].paths) {
       std::vector<Eigen::Vector2d> p;
-      for (const Eigen::Vector2d& v : path) p.push_back(scale * Eigen::Vector2d(x + v.x(), v.y()));
-      strokes.push_back(std::move(p));
+      for (const Eigen::Vector2d& v : path) p.push_back(scale * v);
+      letter.push_back(std::move(p));
     }
-    x += glyphs[c].advance;
+    // The letter moves right until its strokes keep `gap` from the letter before it.
+    for (int k = 0; k < 20; ++k) {
+      const double d = strokes_distance(previous, letter, Eigen::Vector2d(x, 0));
+      if (d >= gap - 1e-9) break;
+      x += gap - d + 1e-6;
+    }
+    for (auto& path : letter)
+      for (Eigen::Vector2d& v : path) v.x() += x;
+    if (!letter.empty()) previous = letter;
+    strokes.insert(strokes.end(), letter.begin(), letter.end());
+    x += scale * glyphs[c].advance;
   }
   return strokes;
 }
@@ -375,7 +442,7 @@ std::vector<std::vector<Eigen::Vector2d>> text_strokes(const std::string& text, 
 std::vector<std::vector<Eigen::Vector2d>> text_outlines(const std::string& text, double height, double stroke,
                                                         double closing)
 {
-  std::vector<std::vector<Eigen::Vector2d>> strokes = text_strokes(text, height);
+  std::vector<std::vector<Eigen::Vector2d>> strokes = text_strokes(text, height, stroke + 2 * closing);
   const auto [lo, size] = unit_box(strokes);
   if (strokes.empty()) return {};
   const Eigen::Vector2d mid = lo + size / 2;
@@ -402,19 +469,26 @@ std::optional<PlacedLabel> place_label(const SurfaceMesh& part, const std::vecto
                                        const std::vector<PlacedLabel>& placed)
 {
   const double clear = min_wall + style.depth, below = style.depth + min_wall;
+  const double gap = style.stroke + kLandFactor * min_wall;
+  std::map<std::pair<std::string, long>, bool> prints;
   for (const std::string& text : texts) {
-    const auto [lo, unit] = unit_box(text_strokes(text, 1.0));
-    if (!(unit.array() > 0).any()) continue;
+    if (unit_box(text_strokes(text, 1.0, 0)).second.isZero()) continue;
     for (const LabelFace& face : faces) {
       const FaceFrame frame = frame_of(face.centre, face.normal, face.up);
       const FaceSurroundings s = surroundings(part, frame, face.size, clear, below, placed);
       const Eigen::Vector2d near = face.near ? frame.local(*face.near).head<2>().eval() : Eigen::Vector2d::Zero();
       for (double h = style.max_height; h >= style.min_height - 1e-9; h -= style.height_step) {
-        const Eigen::Vector2d extent = h * unit + Eigen::Vector2d::Constant(style.stroke);
-        for (const Eigen::Vector2d& at : candidate_centres(face.size, extent, clear, near))
-          if (fits_at(s, at, extent, clear, below))
-            return PlacedLabel{text,   face.name,  frame.world({at.x(), at.y(), 0}), frame.normal, frame.up, h,
-                               extent, style.depth};
+        const Eigen::Vector2d extent =
+            unit_box(text_strokes(text, h, gap)).second + Eigen::Vector2d::Constant(style.stroke);
+        for (const Eigen::Vector2d& at : candidate_centres(face.size, extent, clear, near)) {
+          if (!fits_at(s, at, extent, clear, below)) continue;
+          // Whether its lands print: checked once per text and height, where it first fits.
+          const auto key = std::make_pair(text, static_cast<long>(std::lround(h / 1e-6)));
+          if (!prints.count(key)) prints[key] = lands_print(text, h, style, min_wall);
+          if (!prints[key]) break;
+          return PlacedLabel{text,   face.name,  frame.world({at.x(), at.y(), 0}), frame.normal, frame.up, h,
+                             extent, style.depth};
+        }
       }
     }
   }

@@ -51,22 +51,28 @@ struct PlacedLabel {
 };
 
 /// The strokes of `text` (printable ASCII; lower case is cut as capitals, other characters as '?') as
-/// polylines in the plane, m: capitals `height` high from the baseline y = 0, starting at x = 0.
+/// polylines in the plane, m: capitals `height` high from the baseline y = 0, starting at x = 0; each
+/// letter moved right from the font's spacing where needed to keep `gap` (m, axis to axis) from the
+/// strokes of the letter before it (a pinch between two letters would be a land too thin to print).
 /// Throws std::runtime_error naming the font file and the package when the font is not installed.
-std::vector<std::vector<Eigen::Vector2d>> text_strokes(const std::string& text, double height);
+std::vector<std::vector<Eigen::Vector2d>> text_strokes(const std::string& text, double height, double gap = 0);
 
 /// The text as engraved in the plane, the closed outlines of its grooves (m; outer outlines
 /// counter-clockwise, holes clockwise), centred on the origin. `closing`: gaps narrower than twice
-/// it are cut as well.
+/// it are cut as well, and letters keep stroke + 2 closing between their strokes (text_strokes' gap).
 std::vector<std::vector<Eigen::Vector2d>> text_outlines(const std::string& text, double height, double stroke,
                                                         double closing);
 
 /// The area the outlines enclose, m² (holes subtracted).
 double outlines_area(const std::vector<std::vector<Eigen::Vector2d>>& outlines);
 
+/// Whether the label's lands print: cut into a plain slab, the part checks find no wall under
+/// min_wall (a pinch between two strokes' ends that the closing leaves).
+bool lands_print(const std::string& text, double height, const LabelStyle& style, double min_wall);
+
 /// The first of `texts` that fits (largest height first) on the first of `faces` that takes it,
-/// clear of every other face of `part` and of the labels `placed` already by min_wall + depth;
-/// nothing when none fits.
+/// clear of every other face of `part` and of the labels `placed` already by min_wall + depth, and
+/// whose lands print (lands_print); nothing when none fits.
 std::optional<PlacedLabel> place_label(const SurfaceMesh& part, const std::vector<std::string>& texts,
                                        const std::vector<LabelFace>& faces, const LabelStyle& style, double min_wall,
                                        const std::vector<PlacedLabel>& placed = {});

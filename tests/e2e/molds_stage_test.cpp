@@ -127,7 +127,9 @@ TEST_F(MoldsE2E, HandRoutedBarBecomesFourCheckedParts)
     // "IN" beside the sprue: shot 1's comes from below, shot 2's from above.
     const bool fed = name == "shot1-lower" || name == "shot2-upper";
     EXPECT_EQ(p["labels"].size(), fed ? 2u : 1u) << name;
-    if (fed) EXPECT_EQ(p["labels"][1]["text"], "IN") << name;
+    if (fed) {
+      EXPECT_EQ(p["labels"][1]["text"], "IN") << name;
+    }
   }
 
   if (std::system("command -v admesh >/dev/null 2>&1") != 0)

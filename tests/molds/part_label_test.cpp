@@ -169,6 +169,31 @@ TEST(PartLabel, ALabelNeverComesWithinMinWallOfACavityNearItsFace)
   for (const auto& problem : c2.problems) ADD_FAILURE() << problem;
 }
 
+TEST(PartLabel, EveryLetterAndDigitIsCutOnlyWhereItsLandsPrint)
+{
+  // Each row at 5, 6.5 and 8 mm capitals: where lands_print passes it, the part cut with it passes
+  // its checks (no land under min_wall); at 8 mm every row prints.
+  for (const std::string text : {"ABCDEFGHIJKLM", "NOPQRSTUVWXYZ", "0123456789-?"})
+    for (const double h : {5 * mm, 6.5 * mm, 8 * mm}) {
+      LabelStyle style = kStyle;
+      style.min_height = style.max_height = h;
+      const bool prints = lands_print(text, h, style, 1 * mm);
+      std::printf("%s at %.1f mm: %s\n", text.c_str(), h / mm, prints ? "prints" : "a land under min_wall");
+      if (h == 8 * mm) {
+        EXPECT_TRUE(prints) << text;
+      }
+      if (!prints) continue;
+      const SurfaceMesh block = box_solid({0, 0, 0}, {140 * mm, 20 * mm, 20 * mm});
+      const auto l =
+          place_label(block, {text}, {{"side", {70 * mm, 0, 10 * mm}, {0, -1, 0}, {0, 0, 1}, {140 * mm, 20 * mm}, {}}},
+                      style, 1 * mm);
+      ASSERT_TRUE(l) << text;
+      const PartCheck c = check_part(engrave(block, {*l}, style, 1 * mm), 1 * mm, kPrinter);
+      for (const auto& problem : c.problems) ADD_FAILURE() << text << ": " << problem;
+      EXPECT_GE(c.min_thickness, 1 * mm) << text;
+    }
+}
+
 TEST(PartLabel, TextsShortenFromTheFullLabel)
 {
   EXPECT_EQ(part_label_texts("gripper", "shot2", false),
