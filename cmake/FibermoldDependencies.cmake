@@ -16,6 +16,7 @@ find_package(benchmark REQUIRED CONFIG)
 find_package(TetGen REQUIRED)
 find_package(CHOLMOD REQUIRED)
 find_package(XXHash REQUIRED)
+find_package(HersheyFont REQUIRED)
 
 # OpenVDB: Debian ships only a find module, outside CMake's default module path.
 list(APPEND CMAKE_MODULE_PATH /usr/lib/${CMAKE_LIBRARY_ARCHITECTURE}/cmake/OpenVDB)

@@ -1,11 +1,14 @@
 #include "molds/mold_block.hpp"
 
 #include <algorithm>
+#include <cctype>
 #include <cmath>
 
 #include <Eigen/Geometry>
 #include <fmt/format.h>
 
+#include "core/elapsed.hpp"
+#include "core/units.hpp"
 #include "molds/mesh_boolean.hpp"
 #include "molds/solids.hpp"
 
@@ -163,10 +166,80 @@ void cut_ports(SurfaceMesh& block, const Eigen::Matrix3d& R, const Ports& holes,
   for (const Port& p : holes.vents) mold.vents.push_back(cut(p, 16));
 }
 
+/// Engraves one half (in the frame where the pull is +z; `lower`: the half under the plane at height
+/// h): "IN" beside each sprue that opens through its outer end face, then its label on its longest
+/// side face that takes it, else that end face. What fits nowhere is left out and said in `part`.
+void label_half(SurfaceMesh& half, bool lower, const Eigen::Vector3d& box_lo, const Eigen::Vector3d& box_hi, double h,
+                const Ports& holes, const Eigen::Matrix3d& R, const MoldBlockOptions& o, const PartLabels& labels,
+                const std::string& shot, MoldPart& part)
+{
+  const LabelStyle& style = labels.style;
+  const double z0 = lower ? box_lo.z() : h, z1 = lower ? h : box_hi.z(), zm = (z0 + z1) / 2;
+  const double end = lower ? box_lo.z() : box_hi.z();
+  const Eigen::Vector3d mid = (box_lo + box_hi) / 2, span = box_hi - box_lo;
+  const Eigen::Vector3d X = Eigen::Vector3d::UnitX(), Y = Eigen::Vector3d::UnitY(), Z = Eigen::Vector3d::UnitZ();
+  const LabelFace end_face{"end", {mid.x(), mid.y(), end}, lower ? -Z : Z, Y, {span.x(), span.y()}, {}};
+  std::vector<PlacedLabel> placed;
+  LabelStyle mark = style;
+  mark.max_height = style.min_height;
+  for (const Port& p : holes.sprues) {
+    if (p.upward == lower) continue;
+    const Eigen::Vector3d mouth = R * p.mouth, at(mouth.x(), mouth.y(), end);
+    // A square around the mouth, room for the seat and a mark on any side of it.
+    const double side = p.diameter + 2 * kSeatDepth + 4 * (mark.max_height + o.min_wall + style.depth);
+    if (auto l =
+            place_label(half, {"IN"}, {{"end", at, end_face.normal, Y, {side, side}, at}}, mark, o.min_wall, placed))
+      placed.push_back(*l);
+    else
+      part.unlabelled.push_back(fmt::format("no room for \"IN\" beside the sprue at {}", format_mm(p.mouth)));
+  }
+  std::vector<LabelFace> faces{{"side", {mid.x(), box_lo.y(), zm}, -Y, Z, {span.x(), z1 - z0}, {}},
+                               {"side", {mid.x(), box_hi.y(), zm}, Y, Z, {span.x(), z1 - z0}, {}},
+                               {"side", {box_lo.x(), mid.y(), zm}, -X, Z, {span.y(), z1 - z0}, {}},
+                               {"side", {box_hi.x(), mid.y(), zm}, X, Z, {span.y(), z1 - z0}, {}}};
+  std::stable_sort(faces.begin(), faces.end(),
+                   [](const LabelFace& a, const LabelFace& b) { return a.size.x() > b.size.x(); });
+  faces.push_back(end_face);
+  const std::vector<std::string> texts = part_label_texts(labels.design, shot, lower);
+  if (auto l = place_label(half, texts, faces, style, o.min_wall, placed))
+    placed.insert(placed.begin(), *l);
+  else
+    part.unlabelled.push_back(fmt::format("no room for \"{}\" ({:.0f} mm capitals or more) on any side or end face",
+                                          texts.back(), style.min_height / 1e-3));
+  try {
+    half = engrave(half, placed, style, o.min_wall);
+  } catch (const std::exception& e) {
+    part.unlabelled.push_back(fmt::format("labels left out: {}", e.what()));
+    return;
+  }
+  for (PlacedLabel& l : placed) { // to the body's frame
+    l.centre = R.transpose() * l.centre;
+    l.normal = R.transpose() * l.normal;
+    l.up = R.transpose() * l.up;
+    part.labels.push_back(l);
+  }
+}
+
 } // namespace
 
+std::vector<std::string> part_label_texts(const std::string& design, const std::string& shot, bool lower)
+{
+  const std::string n = shot.starts_with("shot") ? shot.substr(4) : shot;
+  const std::string half = lower ? "LOWER" : "UPPER", brief = "S" + n + (lower ? "L" : "U");
+  std::string name; // as cut: capitals, '?' for what the font lacks
+  for (const char c : design)
+    name += static_cast<unsigned char>(c) < 32 || static_cast<unsigned char>(c) > 126
+                ? '?'
+                : static_cast<char>(std::toupper(static_cast<unsigned char>(c)));
+  std::vector<std::string> texts;
+  if (!name.empty()) texts = {name + " S" + n + " " + half, name + " " + brief};
+  texts.push_back("S" + n + " " + half);
+  texts.push_back(brief);
+  return texts;
+}
+
 Mold make_mold(const SurfaceMesh& cavity_world, const Parting& parting, const std::vector<Channel>& channels,
-               const MoldBlockOptions& o, const std::string& shot, const Ports* ports)
+               const MoldBlockOptions& o, const std::string& shot, const Ports* ports, const PartLabels* labels)
 {
   const Eigen::Matrix3d R = to_local(parting.normal);
   const SurfaceMesh cavity = transformed(cavity_world, R);
@@ -231,8 +304,17 @@ Mold make_mold(const SurfaceMesh& cavity_world, const Parting& parting, const st
   const auto back = [&](SurfaceMesh part) {
     return R.isIdentity(0) ? part : without_degenerate_faces(transformed(std::move(part), R.transpose()));
   };
-  mold.parts.push_back({shot + "-lower", back(std::move(lower))});
-  mold.parts.push_back({shot + "-upper", back(std::move(upper))});
+  MoldPart lower_part{shot + "-lower", {}, {}, {}}, upper_part{shot + "-upper", {}, {}, {}};
+  if (labels) {
+    const auto started = std::chrono::steady_clock::now();
+    label_half(lower, true, box_lo, box_hi, h, holes, R, o, *labels, shot, lower_part);
+    label_half(upper, false, box_lo, box_hi, h, holes, R, o, *labels, shot, upper_part);
+    mold.label_seconds = since(started);
+  }
+  lower_part.mesh = back(std::move(lower));
+  upper_part.mesh = back(std::move(upper));
+  mold.parts.push_back(std::move(lower_part));
+  mold.parts.push_back(std::move(upper_part));
   return mold;
 }
 

@@ -13,6 +13,7 @@
 
 #include "mesh/surface_mesh.hpp"
 #include "molds/mold_options.hpp"
+#include "molds/part_label.hpp"
 #include "molds/parting.hpp"
 #include "molds/ports.hpp"
 
@@ -33,7 +34,21 @@ struct Channel {
 struct MoldPart {
   std::string name; ///< "<shot>-lower", "<shot>-upper"
   SurfaceMesh mesh;
+  std::vector<PlacedLabel> labels;     ///< engraved, in the body's frame: the part's own label, then "IN" per sprue
+  std::vector<std::string> unlabelled; ///< why a label was left out, one line each (no room on any face)
 };
+
+/// What make_mold engraves on its parts (part_label.hpp): on each half "<DESIGN> S<shot> <LOWER|UPPER>"
+/// (shorter forms where that does not fit) on its longest side face that takes it, else on its outer
+/// end face; "IN" beside each sprue's mouth on the end face it opens through.
+struct PartLabels {
+  std::string design; ///< the design's name, cut in capitals; empty: the shot and half alone
+  LabelStyle style;
+};
+
+/// The texts tried for a part's label, longest first, in capitals: "GRIPPER S1 LOWER", "GRIPPER S1L", "S1 LOWER",
+/// "S1L".
+std::vector<std::string> part_label_texts(const std::string& design, const std::string& shot, bool lower);
 
 struct Mold {
   std::vector<MoldPart> parts;
@@ -42,12 +57,16 @@ struct Mold {
   std::vector<Eigen::Vector3d> keys;   ///< key centres on the parting plane; sites on a channel's way are left out
   std::vector<Eigen::Vector3d>
       screws; ///< screw hole axes' points on the parting plane (fewer than asked when channels and keys leave no room)
+  double label_seconds = 0; ///< s, placing and cutting the parts' labels
 };
 
 /// The sprues and vents are `ports`, or without them the cavity's own (cavity_ports: a sprue from
 /// below at the lowest flat spot, `options.vents` vents along the top). Throws std::runtime_error
 /// when a boolean fails or the cavity has no spot for its sprue.
+/// With `labels`, each part is engraved as PartLabels says, where there is room; a label that fits
+/// nowhere, or whose cut fails, is left out and said so in the part's `unlabelled`.
 Mold make_mold(const SurfaceMesh& cavity, const Parting& parting, const std::vector<Channel>& channels,
-               const MoldBlockOptions& options, const std::string& shot, const Ports* ports = nullptr);
+               const MoldBlockOptions& options, const std::string& shot, const Ports* ports = nullptr,
+               const PartLabels* labels = nullptr);
 
 } // namespace fibermold

@@ -123,6 +123,20 @@ private:
         since(started)));
   }
 
+  /// Each part's labels (text, face, size) and those left out.
+  void log_labels(const Mold& mold) const
+  {
+    for (const MoldPart& p : mold.parts) {
+      for (const PlacedLabel& l : p.labels)
+        log_.info(fmt::format("{}: \"{}\" engraved on its {} face (out of the part along ({:.3g}, {:.3g}, {:.3g})) "
+                              "at {}, {:.1f} mm capitals, {:.1f} × {:.1f} mm, {:.1f} mm deep",
+                              p.name, l.text, l.face, l.normal.x() + 0.0, l.normal.y() + 0.0, l.normal.z() + 0.0,
+                              format_mm(l.centre), l.height / 1e-3, l.extent.x() / 1e-3, l.extent.y() / 1e-3,
+                              l.depth / 1e-3));
+      for (const std::string& why : p.unlabelled) log_.warn(fmt::format("{}: {}", p.name, why));
+    }
+  }
+
   std::vector<std::string> make_shot(const std::string& name, const SurfaceMesh& shot_cavity, Parting parting,
                                      double silicone, const std::vector<Channel>& shot_channels);
 
@@ -198,8 +212,11 @@ std::vector<std::string> Recipe::make_shot(const std::string& name, const Surfac
         "{}: {:.1f} mm² of the cavity is an undercut for the parting plane: demolding relies on the silicone bending",
         name, parting.undercut_area / 1e-6));
   started = Clock::now();
-  const Mold mold = make_mold(cavity, parting, shot_channels, block_, name, &scaled_ports);
-  log_.info(fmt::format("{}: mold block and parts in {:.2f} s", name, since(started)));
+  const PartLabels labels{job_.name, {}};
+  const Mold mold = make_mold(cavity, parting, shot_channels, block_, name, &scaled_ports, &labels);
+  log_.info(fmt::format("{}: mold block and parts in {:.2f} s, of which labels {:.2f} s", name, since(started),
+                        mold.label_seconds));
+  log_labels(mold);
   shot.upright_share = upright_share(cavity, parting.point, parting.normal, 3);
   log_.info(fmt::format(
       "{}: {:.0f} % of the upper half's contact lies within 3° of the pull (walls it slides along; draft_deg {})", name,

@@ -40,6 +40,7 @@ struct MoldFiber {
 
 /// What the molds are made for: the body and its muscles.
 struct MoldJob {
+  std::string name; ///< the design's, engraved on each part with its shot and half (mold_block.hpp's PartLabels)
   SurfaceMesh body; ///< the body's skin, m
   std::vector<MoldFiber> fibers;
   double muscle_diameter = 0; ///< m

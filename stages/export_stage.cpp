@@ -165,6 +165,8 @@ std::string casting_guide(const Design& d, const Json& shots, const std::string&
   return fmt::format(R"(fibermold mold parts for "{}"
 
 Print every {} as it lies (each stands on its largest flat face; units mm).
+Each part says which it is, engraved into a side (or its outer end) where it has room: the design's
+name, the shot and the half ("S1 LOWER": shot 1's lower half); "IN" is engraved beside each sprue.
 
 {}{}
 Shot 1, the grooved body: shot1-lower{} and shot1-upper{}.
@@ -710,6 +712,7 @@ void ExportStage::run(StageContext& ctx) const
          {"triangles", placed.part.num_faces()},
          {"min_wall_mm", info["min_wall_mm"]},
          {"checks_passed", info["checks_passed"]},
+         {"labels", info.value("labels", Json::array())},
          {"from_body_frame", placement_json(placed)}});
     if (!placed.fits)
       ctx.log.warn("part {} does not fit the printer lying flat; its best fit turns it: axes {}", name,

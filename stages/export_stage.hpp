@@ -22,8 +22,9 @@ public:
   /// 2: the fill in the manifest and README.txt, parts' transforms; 3: no timings in report.html; 4: the optimization
   /// table and the warnings banner; 5: each target drawn beside the robot, the turns reached; 6: the bend radius
   /// table; 7: deformed-<target>.stl and how to check the cast robot with it; 8: the casting sheet (silicone, muscles);
-  /// 9: the sprues and vents in the 3D view; 10: the countersunk sprue in README.txt
-  int version() const override { return 10; }
+  /// 9: the sprues and vents in the 3D view; 10: the countersunk sprue in README.txt; 11: the parts' labels in
+  /// README.txt and the manifest
+  int version() const override { return 11; }
   void run(StageContext& ctx) const override;
 };
 

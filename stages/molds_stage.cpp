@@ -145,6 +145,16 @@ Json molds_report(const TwoShotMolds& molds, const Design& d)
                      {"fill", fill_report(s.plan, s.fill_voxel, molds)}};
   for (const CheckedPart& p : molds.parts) {
     const PartCheck& c = p.check;
+    Json labels = Json::array();
+    for (const PlacedLabel& l : p.part.labels)
+      labels.push_back({{"text", l.text},
+                        {"face", l.face},
+                        {"normal", {l.normal.x() + 0.0, l.normal.y() + 0.0, l.normal.z() + 0.0}},
+                        {"up", {l.up.x() + 0.0, l.up.y() + 0.0, l.up.z() + 0.0}},
+                        {"centre_mm", vec_mm(l.centre)},
+                        {"height_mm", l.height / units::mm},
+                        {"size_mm", {l.extent.x() / units::mm, l.extent.y() / units::mm}},
+                        {"depth_mm", l.depth / units::mm}});
     parts[p.part.name] = {{"shot", p.shot},
                           {"file", p.part.name + ".stl"},
                           {"triangles", p.part.mesh.num_faces()},
@@ -153,7 +163,9 @@ Json molds_report(const TwoShotMolds& molds, const Design& d)
                           {"min_wall_mm", c.min_thickness / units::mm},
                           {"fits_printer", c.fits},
                           {"print_axes", {c.orientation.x(), c.orientation.y(), c.orientation.z()}},
-                          {"checks_passed", c.ok()}};
+                          {"checks_passed", c.ok()},
+                          {"labels", labels},
+                          {"labels_left_out", p.part.unlabelled}};
   }
   const SiliconeThickness& t = molds.thickness;
   const auto finite_mm = [](double v) { return std::isfinite(v) ? Json(v / units::mm) : Json("none"); };
@@ -251,6 +263,7 @@ void MoldsStage::run(StageContext& ctx) const
         "the parting plane's normal must be parallel to [mold].pull: the halves come apart along pull");
 
   MoldJob job;
+  job.name = d.design.name;
   const TetMesh mesh = load_tet_mesh(ctx.upstream("mesh", "body.tetmesh"));
   job.body = body_surface(mesh);
   job.muscle_diameter = d.muscle.model.diameter;

@@ -32,9 +32,10 @@ public:
   std::vector<std::string> upstream() const override { return {"mesh", "collide"}; }
   std::vector<std::string> design_keys() const override
   {
-    // fiber, muscle, target, collide's resolution: the routes the optimizer started from, which set
-    // where its skin barrier held a fiber (exit_stretches)
-    return {"design.units",
+    // the design's name: engraved on the parts; fiber, muscle, target, collide's resolution: the routes the optimizer
+    // started from, which set where its skin barrier held a fiber (exit_stretches)
+    return {"design.name",
+            "design.units",
             "material.density",
             "muscle",
             "fiber",
@@ -51,8 +52,9 @@ public:
   /// min_bend_radius refused; 6: the stretches at the ends on the skin left out where the optimizer's skin barrier left
   /// them out (exit_stretches), not 2 × (diameter + clearance); 7: no sprue or vent within min_wall of a cavity wall
   /// rising beside it; 8: with an "auto" parting plane, the pull reversed when it leaves a half of shot 1 a plate; 9:
-  /// the sprues countersunk
-  int version() const override { return 9; }
+  /// the sprues countersunk; 10: each part engraved with the design's name, shot and half, "IN" beside each sprue
+  /// (report: each part's labels and labels_left_out)
+  int version() const override { return 10; }
   void run(StageContext& ctx) const override;
 };
 

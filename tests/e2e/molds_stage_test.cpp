@@ -106,6 +106,30 @@ TEST_F(MoldsE2E, HandRoutedBarBecomesFourCheckedParts)
     EXPECT_LT((moved.colwise().minCoeff() - printed.vertices.colwise().minCoeff()).norm(), 1e-6) << name;
     EXPECT_LT((moved.colwise().maxCoeff() - printed.vertices.colwise().maxCoeff()).norm(), 1e-6) << name;
     EXPECT_NEAR(signed_volume(body), signed_volume(printed), 1e-3 * signed_volume(body)) << name;
+
+    // Its label is cut into its STL: the grooves' floor, 0.6 mm under the labelled face, inside the label's box.
+    ASSERT_FALSE(p["labels"].empty()) << name;
+    const auto& label = p["labels"][0];
+    EXPECT_THAT(label["text"].get<std::string>(),
+                HasSubstr(fmt::format("S{} {}", name[4], name.ends_with("lower") ? "LOWER" : "UPPER")));
+    Eigen::Vector3d centre, normal;
+    for (int i = 0; i < 3; ++i) centre(i) = label["centre_mm"][i].get<double>() * 1e-3;
+    for (int i = 0; i < 3; ++i) normal(i) = label["normal"][i].get<double>();
+    const double reach = std::hypot(label["size_mm"][0].get<double>(), label["size_mm"][1].get<double>()) * 0.5e-3;
+    int floor = 0;
+    for (Eigen::Index v = 0; v < body.num_vertices(); ++v) {
+      const Eigen::Vector3d d = body.vertices.row(v).transpose() - centre;
+      floor += std::abs(d.dot(normal) + 0.6e-3) < 1e-6 && (d - d.dot(normal) * normal).norm() < reach;
+    }
+    std::printf("%s: \"%s\", %d vertices on the grooves' floor\n", name.c_str(),
+                label["text"].get<std::string>().c_str(), floor);
+    EXPECT_GT(floor, 20) << name;
+    // "IN" beside the sprue: shot 1's comes from below, shot 2's from above.
+    const bool fed = name == "shot1-lower" || name == "shot2-upper";
+    EXPECT_EQ(p["labels"].size(), fed ? 2u : 1u) << name;
+    if (fed) {
+      EXPECT_EQ(p["labels"][1]["text"], "IN") << name;
+    }
   }
 
   if (std::system("command -v admesh >/dev/null 2>&1") != 0)
