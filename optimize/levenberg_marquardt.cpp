@@ -143,12 +143,10 @@ MinimizerResult minimize_levenberg_marquardt(const ModelObjective& f, Eigen::Vec
         d = damped_step(M, D, g, mu);
       }
       if (const double largest = d.cwiseAbs().maxCoeff(); largest > options.max_step) d *= options.max_step / largest;
-      double predicted = predicted_decrease(g, M, d);
-      if (exact) { // along d, on the model with the cheap part exact: short of its walls
-        const RayStep ray = ray_step(exact, x, g, M, d);
-        d *= ray.alpha;
-        predicted = ray.predicted;
-      }
+      // Along d on the model with the cheap part exact, where there is one: short of its walls.
+      const RayStep ray = exact ? ray_step(exact, x, g, M, d) : RayStep{1, predicted_decrease(g, M, d)};
+      d *= ray.alpha;
+      const double predicted = ray.predicted;
       Eigen::VectorXd trial_g;
       Eigen::MatrixXd trial_B;
       double trial = HUGE_VAL;
