@@ -141,6 +141,7 @@ struct OptimizeOptions {
   Method method = MinimizerOptions{}.method;
   int max_iterations = MinimizerOptions{}.max_iterations;
   int route_only_iterations = 0; ///< first, the routes alone at their starting pressures
+  int starts = 1; ///< runs: from the first guess and from starts − 1 perturbations of it (perturbed_start.hpp)
   double gradient_tolerance = MinimizerOptions{}.gradient_tolerance;
   double relative_tolerance =
       MinimizerOptions{}.relative_tolerance; ///< over the last MinimizerOptions::window iterations

@@ -837,6 +837,7 @@ OptimizeOptions read_optimize(Section s)
   o.method = s.choice_of("method", o.method, kMethodNames);
   o.max_iterations = s.integer("max_iterations", o.max_iterations, 0, 1000000);
   o.route_only_iterations = s.integer("route_only_iterations", o.route_only_iterations, 0, 1000000);
+  o.starts = s.integer("starts", o.starts, 1, 100);
   o.gradient_tolerance = s.number("gradient_tolerance", o.gradient_tolerance, above_zero(1));
   o.relative_tolerance = s.number("relative_tolerance", o.relative_tolerance, above_zero(1));
   o.decrease_tolerance = s.number("decrease_tolerance", o.decrease_tolerance, above_zero(1));

@@ -66,6 +66,7 @@ const std::vector<Part>& parts()
       FIBERMOLD_PART("optimize.method", optimize.method),
       FIBERMOLD_PART("optimize.max_iterations", optimize.max_iterations),
       FIBERMOLD_PART("optimize.route_only_iterations", optimize.route_only_iterations),
+      FIBERMOLD_PART("optimize.starts", optimize.starts),
       FIBERMOLD_PART("optimize.gradient_tolerance", optimize.gradient_tolerance),
       FIBERMOLD_PART("optimize.relative_tolerance", optimize.relative_tolerance),
       FIBERMOLD_PART("optimize.decrease_tolerance", optimize.decrease_tolerance),

@@ -15,6 +15,7 @@
 #include "core/units.hpp"
 #include "optimize/clearance_barrier.hpp"
 #include "optimize/optimization_ending.hpp"
+#include "optimize/perturbed_start.hpp"
 #include "optimize/routing_optimizer.hpp"
 #include "stages/design_mesh.hpp"
 #include "stages/design_simulation.hpp"
@@ -69,9 +70,10 @@ public:
   {
     text_ = "iteration,stage,objective,distance,curvature,skin_barrier,bend_barrier,pressure_barrier,clearance_barrier";
     for (const std::string& t : targets) text_ += ",distance_" + t;
-    text_ += ",gradient_norm,predicted_decrease,step,evaluations,seconds\n";
+    text_ += ",gradient_norm,predicted_decrease,step,evaluations,seconds,start\n";
   }
-  void add(int iteration, int stage, const MinimizerIteration& it, const RoutingTerms& terms, double seconds)
+  /// `start`: which run of [optimize] starts (0: from the first guess).
+  void add(int iteration, int stage, const MinimizerIteration& it, const RoutingTerms& terms, double seconds, int start)
   {
     text_ += fmt::format("{},{},{:.9g},{:.9g},{:.9g},{:.9g},{:.9g},{:.9g},{:.9g}", iteration, stage + 1, terms.total,
                          terms.distance, terms.curvature, terms.skin, terms.bend, terms.pressure, terms.clearance);
@@ -79,8 +81,8 @@ public:
     // Levenberg-Marquardt's model may be indefinite (no decrease predicted): the cell stays empty.
     const std::string predicted =
         std::isfinite(it.predicted_decrease) ? fmt::format("{:.6g}", it.predicted_decrease) : "";
-    text_ +=
-        fmt::format(",{:.6g},{},{:.6g},{},{:.3f}\n", it.gradient_norm, predicted, it.step, it.evaluations, seconds);
+    text_ += fmt::format(",{:.6g},{},{:.6g},{},{:.3f},{}\n", it.gradient_norm, predicted, it.step, it.evaluations,
+                         seconds, start);
   }
   const std::string& text() const { return text_; }
 
@@ -111,6 +113,51 @@ RoutingResult optimize(const Design& d, RoutingProblem& problem, const Minimizer
   both.iterations += routes.iterations;
   both.evaluations += routes.evaluations;
   return both;
+}
+
+/// The progress and log line of an iteration: which start and fiber stage it is in, and its figures.
+std::string iteration_line(int starts, int start, int stages, int stage, const MinimizerIteration& it,
+                           const RoutingTerms& terms)
+{
+  return fmt::format("{}{}iteration {}: objective {:.4g} (distance {:.4g}), |∇| {:.2g}",
+                     starts > 1 ? fmt::format("start {}/{}, ", start + 1, starts) : "",
+                     stage < 0    ? "routes only, "
+                     : stages > 1 ? fmt::format("fiber {}/{}, ", stage + 1, stages)
+                                  : "",
+                     it.iteration, terms.total, terms.distance, it.gradient_norm);
+}
+
+/// The optimization from the first guess and, with [optimize] starts = N, from N − 1 perturbations
+/// of it (perturbed_start.hpp, moved by up to one muscle diameter): the run that ends lowest, and
+/// each run's figures for report.json in `runs`. `current` tells the callback which run it is in.
+RoutingResult optimize_from_starts(const Design& d, RoutingProblem& problem, const Routing& start,
+                                   const MinimizerOptions& o, const RoutingCallback& on_iteration, StageContext& ctx,
+                                   int& current, nlohmann::ordered_json& runs)
+{
+  RoutingResult best;
+  runs = nlohmann::ordered_json::array();
+  for (int k = 0; k < d.optimize.starts; ++k) {
+    current = k;
+    const Routing from = k == 0 ? start : perturbed_start(problem, start, k, d.muscle.model.diameter);
+    problem.set_base(from);
+    RoutingResult r = optimize(d, problem, o, on_iteration, ctx.progress);
+    runs.push_back({{"start", k},
+                    {"objective", r.value},
+                    {"termination", choice_name(r.termination)},
+                    {"converged", r.converged},
+                    {"iterations", r.iterations}});
+    if (d.optimize.starts > 1)
+      ctx.log.info("start {} of {}{}: objective {:.6g}, {} after {} iterations", k + 1, d.optimize.starts,
+                   k == 0 ? " (the first guess)" : "", r.value, choice_name(r.termination), r.iterations);
+    const bool interrupted = r.interrupted;
+    if (k == 0 || r.value < best.value) best = std::move(r);
+    if (interrupted) {
+      best.interrupted = true; // the best design so far is kept
+      break;
+    }
+  }
+  problem.set_base(start);
+  return best;
 }
 
 /// The first guess's routes at their best pressures (a pressure-only run): the baseline every
@@ -458,24 +505,25 @@ void OptimizeStage::run(StageContext& ctx) const
   int iterations = 0;
   const int stages = d.optimize.strategy == Strategy::sequential ? static_cast<int>(d.fibers.size()) : 1;
   // Progress over the iteration budget: the route-only ones, then max_iterations per stage.
-  const double budget = d.optimize.route_only_iterations + stages * std::max(1, o.max_iterations);
+  const double per_start = d.optimize.route_only_iterations + stages * std::max(1, o.max_iterations);
+  const double budget = d.optimize.starts * per_start;
+  int current_start = 0;
   int route_only_done = 0;
   const RoutingCallback on_iteration = [&](int stage, const MinimizerIteration& it, const RoutingTerms& terms) {
     ++iterations;
-    history.add(iterations, stage, it, terms, since(started));
-    if (stage < 0) ++route_only_done;
-    const std::string what = fmt::format("{}iteration {}: objective {:.4g} (distance {:.4g}), |∇| {:.2g}",
-                                         stage < 0    ? "routes only, "
-                                         : stages > 1 ? fmt::format("fiber {}/{}, ", stage + 1, stages)
-                                                      : "",
-                                         it.iteration, terms.total, terms.distance, it.gradient_norm);
+    history.add(iterations, stage, it, terms, since(started), current_start);
+    if (stage < 0) route_only_done = it.iteration; // of this start's route-only run
+    const std::string what = iteration_line(d.optimize.starts, current_start, stages, stage, it, terms);
     const double done =
-        stage < 0 ? route_only_done : route_only_done + stage * std::max(1, o.max_iterations) + it.iteration;
+        current_start * per_start +
+        (stage < 0 ? route_only_done : route_only_done + stage * std::max(1, o.max_iterations) + it.iteration);
     ctx.progress.update(done / budget, what);
     ctx.log.info("{}", what);
   };
-  RoutingResult result =
-      baseline.result.interrupted ? baseline.result : optimize(d, problem, o, on_iteration, ctx.progress);
+  nlohmann::ordered_json runs = nlohmann::ordered_json::array();
+  RoutingResult result = baseline.result.interrupted
+                             ? baseline.result
+                             : optimize_from_starts(d, problem, start, o, on_iteration, ctx, current_start, runs);
   const std::string kept_first_guess = keep_the_better(ctx, problem, baseline, result);
   const FibersFile fibers{result.routing, names, true};
 
@@ -498,6 +546,7 @@ void OptimizeStage::run(StageContext& ctx) const
       {"fibers_kept_apart", kept_apart},
       {"first_guess", baseline.json},
       {"kept", kept_first_guess.empty() ? "optimized" : "first guess"},
+      {"starts", runs},
       {"min_bend_radius_mm", d.muscle.min_bend_radius / units::mm},
       {"bends", {{"start", bends_json(start.routes)}, {"end", bends_json(result.routing.routes)}}},
       {"iterations", result.iterations},

@@ -46,8 +46,8 @@ public:
   /// report; 4: reached poses; 5: the bend radius barrier, bends in the report; 6: the bend barrier samples each
   /// span's tightest point, [optimize] method; 7: history.csv predicted_decrease, report.json refused,
   /// Levenberg-Marquardt's secant term, method hybrid (the default); 8: the start's skin tested where the skin
-  /// barrier holds it
-  int version() const override { return 8; }
+  /// barrier holds it; 9: Levenberg-Marquardt's ray model, [optimize] starts (report.json starts, history.csv start)
+  int version() const override { return 9; }
   void run(StageContext& ctx) const override;
 };
 

@@ -269,7 +269,7 @@ TEST_F(DesignFileTest, EveryDocumentedRangeIsTheOneChecked)
     const auto text = [&](double v) { return fmt::format("{}[{}]\n{} = {}\n", kMinimal, section, key, v); };
     const bool integer = std::floor(lo) == lo && std::floor(hi) == hi && hi - lo >= 8 && hi <= 1e8 &&
                          (key == "max_tets" || key.find("iterations") != std::string::npos || key == "keys" ||
-                          key == "vents" || key == "screw_holes");
+                          key == "vents" || key == "screw_holes" || key == "starts");
     const double step = integer ? 1 : std::max(std::abs(hi - lo), 1.0) * 1e-6;
     const double below = lo_open ? lo : lo - step, above = hi_open ? hi : hi + step;
     for (const double bad : {below, above}) {

@@ -1,6 +1,8 @@
 // The optimize stage as a user runs it: a bar whose target is made by an S-shaped fiber, optimized
 // from a perturbed start; its outputs, its errors, Ctrl-C, and which edits rerun it.
+#include <algorithm>
 #include <cmath>
+#include <vector>
 
 #include <fmt/format.h>
 #include <gmock/gmock.h>
@@ -123,6 +125,36 @@ TEST_F(OptimizeE2E, ARunThatEndsAtThePressureLimitSaysSo)
     EXPECT_THAT(r.err, HasSubstr("the optimizer stopped before converging (" + why));
   }
   EXPECT_GT(report["targets"]["s"]["reached_percent"].get<double>(), 90);
+}
+
+TEST_F(OptimizeE2E, SeveralStartsKeepTheRunThatEndsLowest)
+{
+  design("[optimize]\nmax_iterations = 12\nstarts = 3\n");
+  const auto r = make();
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_THAT(r.err, HasSubstr("start 3/3, iteration 1: objective"));
+  const auto report = json("report.json");
+  ASSERT_EQ(report["starts"].size(), 3u) << report["starts"].dump();
+  double lowest = HUGE_VAL;
+  std::vector<double> objectives;
+  for (int k = 0; k < 3; ++k) {
+    const auto& run = report["starts"][k];
+    EXPECT_EQ(run["start"].get<int>(), k);
+    EXPECT_GT(run["iterations"].get<int>(), 0);
+    objectives.push_back(run["objective"].get<double>());
+    lowest = std::min(lowest, objectives.back());
+  }
+  std::printf("starts: objectives %.6g, %.6g, %.6g\n", objectives[0], objectives[1], objectives[2]);
+  // The perturbed starts are other designs: their runs end elsewhere.
+  EXPECT_NE(objectives[0], objectives[1]);
+  EXPECT_NE(objectives[1], objectives[2]);
+  // The result is the lowest run's (the first guess at its best pressures is far above it here).
+  EXPECT_EQ(report["kept"], "optimized");
+  EXPECT_DOUBLE_EQ(report["objective"].get<double>(), lowest);
+  // history.csv tells the runs apart.
+  const std::string history = test::read_text(dir_ / "build" / "optimize" / "history.csv");
+  EXPECT_THAT(history.substr(0, history.find('\n')), ::testing::EndsWith(",start"));
+  for (const char* run : {",0\n", ",1\n", ",2\n"}) EXPECT_THAT(history, HasSubstr(run));
 }
 
 /// A pose of a known rotation: a straight muscle 3 mm above the bar's axis at 300 kPa turns the
