@@ -2,6 +2,7 @@
 
 #include <cmath>
 #include <cstdint>
+#include <numbers>
 #include <random>
 
 #include "optimize/routing_problem.hpp"
@@ -21,7 +22,7 @@ double normal(std::mt19937_64& bits)
 {
   const auto uniform = [&] { return (static_cast<double>(bits() >> 11) + 0.5) * 0x1p-53; };
   const double u = uniform(), v = uniform();
-  return std::sqrt(-2 * std::log(u)) * std::cos(2 * M_PI * v);
+  return std::sqrt(-2 * std::log(u)) * std::cos(2 * std::numbers::pi * v);
 }
 
 Eigen::Vector3d normal3(std::mt19937_64& bits)

@@ -156,7 +156,7 @@ RoutingResult optimize_from_starts(const Design& d, RoutingProblem& problem, con
       break;
     }
   }
-  problem.set_base(start);
+  if (d.optimize.starts > 1) problem.set_base(start); // a single run leaves it as it always did
   return best;
 }
 

@@ -16,13 +16,21 @@ namespace {
 
 using test::rosenbrock;
 
-TEST(LevenbergMarquardt, ConvergesOnTheRosenbrockValleyByTheModelsDecrease)
+/// Options under which a run ends only by converging (the model's decrease at most `decrease` of f),
+/// by its rejections or at the iteration limit: no gradient or stall rule.
+MinimizerOptions run_to_convergence(double decrease)
 {
-  NullProgress progress;
   MinimizerOptions o;
   o.relative_tolerance = 0;
   o.gradient_tolerance = 0;
-  o.decrease_tolerance = 1e-14;
+  o.decrease_tolerance = decrease;
+  return o;
+}
+
+TEST(LevenbergMarquardt, ConvergesOnTheRosenbrockValleyByTheModelsDecrease)
+{
+  NullProgress progress;
+  const MinimizerOptions o = run_to_convergence(1e-14);
   int callbacks = 0;
   const MinimizerResult r = minimize_levenberg_marquardt(
       rosenbrock, Eigen::Vector2d(-1.2, 1), o,
@@ -51,10 +59,7 @@ double large_residual(const Eigen::VectorXd& x, Eigen::VectorXd& g, Eigen::Matri
 TEST(LevenbergMarquardt, LearnsWhatTheGaussNewtonModelLeavesOutOnALargeResidual)
 {
   NullProgress progress;
-  MinimizerOptions o;
-  o.relative_tolerance = 0;
-  o.gradient_tolerance = 0;
-  o.decrease_tolerance = 1e-12;
+  const MinimizerOptions o = run_to_convergence(1e-12);
   const MinimizerResult r =
       minimize_levenberg_marquardt(large_residual, Eigen::VectorXd::Constant(1, 1.0), o, nullptr, progress);
   EXPECT_TRUE(r.converged()) << r.message;
@@ -156,10 +161,7 @@ TEST(LevenbergMarquardt, ABarriersExactValuesKeepItsStepsShortOfTheWall)
     return 0.5 * (x - Eigen::Vector2d(2, 0)).squaredNorm() + barrier_part(x);
   };
   NullProgress progress;
-  MinimizerOptions o;
-  o.relative_tolerance = 0;
-  o.gradient_tolerance = 0;
-  o.decrease_tolerance = 1e-12;
+  const MinimizerOptions o = run_to_convergence(1e-12);
   const MinimizerResult blind = minimize_levenberg_marquardt(f, Eigen::Vector2d(0, 1), o, nullptr, progress);
   const int blind_infinite = std::exchange(infinite, 0), blind_evaluations = std::exchange(evaluations, 0);
   const MinimizerResult seeing =
@@ -187,10 +189,7 @@ TEST(LevenbergMarquardt, AnIndefiniteModelIsShiftedUntilItHasAMinimum)
     return (0.25 * x.array().pow(4) - 0.5 * x.array().square()).sum() + 1;
   };
   NullProgress progress;
-  MinimizerOptions o;
-  o.relative_tolerance = 0;
-  o.gradient_tolerance = 0;
-  o.decrease_tolerance = 1e-14;
+  const MinimizerOptions o = run_to_convergence(1e-14);
   const MinimizerResult r = minimize_levenberg_marquardt(f, Eigen::Vector2d(0.05, 3), o, nullptr, progress);
   EXPECT_TRUE(r.converged()) << r.message;
   EXPECT_NEAR(r.x[0], 1, 1e-6);
