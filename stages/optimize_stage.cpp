@@ -2,6 +2,7 @@
 
 #include <chrono>
 #include <cmath>
+#include <stdexcept>
 
 #include <fmt/format.h>
 #include <nlohmann/json.hpp>
@@ -129,7 +130,8 @@ std::string iteration_line(int starts, int start, int stages, int stage, const M
 
 /// The optimization from the first guess and, with [optimize] starts = N, from N − 1 perturbations
 /// of it (perturbed_start.hpp, moved by up to one muscle diameter): the run that ends lowest, and
-/// each run's figures for report.json in `runs`. `current` tells the callback which run it is in.
+/// each run's figures for report.json in `runs`. `current` tells the callback which run it is in. A
+/// perturbed start where the objective is not finite (no equilibrium) is left out with a warning.
 RoutingResult optimize_from_starts(const Design& d, RoutingProblem& problem, const Routing& start,
                                    const MinimizerOptions& o, const RoutingCallback& on_iteration, StageContext& ctx,
                                    int& current, nlohmann::ordered_json& runs)
@@ -140,7 +142,15 @@ RoutingResult optimize_from_starts(const Design& d, RoutingProblem& problem, con
     current = k;
     const Routing from = k == 0 ? start : perturbed_start(problem, start, k, d.muscle.model.diameter);
     problem.set_base(from);
-    RoutingResult r = optimize(d, problem, o, on_iteration, ctx.progress);
+    RoutingResult r;
+    try {
+      r = optimize(d, problem, o, on_iteration, ctx.progress);
+    } catch (const std::invalid_argument& e) { // a perturbed start whose equilibrium Newton does not find
+      if (k == 0) throw;
+      ctx.log.warn("start {} of {} left out: {}", k + 1, d.optimize.starts, e.what());
+      runs.push_back({{"start", k}, {"left_out", e.what()}});
+      continue;
+    }
     runs.push_back({{"start", k},
                     {"objective", r.value},
                     {"termination", choice_name(r.termination)},
