@@ -10,6 +10,7 @@
 // fails the stage, naming the fibers and the place.
 
 #include "make/stage.hpp"
+#include "stages/routing_keys.hpp"
 
 namespace fibermold {
 
@@ -17,27 +18,13 @@ class CollideStage final : public Stage {
 public:
   std::string name() const override { return "collide"; }
   std::vector<std::string> upstream() const override { return {"mesh", "targets", "optimize"}; }
-  std::vector<std::string> design_keys() const override
-  {
-    return {"design.units",
-            "material",
-            "sim",
-            "fixed",
-            "muscle",
-            "fiber",
-            "tracking_curve",
-            "target",
-            "optimize",
-            "collide",
-            "mold.groove_clearance",
-            "mold.min_silicone"}; // the skin distance (skin_distance.hpp)
-  }
+  std::vector<std::string> design_keys() const override { return routing_design_keys({"collide"}); }
   /// 2: writes deformed-<target>.json for the report; 3: no null in report.json; 4: bends in the report, routes
   /// under min_bend_radius refused; 5: the bend barrier samples each span's tightest point, min_bend_radius_mm in the
   /// report; 6: Levenberg-Marquardt's secant term, method hybrid (the default); 7: the skin tested where the
   /// optimizer's skin barrier held it (SkinBarrier::held); 8: each target's poses reached (where its regions and the
-  /// tracking curves' ends went)
-  int version() const override { return 8; }
+  /// tracking curves' ends went); 9: Levenberg-Marquardt's ray model (a re-optimization's steps)
+  int version() const override { return 9; }
   void run(StageContext& ctx) const override;
 };
 

@@ -8,6 +8,7 @@
 
 #include "make/stage.hpp"
 #include "mesh/surface_distance.hpp"
+#include "stages/routing_keys.hpp"
 
 namespace fibermold {
 
@@ -23,24 +24,10 @@ public:
   std::vector<std::string> upstream() const override { return {"mesh", "targets"}; }
   std::vector<std::string> design_keys() const override
   {
-    // smoothness: optimization_start; the surface and [mesh]: [optimize] refine meshes the body again;
-    // groove_clearance, min_silicone: the skin distance (skin_distance.hpp)
-    return {"design.surface",
-            "design.units",
-            "mesh",
-            "material",
-            "sim",
-            "fixed",
-            "muscle",
-            "fiber",
-            "tracking_curve",
-            "target",
-            "optimize",
-            "collide.clearance",
-            "collide.samples_per_mm",
-            "collide.smoothness",
-            "mold.groove_clearance",
-            "mold.min_silicone"};
+    // the surface and [mesh]: [optimize] refine meshes the body again; [collide]: the clearance it keeps
+    // (clearance_barrier.hpp) and the moves apart before optimizing (optimization_start)
+    return routing_design_keys(
+        {"design.surface", "mesh", "collide.clearance", "collide.samples_per_mm", "collide.smoothness"});
   }
   /// 2: fibers moved apart before optimizing, kept apart throughout; 3: termination, warnings and reach in the
   /// report; 4: reached poses; 5: the bend radius barrier, bends in the report; 6: the bend barrier samples each
