@@ -93,6 +93,28 @@ TEST(BendRadius, SmallestBendOfACircleAndALineAndWhere)
   EXPECT_NEAR(1 / curvature(kink, coarse.t), coarse.radius, 1e-12);
 }
 
+TEST(BendRadius, TheTighterOfTwoNearlyEqualBendsIsFoundWhereverTheScanFallsOnThem)
+{
+  // One span with a bend inside it (u ≈ 0.33) and one at its end (u = 1) of nearly equal radius.
+  // As the end's tangent turns (by 10 µm over the sweep), the tighter bend passes from the inner
+  // one to the end. The end is a scan point, the inner bend's peak is not (the 64-point scan sees
+  // it 2.8e-4 low): refining only the scan's highest point found the end for turns where the inner
+  // bend was still the tighter, and the bend barrier jumped there. The tightest found is the one a
+  // scan 300× denser finds, on both sides of the swap.
+  int swaps = 0;
+  double first_where = -1;
+  for (int i = 0; i <= 200; ++i) {
+    const double turn = -0.01137 + 1e-5 * i / 200;
+    const HermiteSpline s({{0, 0, 0}, {0.05, 0, 0}},
+                          {Eigen::Vector3d(0.065, 0.05, 0), Eigen::Vector3d(0.035, turn, 0.002)});
+    const SmallestBend found = smallest_bend(s, BendBarrier::kTightestScan), dense = smallest_bend(s, 20000);
+    ASSERT_NEAR(found.radius, dense.radius, 1e-9 * dense.radius) << "turn " << turn;
+    if (first_where < 0) first_where = found.t;
+    swaps += std::abs(found.t - first_where) > 0.25;
+  }
+  EXPECT_GT(swaps, 0); // the sweep does cross from one bend to the other
+}
+
 TEST(BendRadius, BarrierIsInfiniteAtTheRadiusAndZeroFarAboveIt)
 {
   const HermiteSpline arc = quarter_circle(0.02);
