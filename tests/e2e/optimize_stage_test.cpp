@@ -75,10 +75,10 @@ TEST_F(OptimizeE2E, RecoversTheTargetAndWritesItsOutputs)
   EXPECT_EQ(bend["at_mm"].size(), 3u);
   EXPECT_NEAR(report["bends"]["start"]["m1"]["min_bend_radius_mm"].get<double>(), 11.4, 0.1);
 
-  // The log follows the run each tenth of the iteration budget (the time left once 2 s have passed:
-  // this run is shorter; the demonstrators' test sees it).
+  // The log follows the run each tenth of the iteration budget, with the time left once 2 s have
+  // passed (this run takes about that long, more on a loaded machine).
   EXPECT_THAT(test::read_text(dir_ / "build" / "logs" / "optimize.log"),
-              ContainsRegex("progress 50 %: iteration 30: objective"));
+              ContainsRegex("progress 50 %( \\(~[0-9]+ s left\\))?: iteration 30: objective"));
   const std::string history = test::read_text(dir_ / "build" / "optimize" / "history.csv");
   EXPECT_THAT(history, HasSubstr("iteration,stage,objective,distance,curvature,skin_barrier,bend_barrier,pressure_"
                                  "barrier,clearance_barrier,distance_s,"));
