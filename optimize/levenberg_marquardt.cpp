@@ -17,6 +17,13 @@ namespace {
 
 /// μ at the start, relative to the model's scaled diagonal (Marquardt's choice of a small value).
 constexpr double kInitialDamping = 1e-3;
+/// The least μ a rejected step raises: after a run of good steps μ can fall to 1e-16, and ×ν with ν
+/// doubling from there took eleven rejections to reach a useful damping (the twisting bar).
+constexpr double kLeastRaisedDamping = 1e-6;
+/// Steps shorter than this in every variable (units: mm or 10 kPa) teach the secant term nothing:
+/// their gradient change is mostly the adjoint's noise (on the twisting bar a 2e-6 step's update
+/// raised the model's predicted decrease 16-fold, and the run stalled 1.4× short of converging).
+constexpr double kLeastSecantStep = 1e-3;
 
 /// Marquardt's scaling D = diag(B), with entries under 1e-8 of its largest raised to that (a
 /// variable the model does not see yet still gets a bounded step).
@@ -59,6 +66,44 @@ Eigen::VectorXd damped_step(const Eigen::MatrixXd& B, const Eigen::VectorXd& D, 
   return -llt.solve(g);
 }
 
+/// B + S, with the eigenvalues of an indefinite sum replaced by their magnitudes (as saddle-free
+/// Newton does): where the secant term outweighs B along a direction, the model still curves there
+/// by as much, so a step goes down the slope by that measure. Shifting the whole model by μ until
+/// it was positive definite shortened every step with it: the walking robot then crawled at
+/// 0.02 units a step for ten iterations and stalled.
+Eigen::MatrixXd secant_model(const Eigen::MatrixXd& B, const Eigen::MatrixXd& S)
+{
+  Eigen::MatrixXd M = B + S;
+  if (Eigen::LLT<Eigen::MatrixXd>(M).info() == Eigen::Success) return M;
+  const Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> eigen(M);
+  return eigen.eigenvectors() * eigen.eigenvalues().cwiseAbs().asDiagonal() * eigen.eigenvectors().transpose();
+}
+
+/// The decrease a model (g, B) predicts for a step d.
+double predicted_decrease(const Eigen::VectorXd& g, const Eigen::MatrixXd& B, const Eigen::VectorXd& d)
+{
+  return -(g.dot(d) + 0.5 * d.dot(B * d));
+}
+
+/// NL2SOL's choice of model: B + S where it predicted the steps' decreases better, else B. Each
+/// model's misses |f − f_trial − predicted| are summed with a weight halving per step (NL2SOL
+/// compares the last step alone): a short step, which both predict alike, no longer hands the
+/// choice to whichever won by round-off (on the tentacle's tip B then took a 2.8-unit step,
+/// predicting a decrease of 0.039 where f rose by 0.025, and three rejections raised μ 64-fold).
+struct ModelChoice {
+  double missed_by_gauss_newton = 0, missed_by_augmented = 0;
+  bool augmented = false;
+
+  /// After a step d that lowered f by `decrease`, with g, B and S at its start.
+  void update(const Eigen::VectorXd& g, const Eigen::MatrixXd& B, const Eigen::MatrixXd& S, const Eigen::VectorXd& d,
+              double decrease)
+  {
+    missed_by_gauss_newton = 0.5 * missed_by_gauss_newton + std::abs(decrease - predicted_decrease(g, B, d));
+    missed_by_augmented = 0.5 * missed_by_augmented + std::abs(decrease - predicted_decrease(g, B + S, d));
+    augmented = missed_by_augmented < missed_by_gauss_newton;
+  }
+};
+
 /// The secant term S, NL2SOL's update and sizing (Dennis, Gay & Welsch, "An adaptive nonlinear
 /// least-squares algorithm", ACM TOMS 7(3), 1981): what the model B leaves out (the equilibria's
 /// and residuals' second derivatives), so that B + S satisfies the secant equation (B⁺ + S⁺)s = y
@@ -77,12 +122,6 @@ void secant_update(Eigen::MatrixXd& S, const Eigen::MatrixXd& B_new, const Eigen
   const double tau = sSs != 0 ? std::min(1.0, std::abs(s.dot(ysharp)) / std::abs(sSs)) : 1.0;
   const Eigen::VectorXd w = ysharp - tau * Ss;
   S = tau * S + (w * y.transpose() + y * w.transpose()) / ys - (w.dot(s) / (ys * ys)) * (y * y.transpose());
-}
-
-/// The decrease a model (g, B) predicts for a step d.
-double predicted_decrease(const Eigen::VectorXd& g, const Eigen::MatrixXd& B, const Eigen::VectorXd& d)
-{
-  return -(g.dot(d) + 0.5 * d.dot(B * d));
 }
 
 } // namespace
@@ -105,9 +144,8 @@ MinimizerResult minimize_levenberg_marquardt(const ModelObjective& f, Eigen::Vec
 
   double mu = kInitialDamping, nu = 2;
   Eigen::MatrixXd S = Eigen::MatrixXd::Zero(x.size(), x.size()); // secant term (secant_update)
-  // NL2SOL's choice of model: B + S where it predicted the last step's decrease better than B.
-  bool augmented = false;
-  const auto model = [&]() -> Eigen::MatrixXd { return augmented ? Eigen::MatrixXd(B + S) : B; };
+  ModelChoice choice;
+  const auto model = [&]() -> Eigen::MatrixXd { return choice.augmented ? secant_model(B, S) : B; };
   std::vector<double> values{fx}; // f after each iteration
   int rejected = 0;               // trial steps rejected in a row
   auto finish = [&](Termination why, std::string message) {
@@ -156,9 +194,8 @@ MinimizerResult minimize_levenberg_marquardt(const ModelObjective& f, Eigen::Vec
       }
       const double rho = (fx - trial) / predicted;
       if (std::isfinite(trial) && trial < fx && rho > 0) {
-        const double by_gauss_newton = predicted_decrease(g, B, d), by_augmented = predicted_decrease(g, B + S, d);
-        augmented = std::abs(fx - trial - by_augmented) < std::abs(fx - trial - by_gauss_newton);
-        secant_update(S, trial_B, d, trial_g - g);
+        choice.update(g, B, S, d, fx - trial);
+        if (d.cwiseAbs().maxCoeff() >= kLeastSecantStep) secant_update(S, trial_B, d, trial_g - g);
         x += d;
         fx = trial;
         g = std::move(trial_g);
@@ -181,7 +218,7 @@ MinimizerResult minimize_levenberg_marquardt(const ModelObjective& f, Eigen::Vec
       if (++rejected >= options.max_line_search)
         return finish(Termination::line_search,
                       fmt::format("{} trial steps in a row did not lower f (damping μ = {:.3g})", rejected, mu));
-      mu *= nu;
+      mu = std::max(mu, kLeastRaisedDamping) * nu;
       nu *= 2;
     }
   } catch (const Interrupted&) {
