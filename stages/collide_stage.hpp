@@ -23,8 +23,9 @@ public:
   /// under min_bend_radius refused; 5: the bend barrier samples each span's tightest point, min_bend_radius_mm in the
   /// report; 6: Levenberg-Marquardt's secant term, method hybrid (the default); 7: the skin tested where the
   /// optimizer's skin barrier held it (SkinBarrier::held); 8: each target's poses reached (where its regions and the
-  /// tracking curves' ends went); 9: Levenberg-Marquardt's ray model (a re-optimization's steps)
-  int version() const override { return 9; }
+  /// tracking curves' ends went); 9: Levenberg-Marquardt's ray model (a re-optimization's steps); 10: each span's
+  /// tightest point the tightest of its peaks, Levenberg-Marquardt's choice of model over recent steps
+  int version() const override { return 10; }
   void run(StageContext& ctx) const override;
 };
 

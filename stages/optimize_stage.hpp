@@ -33,8 +33,9 @@ public:
   /// report; 4: reached poses; 5: the bend radius barrier, bends in the report; 6: the bend barrier samples each
   /// span's tightest point, [optimize] method; 7: history.csv predicted_decrease, report.json refused,
   /// Levenberg-Marquardt's secant term, method hybrid (the default); 8: the start's skin tested where the skin
-  /// barrier holds it; 9: Levenberg-Marquardt's ray model, [optimize] starts (report.json starts, history.csv start)
-  int version() const override { return 9; }
+  /// barrier holds it; 9: Levenberg-Marquardt's ray model, [optimize] starts (report.json starts, history.csv start);
+  /// 10: each span's tightest point the tightest of its peaks, Levenberg-Marquardt's choice of model over recent steps
+  int version() const override { return 10; }
   void run(StageContext& ctx) const override;
 };
 
