@@ -20,9 +20,10 @@ constexpr double kInitialDamping = 1e-3;
 /// The least μ a rejected step raises: after a run of good steps μ can fall to 1e-16, and ×ν with ν
 /// doubling from there took eleven rejections to reach a useful damping (the twisting bar).
 constexpr double kLeastRaisedDamping = 1e-6;
-/// Steps shorter than this in every variable (units: mm or 10 kPa) teach the secant term nothing:
-/// their gradient change is mostly the adjoint's noise (on the twisting bar a 2e-6 step's update
-/// raised the model's predicted decrease 16-fold, and the run stalled 1.4× short of converging).
+/// Steps shorter than this in every variable (units: mm or 10 kPa) do not update the secant term:
+/// over so short a step the gradient's change is ruled by whatever is not smooth at that scale
+/// (on the twisting bar, the bend barrier's jump, since fixed: a 2e-6 step's update raised the
+/// model's predicted decrease 16-fold, and the run stalled 1.4× short of converging).
 constexpr double kLeastSecantStep = 1e-3;
 
 /// Marquardt's scaling D = diag(B), with entries under 1e-8 of its largest raised to that (a
