@@ -1,26 +1,32 @@
 #include "design/design_view.hpp"
 
+#include <algorithm>
 #include <functional>
 #include <utility>
 
 #include "design/design_file.hpp"
+#include "design/undeclared_value.hpp"
 
 namespace fibermold {
 
 namespace {
 
 using Copy = std::function<void(Design& to, const Design& from)>;
+using Undeclare = std::function<void(Design& to)>;
 
-/// A part of the design: a key (or a whole array section) and how to copy its value.
+/// A part of the design: a key (or a whole array section), how to copy its value, and how to make
+/// it undeclared (undeclared_value.hpp).
 struct Part {
   std::string key;
   Copy copy;
+  Undeclare undeclare;
 };
 
 #define FIBERMOLD_PART(key, member)                                                                                    \
   Part                                                                                                                 \
   {                                                                                                                    \
-    key, [](Design& to, const Design& from) { to.member = from.member; }                                               \
+    key, [](Design& to, const Design& from) { to.member = from.member; },                                              \
+        [](Design& to) { make_undeclared(to.member, key); }                                                            \
   }
 
 const std::vector<Part>& parts()
@@ -32,6 +38,10 @@ const std::vector<Part>& parts()
            [](Design& to, const Design& from) {
              to.design.units = from.design.units;
              to.design.surface_scale = from.design.surface_scale;
+           },
+           [](Design& to) {
+             make_undeclared(to.design.units, "design.units");
+             make_undeclared(to.design.surface_scale, "design.units");
            }},
       FIBERMOLD_PART("material.model", material.model),
       FIBERMOLD_PART("material.preset", material.preset),
@@ -120,12 +130,13 @@ Design design_view(const Design& design, const std::vector<std::string>& prefixe
   view.file = design.file;
   view.folder = design.folder;
   view.places = design.places;
+  // Every part undeclared first, then the declared ones copied: a row that copies another's member
+  // shows in that member, whatever the order of the rows.
+  for (const Part& part : parts()) part.undeclare(view);
   for (const Part& part : parts())
-    for (const std::string& prefix : prefixes)
-      if (view_part_under(part.key, prefix)) {
-        part.copy(view, design);
-        break;
-      }
+    if (std::any_of(prefixes.begin(), prefixes.end(),
+                    [&](const std::string& prefix) { return view_part_under(part.key, prefix); }))
+      part.copy(view, design);
   for (const auto& [key, value] : design.values)
     for (const std::string& prefix : prefixes)
       if (design_key_matches(key, prefix)) {

@@ -1,8 +1,10 @@
 #pragma once
 // What a stage sees of the design (docs/architecture.md, "Stages"): the values of the keys it
-// declares, every other value at its default. A stage that reads a value it did not declare sees
-// the default whatever the file says, so its outputs depend on what it declares and nothing else
-// of the design file: the runner's staleness, which hashes exactly those keys, cannot miss an edit.
+// declares, and in place of every other an undeclared value (undeclared_value.hpp: NaN, an int below
+// every range, "<undeclared key>", one undeclared element of an array section) that makes a use fail.
+// A stage that reads a value it did not declare fails instead of seeing the default whatever the file
+// says, so its outputs depend on what it declares and nothing else of the design file: the runner's
+// staleness, which hashes exactly those keys, cannot miss an edit.
 
 #include <string>
 #include <vector>
@@ -12,8 +14,8 @@
 namespace fibermold {
 
 /// `design` with only the values under `prefixes` ("mold", "sim.basis", "fiber": as
-/// Stage::design_keys() gives them) kept; the file, its folder and where each key was written are
-/// kept too, for error messages.
+/// Stage::design_keys() gives them) kept, every other undeclared; the file, its folder and where each
+/// key was written are kept too, for error messages.
 Design design_view(const Design& design, const std::vector<std::string>& prefixes);
 
 /// The parts a view is made of, as flat keys ("mold.wall", "fiber"): every key of the design file

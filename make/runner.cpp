@@ -198,23 +198,15 @@ std::vector<std::string> Runner::closure(const std::vector<std::string>& targets
   return ordered;
 }
 
-namespace {
-
-/// The design values a stage reads: those of its view (design_view.hpp).
-std::map<std::string, std::string> values_read(const Stage& stage, const Design& design)
-{
-  return design_view(design, stage.design_keys()).values;
-}
-
-} // namespace
-
 std::map<std::string, std::string> Runner::fingerprints(const Design& design) const
 {
   std::map<std::string, std::string> out;
   for (const auto& stage : stages_) {
+    // The design values it reads and the files they name: those of its view (design_view.hpp).
+    const Design view = design_view(design, stage->design_keys());
     std::string text = fmt::format("{} {} v{}\n", program_, stage->name(), stage->version());
-    for (const auto& [key, value] : values_read(*stage, design)) text += key + " = " + value + "\n";
-    for (const fs::path& file : stage->input_files(design)) text += file.string() + " " + hash_file(file) + "\n";
+    for (const auto& [key, value] : view.values) text += key + " = " + value + "\n";
+    for (const fs::path& file : stage->input_files(view)) text += file.string() + " " + hash_file(file) + "\n";
     for (const std::string& up : stage->upstream()) text += up + " " + out.at(up) + "\n";
     out[stage->name()] = hash_bytes(text);
   }
@@ -226,8 +218,10 @@ Stamp Runner::current_inputs(const Stage& stage, const Design& design, const fs:
   Stamp s;
   s.program = program_;
   s.stage_version = stage.version();
-  s.design = values_read(stage, design);
-  for (const fs::path& file : stage.input_files(design)) s.files[file.string()] = hash_file(file);
+  // The design values it reads and the files they name: those of its view (design_view.hpp).
+  const Design view = design_view(design, stage.design_keys());
+  s.design = view.values;
+  for (const fs::path& file : stage.input_files(view)) s.files[file.string()] = hash_file(file);
   for (const std::string& up : stage.upstream())
     if (auto up_stamp = Stamp::load(stamp_path(build_dir, up)))
       for (const auto& [file, hash] : up_stamp->outputs) s.upstream[up + "/" + file] = hash;
@@ -350,7 +344,7 @@ StageRun Runner::run_stage(const Stage& stage, const Design& design, const fs::p
   const auto elapsed = [&] { return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count(); };
   record.info("{} stage v{} in {}", program_, stage.version(), build_dir.string());
   try {
-    // The stage sees the keys it declares and defaults for the rest (design_view.hpp).
+    // The stage sees the keys it declares and undeclared values for the rest (design_view.hpp).
     const Design view = design_view(design, stage.design_keys());
     StageContext ctx{view, build_dir, staging, p, log};
     stage.run(ctx);

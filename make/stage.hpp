@@ -41,7 +41,8 @@ public:
   virtual std::vector<std::string> upstream() const { return {}; }
   /// Design values this stage reads, as prefixes: "mold", "sim.basis", "fiber".
   virtual std::vector<std::string> design_keys() const = 0;
-  /// Files outside the build folder this stage reads (the surface, target surfaces).
+  /// Files outside the build folder this stage reads (the surface, target surfaces), named by the
+  /// design as the stage sees it (its view: design_view.hpp).
   virtual std::vector<std::filesystem::path> input_files(const Design&) const { return {}; }
   /// Bump when the stage's algorithm changes, so that old outputs go stale.
   virtual int version() const { return 1; }

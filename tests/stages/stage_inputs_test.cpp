@@ -1,6 +1,7 @@
 // What each stage reads of the design (docs/architecture.md, "Stages"): the keys it declares,
 // through its view (design/design_view.hpp), and nothing else; the runner hashes the same keys.
 
+#include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
@@ -100,8 +101,8 @@ TEST(StageInputs, EditingEveryKeyMakesStaleExactlyTheStagesThatSeeIt)
   EXPECT_GT(edits, 500);
 }
 
-/// A view holds what its stage declares and the defaults for the rest.
-TEST(StageInputs, AViewHoldsTheDeclaredValuesAndDefaultsForTheRest)
+/// A view holds what its stage declares and undeclared values (design/undeclared_value.hpp) for the rest.
+TEST(StageInputs, AViewHoldsTheDeclaredValuesAndUndeclaredOnesForTheRest)
 {
   const Design d = load_design(fs::path(FIBERMOLD_SOURCE_DIR) / "examples/walking-robot/design.toml");
   const Design defaults;
@@ -111,9 +112,13 @@ TEST(StageInputs, AViewHoldsTheDeclaredValuesAndDefaultsForTheRest)
   const Design molds = design_view(d, {"mold", "muscle.diameter"});
   EXPECT_EQ(molds.mold.block.sprue_diameter, d.mold.block.sprue_diameter);
   EXPECT_EQ(molds.muscle.model.diameter, d.muscle.model.diameter);
-  EXPECT_TRUE(molds.fibers.empty());
-  EXPECT_TRUE(molds.targets.empty());
-  EXPECT_EQ(molds.design.surface, fs::path());
+  EXPECT_TRUE(std::isnan(molds.muscle.max_pressure));
+  EXPECT_TRUE(std::isnan(molds.collide.clearance));
+  ASSERT_EQ(molds.fibers.size(), 1u);
+  EXPECT_EQ(molds.fibers[0].name, "<undeclared fiber>");
+  ASSERT_EQ(molds.targets.size(), 1u);
+  EXPECT_EQ(molds.targets[0].name, "<undeclared target>");
+  EXPECT_EQ(molds.design.surface, fs::path("<undeclared design.surface>"));
   EXPECT_EQ(molds.file, d.file);
   EXPECT_EQ(molds.places, d.places);
   for (const auto& [key, value] : molds.values)
