@@ -1,7 +1,6 @@
 #include "molds/mold_block.hpp"
 
 #include <algorithm>
-#include <cctype>
 #include <cmath>
 
 #include <Eigen/Geometry>
@@ -205,7 +204,7 @@ void label_half(SurfaceMesh& half, bool lower, const Eigen::Vector3d& box_lo, co
     placed.insert(placed.begin(), *l);
   else
     part.unlabelled.push_back(fmt::format("no room for \"{}\" ({:.0f} mm capitals or more) on any side or end face",
-                                          texts.back(), style.min_height / 1e-3));
+                                          texts.back(), style.min_height / units::mm));
   try {
     half = engrave(half, placed, style, o.min_wall);
   } catch (const std::exception& e) {
@@ -226,11 +225,8 @@ std::vector<std::string> part_label_texts(const std::string& design, const std::
 {
   const std::string n = shot.starts_with("shot") ? shot.substr(4) : shot;
   const std::string half = lower ? "LOWER" : "UPPER", brief = "S" + n + (lower ? "L" : "U");
-  std::string name; // as cut: capitals, '?' for what the font lacks
-  for (const char c : design)
-    name += static_cast<unsigned char>(c) < 32 || static_cast<unsigned char>(c) > 126
-                ? '?'
-                : static_cast<char>(std::toupper(static_cast<unsigned char>(c)));
+  std::string name; // as cut
+  for (const char c : design) name += label_character(c);
   std::vector<std::string> texts;
   if (!name.empty()) texts = {name + " S" + n + " " + half, name + " " + brief};
   texts.push_back("S" + n + " " + half);

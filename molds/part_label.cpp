@@ -409,6 +409,20 @@ bool lands_print(const std::string& text, double height, const LabelStyle& style
   }
 }
 
+std::vector<double> label_heights(const LabelStyle& style)
+{
+  std::vector<double> out;
+  const int steps = static_cast<int>(std::floor((style.max_height - style.min_height) / style.height_step + 1e-9));
+  for (int k = 0; k <= steps; ++k) out.push_back(style.max_height - k * style.height_step);
+  return out;
+}
+
+char label_character(char c)
+{
+  const auto u = static_cast<unsigned char>(c);
+  return u < 32 || u > 126 ? '?' : static_cast<char>(std::toupper(u));
+}
+
 std::vector<std::vector<Eigen::Vector2d>> text_strokes(const std::string& text, double height, double gap)
 {
   const std::array<Glyph, 128>& glyphs = font();
@@ -416,8 +430,7 @@ std::vector<std::vector<Eigen::Vector2d>> text_strokes(const std::string& text, 
   std::vector<std::vector<Eigen::Vector2d>> strokes, previous;
   double x = 0; // m, where the letter's box starts
   for (const char ch : text) {
-    int c = std::toupper(static_cast<unsigned char>(ch));
-    if (c < 32 || c > 126) c = '?';
+    const int c = label_character(ch);
     std::vector<std::vector<Eigen::Vector2d>> letter;
     for (const auto& path : glyphs[c].paths) {
       std::vector<Eigen::Vector2d> p;
@@ -471,13 +484,14 @@ std::optional<PlacedLabel> place_label(const SurfaceMesh& part, const std::vecto
   const double clear = min_wall + style.depth, below = style.depth + min_wall;
   const double gap = style.stroke + kLandFactor * min_wall;
   std::map<std::pair<std::string, long>, bool> prints;
+  const std::vector<double> heights = label_heights(style);
   for (const std::string& text : texts) {
     if (unit_box(text_strokes(text, 1.0, 0)).second.isZero()) continue;
     for (const LabelFace& face : faces) {
       const FaceFrame frame = frame_of(face.centre, face.normal, face.up);
       const FaceSurroundings s = surroundings(part, frame, face.size, clear, below, placed);
       const Eigen::Vector2d near = face.near ? frame.local(*face.near).head<2>().eval() : Eigen::Vector2d::Zero();
-      for (double h = style.max_height; h >= style.min_height - 1e-9; h -= style.height_step) {
+      for (const double h : heights) {
         const Eigen::Vector2d extent =
             unit_box(text_strokes(text, h, gap)).second + Eigen::Vector2d::Constant(style.stroke);
         for (const Eigen::Vector2d& at : candidate_centres(face.size, extent, clear, near)) {

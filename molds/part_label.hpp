@@ -50,6 +50,13 @@ struct PlacedLabel {
   double depth = 0;                                 ///< m, of the grooves' floor under the face
 };
 
+/// The capital heights tried, from max_height down by height_step to min_height, each computed as
+/// max − k·step (repeated subtraction drifted to 5.999999999999998 mm).
+std::vector<double> label_heights(const LabelStyle& style);
+
+/// The character the font cuts for `c`: lower case as capitals, anything but printable ASCII as '?'.
+char label_character(char c);
+
 /// The strokes of `text` (printable ASCII; lower case is cut as capitals, other characters as '?') as
 /// polylines in the plane, m: capitals `height` high from the baseline y = 0, starting at x = 0; each
 /// letter moved right from the font's spacing where needed to keep `gap` (m, axis to axis) from the

@@ -194,6 +194,14 @@ TEST(PartLabel, EveryLetterAndDigitIsCutOnlyWhereItsLandsPrint)
     }
 }
 
+TEST(PartLabel, TheHeightsTriedAreWholeHalfMillimetresToTheLastDigit)
+{
+  // As the report prints them in mm: 8, 7.5, …, 5 (repeated subtraction gave 6.999999999999999 on).
+  const std::vector<double> heights = label_heights(kStyle);
+  ASSERT_EQ(heights.size(), 7u);
+  for (std::size_t k = 0; k < heights.size(); ++k) EXPECT_EQ(heights[k] / mm, 8.0 - 0.5 * static_cast<double>(k));
+}
+
 TEST(PartLabel, TextsShortenFromTheFullLabel)
 {
   EXPECT_EQ(part_label_texts("gripper", "shot2", false),
