@@ -1,6 +1,7 @@
 #include "mesh/surface_mesh.hpp"
 
 #include <algorithm>
+#include <array>
 #include <numeric>
 
 #include <Eigen/Geometry>
@@ -68,6 +69,40 @@ double surface_area(const SurfaceMesh& s)
     area += (b - a).cross(c - a).norm() / 2;
   }
   return area;
+}
+
+SurfaceMesh canonical_order(const SurfaceMesh& surface)
+{
+  const Eigen::Index nv = surface.num_vertices(), nf = surface.num_faces();
+  std::vector<Eigen::Index> by_position(static_cast<std::size_t>(nv));
+  std::iota(by_position.begin(), by_position.end(), Eigen::Index{0});
+  const auto at = [&](Eigen::Index v) {
+    return std::array<double, 3>{surface.vertices(v, 0), surface.vertices(v, 1), surface.vertices(v, 2)};
+  };
+  std::stable_sort(by_position.begin(), by_position.end(),
+                   [&](Eigen::Index a, Eigen::Index b) { return at(a) < at(b); });
+  SurfaceMesh out;
+  out.source = surface.source;
+  out.vertices.resize(nv, 3);
+  std::vector<int> index_of(static_cast<std::size_t>(nv));
+  for (Eigen::Index k = 0; k < nv; ++k) {
+    out.vertices.row(k) = surface.vertices.row(by_position[static_cast<std::size_t>(k)]);
+    index_of[static_cast<std::size_t>(by_position[static_cast<std::size_t>(k)])] = static_cast<int>(k);
+  }
+  std::vector<std::array<int, 3>> faces(static_cast<std::size_t>(nf));
+  for (Eigen::Index f = 0; f < nf; ++f) {
+    std::array<int, 3>& t = faces[static_cast<std::size_t>(f)];
+    for (int c = 0; c < 3; ++c)
+      t[static_cast<std::size_t>(c)] = index_of[static_cast<std::size_t>(surface.faces(f, c))];
+    std::rotate(t.begin(), std::min_element(t.begin(), t.end()), t.end()); // the same turn
+  }
+  std::sort(faces.begin(), faces.end());
+  out.faces.resize(nf, 3);
+  for (Eigen::Index f = 0; f < nf; ++f) {
+    const std::array<int, 3>& t = faces[static_cast<std::size_t>(f)];
+    out.faces.row(f) << t[0], t[1], t[2];
+  }
+  return out;
 }
 
 } // namespace fibermold

@@ -17,6 +17,12 @@ struct SurfaceMesh {
   Eigen::Index num_faces() const { return faces.rows(); }
 };
 
+/// The same triangles in a canonical order: vertices sorted by position (x, then y, then z; ties
+/// keep their order), each face starting at its least vertex (its turn kept), faces sorted. Two
+/// lists of the same triangles give the same mesh byte for byte, whatever order a library made
+/// them in (CGAL's booleans and OpenVDB's mesher do not keep one from run to run with threads).
+SurfaceMesh canonical_order(const SurfaceMesh& surface);
+
 /// Volume enclosed by a closed, consistently oriented surface (divergence theorem); negative when
 /// the faces point inward.
 double signed_volume(const SurfaceMesh& surface);

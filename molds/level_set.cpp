@@ -370,7 +370,7 @@ SurfaceMesh collect(openvdb::tools::VolumeToMesh& mesher)
   s.faces.resize(static_cast<Eigen::Index>(faces.size()), 3);
   for (std::size_t f = 0; f < faces.size(); ++f) s.faces.row(static_cast<Eigen::Index>(f)) = faces[f].transpose();
   if (signed_volume(s) < 0) s.faces.col(1).swap(s.faces.col(2)); // OpenVDB's winding is inward
-  return s;
+  return canonical_order(s);
 }
 
 /// Faces more than 60° off the level set's gradient (index coordinates of their centres): adaptive

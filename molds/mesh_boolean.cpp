@@ -56,7 +56,7 @@ SurfaceMesh from_cgal(Mesh m)
     for (auto v : CGAL::vertices_around_face(m.halfedge(f), m)) s.faces(row, c++) = static_cast<int>(v.idx());
     ++row;
   }
-  return s;
+  return canonical_order(s); // CGAL's order changed from run to run (shot 2's parts of the walking robot)
 }
 
 template <typename Op> SurfaceMesh boolean(const SurfaceMesh& a, const SurfaceMesh& b, const char* what, Op op)
