@@ -23,7 +23,10 @@ MinimizerResult run(RoutingProblem& problem, int stage, const MinimizerOptions& 
   const ModelObjective model = [&](const Eigen::VectorXd& z, Eigen::VectorXd& g, Eigen::MatrixXd& B) {
     return problem.evaluate(z, &g, nullptr, &B);
   };
-  const ExactPart exact = [&](const Eigen::VectorXd& z) { return problem.regularizer_value(z); };
+  const ExactPart exact{[&](const Eigen::VectorXd& z) { return problem.regularizer_value(z); },
+                        [&](const Eigen::VectorXd& z, Eigen::VectorXd& g, Eigen::MatrixXd& H) {
+                          problem.regularizer_derivatives(z, g, H);
+                        }};
   const Eigen::VectorXd z0 = problem.variables(problem.base());
   switch (options.method) {
   case Method::levenberg_marquardt:

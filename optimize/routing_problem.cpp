@@ -313,6 +313,22 @@ double RoutingProblem::regularizer_value(const Eigen::VectorXd& z) const
   return std::isfinite(value) && fibers_inside(r) ? value : HUGE_VAL;
 }
 
+void RoutingProblem::regularizer_derivatives(const Eigen::VectorXd& z, Eigen::VectorXd& gradient,
+                                             Eigen::MatrixXd& hessian) const
+{
+  if (last_regularizer_.z.size() == z.size() && last_regularizer_.z == z) {
+    gradient = last_regularizer_.gradient;
+    hessian = last_regularizer_.hessian;
+    return;
+  }
+  RoutingTerms terms;
+  gradient = Eigen::VectorXd::Zero(size());
+  counting_refusals_ = false;
+  regularizers(routing(z), &gradient, terms);
+  counting_refusals_ = true;
+  hessian = regularizer_hessian(z);
+}
+
 Eigen::MatrixXd RoutingProblem::mixed_columns(int t, const Eigen::VectorXd& x,
                                               const std::vector<const MuscleEnergy*>& muscles,
                                               std::vector<Eigen::Index>& columns) const
@@ -367,6 +383,7 @@ double RoutingProblem::evaluate(const Eigen::VectorXd& z, Eigen::VectorXd* gradi
   if (model) B = Eigen::MatrixXd::Zero(size(), size());
   if (!std::isfinite(regularizers(r, gradient ? &g : nullptr, terms))) return HUGE_VAL; // counted where refused
   if (!fibers_inside(r)) return refuse("outside the body");
+  const Eigen::VectorXd regularizer_gradient = g;
   for (int t = 0; t < num_targets(); ++t) {
     if (!target_active_[t]) continue;
     auto owned = muscles(r, t);
@@ -406,7 +423,8 @@ double RoutingProblem::evaluate(const Eigen::VectorXd& z, Eigen::VectorXd* gradi
   if (gradient) *gradient = g;
   if (model) {
     const auto model_start = Clock::now();
-    *model = B + regularizer_hessian(z);
+    last_regularizer_ = {z, regularizer_gradient, regularizer_hessian(z)};
+    *model = B + last_regularizer_.hessian;
     seconds_model_ += since(model_start);
   }
   if (terms_out) *terms_out = terms;

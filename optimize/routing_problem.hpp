@@ -109,6 +109,10 @@ public:
   /// past a wall (as evaluate scores it) or with a fiber outside the body. The exact part of
   /// Levenberg-Marquardt's ray model (ray_model.hpp). Counts no refusal.
   double regularizer_value(const Eigen::VectorXd& z) const;
+  /// The gradient of those terms at z and their Hessian as the model holds it (regularizer_hessian()):
+  /// Levenberg-Marquardt's exact part, which its secant term does not learn. At the last point
+  /// evaluate built a model at, what it computed there.
+  void regularizer_derivatives(const Eigen::VectorXd& z, Eigen::VectorXd& gradient, Eigen::MatrixXd& hessian) const;
 
   /// The terms of the finite evaluation whose total is `value`: the last one, or the best one
   /// since set_free (the two points a line search can accept).
@@ -184,6 +188,11 @@ private:
   NewtonTotals newton_;
   mutable std::map<std::string, int> refusals_;
   mutable bool counting_refusals_ = true; ///< false while regularizer_value probes a design
+  /// The regularizers' gradient and model Hessian at the last z evaluate built a model at.
+  struct RegularizerDerivatives {
+    Eigen::VectorXd z, gradient;
+    Eigen::MatrixXd hessian;
+  } last_regularizer_;
   /// Counts a refused design under `why` and returns its score, +∞.
   double refuse(const char* why) const
   {

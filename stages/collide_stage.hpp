@@ -24,8 +24,9 @@ public:
   /// report; 6: Levenberg-Marquardt's secant term, method hybrid (the default); 7: the skin tested where the
   /// optimizer's skin barrier held it (SkinBarrier::held); 8: each target's poses reached (where its regions and the
   /// tracking curves' ends went); 9: Levenberg-Marquardt's ray model (a re-optimization's steps); 10: each span's
-  /// tightest point the tightest of its peaks, Levenberg-Marquardt's choice of model over recent steps
-  int version() const override { return 10; }
+  /// tightest point the tightest of its peaks, Levenberg-Marquardt's choice of model over recent steps; 11: its model
+  /// always B + S, S learning only what B leaves out of the simulation's part
+  int version() const override { return 11; }
   void run(StageContext& ctx) const override;
 };
 

@@ -2,7 +2,8 @@
 // r = (10(x₂ − x₁²), 1 − x₁), which converges by the model's decrease (a first-order criterion,
 // not a stall) with |x − (1, 1)| ≤ 1e-6; a region of +∞ in the way; and a model that cannot
 // reach the minimum (a barrier the objective has and the model lacks) ends by its rejections;
-// a barrier whose exact values the minimizer is given (ray_model.hpp) is approached, not hit.
+// a barrier whose exact values the minimizer is given (ray_model.hpp) is approached, not hit, and
+// with its derivatives given the secant term learns nothing of it.
 #include <cmath>
 #include <utility>
 
@@ -143,6 +144,14 @@ TEST(LevenbergMarquardt, AWallTheModelDoesNotKnowEndsTheRunAtTheBestPointNotConv
 /// The model holds the barrier's Hessian at x, which is flat far from the wall.
 constexpr double kBarrierWeight = 0.01;
 double barrier_part(const Eigen::VectorXd& x) { return x[0] < 1 ? -kBarrierWeight * std::log(1 - x[0]) : HUGE_VAL; }
+/// Its gradient and Hessian, which the model below holds exactly.
+void barrier_derivatives(const Eigen::VectorXd& x, Eigen::VectorXd& g, Eigen::MatrixXd& H)
+{
+  const double w = 1 - x[0];
+  g = Eigen::Vector2d(kBarrierWeight / w, 0);
+  H = Eigen::Matrix2d::Zero();
+  H(0, 0) = kBarrierWeight / (w * w);
+}
 
 TEST(LevenbergMarquardt, ABarriersExactValuesKeepItsStepsShortOfTheWall)
 {
@@ -165,7 +174,7 @@ TEST(LevenbergMarquardt, ABarriersExactValuesKeepItsStepsShortOfTheWall)
   const MinimizerResult blind = minimize_levenberg_marquardt(f, Eigen::Vector2d(0, 1), o, nullptr, progress);
   const int blind_infinite = std::exchange(infinite, 0), blind_evaluations = std::exchange(evaluations, 0);
   const MinimizerResult seeing =
-      minimize_levenberg_marquardt(f, Eigen::Vector2d(0, 1), o, nullptr, progress, barrier_part);
+      minimize_levenberg_marquardt(f, Eigen::Vector2d(0, 1), o, nullptr, progress, {barrier_part, barrier_derivatives});
   const double minimum = (3 - std::sqrt(1.04)) / 2;
   EXPECT_TRUE(seeing.converged()) << seeing.message;
   EXPECT_NEAR(seeing.x[0], minimum, 1e-7);
@@ -176,13 +185,23 @@ TEST(LevenbergMarquardt, ABarriersExactValuesKeepItsStepsShortOfTheWall)
   RecordProperty("evaluations", evaluations);
   RecordProperty("evaluations_without_the_exact_part", blind_evaluations);
   EXPECT_TRUE(blind.converged() || blind.termination == Termination::line_search) << blind.message;
+
+  // With the barrier's values but not its derivatives, the secant term learns the change of the
+  // barrier's curvature along each step, which B already holds, and overstates it.
+  const int seeing_evaluations = std::exchange(evaluations, 0);
+  const MinimizerResult valued =
+      minimize_levenberg_marquardt(f, Eigen::Vector2d(0, 1), o, nullptr, progress, {barrier_part, {}});
+  EXPECT_TRUE(valued.converged()) << valued.message;
+  EXPECT_LT(seeing_evaluations, evaluations);
+  RecordProperty("evaluations_with_the_exact_values_alone", evaluations);
 }
 
-TEST(LevenbergMarquardt, AnIndefiniteModelIsShiftedUntilItHasAMinimum)
+TEST(LevenbergMarquardt, AnIndefiniteModelStepsDownhillByItsEigenvaluesMagnitudes)
 {
   // f = Σ (¼xᵢ⁴ − ½xᵢ²) + 1 with its exact Hessian diag(3xᵢ² − 1): indefinite at the start (0.05, 3),
-  // where the first variable sits near the top of its hump: μ is raised to twice what makes
-  // B + μD positive definite, and both variables reach their minima at 1 in a few steps.
+  // where the first variable sits near the top of its hump. The model takes the magnitudes of its
+  // eigenvalues (saddle-free Newton), so the step leaves the hump downhill, and both variables
+  // reach their minima at 1 in a few steps.
   const ModelObjective f = [](const Eigen::VectorXd& x, Eigen::VectorXd& g, Eigen::MatrixXd& B) {
     g = x.array().cube() - x.array();
     B = (3 * x.array().square() - 1).matrix().asDiagonal();

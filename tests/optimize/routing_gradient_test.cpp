@@ -73,6 +73,18 @@ TEST(RoutingProblem, GradientMatchesFiniteDifferencesAtRandomDesigns)
               static_cast<long>(nr), pressure_error);
   EXPECT_TRUE(test::matches_fd(analytic.head(nr), fd.head(nr), 1e-5));
   EXPECT_TRUE(test::matches_fd(analytic.tail(np), fd.tail(np), 1e-5));
+
+  // The regularizers' part, Levenberg-Marquardt's exact part: its gradient against differences of
+  // its values, and the same derivatives whether computed afresh or kept from evaluate's model.
+  Eigen::VectorXd exact_gradient, kept_gradient;
+  Eigen::MatrixXd exact_hessian, kept_hessian, model;
+  problem.regularizer_derivatives(z, exact_gradient, exact_hessian);
+  const test::ScalarFunction r = [&](const Eigen::VectorXd& v) { return problem.regularizer_value(v); };
+  EXPECT_TRUE(test::matches_fd(exact_gradient, test::fd_gradient(r, z, 1e-3), 1e-5));
+  ASSERT_TRUE(std::isfinite(problem.evaluate(z, &analytic, nullptr, &model)));
+  problem.regularizer_derivatives(z, kept_gradient, kept_hessian);
+  EXPECT_EQ(kept_gradient, exact_gradient);
+  EXPECT_EQ(kept_hessian, exact_hessian);
 }
 
 TEST(RoutingProblem, SensitivitiesAndModelHessianMatchFiniteDifferences)
