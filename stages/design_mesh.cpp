@@ -38,13 +38,15 @@ double require_mesh_size(const Design& d, const SurfaceMesh& surface, double vol
                          SurfaceTriangles policy, const std::string& key)
 {
   const double tets = expected_tets(volume, edge, policy, surface);
+  const bool refined = key == "[optimize].refine";
   if (tets > d.mesh.max_tets)
-    throw InputError(
-        design_problem(d, key,
-                       fmt::format("{}{:.4g} mm for a body of {:.4g} mm³ would make about {:.3g} tets, more than "
-                                   "[mesh].max_tets = {}; raise edge_length, or check [design].units",
-                                   key == "[optimize].refine" ? "the refined mesh's edge length, " : "",
-                                   edge / units::mm, volume / 1e-9, tets, d.mesh.max_tets)));
+    throw InputError(design_problem(
+        d, key,
+        fmt::format("{}{:.4g} mm for a body of {:.4g} mm³ would make about {:.3g} tets, more than "
+                    "[mesh].max_tets = {}; {}",
+                    refined ? "the refined mesh's edge length, " : "", edge / units::mm, volume / 1e-9, tets,
+                    d.mesh.max_tets,
+                    refined ? "raise max_tets or turn refine off" : "raise edge_length, or check [design].units")));
   return tets;
 }
 
@@ -84,6 +86,12 @@ double target_edge_length(const Design& design, double body_volume)
   return design.mesh.edge_length ? *design.mesh.edge_length : default_edge_length(body_volume);
 }
 
+double require_refined_mesh_size(const Design& d, const SurfaceMesh& surface, double volume)
+{
+  const double edge = kRefinedEdgeFactor * target_edge_length(d, volume);
+  return require_mesh_size(d, surface, volume, edge, refined_policy(d, surface, edge), "[optimize].refine");
+}
+
 TetMesh refined_design_mesh(const Design& d, Progress& progress)
 {
   SurfaceCheck check;
@@ -91,9 +99,8 @@ TetMesh refined_design_mesh(const Design& d, Progress& progress)
   nlohmann::json seconds;
   const SurfaceMesh surface = prepared_surface(d, check, repair, seconds);
   const double edge = kRefinedEdgeFactor * target_edge_length(d, check.volume);
-  const SurfaceTriangles policy = refined_policy(d, surface, edge);
-  require_mesh_size(d, surface, check.volume, edge, policy, "[optimize].refine");
-  return mesh_body(surface, policy, tet_options(d, edge), progress).mesh;
+  require_refined_mesh_size(d, surface, check.volume);
+  return mesh_body(surface, refined_policy(d, surface, edge), tet_options(d, edge), progress).mesh;
 }
 
 } // namespace fibermold

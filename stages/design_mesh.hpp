@@ -40,6 +40,11 @@ double target_edge_length(const Design& design, double body_volume);
 /// The refined mesh's edge length, × the mesh's (`[optimize] refine`, `fibermold simulate --refine`).
 inline constexpr double kRefinedEdgeFactor = 0.5;
 
+/// The refined mesh's size (`[optimize] refine`) as check and the optimize stage both judge it:
+/// its tets estimated at kRefinedEdgeFactor × the edge length with refined_policy's surface,
+/// refused over [mesh] max_tets under the key [optimize].refine. Returns the estimate.
+double require_refined_mesh_size(const Design& d, const SurfaceMesh& surface, double volume);
+
 /// The body meshed as the mesh stage meshes it, at kRefinedEdgeFactor × its edge length, the
 /// surface's triangles split or remeshed to that length. Throws InputError as the stage.
 TetMesh refined_design_mesh(const Design& design, Progress& progress);

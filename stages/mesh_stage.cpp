@@ -226,11 +226,7 @@ DesignSurfaceCheck check_design_surface(const Design& design)
   c.edge_length = edge;
   c.treatment = surface_treatment(design.mesh.surface_triangles, surface, edge);
   c.estimated_tets = require_mesh_size(design, surface, check.volume, edge, design.mesh.surface_triangles);
-  if (design.optimize.enabled && design.optimize.refine) {
-    const double refined = kRefinedEdgeFactor * edge;
-    require_mesh_size(design, surface, check.volume, refined, refined_policy(design, surface, refined),
-                      "[optimize].refine");
-  }
+  if (design.optimize.enabled && design.optimize.refine) require_refined_mesh_size(design, surface, check.volume);
   const MeshedSurface meshed = surface_for_mesh(surface, design.mesh.surface_triangles, edge);
   std::vector<std::vector<Eigen::Vector3d>> fibers;
   for (const Fiber& f : design.fibers) fibers.push_back(f.points);

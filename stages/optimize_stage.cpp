@@ -336,15 +336,16 @@ OptimizationEnding report_targets(StageContext& ctx, DesignRouting& dr, const Ro
   return ending;
 }
 
-/// With [optimize] refine: the refined solve's mesh refused before the optimization, not after it.
-void require_refinable(const Design& d, const TetMesh& mesh)
+/// With [optimize] refine: the refined solve's mesh refused before the optimization, not after it,
+/// by the rule check uses.
+void require_refinable(const Design& d)
 {
-  if (d.optimize.refine && 8.0 * static_cast<double>(mesh.num_tets()) > d.mesh.max_tets)
-    bad(d, "[optimize].refine",
-        fmt::format("the refined mesh, at half the edge length, would make about {} tets, more than [mesh].max_tets = "
-                    "{}: raise "
-                    "max_tets or turn refine off",
-                    8 * mesh.num_tets(), d.mesh.max_tets));
+  if (!d.optimize.refine) return;
+  SurfaceCheck check;
+  RepairReport repair;
+  nlohmann::json seconds;
+  const SurfaceMesh surface = prepared_surface(d, check, repair, seconds);
+  require_refined_mesh_size(d, surface, check.volume);
 }
 
 /// With [optimize] refine: each target's optimized actuation solved from rest on a mesh of half
@@ -490,7 +491,7 @@ void OptimizeStage::run(StageContext& ctx) const
   }
   DesignRouting dr(ctx);
   require_optimizable(d, *dr.skin);
-  require_refinable(d, dr.mesh);
+  require_refinable(d);
   const OptimizationStart begun = optimization_start(d, *dr.skin);
   for (const std::string& line : begun.log) ctx.log.info("{}", line);
   if (!begun.warning.empty()) ctx.log.warn("{}", begun.warning);

@@ -2,6 +2,7 @@
 // from a perturbed start; its outputs, its errors, Ctrl-C, and which edits rerun it.
 #include <algorithm>
 #include <cmath>
+#include <regex>
 #include <vector>
 
 #include <fmt/format.h>
@@ -249,6 +250,31 @@ TEST_F(OptimizeE2E, RefineStatesTheOptimizedRobotsDiscretizationError)
   EXPECT_GT(f["curves_rms_mm"].get<double>(), s["rmse_mm"].get<double>());
   EXPECT_TRUE(warned) << report["warnings"].dump();
   EXPECT_THAT(test::read_text(dir_ / "build" / "logs" / "optimize.log"), HasSubstr("on half the edge length"));
+}
+
+/// check and the optimize stage refuse a refined mesh over [mesh] max_tets by one rule
+/// (require_refined_mesh_size): with max_tets at twice the mesh's own estimate, the mesh passes and
+/// both refuse the refined one, at half the edge length, with the same message (the stage used
+/// 8 × the mesh's tets, which check did not).
+TEST_F(OptimizeE2E, CheckAndTheStageRefuseATooLargeRefinedMeshAlike)
+{
+  design("[optimize]\nmax_iterations = 3\n");
+  ASSERT_EQ(test::run_fibermold("make design.toml mesh --build-dir build", dir_.path()).exit_code, 0);
+  const double estimate = nlohmann::json::parse(
+      test::read_text(dir_ / "build" / "mesh" / "report.json"))["mesh"]["sizing"]["estimated_tets"];
+  std::string text = kDesign + "[optimize]\nmax_iterations = 3\nrefine = true\n";
+  text.replace(text.find("edge_length = 8"), 15, fmt::format("edge_length = 8\nmax_tets = {:.0f}", 2 * estimate));
+  test::write_text(dir_ / "design.toml", text);
+  const auto checked = test::run_fibermold("check design.toml", dir_.path());
+  const auto made = make();
+  EXPECT_EQ(checked.exit_code, 2) << checked.out << checked.err;
+  EXPECT_EQ(made.exit_code, 2) << made.out << made.err;
+  const std::regex refusal("\\[optimize\\]\\.refine: [^\\n]*would make about [0-9.e+]+ tets[^\\n]*");
+  std::smatch in_check, in_make;
+  ASSERT_TRUE(std::regex_search(checked.err, in_check, refusal)) << checked.err;
+  ASSERT_TRUE(std::regex_search(made.err, in_make, refusal)) << made.err;
+  EXPECT_EQ(in_check.str(), in_make.str());
+  std::printf("refused alike at max_tets = %.0f: %s\n", 2 * estimate, in_check.str().c_str());
 }
 
 /// One rule for how far a fiber stays from the skin (stages/skin_distance.hpp): where the groove
