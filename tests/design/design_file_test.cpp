@@ -226,6 +226,11 @@ TEST_F(DesignFileTest, MuscleModelMustStayMeaningful)
               HasSubstr("[muscle].stiffness: the two lines are parallel and distinct"));
   EXPECT_THAT(problem(std::string(kMinimal) + "[muscle]\nmax_pressure = 2500\n"),
               HasSubstr("[muscle].max_pressure: at 2500 kPa the muscle would contract by more than 95 %"));
+  // The documented default, written out, is taken (its intercept is 4.07e9 Pa; the bound was 1e9).
+  const Design d = parse(std::string(kMinimal) + "[muscle]\ntaut = [[-23.91e3, 4067.66e6], [-986.60, 833.51e6]]\n");
+  EXPECT_EQ(d.muscle.model.taut.intercept_low, MuscleParameters{}.taut.intercept_low);
+  EXPECT_THAT(problem(std::string(kMinimal) + "[muscle]\ntaut = [[1, 2e12], [2, 3]]\n"),
+              HasSubstr("[muscle].taut: every coefficient must be in [-1e12, 1e12]"));
 }
 
 TEST_F(DesignFileTest, NamesMustBeUnique)
