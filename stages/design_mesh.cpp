@@ -98,8 +98,13 @@ TetMesh refined_design_mesh(const Design& d, Progress& progress)
   RepairReport repair;
   nlohmann::json seconds;
   const SurfaceMesh surface = prepared_surface(d, check, repair, seconds);
-  const double edge = kRefinedEdgeFactor * target_edge_length(d, check.volume);
-  require_refined_mesh_size(d, surface, check.volume);
+  return refined_design_mesh(d, surface, check.volume, progress);
+}
+
+TetMesh refined_design_mesh(const Design& d, const SurfaceMesh& surface, double volume, Progress& progress)
+{
+  const double edge = kRefinedEdgeFactor * target_edge_length(d, volume);
+  require_refined_mesh_size(d, surface, volume);
   return mesh_body(surface, refined_policy(d, surface, edge), tet_options(d, edge), progress).mesh;
 }
 

@@ -48,5 +48,7 @@ double require_refined_mesh_size(const Design& d, const SurfaceMesh& surface, do
 /// The body meshed as the mesh stage meshes it, at kRefinedEdgeFactor × its edge length, the
 /// surface's triangles split or remeshed to that length. Throws InputError as the stage.
 TetMesh refined_design_mesh(const Design& design, Progress& progress);
+/// The same from the body's surface as prepared_surface gave it and its volume.
+TetMesh refined_design_mesh(const Design& design, const SurfaceMesh& surface, double volume, Progress& progress);
 
 } // namespace fibermold

@@ -337,28 +337,30 @@ OptimizationEnding report_targets(StageContext& ctx, DesignRouting& dr, const Ro
 }
 
 /// With [optimize] refine: the refined solve's mesh refused before the optimization, not after it,
-/// by the rule check uses.
-void require_refinable(const Design& d)
+/// by the rule check uses; the body's surface, prepared for it, and its volume kept for the solve.
+void require_refinable(const Design& d, SurfaceMesh& surface, double& volume)
 {
   if (!d.optimize.refine) return;
   SurfaceCheck check;
   RepairReport repair;
   nlohmann::json seconds;
-  const SurfaceMesh surface = prepared_surface(d, check, repair, seconds);
-  require_refined_mesh_size(d, surface, check.volume);
+  surface = prepared_surface(d, check, repair, seconds);
+  volume = check.volume;
+  require_refined_mesh_size(d, surface, volume);
 }
 
 /// With [optimize] refine: each target's optimized actuation solved from rest on a mesh of half
 /// the edge length, against the same on the design's mesh (docs/optimize.md, "Discretization
 /// error"), into the target's report entry; a warning (logged and added to `warnings`) where the
 /// difference exceeds the error to the target, which the mesh then cannot resolve.
-void report_refinement(StageContext& ctx, DesignRouting& dr, const Routing& r, nlohmann::ordered_json& per_target,
-                       std::vector<std::string>& warnings)
+/// `surface` and `volume`: the body's, from require_refinable.
+void report_refinement(StageContext& ctx, DesignRouting& dr, const SurfaceMesh& surface, double volume,
+                       const Routing& r, nlohmann::ordered_json& per_target, std::vector<std::string>& warnings)
 {
   const Design& d = ctx.design;
   RoutingProblem& problem = *dr.problem;
   ctx.progress.checkpoint(-1, "meshing at half the edge length");
-  const TetMesh fine_mesh = refined_design_mesh(d, ctx.progress);
+  const TetMesh fine_mesh = refined_design_mesh(d, surface, volume, ctx.progress);
   const MuscleModel model(d.muscle.model);
   for (int t = 0; t < problem.num_targets(); ++t) {
     const std::string& name = dr.target_names[t];
@@ -491,7 +493,9 @@ void OptimizeStage::run(StageContext& ctx) const
   }
   DesignRouting dr(ctx);
   require_optimizable(d, *dr.skin);
-  require_refinable(d);
+  SurfaceMesh surface; // with [optimize] refine, the body's, prepared once
+  double volume = 0;
+  require_refinable(d, surface, volume);
   const OptimizationStart begun = optimization_start(d, *dr.skin);
   for (const std::string& line : begun.log) ctx.log.info("{}", line);
   if (!begun.warning.empty()) ctx.log.warn("{}", begun.warning);
@@ -545,7 +549,7 @@ void OptimizeStage::run(StageContext& ctx) const
   nlohmann::ordered_json per_target = nlohmann::ordered_json::object();
   OptimizationEnding ending = report_targets(ctx, dr, result, before, per_target);
   if (!kept_first_guess.empty()) ending.warnings.push_back(kept_first_guess);
-  if (d.optimize.refine) report_refinement(ctx, dr, result.routing, per_target, ending.warnings);
+  if (d.optimize.refine) report_refinement(ctx, dr, surface, volume, result.routing, per_target, ending.warnings);
   const nlohmann::ordered_json report{
       {"optimized", true},
       {"strategy", choice_name(d.optimize.strategy)},
