@@ -903,6 +903,7 @@ MoldOptions read_mold(Section s)
   o.block.screw_diameter = mm("screw_diameter", o.block.screw_diameter, above_zero(100));
   o.draft_deg = s.number("draft_deg", o.draft_deg, {0.0, 15.0, false, false}, {1.0, "°"});
   o.shrink = s.number("shrink", o.shrink, {0.0, 0.2, false, false});
+  o.labels = s.boolean("labels", o.labels);
   s.finish();
   return o;
 }

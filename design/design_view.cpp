@@ -107,6 +107,7 @@ const std::vector<Part>& parts()
       FIBERMOLD_PART("mold.screw_holes", mold.block.screw_holes),
       FIBERMOLD_PART("mold.screw_diameter", mold.block.screw_diameter),
       FIBERMOLD_PART("mold.draft_deg", mold.draft_deg),
+      FIBERMOLD_PART("mold.labels", mold.labels),
       FIBERMOLD_PART("mold.shrink", mold.shrink),
       FIBERMOLD_PART("export.formats", export_.formats),
       FIBERMOLD_PART("export.printer_volume", export_.printer_volume),

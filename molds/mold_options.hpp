@@ -47,6 +47,7 @@ struct MoldOptions {
   double end_channel_diameter = 4e-3;  ///< m
   double draft_deg = 0;                ///< degrees
   double shrink = 0;                   ///< linear shrink of the silicone, fraction
+  bool labels = true;                  ///< engrave each part's name and "IN" beside its sprues (part_label.hpp)
 };
 
 } // namespace fibermold

@@ -213,7 +213,8 @@ std::vector<std::string> Recipe::make_shot(const std::string& name, const Surfac
         name, parting.undercut_area / 1e-6));
   started = Clock::now();
   const PartLabels labels{job_.name, {}};
-  const Mold mold = make_mold(cavity, parting, shot_channels, block_, name, &scaled_ports, &labels);
+  const Mold mold =
+      make_mold(cavity, parting, shot_channels, block_, name, &scaled_ports, m_.labels ? &labels : nullptr);
   log_.info(fmt::format("{}: mold block and parts in {:.2f} s, of which labels {:.2f} s", name, since(started),
                         mold.label_seconds));
   log_labels(mold);

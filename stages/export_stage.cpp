@@ -162,11 +162,16 @@ std::string casting_guide(const Design& d, const Json& shots, const std::string&
   const auto g = [&](const char* shot) { return shots[shot]["silicone_mass_g"].get<double>(); };
   const auto fill = [&](const char* shot) -> const Json& { return shots[shot]["fill"]; };
   const double cure = silicone(d).demold_time / 3600;
+  const char* engraved = "Each part says which it is, engraved into a side (or its outer end) where it has room:\n"
+                         "the design's name, the shot and the half (\"S1 LOWER\": shot 1's lower half); \"IN\" is\n"
+                         "engraved beside each sprue.";
+  const char* plain = "The parts are not engraved ([mold] labels = false): tell them apart by their file names as\n"
+                      "you take them off the printer; a sprue is the countersunk hole.";
+  const char* labels = d.mold.labels ? engraved : plain;
   return fmt::format(R"(fibermold mold parts for "{}"
 
 Print every {} as it lies (each stands on its largest flat face; units mm).
-Each part says which it is, engraved into a side (or its outer end) where it has room: the design's
-name, the shot and the half ("S1 LOWER": shot 1's lower half); "IN" is engraved beside each sprue.
+{}
 
 {}{}
 Shot 1, the grooved body: shot1-lower{} and shot1-upper{}.
@@ -200,12 +205,13 @@ grooves (the rest: crevices along the muscles thinner than the simulation's voxe
 and vent meets the cavity, each part's size, volume, checks and how its printed pose maps back to
 the body.
 )",
-                     d.design.name, FORMAT, silicone_text(d, shots), muscles_text(cuts, d.muscle.model.diameter), ext,
-                     ext, clamp_text(shots["shot1"]), ml("shot1"), g("shot1"), sprue_holes(fill("shot1")["sprues"]),
-                     vent_holes(fill("shot1")["vents"]), cure, ext, ext, clamp_text(shots["shot2"]), ml("shot2"),
-                     g("shot2"), sprue_holes(fill("shot2")["sprues"]), vent_holes(fill("shot2")["vents"]), cure,
-                     fill("shot1")["reachable_percent"].get<double>(), fill("shot1")["trapped_air_mm3"].get<double>(),
-                     fill("shot2")["reachable_percent"].get<double>(), fill("shot2")["trapped_air_mm3"].get<double>(),
+                     d.design.name, FORMAT, labels, silicone_text(d, shots),
+                     muscles_text(cuts, d.muscle.model.diameter), ext, ext, clamp_text(shots["shot1"]), ml("shot1"),
+                     g("shot1"), sprue_holes(fill("shot1")["sprues"]), vent_holes(fill("shot1")["vents"]), cure, ext,
+                     ext, clamp_text(shots["shot2"]), ml("shot2"), g("shot2"), sprue_holes(fill("shot2")["sprues"]),
+                     vent_holes(fill("shot2")["vents"]), cure, fill("shot1")["reachable_percent"].get<double>(),
+                     fill("shot1")["trapped_air_mm3"].get<double>(), fill("shot2")["reachable_percent"].get<double>(),
+                     fill("shot2")["trapped_air_mm3"].get<double>(),
                      fill("shot1")["trapped_air_tolerance_mm3"].get<double>());
 }
 
@@ -605,6 +611,17 @@ ReportTable muscles_table(const Design& d, const std::vector<MuscleCut>& cuts)
   return t;
 }
 
+/// What a part carries engraved, for the parts table: "“WALKING-ROBOT S1 LOWER” (side, 8 mm) · “IN” (end,
+/// 5 mm)", or "none".
+std::string engraved_text(const Json& labels)
+{
+  std::vector<std::string> out;
+  for (const Json& l : labels)
+    out.push_back(fmt::format("“{}” ({}, {:g} mm)", l["text"].get<std::string>(), l["face"].get<std::string>(),
+                              l["height_mm"].get<double>()));
+  return out.empty() ? "none" : fmt::format("{}", fmt::join(out, " · "));
+}
+
 /// The page users open first: the groove body with its muscles in the shot 1 mold (upper half
 /// lifted off along pull), the shot 2 mold beside it (hidden), the parts' checks and the silicone.
 /// No timings (they are in make's output and the stage logs): the same design gives the same page.
@@ -641,14 +658,15 @@ std::string report(const StageContext& ctx, const TetMesh& body, const FibersFil
     add_ports(info["fill"], shot, pull, height, (shot == "shot1" ? 0.0 : 1.3 * width) * aside, lines);
   add_bodies(ctx, body, -1.3 * width * aside, -1.3 * width * aside, meshes, lines);
 
-  ReportTable checks{"Mold parts",
-                     {"part", "files", "triangles", "volume (mL)", "thinnest wall (mm)", "fits the printer", "checks"},
-                     {}};
+  ReportTable checks{
+      "Mold parts",
+      {"part", "files", "engraved", "triangles", "volume (mL)", "thinnest wall (mm)", "fits the printer", "checks"},
+      {}};
   for (const Json& p : parts) {
     std::string files;
     for (const Json& f : p["files"]) files += (files.empty() ? "" : ", ") + f.get<std::string>();
-    checks.rows.push_back({p["name"], files, std::to_string(p["triangles"].get<long>()), fixed(p["volume_mL"], 2),
-                           fixed(p["min_wall_mm"], 2),
+    checks.rows.push_back({p["name"], files, engraved_text(p["labels"]), std::to_string(p["triangles"].get<long>()),
+                           fixed(p["volume_mL"], 2), fixed(p["min_wall_mm"], 2),
                            p["fits_printer_as_placed"].get<bool>() ? "lying flat" : "turned",
                            p["checks_passed"].get<bool>() ? "passed" : "FAILED"});
   }

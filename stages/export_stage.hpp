@@ -17,14 +17,15 @@ public:
   /// muscles' diameter and max pressure, and feeds each muscle from its end nearest the mount (fixed).
   std::vector<std::string> design_keys() const override
   {
-    return {"design.name", "export", "material", "fixed", "muscle", "tracking_curve", "target"};
+    return {"design.name", "export", "material", "fixed", "muscle", "tracking_curve", "target", "mold.labels"};
   }
   /// 2: the fill in the manifest and README.txt, parts' transforms; 3: no timings in report.html; 4: the optimization
   /// table and the warnings banner; 5: each target drawn beside the robot, the turns reached; 6: the bend radius
   /// table; 7: deformed-<target>.stl and how to check the cast robot with it; 8: the casting sheet (silicone, muscles);
   /// 9: the sprues and vents in the 3D view; 10: the countersunk sprue in README.txt; 11: the parts' labels in
-  /// README.txt and the manifest
-  int version() const override { return 11; }
+  /// README.txt and the manifest; 12: the labels in report.html's parts table, README.txt without them when [mold]
+  /// labels = false
+  int version() const override { return 12; }
   void run(StageContext& ctx) const override;
 };
 

@@ -171,6 +171,7 @@ void process_members(const Design& d, Members& m)
   MEMBER(mold.end_channel_diameter);
   MEMBER(mold.draft_deg);
   MEMBER(mold.shrink);
+  MEMBER(mold.labels);
   MEMBER(export_.formats);
   MEMBER(export_.printer_volume);
   MEMBER(export_.min_wall);
@@ -311,6 +312,7 @@ std::vector<Edit> edits()
       add("mold.screw_diameter", "mold", "screw_diameter = 4"),
       add("mold.draft_deg", "mold", "draft_deg = 2"),
       add("mold.shrink", "mold", "shrink = 0.01"),
+      add("mold.labels", "mold", "labels = false"),
       add("export.formats", "export", "formats = [\"stl\", \"3mf\"]"),
       add("export.printer_volume", "export", "printer_volume = [200, 200, 200]"),
       add("export.min_wall", "export", "min_wall = 0.8"),
@@ -367,7 +369,8 @@ TEST_F(DesignViewTest, EachRowCopiesTheMembersItsKeySetsAndNoOtherRowDoes)
 TEST_F(DesignViewTest, AViewWithNothingDeclaredHoldsAnUndeclaredValueInEveryMember)
 {
   const Design d = load_design(fs::path(FIBERMOLD_SOURCE_DIR) / "examples/walking-robot/design.toml");
-  const std::set<std::string> bools{"mesh.repair", "optimize.enabled", "optimize.refine", "collide.reoptimize"};
+  const std::set<std::string> bools{"mesh.repair", "optimize.enabled", "optimize.refine", "collide.reoptimize",
+                                    "mold.labels"};
   for (const auto& [member, value] : members(design_view(d, {}))) {
     const bool undeclared = value.find("nan") != std::string::npos || value.find("<undeclared ") != std::string::npos ||
                             value.find(std::to_string(kUndeclaredInt)) != std::string::npos;

@@ -5,6 +5,7 @@
 // bad inputs stop with an error and no STL.
 #include <cstdio>
 #include <cstring>
+#include <map>
 #include <regex>
 #include <sstream>
 
@@ -350,6 +351,48 @@ TEST_F(MoldsE2E, MoldEditsRerunMoldsAndExportOnly)
   EXPECT_THAT(
       test::run_fibermold("status design.toml --build-dir build", dir_.path()).out,
       HasSubstr("optimize  fresh\ncollide   stale ([collide].reoptimize changed (false → true))\nmolds     stale"));
+}
+
+TEST_F(MoldsE2E, WithoutLabelsThePartsArePlainAndTheSheetSaysHowToTellThemApart)
+{
+  // With labels each part's grooves take its text's strokes 0.6 mm deep out of it ("BAR S1 LOWER" and "IN"); [mold]
+  // labels = false leaves them in, and only the molds and export run again.
+  design("");
+  ASSERT_EQ(make().exit_code, 0);
+  std::map<std::string, double> labelled, boxes; // mL: each part's volume, its labels' boxes × their depth
+  const auto before = checked_manifest();
+  for (const auto& p : before["parts"]) {
+    labelled[p["name"]] = p["volume_mL"].get<double>();
+    for (const auto& l : p["labels"])
+      boxes[p["name"]] +=
+          l["size_mm"][0].get<double>() * l["size_mm"][1].get<double>() * l["depth_mm"].get<double>() * 1e-3;
+  }
+  // The parts table of report.html says what each part carries (not the whole page on failure: it is megabytes).
+  const std::string page = test::read_text(out("report.html"));
+  EXPECT_NE(page.find("<td>shot1-lower.stl</td><td>“BAR S1 LOWER” ("), std::string::npos);
+  EXPECT_NE(page.find(" mm) · “IN” (end, 5 mm)</td>"), std::string::npos);
+
+  test::write_text(dir_ / "design.toml",
+                   kDesign + "labels = false\n[[fiber]]\nname = \"m1\"\npoints = [[0, 0, 0], [60, 0, 0]]\n");
+  EXPECT_THAT(test::run_fibermold("status design.toml --build-dir build", dir_.path()).out,
+              HasSubstr("collide   fresh\nmolds     stale ([mold].labels changed (true → false))\nexport    stale"));
+  const auto r = make();
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  ASSERT_EQ(labelled.size(), 4u);
+  const auto after = checked_manifest();
+  for (const auto& p : after["parts"]) {
+    const std::string name = p["name"];
+    EXPECT_TRUE(p["labels"].empty()) << name;
+    // The grooves fill part of their boxes: strokes 0.9 mm wide in capitals 5–8 mm high.
+    const double gained = p["volume_mL"].get<double>() - labelled.at(name);
+    std::printf("%s: %.4f mL without its labels' grooves, %.2f of their boxes\n", name.c_str(), gained,
+                gained / boxes.at(name));
+    EXPECT_GT(gained, 0.2 * boxes.at(name)) << name;
+    EXPECT_LT(gained, 0.8 * boxes.at(name)) << name;
+  }
+  EXPECT_THAT(test::read_text(out("README.txt")),
+              HasSubstr("The parts are not engraved ([mold] labels = false): tell them apart by their file names"));
+  EXPECT_EQ(test::read_text(out("report.html")).find("“IN”"), std::string::npos);
 }
 
 TEST_F(MoldsE2E, BadInputsStopWithoutWritingParts)
