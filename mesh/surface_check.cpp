@@ -4,22 +4,20 @@
 #include <map>
 #include <numeric>
 
-#include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
 #include <CGAL/Polygon_mesh_processing/orientation.h>
 #include <CGAL/Polygon_mesh_processing/self_intersections.h>
-#include <CGAL/Surface_mesh.h>
 #include <fmt/format.h>
 
 #include "core/input_error.hpp"
 #include "core/units.hpp"
+#include "mesh/detail/cgal_surface.hpp"
 
 namespace fibermold {
 
 namespace {
 
-using Kernel = CGAL::Exact_predicates_inexact_constructions_kernel;
-using Point = Kernel::Point_3;
-using Mesh = CGAL::Surface_mesh<Point>;
+using cgal_surface::Mesh;
+using cgal_surface::Point;
 namespace PMP = CGAL::Polygon_mesh_processing;
 
 /// Union–find over integer ids.
@@ -136,18 +134,6 @@ int count_components(const SurfaceMesh& s, Tally& unused)
   return components;
 }
 
-/// The surface as a CGAL mesh; face f of the surface is face f of the mesh. The surface must be a
-/// closed, consistently oriented 2-manifold.
-Mesh to_cgal(const SurfaceMesh& s)
-{
-  Mesh mesh;
-  std::vector<Mesh::Vertex_index> vs;
-  for (Eigen::Index v = 0; v < s.num_vertices(); ++v) vs.push_back(mesh.add_vertex(point(s, static_cast<int>(v))));
-  for (Eigen::Index f = 0; f < s.num_faces(); ++f)
-    mesh.add_face(vs[s.faces(f, 0)], vs[s.faces(f, 1)], vs[s.faces(f, 2)]);
-  return mesh;
-}
-
 /// Pairs of faces that intersect other than at shared edges or vertices (CGAL, box intersection).
 Tally self_intersections(const SurfaceMesh& s, const Mesh& mesh)
 {
@@ -208,7 +194,8 @@ SurfaceCheck check_surface(const SurfaceMesh& s)
 
   const bool solid = check.problems.empty();
   if (solid) {
-    const Mesh mesh = to_cgal(s);
+    Eigen::Index refused; // none: the checks above found the surface a closed, oriented 2-manifold
+    const Mesh mesh = cgal_surface::to_cgal(s, refused);
     const Tally crossing = self_intersections(s, mesh);
     add(check, crossing, fmt::format("intersects itself: {} pairs of faces cross", crossing.count), false);
     check.volume = signed_volume(s);

@@ -3,19 +3,16 @@
 #include <stdexcept>
 #include <vector>
 
-#include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
 #include <CGAL/Polygon_mesh_processing/detect_features.h>
 #include <CGAL/Polygon_mesh_processing/remesh.h>
-#include <CGAL/Surface_mesh.h>
 
+#include "mesh/detail/cgal_surface.hpp"
 #include "mesh/surface_distance.hpp"
 
 namespace fibermold {
 
 namespace {
-using Kernel = CGAL::Exact_predicates_inexact_constructions_kernel;
-using Point = Kernel::Point_3;
-using Mesh = CGAL::Surface_mesh<Point>;
+using cgal_surface::Mesh;
 namespace PMP = CGAL::Polygon_mesh_processing;
 
 /// Rounds of split, collapse, flip and relaxation: a surface 10× denser than asked needs about
@@ -25,15 +22,11 @@ constexpr unsigned kIterations = 8;
 
 SurfaceMesh remesh_surface(const SurfaceMesh& surface, double edge_length, RemeshReport& report)
 {
-  Mesh mesh;
-  std::vector<Mesh::Vertex_index> index;
-  for (Eigen::Index v = 0; v < surface.num_vertices(); ++v)
-    index.push_back(mesh.add_vertex(Point(surface.vertices(v, 0), surface.vertices(v, 1), surface.vertices(v, 2))));
-  for (Eigen::Index f = 0; f < surface.num_faces(); ++f)
-    if (mesh.add_face(index[surface.faces(f, 0)], index[surface.faces(f, 1)], index[surface.faces(f, 2)]) ==
-        Mesh::null_face())
-      throw std::runtime_error(surface.source.string() + ": face " + std::to_string(f) +
-                               " is not manifold; cannot remesh");
+  Eigen::Index refused;
+  Mesh mesh = cgal_surface::to_cgal(surface, refused);
+  if (refused >= 0)
+    throw std::runtime_error(surface.source.string() + ": face " + std::to_string(refused) +
+                             " is not manifold; cannot remesh");
   report.faces_before = surface.num_faces();
   auto sharp = mesh.add_property_map<Mesh::Edge_index, bool>("e:sharp", false).first;
   PMP::detect_sharp_edges(mesh, kSharpEdgeDeg, sharp);
@@ -42,19 +35,8 @@ SurfaceMesh remesh_surface(const SurfaceMesh& surface, double edge_length, Remes
                            CGAL::parameters::number_of_iterations(kIterations).edge_is_constrained_map(sharp));
   mesh.collect_garbage();
 
-  SurfaceMesh out;
+  SurfaceMesh out = cgal_surface::from_cgal(mesh);
   out.source = surface.source;
-  out.vertices.resize(static_cast<Eigen::Index>(mesh.number_of_vertices()), 3);
-  for (Mesh::Vertex_index v : mesh.vertices()) {
-    const Point& p = mesh.point(v);
-    out.vertices.row(v.idx()) << p.x(), p.y(), p.z();
-  }
-  out.faces.resize(static_cast<Eigen::Index>(mesh.number_of_faces()), 3);
-  for (Mesh::Face_index f : mesh.faces()) {
-    int k = 0;
-    for (Mesh::Vertex_index v : CGAL::vertices_around_face(mesh.halfedge(f), mesh))
-      out.faces(f.idx(), k++) = static_cast<int>(v.idx());
-  }
   report.faces_after = out.num_faces();
   return out;
 }

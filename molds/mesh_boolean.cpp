@@ -3,36 +3,33 @@
 #include <stdexcept>
 #include <vector>
 
-#include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
 #include <CGAL/Polygon_mesh_processing/clip.h>
 #include <CGAL/Polygon_mesh_processing/connected_components.h>
 #include <CGAL/Polygon_mesh_processing/corefinement.h>
 #include <CGAL/Polygon_mesh_processing/repair.h>
 #include <CGAL/Polygon_mesh_processing/triangulate_faces.h>
-#include <CGAL/Surface_mesh.h>
+
+#include "mesh/detail/cgal_surface.hpp"
 
 namespace fibermold {
 
 namespace {
 
-using Kernel = CGAL::Exact_predicates_inexact_constructions_kernel;
-using Point = Kernel::Point_3;
-using Mesh = CGAL::Surface_mesh<Point>;
+using cgal_surface::Kernel;
+using cgal_surface::Mesh;
+using cgal_surface::Point;
 namespace PMP = CGAL::Polygon_mesh_processing;
 
 Mesh to_cgal(const SurfaceMesh& s)
 {
-  Mesh m;
-  std::vector<Mesh::Vertex_index> v;
-  for (Eigen::Index i = 0; i < s.num_vertices(); ++i)
-    v.push_back(m.add_vertex(Point(s.vertices(i, 0), s.vertices(i, 1), s.vertices(i, 2))));
-  for (Eigen::Index f = 0; f < s.num_faces(); ++f)
-    if (m.add_face(v[s.faces(f, 0)], v[s.faces(f, 1)], v[s.faces(f, 2)]) == Mesh::null_face()) {
-      const Eigen::Vector3d at = s.vertices.row(s.faces(f, 0)).transpose() * 1e3;
-      throw std::runtime_error("mesh boolean: the input is not a manifold surface (face " + std::to_string(f) +
-                               " near (" + std::to_string(at.x()) + ", " + std::to_string(at.y()) + ", " +
-                               std::to_string(at.z()) + ") mm)");
-    }
+  Eigen::Index f;
+  Mesh m = cgal_surface::to_cgal(s, f);
+  if (f >= 0) {
+    const Eigen::Vector3d at = s.vertices.row(s.faces(f, 0)).transpose() * 1e3;
+    throw std::runtime_error("mesh boolean: the input is not a manifold surface (face " + std::to_string(f) +
+                             " near (" + std::to_string(at.x()) + ", " + std::to_string(at.y()) + ", " +
+                             std::to_string(at.z()) + ") mm)");
+  }
   return m;
 }
 
@@ -43,20 +40,8 @@ SurfaceMesh from_cgal(Mesh m)
   // zero-area slivers: collapse them.
   PMP::remove_degenerate_faces(m);
   m.collect_garbage();
-  SurfaceMesh s;
-  s.vertices.resize(static_cast<Eigen::Index>(m.number_of_vertices()), 3);
-  for (auto v : m.vertices()) {
-    const Point& p = m.point(v);
-    s.vertices.row(static_cast<Eigen::Index>(v.idx())) << p.x(), p.y(), p.z();
-  }
-  s.faces.resize(static_cast<Eigen::Index>(m.number_of_faces()), 3);
-  Eigen::Index row = 0;
-  for (auto f : m.faces()) {
-    int c = 0;
-    for (auto v : CGAL::vertices_around_face(m.halfedge(f), m)) s.faces(row, c++) = static_cast<int>(v.idx());
-    ++row;
-  }
-  return canonical_order(s); // CGAL's order changed from run to run (shot 2's parts of the walking robot)
+  return canonical_order(
+      cgal_surface::from_cgal(m)); // CGAL's order changed from run to run (shot 2's parts of the walking robot)
 }
 
 template <typename Op> SurfaceMesh boolean(const SurfaceMesh& a, const SurfaceMesh& b, const char* what, Op op)

@@ -164,16 +164,36 @@ TEST(Architecture, NoFunctionIsLongerThanAHundredLines)
   EXPECT_GT(functions, 300);
 }
 
-/// CGAL, OpenVDB, TetGen, assimp and the Hershey font library stay inside the .cpp files that need them.
+/// A header in a module's detail/ folder is private: for the .cpp files that need it.
+bool is_private(const fs::path& file) { return file.parent_path().filename() == "detail"; }
+
+/// CGAL, OpenVDB, TetGen, assimp and the Hershey font library stay inside the .cpp files that need
+/// them (and the private headers they share).
 TEST(Architecture, PublicHeadersIncludeNoGeometryLibrary)
 {
   const std::regex third_party(R"re(#include <(CGAL|openvdb|tetgen|assimp|hersheyfont)[/.>])re");
   for (const fs::path& file : module_sources()) {
-    if (file.extension() != ".hpp") continue;
+    if (file.extension() != ".hpp" || is_private(file)) continue;
     const std::string text = text_of(file);
     std::smatch m;
     EXPECT_FALSE(std::regex_search(text, m, third_party)) << fs::relative(file, kSource) << " includes " << m.str();
   }
+}
+
+/// Only .cpp files include a private header, so that what it includes never reaches a public one.
+TEST(Architecture, OnlySourceFilesIncludePrivateHeaders)
+{
+  const std::regex private_include(R"re(#include "[a-z_]+/detail/[a-z0-9_]+\.hpp")re");
+  int included = 0;
+  for (const fs::path& file : module_sources()) {
+    const std::string text = text_of(file);
+    for (auto it = std::sregex_iterator(text.begin(), text.end(), private_include); it != std::sregex_iterator();
+         ++it) {
+      ++included;
+      EXPECT_EQ(file.extension(), ".cpp") << fs::relative(file, kSource) << " includes " << it->str();
+    }
+  }
+  EXPECT_GE(included, 3); // CGAL's surface mesh: surface_check, surface_remesh, mesh_boolean
 }
 
 TEST(Architecture, NothingCitesFilesOutsideTheRepository)
