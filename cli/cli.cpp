@@ -20,7 +20,7 @@
 #include "design/design_file.hpp"
 #include "make/build_lock.hpp"
 #include "make/runner.hpp"
-#include "stages/mesh_stage.hpp"
+#include "stages/check.hpp"
 #include "stages/simulate_command.hpp"
 #include "stages/stages.hpp"
 #include "sweep/sweep_command.hpp"

@@ -26,17 +26,4 @@ public:
   void run(StageContext& ctx) const override;
 };
 
-/// What `fibermold check` says about the surface and the mesh to come.
-struct DesignSurfaceCheck {
-  SurfaceCheck surface;
-  std::vector<std::string> repairs; ///< what [mesh] repair = true changes
-  double edge_length = 0;           ///< m, asked or by default
-  SurfaceTriangles treatment = SurfaceTriangles::keep;
-  double estimated_tets = 0; ///< expected_tets
-};
-
-/// Imports and checks the surface (and, with [mesh] repair = true, checks the repaired copy), and
-/// what every stage would refuse of it. Throws InputError when it cannot be meshed.
-DesignSurfaceCheck check_design_surface(const Design& design);
-
 } // namespace fibermold
