@@ -35,13 +35,13 @@ void require_castable(const SurfaceCheck& check, const SurfaceMesh& surface)
 } // namespace
 
 double require_mesh_size(const Design& d, const SurfaceMesh& surface, double volume, double edge,
-                         SurfaceTriangles policy, const std::string& key)
+                         SurfaceTriangles policy, MeshOf of)
 {
   const double tets = expected_tets(volume, edge, policy, surface);
-  const bool refined = key == "[optimize].refine";
+  const bool refined = of == MeshOf::refinement;
   if (tets > d.mesh.max_tets)
     throw InputError(design_problem(
-        d, key,
+        d, refined ? "[optimize].refine" : "[mesh].edge_length",
         fmt::format("{}{:.4g} mm for a body of {:.4g} mm³ would make about {:.3g} tets, more than "
                     "[mesh].max_tets = {}; {}",
                     refined ? "the refined mesh's edge length, " : "", edge / units::mm, volume / 1e-9, tets,
@@ -89,7 +89,7 @@ double target_edge_length(const Design& design, double body_volume)
 double require_refined_mesh_size(const Design& d, const SurfaceMesh& surface, double volume)
 {
   const double edge = kRefinedEdgeFactor * target_edge_length(d, volume);
-  return require_mesh_size(d, surface, volume, edge, refined_policy(d, surface, edge), "[optimize].refine");
+  return require_mesh_size(d, surface, volume, edge, refined_policy(d, surface, edge), MeshOf::refinement);
 }
 
 TetMesh refined_design_mesh(const Design& d, Progress& progress)

@@ -17,10 +17,14 @@
 
 namespace fibermold {
 
+/// Which mesh a size is asked of: the body's (the mesh stage's, at [mesh] edge_length) or the
+/// refined one ([optimize] refine's, and simulate --refine's), each refused with its own key and fix.
+enum class MeshOf { body, refinement };
+
 /// Refuses an edge length that would make more than [mesh] max_tets tets (wrong units, typically),
 /// before any remeshing or TetGen run can take all memory. Returns the estimate (expected_tets).
 double require_mesh_size(const Design& d, const SurfaceMesh& surface, double volume, double edge,
-                         SurfaceTriangles policy, const std::string& key = "[mesh].edge_length");
+                         SurfaceTriangles policy, MeshOf of = MeshOf::body);
 
 /// The surface treatment of the refined mesh (optimize's and simulate's refine) at `edge`: remeshed
 /// where the design remeshes it or it is dense for the edge, split otherwise (its own triangles
