@@ -95,9 +95,17 @@ std::string silicone_text(const Design& d, const Json& shots)
                   "{:.0f} kg/m³ ({}).",
                   s.name, s.hardness, s.mix_a, s.mix_b, s.pot_life / 60, s.demold_time / 3600,
                   m.youngs_modulus / units::kPa, m.poisson_ratio, m.density,
-                  m.preset.empty() ? "[material]: the paper's figures; the handling here is Ecoflex 00-30's, the "
-                                     "default: name a [material] preset for another silicone"
-                                   : "[material] preset = \"" + m.preset + "\""),
+                  m.preset.empty()
+                      ? fmt::format("[material]: the paper's figures; the handling here is Ecoflex 00-30's, the "
+                                    "default: name a [material] preset for another silicone. {}'s preset, fitted to "
+                                    "its published stress-strain data, has E = {:.1f} kPa ([material] preset = "
+                                    "\"{}\"){}",
+                                    s.name, s.youngs_modulus() / units::kPa, s.key,
+                                    s.youngs_modulus() < m.youngs_modulus
+                                        ? ": cast in it, the robot may bend further than simulated; a strip of your "
+                                          "own cast, pulled with a known weight, settles it"
+                                        : "")
+                      : "[material] preset = \"" + m.preset + "\""),
       "", "  ");
   for (const auto& [shot, info] : shots.items()) {
     const double grams = info["silicone_mass_g"].get<double>(), mix = (1 + kMixMargin) * grams;
@@ -109,7 +117,8 @@ std::string silicone_text(const Design& d, const Json& shots)
                 "  ", "    ");
   }
   return text + wrapped(fmt::format("Before each shot: spray or brush mold release (one made for platinum silicone) "
-                                    "onto every cavity face; weigh A and B, stir for 3 minutes scraping the cup's "
+                                    "onto the mold's cavity faces, and never onto the cast body or the muscles: shot "
+                                    "2 must bond to them; weigh A and B, stir for 3 minutes scraping the cup's "
                                     "sides and bottom, {}, and inject within the pot life.",
                                     s.degas_recommended ? "vacuum-degas it (the data sheet recommends it)"
                                                         : "vacuum-degas it if you have a chamber"),
@@ -154,9 +163,26 @@ std::string clamp_text(const Json& shot)
                     : std::string("Close the two halves on their keys and clamp them (spring clamps or rubber bands)");
 }
 
-std::string casting_guide(const Design& d, const Json& shots, const std::string& format,
+/// Which side of the body each half holds: the molds open along `pull` (molds/report.json: [mold] pull,
+/// or its reverse where that left a half of shot 1 a plate).
+std::string halves_text(const Json& molds)
+{
+  const Eigen::Vector3d pull = molds.contains("pull")
+                                   ? Eigen::Vector3d(molds["pull"][0], molds["pull"][1], molds["pull"][2])
+                                   : Eigen::Vector3d::UnitZ();
+  const auto direction = [](const Eigen::Vector3d& v) {
+    return fmt::format("({:g}, {:g}, {:g})", v.x() + 0.0, v.y() + 0.0, v.z() + 0.0);
+  };
+  return wrapped(fmt::format("Each mold opens along {} in the design's frame: its lower half holds the side of the "
+                             "body that faces {}, its upper half the side that faces {}.",
+                             direction(pull), direction(-pull), direction(pull)),
+                 "", "");
+}
+
+std::string casting_guide(const Design& d, const Json& molds, const std::string& format,
                           const std::vector<MuscleCut>& cuts)
 {
+  const Json& shots = molds["shots"];
   const std::string ext = "." + format, FORMAT = format == "3mf" ? "3MF file" : "STL";
   const auto ml = [&](const char* shot) { return shots[shot]["silicone_volume_mL"].get<double>(); };
   const auto g = [&](const char* shot) { return shots[shot]["silicone_mass_g"].get<double>(); };
@@ -167,10 +193,13 @@ std::string casting_guide(const Design& d, const Json& shots, const std::string&
                          "engraved beside each sprue.";
   const char* plain = "The parts are not engraved ([mold] labels = false): tell them apart by their file names as\n"
                       "you take them off the printer; a sprue is the countersunk hole.";
-  const char* labels = d.mold.labels ? engraved : plain;
+  std::string halves = halves_text(molds);
+  halves.pop_back(); // its newline: the text below has its own
+  const std::string labels = (d.mold.labels ? engraved : plain) + std::string("\n") + halves;
   return fmt::format(R"(fibermold mold parts for "{}"
 
-Print every {} as it lies (each stands on its largest flat face; units mm).
+Print every {} as it lies (each stands on its largest flat face; units mm), in PLA or PETG: platinum
+silicone can fail to cure against some printed resins (test a resin with a small pour first).
 {}
 
 {}{}
@@ -380,7 +409,7 @@ std::string overlay_shapes(const StageContext& ctx, const TetMesh& body, const F
     for (std::size_t f = 0; f < fibers.routing.routes.size() && row < std::ssize(fibers.targets); ++f)
       pressures += fmt::format("{}{} {:.0f} kPa", pressures.empty() ? "" : ", ", fibers.routing.routes[f].name,
                                fibers.routing.pressures(row, static_cast<Eigen::Index>(f)) / units::kPa);
-    text += fmt::format("\nTarget \"{}\": drive the muscles at {} (at most {:.0f} kPa, [muscle] max_pressure).\n"
+    text += fmt::format("\nTarget \"{}\": drive the muscles at {} gauge (at most {:.0f} kPa, [muscle] max_pressure).\n"
                         "  {} is the body as simulated at these pressures, in the frame of the robot as\n"
                         "  mounted (its fixed faces where they are at rest). Print it, hold its fixed end against\n"
                         "  the robot's mount beside the pressurized robot, and compare:\n",
@@ -750,8 +779,8 @@ void ExportStage::run(StageContext& ctx) const
                       {"parts", parts},          {"shots", shots}, {"deformed", deformed}};
   write_json_atomic(ctx.output_dir / "manifest.json", manifest);
   const std::vector<MuscleCut> cuts = muscle_cuts(ctx, body, fibers, molds);
-  write_file_atomic(ctx.output_dir / "README.txt", casting_guide(d, molds["shots"], d.export_.formats.front(), cuts) +
-                                                       muscle_bends_text(ctx) + checking);
+  write_file_atomic(ctx.output_dir / "README.txt",
+                    casting_guide(d, molds, d.export_.formats.front(), cuts) + muscle_bends_text(ctx) + checking);
   ctx.progress.checkpoint(-1, "writing the report");
   write_file_atomic(ctx.output_dir / "report.html", report(ctx, body, fibers, molds, parts, shots, cuts));
 }

@@ -79,6 +79,17 @@ TEST_F(MoldsE2E, HandRoutedBarBecomesFourCheckedParts)
   const std::string sheet = std::regex_replace(guide, std::regex("\n +"), " "); // its paragraphs unwrapped
   EXPECT_THAT(sheet, HasSubstr("Silicone: Smooth-On Ecoflex 00-30 (Shore 00-30), mixed 1A : 1B by weight; pot life "
                                "45 min, demold after 4 h at 23 °C"));
+  EXPECT_THAT(std::regex_replace(guide, std::regex("\n"), " "),
+              HasSubstr("Each mold opens along (0, 0, 1) in the design's frame: its lower half holds the side of "
+                        "the body that faces (0, 0, -1), its upper half the side that faces (0, 0, 1)."));
+  // Release on the mold only (shot 2 bonds to the cast), molds printed in what platinum silicone cures against,
+  // and the default material's stiffness against Ecoflex 00-30's own fit.
+  EXPECT_THAT(sheet, HasSubstr("onto the mold's cavity faces, and never onto the cast body or the muscles: shot 2 must "
+                               "bond to them"));
+  EXPECT_THAT(guide, HasSubstr("in PLA or PETG: platinum\nsilicone can fail to cure against some printed resins"));
+  EXPECT_THAT(sheet, HasSubstr("Smooth-On Ecoflex 00-30's preset, fitted to its published stress-strain data, has "
+                               "E = 45.1 kPa ([material] preset = \"ecoflex-00-30\"): cast in it, the robot may bend "
+                               "further than simulated"));
   for (const char* shot : {"shot1", "shot2"}) {
     const double mL = manifest["shots"][shot]["silicone_volume_mL"], g = manifest["shots"][shot]["silicone_mass_g"];
     EXPECT_THAT(sheet, HasSubstr(fmt::format(" Shot {}: {:.1f} mL, {:.1f} g; mix {:.1f} g ({:.1f} g of A and {:.1f} g "

@@ -140,7 +140,7 @@ TEST(ReportE2E, ShowsTheDeformedBodyTheErrorsAndTheOptimizationHistory)
   EXPECT_EQ(manifest["deformed"][0]["file"], "deformed-s.stl");
   EXPECT_TRUE(manifest["deformed"][0]["checks_passed"].get<bool>());
   const auto fibers = nlohmann::json::parse(test::read_text(build / "collide" / "fibers.json"));
-  EXPECT_THAT(guide, HasSubstr(fmt::format("Target \"s\": drive the muscles at m1 {:.0f} kPa (at most 425 kPa",
+  EXPECT_THAT(guide, HasSubstr(fmt::format("Target \"s\": drive the muscles at m1 {:.0f} kPa gauge (at most 425 kPa",
                                            fibers["fibers"][0]["pressure_kPa"]["s"].get<double>())));
   // The casting sheet cuts the muscle to its length inside the bar [0, 60] × [−8, 8]² mm, measured
   // here on the spline itself: 20,000 chords, each counted when its midpoint is inside.
