@@ -24,8 +24,9 @@ public:
   /// table; 7: deformed-<target>.stl and how to check the cast robot with it; 8: the casting sheet (silicone, muscles);
   /// 9: the sprues and vents in the 3D view; 10: the countersunk sprue in README.txt; 11: the parts' labels in
   /// README.txt and the manifest; 12: the labels in report.html's parts table, README.txt without them when [mold]
-  /// labels = false
-  int version() const override { return 12; }
+  /// labels = false; 13: README.txt: the print material, the side each half holds, release on the molds only, gauge
+  /// pressures, the default silicone's preset E
+  int version() const override { return 13; }
   void run(StageContext& ctx) const override;
 };
 
