@@ -371,9 +371,16 @@ std::string poses_to_compare(const Json& poses)
     const Eigen::Vector3d t(p["translation_mm"][0], p["translation_mm"][1], p["translation_mm"][2]);
     const double turn = p["rotation_deg"].get<double>();
     if (t.norm() < kStaysPut_mm && turn < kStaysPut_deg) continue;
+    // Where it is on the robot: a region's centre at rest, or the curve's point (older reports: the name only).
+    const std::string where =
+        p.contains("rest_mm")
+            ? fmt::format(" (at {} at rest{})",
+                          format_mm(Eigen::Vector3d(p["rest_mm"][0], p["rest_mm"][1], p["rest_mm"][2]) * units::mm),
+                          p.contains("nodes") ? fmt::format(": the centre of its {} nodes", p["nodes"].get<int>()) : "")
+            : "";
     out += fmt::format(
-        "    {}: moves {:.1f} mm ({:.1f}, {:.1f}, {:.1f}) and turns {:.1f}° about ({:.2f}, {:.2f}, {:.2f})",
-        p["place"].get<std::string>(), t.norm(), t.x(), t.y(), t.z(), turn, p["rotation_axis"][0].get<double>(),
+        "    {}{}: moves {:.1f} mm ({:.1f}, {:.1f}, {:.1f}) and turns {:.1f}° about ({:.2f}, {:.2f}, {:.2f})",
+        p["place"].get<std::string>(), where, t.norm(), t.x(), t.y(), t.z(), turn, p["rotation_axis"][0].get<double>(),
         p["rotation_axis"][1].get<double>(), p["rotation_axis"][2].get<double>());
     if (p.contains("rotation_about_asked_axis_deg") && p.contains("asked_rotation_deg"))
       out += fmt::format("; {:.1f}° about the axis asked (asked {:.1f}°)",

@@ -144,6 +144,7 @@ nlohmann::ordered_json pose_report(const ReachedPose& p)
 {
   nlohmann::ordered_json j = {{"place", p.place}};
   if (p.nodes > 0) j["nodes"] = p.nodes;
+  j["rest_mm"] = mm(p.rest);
   j["translation_mm"] = mm(p.displacement);
   j["rotation_deg"] = p.motion.angle() / units::degree;
   j["rotation_axis"] = {p.motion.axis().x(), p.motion.axis().y(), p.motion.axis().z()};

@@ -168,8 +168,12 @@ TEST(ReportE2E, ShowsTheDeformedBodyTheErrorsAndTheOptimizationHistory)
       const auto& t = pose["translation_mm"];
       const double norm = std::hypot(t[0].get<double>(), t[1].get<double>(), t[2].get<double>());
       EXPECT_GT(norm, 1.0);
-      EXPECT_THAT(guide, HasSubstr(fmt::format("    centre, last point: moves {:.1f} mm ({:.1f}, {:.1f}, {:.1f})", norm,
-                                               t[0].get<double>(), t[1].get<double>(), t[2].get<double>())));
+      // Named with where it is on the robot: the curve's last point, (60, 0, 0) mm.
+      EXPECT_NEAR(pose["rest_mm"][0].get<double>(), 60, 1e-9);
+      EXPECT_NEAR(std::hypot(pose["rest_mm"][1].get<double>(), pose["rest_mm"][2].get<double>()), 0, 1e-9);
+      EXPECT_THAT(guide, HasSubstr(fmt::format("    centre, last point (at (60.0, 0.0, 0.0) mm at rest): moves {:.1f} "
+                                               "mm ({:.1f}, {:.1f}, {:.1f})",
+                                               norm, t[0].get<double>(), t[1].get<double>(), t[2].get<double>())));
       compared = true;
     }
   EXPECT_TRUE(compared) << "collide reports where the tracking curve's end went";
