@@ -54,6 +54,24 @@ std::vector<ReportLine> fiber_lines(const FibersFile& fibers);
 
 /// How much silicone to mix beyond a shot's volume: the cup's and the stirrer's film, the gun's nozzle.
 constexpr double kMixMargin = 0.2;
+/// g: the least of the smaller part to weigh out. On a 0.1 g kitchen scale that part is then within
+/// 2 % of its share; shot 2 of a small robot (1.8 g in all) would otherwise be mixed from 0.9 g of
+/// each part, ±11 %, and less than the nozzle holds.
+constexpr double kLeastPart_g = 5;
+
+/// What to mix for a shot of `grams` of silicone: kMixMargin more, and at least kLeastPart_g of the
+/// smaller part; grams of A and of B.
+struct Mix {
+  double a = 0, b = 0;
+  bool least = false; ///< the batch is the least one, not the shot + kMixMargin
+  double total() const { return a + b; }
+};
+Mix silicone_mix(const SiliconePreset& s, double grams)
+{
+  const double share = std::min(s.mix_a, s.mix_b) / (s.mix_a + s.mix_b);
+  const double least = kLeastPart_g / share, total = std::max((1 + kMixMargin) * grams, least);
+  return {total * s.mix_a / (s.mix_a + s.mix_b), total * s.mix_b / (s.mix_a + s.mix_b), total == least};
+}
 
 /// The silicone whose handling README.txt gives: the preset's, or the default material's.
 const SiliconePreset& silicone(const Design& d)
@@ -108,13 +126,17 @@ std::string silicone_text(const Design& d, const Json& shots)
                       : "[material] preset = \"" + m.preset + "\""),
       "", "  ");
   for (const auto& [shot, info] : shots.items()) {
-    const double grams = info["silicone_mass_g"].get<double>(), mix = (1 + kMixMargin) * grams;
-    text +=
-        wrapped(fmt::format("{}: {:.1f} mL, {:.1f} g; mix {:.1f} g ({:.1f} g of A and {:.1f} g of B: {:.0f} % "
-                            "more, for the cup and the nozzle).",
-                            shot == "shot1" ? "Shot 1" : "Shot 2", info["silicone_volume_mL"].get<double>(), grams, mix,
-                            mix * s.mix_a / (s.mix_a + s.mix_b), mix * s.mix_b / (s.mix_a + s.mix_b), 100 * kMixMargin),
-                "  ", "    ");
+    const double grams = info["silicone_mass_g"].get<double>();
+    const Mix mix = silicone_mix(s, grams);
+    const std::string why =
+        mix.least ? fmt::format("the least batch that weighs {:g} g or more of each part, so that a 0.1 g scale gets "
+                                "the ratio within 2 %",
+                                kLeastPart_g)
+                  : fmt::format("{:.0f} % more, for the cup and the nozzle", 100 * kMixMargin);
+    text += wrapped(fmt::format("{}: {:.1f} mL, {:.1f} g; mix {:.1f} g ({:.1f} g of A and {:.1f} g of B: {}).",
+                                shot == "shot1" ? "Shot 1" : "Shot 2", info["silicone_volume_mL"].get<double>(), grams,
+                                mix.total(), mix.a, mix.b, why),
+                    "  ", "    ");
   }
   return text + wrapped(fmt::format("Before each shot: spray or brush mold release (one made for platinum silicone) "
                                     "onto the mold's cavity faces, and never onto the cast body or the muscles: shot "
@@ -711,18 +733,19 @@ std::string report(const StageContext& ctx, const TetMesh& body, const FibersFil
       fmt::format("Silicone: {}, {:g}A : {:g}B by weight, pot life {:.0f} min, demold after {:.0f} h; its fill "
                   "(simulated: rising level by level from the sprues)",
                   s.name, s.mix_a, s.mix_b, s.pot_life / 60, s.demold_time / 3600),
-      {"shot", "volume (mL)", "mass (g)", fmt::format("mix, +{:.0f} % (g of A + g of B)", 100 * kMixMargin), "sprues",
-       "vents", "fill reached", "air trapped (mm³)"},
+      {"shot", "volume (mL)", "mass (g)",
+       fmt::format("mix, +{:.0f} %, at least {:g} g of each part (g of A + g of B)", 100 * kMixMargin, kLeastPart_g),
+       "sprues", "vents", "fill reached", "air trapped (mm³)"},
       {}};
   for (const auto& [shot, info] : shots.items()) {
     const Json& f = info["fill"];
-    const double mix = (1 + kMixMargin) * info["silicone_mass_g"].get<double>();
-    silicone.rows.push_back(
-        {shot, fixed(info["silicone_volume_mL"], 2), fixed(info["silicone_mass_g"], 2),
-         fixed(mix * s.mix_a / (s.mix_a + s.mix_b), 1) + " + " + fixed(mix * s.mix_b / (s.mix_a + s.mix_b), 1),
-         fmt::format("{} from {}", f["sprues"].size(),
-                     f["sprues"].empty() ? "" : f["sprues"][0]["from"].get<std::string>()),
-         std::to_string(f["vents"].size()), fixed(f["reachable_percent"], 1) + " %", fixed(f["trapped_air_mm3"], 2)});
+    const Mix mix = silicone_mix(s, info["silicone_mass_g"].get<double>());
+    silicone.rows.push_back({shot, fixed(info["silicone_volume_mL"], 2), fixed(info["silicone_mass_g"], 2),
+                             fixed(mix.a, 1) + " + " + fixed(mix.b, 1),
+                             fmt::format("{} from {}", f["sprues"].size(),
+                                         f["sprues"].empty() ? "" : f["sprues"][0]["from"].get<std::string>()),
+                             std::to_string(f["vents"].size()), fixed(f["reachable_percent"], 1) + " %",
+                             fixed(f["trapped_air_mm3"], 2)});
   }
   std::vector<std::string> warnings;
   std::vector<ReportTable> tables;
