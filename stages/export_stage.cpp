@@ -185,13 +185,18 @@ std::string clamp_text(const Json& shot)
                     : std::string("Close the two halves on their keys and clamp them (spring clamps or rubber bands)");
 }
 
-/// Which side of the body each half holds: the molds open along `pull` (molds/report.json: [mold] pull,
-/// or its reverse where that left a half of shot 1 a plate).
+/// The pull the molds were made for (molds/report.json): [mold] pull, or its reverse where that left
+/// a half of shot 1 a plate.
+Eigen::Vector3d molds_pull(const Json& molds)
+{
+  return molds.contains("pull") ? Eigen::Vector3d(molds["pull"][0], molds["pull"][1], molds["pull"][2])
+                                : Eigen::Vector3d::UnitZ();
+}
+
+/// Which side of the body each half holds: the molds open along their pull.
 std::string halves_text(const Json& molds)
 {
-  const Eigen::Vector3d pull = molds.contains("pull")
-                                   ? Eigen::Vector3d(molds["pull"][0], molds["pull"][1], molds["pull"][2])
-                                   : Eigen::Vector3d::UnitZ();
+  const Eigen::Vector3d pull = molds_pull(molds);
   const auto direction = [](const Eigen::Vector3d& v) {
     return fmt::format("({:g}, {:g}, {:g})", v.x() + 0.0, v.y() + 0.0, v.z() + 0.0);
   };
@@ -697,10 +702,7 @@ std::string report(const StageContext& ctx, const TetMesh& body, const FibersFil
     width = std::max(width, size.maxCoeff() * units::mm);
     height = std::max(height, size.minCoeff() * units::mm);
   }
-  // The pull the molds were made for (molds/report.json): [mold] pull, or its reverse.
-  const Eigen::Vector3d pull = molds.contains("pull")
-                                   ? Eigen::Vector3d(molds["pull"][0], molds["pull"][1], molds["pull"][2])
-                                   : Eigen::Vector3d::UnitZ();
+  const Eigen::Vector3d pull = molds_pull(molds);
   const Eigen::Vector3d aside =
       (pull.cross(Eigen::Vector3d::UnitZ()).norm() > 0.5 ? pull.cross(Eigen::Vector3d::UnitZ())
                                                          : pull.cross(Eigen::Vector3d::UnitX()))
