@@ -547,14 +547,45 @@ std::vector<ReportTable> behaviour_tables(const StageContext& ctx)
 
 /// How the optimization ended, from optimize/report.json: per target the error at the start and at
 /// the end, how much of it was reached and each fiber's pressure; and its warnings, for the banner.
-std::optional<ReportTable> optimization_table(const StageContext& ctx, std::vector<std::string>& warnings)
+/// optimize/report.json where it optimized targets; none otherwise.
+std::optional<Json> optimization_report(const StageContext& ctx)
 {
-  const auto report = json_if_any(ctx.upstream("optimize", "report.json"));
+  auto report = json_if_any(ctx.upstream("optimize", "report.json"));
   if (!report || !report->value("optimized", false) || !report->contains("targets") ||
       !(*report)["targets"].is_object() || (*report)["targets"].empty())
     return std::nullopt;
-  for (const Json& w : report->value("warnings", Json::array()))
-    if (w.is_string()) warnings.push_back(w.get<std::string>());
+  return report;
+}
+
+/// The optimization's warnings (a target far from reached, a muscle at its limit, no convergence):
+/// report.html's banner, and a paragraph of README.txt.
+std::vector<std::string> optimization_warnings(const StageContext& ctx)
+{
+  std::vector<std::string> out;
+  if (const auto report = optimization_report(ctx))
+    for (const Json& w : report->value("warnings", Json::array()))
+      if (w.is_string()) out.push_back(w.get<std::string>());
+  return out;
+}
+
+/// README.txt's paragraph with the optimization's warnings, before the robot is checked against the
+/// simulation; empty without any.
+std::string optimization_warnings_text(const StageContext& ctx)
+{
+  std::string text;
+  for (const std::string& w : optimization_warnings(ctx)) text += wrapped(w, "  - ", "    ");
+  return text.empty() ? text
+                      : "\nThe optimization warned (report.html gives its figures); the cast robot will do what the\n"
+                        "simulation does, not what was asked:\n" +
+                            text;
+}
+
+std::optional<ReportTable> optimization_table(const StageContext& ctx, std::vector<std::string>& warnings)
+{
+  const auto report = optimization_report(ctx);
+  if (!report) return std::nullopt;
+  const std::vector<std::string> warned = optimization_warnings(ctx);
+  warnings.insert(warnings.end(), warned.begin(), warned.end());
   const auto number = [](const Json& j, const char* key, int digits, const std::string& unit = "") {
     return j.is_object() && j.contains(key) && j[key].is_number() ? fixed(j[key].get<double>(), digits) + unit
                                                                   : std::string("–");
@@ -811,8 +842,9 @@ void ExportStage::run(StageContext& ctx) const
                       {"parts", parts},          {"shots", shots}, {"deformed", deformed}};
   write_json_atomic(ctx.output_dir / "manifest.json", manifest);
   const std::vector<MuscleCut> cuts = muscle_cuts(ctx, body, fibers, molds);
-  write_file_atomic(ctx.output_dir / "README.txt",
-                    casting_guide(d, molds, d.export_.formats.front(), cuts) + muscle_bends_text(ctx) + checking);
+  write_file_atomic(ctx.output_dir / "README.txt", casting_guide(d, molds, d.export_.formats.front(), cuts) +
+                                                       muscle_bends_text(ctx) + optimization_warnings_text(ctx) +
+                                                       checking);
   ctx.progress.checkpoint(-1, "writing the report");
   write_file_atomic(ctx.output_dir / "report.html", report(ctx, body, fibers, molds, parts, shots, cuts));
 }

@@ -25,8 +25,9 @@ public:
   /// 9: the sprues and vents in the 3D view; 10: the countersunk sprue in README.txt; 11: the parts' labels in
   /// README.txt and the manifest; 12: the labels in report.html's parts table, README.txt without them when [mold]
   /// labels = false; 13: README.txt: the print material, the side each half holds, release on the molds only, gauge
-  /// pressures, the default silicone's preset E; 14: at least 5 g of each part mixed
-  int version() const override { return 14; }
+  /// pressures, the default silicone's preset E; 14: at least 5 g of each part mixed; 15: the optimization's warnings
+  /// in README.txt
+  int version() const override { return 15; }
   void run(StageContext& ctx) const override;
 };
 

@@ -93,6 +93,14 @@ TEST(ReportE2E, ShowsTheDeformedBodyTheErrorsAndTheOptimizationHistory)
   EXPECT_THAT(html, HasSubstr("<div id=\"warnings\"><strong>Warnings</strong>"));
   EXPECT_THAT(html,
               HasSubstr("<li>the optimizer stopped before converging (iteration limit: 3 iterations, the limit)"));
+  // README.txt says so too, before how to check the cast robot against the simulation.
+  const std::size_t warned = guide.find("\nThe optimization warned (report.html gives its figures)"),
+                    stopped = guide.find("\n  - the optimizer stopped before converging (iteration limit: 3 "),
+                    checking = guide.find("\nChecking the cast robot against the simulation\n");
+  ASSERT_NE(warned, std::string::npos);
+  EXPECT_GT(stopped, warned);
+  EXPECT_GT(checking, stopped);
+  EXPECT_NE(checking, std::string::npos);
 
   // One plot point per optimizer iteration, for both series.
   const std::string history = test::read_text(build / "optimize" / "history.csv");
