@@ -1,6 +1,6 @@
 #pragma once
 // Private to the .cpp files that hand a surface to CGAL's polygon mesh processing (surface_check,
-// surface_remesh, molds' mesh_boolean; docs/architecture.md, "Private headers"): a SurfaceMesh as
+// surface_remesh, molds' mesh_boolean; docs/architecture.md, "Rules of the house"): a SurfaceMesh as
 // CGAL's Surface_mesh and back, indices kept (vertex v and face f of one are v and f of the other).
 
 #include <vector>
