@@ -86,9 +86,17 @@ double target_edge_length(const Design& design, double body_volume)
   return design.mesh.edge_length ? *design.mesh.edge_length : default_edge_length(body_volume);
 }
 
+namespace {
+/// The refined mesh's edge length: kRefinedEdgeFactor of the body mesh's.
+double refined_edge_length(const Design& d, double volume)
+{
+  return kRefinedEdgeFactor * target_edge_length(d, volume);
+}
+} // namespace
+
 double require_refined_mesh_size(const Design& d, const SurfaceMesh& surface, double volume)
 {
-  const double edge = kRefinedEdgeFactor * target_edge_length(d, volume);
+  const double edge = refined_edge_length(d, volume);
   return require_mesh_size(d, surface, volume, edge, refined_policy(d, surface, edge), MeshOf::refinement);
 }
 
@@ -103,9 +111,10 @@ TetMesh refined_design_mesh(const Design& d, Progress& progress)
 
 TetMesh refined_design_mesh(const Design& d, const SurfaceMesh& surface, double volume, Progress& progress)
 {
-  const double edge = kRefinedEdgeFactor * target_edge_length(d, volume);
-  require_refined_mesh_size(d, surface, volume);
-  return mesh_body(surface, refined_policy(d, surface, edge), tet_options(d, edge), progress).mesh;
+  const double edge = refined_edge_length(d, volume);
+  const SurfaceTriangles policy = refined_policy(d, surface, edge);
+  require_mesh_size(d, surface, volume, edge, policy, MeshOf::refinement);
+  return mesh_body(surface, policy, tet_options(d, edge), progress).mesh;
 }
 
 } // namespace fibermold

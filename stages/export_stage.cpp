@@ -559,12 +559,11 @@ std::optional<Json> optimization_report(const StageContext& ctx)
 
 /// The optimization's warnings (a target far from reached, a muscle at its limit, no convergence):
 /// report.html's banner, and a paragraph of README.txt.
-std::vector<std::string> optimization_warnings(const StageContext& ctx)
+std::vector<std::string> optimization_warnings(const Json& report)
 {
   std::vector<std::string> out;
-  if (const auto report = optimization_report(ctx))
-    for (const Json& w : report->value("warnings", Json::array()))
-      if (w.is_string()) out.push_back(w.get<std::string>());
+  for (const Json& w : report.value("warnings", Json::array()))
+    if (w.is_string()) out.push_back(w.get<std::string>());
   return out;
 }
 
@@ -573,7 +572,8 @@ std::vector<std::string> optimization_warnings(const StageContext& ctx)
 std::string optimization_warnings_text(const StageContext& ctx)
 {
   std::string text;
-  for (const std::string& w : optimization_warnings(ctx)) text += wrapped(w, "  - ", "    ");
+  if (const auto report = optimization_report(ctx))
+    for (const std::string& w : optimization_warnings(*report)) text += wrapped(w, "  - ", "    ");
   return text.empty() ? text
                       : "\nThe optimization warned (report.html gives its figures); the cast robot will do what the\n"
                         "simulation does, not what was asked:\n" +
@@ -584,7 +584,7 @@ std::optional<ReportTable> optimization_table(const StageContext& ctx, std::vect
 {
   const auto report = optimization_report(ctx);
   if (!report) return std::nullopt;
-  const std::vector<std::string> warned = optimization_warnings(ctx);
+  const std::vector<std::string> warned = optimization_warnings(*report);
   warnings.insert(warnings.end(), warned.begin(), warned.end());
   const auto number = [](const Json& j, const char* key, int digits, const std::string& unit = "") {
     return j.is_object() && j.contains(key) && j[key].is_number() ? fixed(j[key].get<double>(), digits) + unit
