@@ -35,7 +35,7 @@ struct DesignOptions {
 
 struct MaterialOptions {
   std::string model = "neo-hookean"; ///< the only one: Neo-Hookean (neo_hookean.hpp)
-  /// A silicone of silicone_presets.hpp, whose stiffness and density are the defaults of the keys below and
+  /// A silicone of molds/silicone_presets.hpp, whose stiffness and density are the defaults of the keys below and
   /// whose handling README.txt gives; empty: the paper's EcoFlex 00-30 figures (kDefaultSilicone's handling).
   std::string preset;
   double youngs_modulus = SimulationOptions{}.youngs_modulus; ///< Pa

@@ -13,7 +13,7 @@
 #include "core/input_error.hpp"
 #include "core/units.hpp"
 #include "design/did_you_mean.hpp"
-#include "design/silicone_presets.hpp"
+#include "molds/silicone_presets.hpp"
 
 namespace fibermold {
 

@@ -12,7 +12,8 @@
 #include "core/atomic_file.hpp"
 #include "core/json_file.hpp"
 #include "core/units.hpp"
-#include "design/silicone_presets.hpp"
+#include "core/wrapped_text.hpp"
+#include "export/casting_sheet.hpp"
 #include "export/lay_flat.hpp"
 #include "export/muscle_cut.hpp"
 #include "export/report_html.hpp"
@@ -36,154 +37,7 @@ using Json = nlohmann::ordered_json;
 // A place that moves less than this, and turns less, stays put: it is not worth comparing.
 constexpr double kStaysPut_mm = 0.5, kStaysPut_deg = 5.0;
 
-/// "the sprue hole", "the 2 sprue holes (one per groove system, one after the other)".
-std::string sprue_holes(const Json& sprues)
-{
-  return sprues.size() == 1
-             ? "the sprue hole"
-             : fmt::format("the {} sprue holes (one for each part that the others do not reach, one after the other)",
-                           sprues.size());
-}
-/// "the vent", "every one of the 3 vents".
-std::string vent_holes(const Json& vents)
-{
-  return vents.size() == 1 ? "the vent" : fmt::format("every one of the {} vents", vents.size());
-}
-
 std::vector<ReportLine> fiber_lines(const FibersFile& fibers);
-
-/// How much silicone to mix beyond a shot's volume: the cup's and the stirrer's film, the gun's nozzle.
-constexpr double kMixMargin = 0.2;
-/// g: the least of the smaller part to weigh out. On a 0.1 g kitchen scale that part is then within
-/// 2 % of its share; shot 2 of a small robot (1.8 g in all) would otherwise be mixed from 0.9 g of
-/// each part, ±11 %, and less than the nozzle holds.
-constexpr double kLeastPart_g = 5;
-
-/// What to mix for a shot of `grams` of silicone: kMixMargin more, and at least kLeastPart_g of the
-/// smaller part; grams of A and of B.
-struct Mix {
-  double a = 0, b = 0;
-  bool least = false; ///< the batch is the least one, not the shot + kMixMargin
-  double total() const { return a + b; }
-};
-Mix silicone_mix(const SiliconePreset& s, double grams)
-{
-  const double share = std::min(s.mix_a, s.mix_b) / (s.mix_a + s.mix_b);
-  const double least = kLeastPart_g / share, total = std::max((1 + kMixMargin) * grams, least);
-  return {total * s.mix_a / (s.mix_a + s.mix_b), total * s.mix_b / (s.mix_a + s.mix_b), total == least};
-}
-
-/// The silicone whose handling README.txt gives: the preset's, or the default material's.
-const SiliconePreset& silicone(const Design& d)
-{
-  return *find_silicone_preset(d.material.preset.empty() ? kDefaultSilicone : d.material.preset);
-}
-
-/// `text` broken into lines of at most kLineWidth characters (code points) at spaces, the first line
-/// starting with `first`, the others with `rest`; ends with a newline.
-std::string wrapped(const std::string& text, const std::string& first, const std::string& rest)
-{
-  constexpr std::size_t kLineWidth = 100;
-  const auto width = [](const std::string& s) {
-    return static_cast<std::size_t>(std::count_if(s.begin(), s.end(), [](char c) { return (c & 0xC0) != 0x80; }));
-  };
-  std::string out, line = first;
-  std::istringstream words(text);
-  bool empty = true;
-  for (std::string word; words >> word;) {
-    if (!empty && width(line) + 1 + width(word) > kLineWidth) {
-      out += line + "\n";
-      line = rest;
-      empty = true;
-    }
-    line += (empty ? "" : " ") + word;
-    empty = false;
-  }
-  return out + line + "\n";
-}
-
-/// The silicone: which one, the figures the simulation used, and per shot how much to mix of each part.
-std::string silicone_text(const Design& d, const Json& shots)
-{
-  const MaterialOptions& m = d.material;
-  const SiliconePreset& s = silicone(d);
-  std::string text = wrapped(
-      fmt::format("Silicone: {} ({}), mixed {:g}A : {:g}B by weight; pot life {:.0f} min, demold after {:.0f} h at "
-                  "23 °C (the maker's data sheet). The simulation took E = {:.1f} kPa, Poisson's ratio {:.2f} and "
-                  "{:.0f} kg/m³ ({}).",
-                  s.name, s.hardness, s.mix_a, s.mix_b, s.pot_life / 60, s.demold_time / 3600,
-                  m.youngs_modulus / units::kPa, m.poisson_ratio, m.density,
-                  m.preset.empty()
-                      ? fmt::format("[material]: the paper's figures; the handling here is Ecoflex 00-30's, the "
-                                    "default: name a [material] preset for another silicone. {}'s preset, fitted to "
-                                    "its published stress-strain data, has E = {:.1f} kPa ([material] preset = "
-                                    "\"{}\"){}",
-                                    s.name, s.youngs_modulus() / units::kPa, s.key,
-                                    s.youngs_modulus() < m.youngs_modulus
-                                        ? ": cast in it, the robot may bend further than simulated; a strip of your "
-                                          "own cast, pulled with a known weight, settles it"
-                                        : "")
-                      : "[material] preset = \"" + m.preset + "\""),
-      "", "  ");
-  for (const auto& [shot, info] : shots.items()) {
-    const double grams = info["silicone_mass_g"].get<double>();
-    const Mix mix = silicone_mix(s, grams);
-    const std::string why =
-        mix.least ? fmt::format("the least batch that weighs {:g} g or more of each part, so that a 0.1 g scale gets "
-                                "the ratio within 2 %",
-                                kLeastPart_g)
-                  : fmt::format("{:.0f} % more, for the cup and the nozzle", 100 * kMixMargin);
-    text += wrapped(fmt::format("{}: {:.1f} mL, {:.1f} g; mix {:.1f} g ({:.1f} g of A and {:.1f} g of B: {}).",
-                                shot == "shot1" ? "Shot 1" : "Shot 2", info["silicone_volume_mL"].get<double>(), grams,
-                                mix.total(), mix.a, mix.b, why),
-                    "  ", "    ");
-  }
-  return text + wrapped(fmt::format("Before each shot: spray or brush mold release (one made for platinum silicone) "
-                                    "onto the mold's cavity faces, and never onto the cast body or the muscles: shot "
-                                    "2 must bond to them; weigh A and B, stir for 3 minutes scraping the cup's "
-                                    "sides and bottom, {}, and inject within the pot life.",
-                                    s.degas_recommended ? "vacuum-degas it (the data sheet recommends it)"
-                                                        : "vacuum-degas it if you have a chamber"),
-                        "  ", "    ");
-}
-
-/// Each muscle: its cut length, diameter, which end takes the supply tube and which is sealed.
-std::string muscles_text(const std::vector<MuscleCut>& cuts, double diameter)
-{
-  std::string text =
-      fmt::format("\nMuscles ({:.1f} mm in diameter): cut each to its length inside the body.\n", diameter / units::mm);
-  for (const MuscleCut& c : cuts) {
-    if (!c.supply) {
-      text += wrapped(fmt::format("{}: {:.1f} mm. Neither end leaves the body: seal both; no channel leads a supply "
-                                  "tube out (route the fiber so that one end reaches the skin).",
-                                  c.name, c.length_inside / units::mm),
-                      "  ", "    ");
-      continue;
-    }
-    const MuscleEnd& supply = *c.supply == 0 ? c.start : c.end;
-    const MuscleEnd& sealed = *c.supply == 0 ? c.end : c.start;
-    text += wrapped(
-        fmt::format(
-            "{}: {:.1f} mm. Fit the supply tube (e.g. with a Luer lock fitting) to its {} end, which leaves the "
-            "body at {}; seal its {} end, {}.",
-            c.name, c.length_inside / units::mm, *c.supply == 0 ? "first" : "last", format_mm(supply.skin_point),
-            *c.supply == 0 ? "last" : "first",
-            sealed.leaves_body ? "which leaves the body at " + format_mm(sealed.skin_point) +
-                                     ": plug that channel's outer hole for shot 2 (e.g. with a short piece of "
-                                     "tube) and trim the cast flush there"
-                               : "buried in the body at " + format_mm(sealed.at)),
-        "  ", "    ");
-  }
-  return text;
-}
-
-/// "Close the two halves on their keys and clamp them", with the screws when the mold has them.
-std::string clamp_text(const Json& shot)
-{
-  const int screws = shot.value("screw_holes", 0);
-  return screws > 0 ? fmt::format("Close the two halves on their keys and bolt them through the {} screw holes", screws)
-                    : std::string("Close the two halves on their keys and clamp them (spring clamps or rubber bands)");
-}
 
 /// The pull the molds were made for (molds/report.json): [mold] pull, or its reverse where that left
 /// a half of shot 1 a plate.
@@ -191,84 +45,6 @@ Eigen::Vector3d molds_pull(const Json& molds)
 {
   return molds.contains("pull") ? Eigen::Vector3d(molds["pull"][0], molds["pull"][1], molds["pull"][2])
                                 : Eigen::Vector3d::UnitZ();
-}
-
-/// Which side of the body each half holds: the molds open along their pull.
-std::string halves_text(const Json& molds)
-{
-  const Eigen::Vector3d pull = molds_pull(molds);
-  const auto direction = [](const Eigen::Vector3d& v) {
-    return fmt::format("({:g}, {:g}, {:g})", v.x() + 0.0, v.y() + 0.0, v.z() + 0.0);
-  };
-  return wrapped(fmt::format("Each mold opens along {} in the design's frame: its lower half holds the side of the "
-                             "body that faces {}, its upper half the side that faces {}.",
-                             direction(pull), direction(-pull), direction(pull)),
-                 "", "");
-}
-
-std::string casting_guide(const Design& d, const Json& molds, const std::string& format,
-                          const std::vector<MuscleCut>& cuts)
-{
-  const Json& shots = molds["shots"];
-  const std::string ext = "." + format, FORMAT = format == "3mf" ? "3MF file" : "STL";
-  const auto ml = [&](const char* shot) { return shots[shot]["silicone_volume_mL"].get<double>(); };
-  const auto g = [&](const char* shot) { return shots[shot]["silicone_mass_g"].get<double>(); };
-  const auto fill = [&](const char* shot) -> const Json& { return shots[shot]["fill"]; };
-  const double cure = silicone(d).demold_time / 3600;
-  const char* engraved = "Each part says which it is, engraved into a side (or its outer end) where it has room:\n"
-                         "the design's name, the shot and the half (\"S1 LOWER\": shot 1's lower half); \"IN\" is\n"
-                         "engraved beside each sprue.";
-  const char* plain = "The parts are not engraved ([mold] labels = false): tell them apart by their file names as\n"
-                      "you take them off the printer; a sprue is the countersunk hole.";
-  std::string halves = halves_text(molds);
-  halves.pop_back(); // its newline: the text below has its own
-  const std::string labels = (d.mold.labels ? engraved : plain) + std::string("\n") + halves;
-  return fmt::format(R"(fibermold mold parts for "{}"
-
-Print every {} as it lies (each stands on its largest flat face; units mm), in PLA or PETG: platinum
-silicone can fail to cure against some printed resins (test a resin with a small pour first).
-{}
-
-{}{}
-Shot 1, the grooved body: shot1-lower{} and shot1-upper{}.
-  1. {}.
-     Stand the mold upright: lower half down, the sprue hole underneath, the vents on top.
-     A sprue is the countersunk hole (its seat takes the dispenser's nozzle); the vents are plain.
-  2. Inject about {:.1f} mL ({:.1f} g) of silicone through {} from below, slowly,
-     until silicone comes out of {}; then plug the sprue.
-  3. Let it cure ({:.0f} h), and demold: the body has an open groove for each muscle.
-  4. Trim the cast's sprue and vent stubs flush with its skin: shot 2's cavity is the body's
-     own shape and has no room for them.
-
-Lay each muscle into its groove, resting on the groove's bottom, its ends and supply tubes along
-the grooves' ends.
-
-Shot 2, the overmold: shot2-lower{} and shot2-upper{}.
-  5. Put the grooved body with its muscles into the lower half, grooves up, and route the supply
-     tubes out through the channels at the fibers' ends.
-     {}.
-  6. Stand the mold upright as in shot 1. In this shot the sprue comes in from the TOP of the
-     upper half, straight over the lowest point of the grooves: the cured body lies below them,
-     so they cannot be filled from below. Inject about {:.1f} mL ({:.1f} g) of silicone slowly
-     through {}; it runs down into the grooves and rises around the muscles;
-     go on until silicone comes out of {}.
-  7. Let it cure ({:.0f} h), demold and trim the stubs as in step 4.
-
-The fill of both shots was simulated (silicone rising level by level from the sprue): shot 1
-reaches {:.1f} % of its cavity and traps {:.2f} mm³ of air, shot 2 reaches {:.1f} % of the
-grooves (the rest: crevices along the muscles thinner than the simulation's voxel) and traps
-{:.2f} mm³ (allowed: {:.1f} mm³ per shot). manifest.json lists where each sprue
-and vent meets the cavity, each part's size, volume, checks and how its printed pose maps back to
-the body.
-)",
-                     d.design.name, FORMAT, labels, silicone_text(d, shots),
-                     muscles_text(cuts, d.muscle.model.diameter), ext, ext, clamp_text(shots["shot1"]), ml("shot1"),
-                     g("shot1"), sprue_holes(fill("shot1")["sprues"]), vent_holes(fill("shot1")["vents"]), cure, ext,
-                     ext, clamp_text(shots["shot2"]), ml("shot2"), g("shot2"), sprue_holes(fill("shot2")["sprues"]),
-                     vent_holes(fill("shot2")["vents"]), cure, fill("shot1")["reachable_percent"].get<double>(),
-                     fill("shot1")["trapped_air_mm3"].get<double>(), fill("shot2")["reachable_percent"].get<double>(),
-                     fill("shot2")["trapped_air_mm3"].get<double>(),
-                     fill("shot1")["trapped_air_tolerance_mm3"].get<double>());
 }
 
 /// Each fiber's cut: along its centre line as collide left it (10 points per mm), against the body's skin;
@@ -292,6 +68,44 @@ std::vector<MuscleCut> muscle_cuts(const StageContext& ctx, const TetMesh& body,
   for (const ReportLine& line : fiber_lines(fibers))
     cuts.push_back(muscle_cut(line.name, line.points, skin, reach, mount));
   return cuts;
+}
+
+/// One shot of molds/report.json, for the casting sheet.
+CastShot cast_shot(const Json& shot)
+{
+  const Json& fill = shot["fill"];
+  CastShot c;
+  c.volume = shot["silicone_volume_mL"].get<double>() * 1e-6;
+  c.mass = shot["silicone_mass_g"].get<double>() * 1e-3;
+  c.screw_holes = shot.value("screw_holes", 0);
+  c.sprues = static_cast<int>(fill["sprues"].size());
+  c.vents = static_cast<int>(fill["vents"].size());
+  if (c.sprues > 0) c.sprue_from = fill["sprues"][0]["from"].get<std::string>();
+  c.reached = fill["reachable_percent"].get<double>() / 100;
+  c.trapped_air = fill["trapped_air_mm3"].get<double>() * 1e-9;
+  c.trapped_air_tolerance = fill["trapped_air_tolerance_mm3"].get<double>() * 1e-9;
+  return c;
+}
+
+/// The casting sheet of the design's molds (molds/report.json) and muscles.
+CastingSheet casting_sheet(const Design& d, const Json& molds, std::vector<MuscleCut> cuts)
+{
+  const MaterialOptions& m = d.material;
+  CastingSheet sheet;
+  sheet.design_name = d.design.name;
+  sheet.format = d.export_.formats.front();
+  sheet.labels = d.mold.labels;
+  sheet.silicone = *find_silicone_preset(m.preset.empty() ? kDefaultSilicone : m.preset);
+  sheet.preset = m.preset;
+  sheet.youngs_modulus = m.youngs_modulus;
+  sheet.poisson_ratio = m.poisson_ratio;
+  sheet.density = m.density;
+  sheet.muscle_diameter = d.muscle.model.diameter;
+  sheet.cuts = std::move(cuts);
+  sheet.pull = molds_pull(molds);
+  sheet.shot1 = cast_shot(molds["shots"]["shot1"]);
+  sheet.shot2 = cast_shot(molds["shots"]["shot2"]);
+  return sheet;
 }
 
 /// Each fiber's centre line, 10 points per mm.
@@ -685,26 +499,6 @@ void add_ports(const Json& fill, const std::string& shot, const Eigen::Vector3d&
   }
 }
 
-/// The muscles to cut, as README.txt gives them.
-ReportTable muscles_table(const Design& d, const std::vector<MuscleCut>& cuts)
-{
-  ReportTable t{fmt::format("Muscles to cut ({:.1f} mm in diameter)", d.muscle.model.diameter / units::mm),
-                {"fiber", "cut length: inside the body (mm)", "supply tube at", "sealed end at"},
-                {}};
-  for (const MuscleCut& c : cuts) {
-    if (!c.supply) {
-      t.rows.push_back(
-          {c.name, fixed(c.length_inside / units::mm, 1), "none: neither end leaves the body", "both ends"});
-      continue;
-    }
-    const MuscleEnd& supply = *c.supply == 0 ? c.start : c.end;
-    const MuscleEnd& sealed = *c.supply == 0 ? c.end : c.start;
-    t.rows.push_back({c.name, fixed(c.length_inside / units::mm, 1), format_mm(supply.skin_point),
-                      sealed.leaves_body ? format_mm(sealed.skin_point) : format_mm(sealed.at) + ", buried"});
-  }
-  return t;
-}
-
 /// What a part carries engraved, for the parts table: "“WALKING-ROBOT S1 LOWER” (side, 8 mm) · “IN” (end,
 /// 5 mm)", or "none".
 std::string engraved_text(const Json& labels)
@@ -720,7 +514,7 @@ std::string engraved_text(const Json& labels)
 /// lifted off along pull), the shot 2 mold beside it (hidden), the parts' checks and the silicone.
 /// No timings (they are in make's output and the stage logs): the same design gives the same page.
 std::string report(const StageContext& ctx, const TetMesh& body, const FibersFile& fibers, const Json& molds,
-                   const Json& parts, const Json& shots, const std::vector<MuscleCut>& cuts)
+                   const Json& parts, const CastingSheet& sheet)
 {
   const Design& d = ctx.design;
   const auto load = [&](const std::string& file) { return import_surface(ctx.upstream("molds", file), units::mm); };
@@ -761,30 +555,11 @@ std::string report(const StageContext& ctx, const TetMesh& body, const FibersFil
                            p["fits_printer_as_placed"].get<bool>() ? "lying flat" : "turned",
                            p["checks_passed"].get<bool>() ? "passed" : "FAILED"});
   }
-  const SiliconePreset& s = silicone(d);
-  ReportTable silicone{
-      fmt::format("Silicone: {}, {:g}A : {:g}B by weight, pot life {:.0f} min, demold after {:.0f} h; its fill "
-                  "(simulated: rising level by level from the sprues)",
-                  s.name, s.mix_a, s.mix_b, s.pot_life / 60, s.demold_time / 3600),
-      {"shot", "volume (mL)", "mass (g)",
-       fmt::format("mix, +{:.0f} %, at least {:g} g of each part (g of A + g of B)", 100 * kMixMargin, kLeastPart_g),
-       "sprues", "vents", "fill reached", "air trapped (mm³)"},
-      {}};
-  for (const auto& [shot, info] : shots.items()) {
-    const Json& f = info["fill"];
-    const Mix mix = silicone_mix(s, info["silicone_mass_g"].get<double>());
-    silicone.rows.push_back({shot, fixed(info["silicone_volume_mL"], 2), fixed(info["silicone_mass_g"], 2),
-                             fixed(mix.a, 1) + " + " + fixed(mix.b, 1),
-                             fmt::format("{} from {}", f["sprues"].size(),
-                                         f["sprues"].empty() ? "" : f["sprues"][0]["from"].get<std::string>()),
-                             std::to_string(f["vents"].size()), fixed(f["reachable_percent"], 1) + " %",
-                             fixed(f["trapped_air_mm3"], 2)});
-  }
   std::vector<std::string> warnings;
   std::vector<ReportTable> tables;
   if (auto optimized = optimization_table(ctx, warnings)) tables.push_back(std::move(*optimized));
   for (ReportTable& t : behaviour_tables(ctx)) tables.push_back(std::move(t));
-  tables.insert(tables.end(), {checks, silicone, muscles_table(d, cuts)});
+  tables.insert(tables.end(), {checks, silicone_table(sheet), muscles_table(sheet)});
   std::vector<ReportPlot> plots;
   if (auto history = optimization_history(ctx)) plots.push_back(std::move(*history));
   return report_html("fibermold: " + d.design.name, meshes, lines, tables, plots, warnings);
@@ -841,12 +616,11 @@ void ExportStage::run(StageContext& ctx) const
   const Json manifest{{"design", d.design.name}, {"units", "mm"},  {"voxel_mm", molds["voxel_mm"]},
                       {"parts", parts},          {"shots", shots}, {"deformed", deformed}};
   write_json_atomic(ctx.output_dir / "manifest.json", manifest);
-  const std::vector<MuscleCut> cuts = muscle_cuts(ctx, body, fibers, molds);
-  write_file_atomic(ctx.output_dir / "README.txt", casting_guide(d, molds, d.export_.formats.front(), cuts) +
-                                                       muscle_bends_text(ctx) + optimization_warnings_text(ctx) +
-                                                       checking);
+  const CastingSheet sheet = casting_sheet(d, molds, muscle_cuts(ctx, body, fibers, molds));
+  write_file_atomic(ctx.output_dir / "README.txt",
+                    casting_guide(sheet) + muscle_bends_text(ctx) + optimization_warnings_text(ctx) + checking);
   ctx.progress.checkpoint(-1, "writing the report");
-  write_file_atomic(ctx.output_dir / "report.html", report(ctx, body, fibers, molds, parts, shots, cuts));
+  write_file_atomic(ctx.output_dir / "report.html", report(ctx, body, fibers, molds, parts, sheet));
 }
 
 } // namespace fibermold

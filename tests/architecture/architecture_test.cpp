@@ -33,7 +33,7 @@ const std::map<std::string, std::set<std::string>>& allowed()
       {"sim", {"core", "mesh"}},
       {"optimize", {"core", "mesh", "sim"}},
       {"molds", {"core", "mesh"}},
-      {"export", {"core", "mesh"}},
+      {"export", {"core", "mesh", "molds"}},
       {"design", {"core", "mesh", "sim", "optimize", "molds"}},
       {"make", {"core", "mesh", "sim", "optimize", "molds", "design"}},
       {"stages", {"core", "mesh", "sim", "optimize", "molds", "export", "design", "make"}},

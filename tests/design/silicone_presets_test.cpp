@@ -9,7 +9,7 @@
 #include <gtest/gtest.h>
 
 #include "design/design_file.hpp"
-#include "design/silicone_presets.hpp"
+#include "molds/silicone_presets.hpp"
 #include "sim/neo_hookean.hpp"
 #include "test_support.hpp"
 

@@ -1,4 +1,4 @@
-#include "design/silicone_presets.hpp"
+#include "molds/silicone_presets.hpp"
 
 #include <algorithm>
 

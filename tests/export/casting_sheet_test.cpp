@@ -1,0 +1,109 @@
+// The casting sheet read back as a user reads it: how much to mix per shot (20 % over the shot, at
+// least 5 g of the smaller part), the screws or clamps, the holes named by their count, the muscles'
+// cut lengths and ends.
+#include <sstream>
+
+#include <gtest/gtest.h>
+
+#include "export/casting_sheet.hpp"
+
+namespace fibermold {
+namespace {
+
+CastShot shot(double grams, int screws, int sprues, int vents)
+{
+  CastShot s;
+  s.mass = grams * 1e-3;
+  s.volume = grams / 1.07 * 1e-6;
+  s.screw_holes = screws;
+  s.sprues = sprues;
+  s.vents = vents;
+  s.sprue_from = sprues > 0 ? "below" : "";
+  s.reached = 0.9987;
+  s.trapped_air = 0.25e-9;
+  s.trapped_air_tolerance = 5e-9;
+  return s;
+}
+
+CastingSheet sheet()
+{
+  CastingSheet s;
+  s.design_name = "finger";
+  s.silicone = *find_silicone_preset("dragon-skin-10");
+  s.preset = "dragon-skin-10";
+  s.youngs_modulus = s.silicone.youngs_modulus();
+  s.poisson_ratio = kPresetPoissonRatio;
+  s.density = s.silicone.density;
+  s.muscle_diameter = 3e-3;
+  MuscleCut supplied{"m1", 0.110, 0.108, {}, {}, 0};
+  supplied.start = {{0, 0, 0}, true, {-0.001, 0, 0}};
+  supplied.end = {{0.1, 0, 0}, false, {0.1, 0.005, 0}};
+  MuscleCut buried{"m2", 0.050, 0.050, {}, {}, std::nullopt};
+  buried.start = {{0.02, 0, 0}, false, {0.02, 0.005, 0}};
+  buried.end = {{0.07, 0, 0}, false, {0.07, 0.005, 0}};
+  s.cuts = {supplied, buried};
+  s.shot1 = shot(40.0, 4, 1, 3);
+  s.shot2 = shot(1.8, 0, 2, 1);
+  return s;
+}
+
+/// True when `text`, read with its line breaks and indents as single spaces, holds `part`.
+bool has(const std::string& text, const std::string& part)
+{
+  std::string flat;
+  for (std::size_t i = 0; i < text.size(); ++i)
+    if (text[i] != '\n')
+      flat += text[i];
+    else if (flat.empty() || flat.back() != ' ')
+      flat += ' ';
+  for (std::size_t at; (at = flat.find("  ")) != std::string::npos;) flat.erase(at, 1);
+  return flat.find(part) != std::string::npos;
+}
+
+TEST(CastingSheet, MixesTwentyPercentMoreOrTheLeastBatchAScaleWeighs)
+{
+  const std::string guide = casting_guide(sheet());
+  // 40 g: 48 g, 24 g of each part; 1.8 g: under the least batch, 5 g of each part.
+  EXPECT_TRUE(has(guide, "Shot 1: 37.4 mL, 40.0 g; mix 48.0 g (24.0 g of A and 24.0 g of B: 20 % more"));
+  EXPECT_TRUE(has(guide, "Shot 2: 1.7 mL, 1.8 g; mix 10.0 g (5.0 g of A and 5.0 g of B: the least batch"));
+  const ReportTable t = silicone_table(sheet());
+  ASSERT_EQ(t.rows.size(), 2U);
+  EXPECT_EQ(t.rows[0][3], "24.0 + 24.0");
+  EXPECT_EQ(t.rows[1][3], "5.0 + 5.0");
+  EXPECT_EQ(t.rows[1][4], "2 from below");
+  EXPECT_EQ(t.rows[0][6], "99.9 %");
+  EXPECT_EQ(t.rows[0][7], "0.25");
+}
+
+TEST(CastingSheet, SaysHowToCloseEachMoldAndNamesItsHoles)
+{
+  const std::string guide = casting_guide(sheet());
+  EXPECT_TRUE(has(guide, "bolt them through the 4 screw holes"));
+  EXPECT_TRUE(has(guide, "clamp them (spring clamps or rubber bands)"));
+  EXPECT_TRUE(has(guide, "through the sprue hole from below"));
+  EXPECT_TRUE(has(guide, "every one of the 3 vents"));
+  EXPECT_TRUE(has(guide, "through the 2 sprue holes"));
+  EXPECT_TRUE(has(guide, "Smooth-On Dragon Skin 10 Medium (Shore 10A), mixed 1A : 1B by weight; pot life 20 min, "
+                         "demold after 5 h"));
+  EXPECT_TRUE(has(guide, "vacuum-degas it (the data sheet recommends it)"));
+  EXPECT_TRUE(has(guide, "Let it cure (5 h)"));
+  EXPECT_TRUE(has(guide, "shot1-lower.stl"));
+}
+
+TEST(CastingSheet, GivesEachMuscleItsCutAndItsEnds)
+{
+  const std::string guide = casting_guide(sheet());
+  EXPECT_TRUE(has(guide, "Muscles (3.0 mm in diameter)"));
+  EXPECT_TRUE(has(guide, "m1: 108.0 mm. Fit the supply tube"));
+  EXPECT_TRUE(has(guide, "to its first end, which leaves the body at (-1.0, 0.0, 0.0) mm"));
+  EXPECT_TRUE(has(guide, "buried in the body at (100.0, 0.0, 0.0) mm"));
+  EXPECT_TRUE(has(guide, "m2: 50.0 mm. Neither end leaves the body: seal both"));
+  const ReportTable t = muscles_table(sheet());
+  ASSERT_EQ(t.rows.size(), 2U);
+  EXPECT_EQ(t.rows[0][1], "108.0");
+  EXPECT_EQ(t.rows[0][3], "(100.0, 0.0, 0.0) mm, buried");
+  EXPECT_EQ(t.rows[1][3], "both ends");
+}
+
+} // namespace
+} // namespace fibermold
