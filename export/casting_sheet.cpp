@@ -157,57 +157,56 @@ std::string casting_guide(const CastingSheet& sheet)
   const CastShot &one = sheet.shot1, &two = sheet.shot2;
   const std::string ext = "." + sheet.format, FORMAT = sheet.format == "3mf" ? "3MF file" : "STL";
   const double cure = sheet.silicone.demold_time / kHour;
-  const char* engraved = "Each part says which it is, engraved into a side (or its outer end) where it has room:\n"
-                         "the design's name, the shot and the half (\"S1 LOWER\": shot 1's lower half); \"IN\" is\n"
+  const auto step = [](int n, const std::string& text) { return wrapped(text, fmt::format("  {}. ", n), "     "); };
+  const char* engraved = "Each part says which it is, engraved into a side (or its outer end) where it has room: the "
+                         "design's name, the shot and the half (\"S1 LOWER\": shot 1's lower half); \"IN\" is "
                          "engraved beside each sprue.";
-  const char* plain = "The parts are not engraved ([mold] labels = false): tell them apart by their file names as\n"
+  const char* plain = "The parts are not engraved ([mold] labels = false): tell them apart by their file names as "
                       "you take them off the printer; a sprue is the countersunk hole.";
-  std::string halves = halves_text(sheet.pull);
-  halves.pop_back(); // its newline: the text below has its own
-  const std::string labels = (sheet.labels ? engraved : plain) + std::string("\n") + halves;
-  return fmt::format(R"(fibermold mold parts for "{}"
-
-Print every {} as it lies (each stands on its largest flat face; units mm), in PLA or PETG: platinum
-silicone can fail to cure against some printed resins (test a resin with a small pour first).
-{}
-
-{}{}
-Shot 1, the grooved body: shot1-lower{} and shot1-upper{}.
-  1. {}.
-     Stand the mold upright: lower half down, the sprue hole underneath, the vents on top.
-     A sprue is the countersunk hole (its seat takes the dispenser's nozzle); the vents are plain.
-  2. Inject about {:.1f} mL ({:.1f} g) of silicone through {} from below, slowly,
-     until silicone comes out of {}; then plug the sprue.
-  3. Let it cure ({:.0f} h), and demold: the body has an open groove for each muscle.
-  4. Trim the cast's sprue and vent stubs flush with its skin: shot 2's cavity is the body's
-     own shape and has no room for them.
-
-Lay each muscle into its groove, resting on the groove's bottom, its ends and supply tubes along
-the grooves' ends.
-
-Shot 2, the overmold: shot2-lower{} and shot2-upper{}.
-  5. Put the grooved body with its muscles into the lower half, grooves up, and route the supply
-     tubes out through the channels at the fibers' ends.
-     {}.
-  6. Stand the mold upright as in shot 1. In this shot the sprue comes in from the TOP of the
-     upper half, straight over the lowest point of the grooves: the cured body lies below them,
-     so they cannot be filled from below. Inject about {:.1f} mL ({:.1f} g) of silicone slowly
-     through {}; it runs down into the grooves and rises around the muscles;
-     go on until silicone comes out of {}.
-  7. Let it cure ({:.0f} h), demold and trim the stubs as in step 4.
-
-The fill of both shots was simulated (silicone rising level by level from the sprue): shot 1
-reaches {:.1f} % of its cavity and traps {:.2f} mm³ of air, shot 2 reaches {:.1f} % of the
-grooves (the rest: crevices along the muscles thinner than the simulation's voxel) and traps
-{:.2f} mm³ (allowed: {:.1f} mm³ per shot). manifest.json lists where each sprue
-and vent meets the cavity, each part's size, volume, checks and how its printed pose maps back to
-the body.
-)",
-                     sheet.design_name, FORMAT, labels, silicone_text(sheet), muscles_text(sheet), ext, ext,
-                     clamp_text(one), one.volume / kMl, one.mass / kGram, sprue_holes(one.sprues),
-                     vent_holes(one.vents), cure, ext, ext, clamp_text(two), two.volume / kMl, two.mass / kGram,
-                     sprue_holes(two.sprues), vent_holes(two.vents), cure, 100 * one.reached, one.trapped_air / kMm3,
-                     100 * two.reached, two.trapped_air / kMm3, one.trapped_air_tolerance / kMm3);
+  std::string text = fmt::format("fibermold mold parts for \"{}\"\n\n", sheet.design_name);
+  text += wrapped(fmt::format("Print every {} as it lies (each stands on its largest flat face; units mm), in PLA or "
+                              "PETG: platinum silicone can fail to cure against some printed resins (test a resin "
+                              "with a small pour first).",
+                              FORMAT),
+                  "", "");
+  text += wrapped(sheet.labels ? engraved : plain, "", "") + halves_text(sheet.pull) + "\n";
+  text += silicone_text(sheet) + muscles_text(sheet);
+  text += fmt::format("\nShot 1, the grooved body: shot1-lower{} and shot1-upper{}.\n", ext, ext);
+  text += step(1, clamp_text(one) + ". Stand the mold upright: lower half down, the sprue hole underneath, the vents "
+                                    "on top. A sprue is the countersunk hole (its seat takes the dispenser's nozzle); "
+                                    "the vents are plain.");
+  text += step(2, fmt::format("Inject about {:.1f} mL ({:.1f} g) of silicone through {} from below, slowly, until "
+                              "silicone comes out of {}; then plug the sprue.",
+                              one.volume / kMl, one.mass / kGram, sprue_holes(one.sprues), vent_holes(one.vents)));
+  text +=
+      step(3, fmt::format("Let it cure ({:.0f} h), and demold: the body has an open groove for each muscle.", cure));
+  text += step(4, "Trim the cast's sprue and vent stubs flush with its skin: shot 2's cavity is the body's own shape "
+                  "and has no room for them.");
+  text += '\n';
+  text += wrapped("Lay each muscle into its groove, resting on the groove's bottom, its ends and supply tubes "
+                  "along the grooves' ends.",
+                  "", "");
+  text += fmt::format("\nShot 2, the overmold: shot2-lower{} and shot2-upper{}.\n", ext, ext);
+  text += step(5, "Put the grooved body with its muscles into the lower half, grooves up, and route the supply tubes "
+                  "out through the channels at the fibers' ends. " +
+                      clamp_text(two) + ".");
+  text += step(6, fmt::format("Stand the mold upright as in shot 1. In this shot the sprue comes in from the TOP of "
+                              "the upper half, straight over the lowest point of the grooves: the cured body lies "
+                              "below them, so they cannot be filled from below. Inject about {:.1f} mL ({:.1f} g) of "
+                              "silicone slowly through {}; it runs down into the grooves and rises around the "
+                              "muscles; go on until silicone comes out of {}.",
+                              two.volume / kMl, two.mass / kGram, sprue_holes(two.sprues), vent_holes(two.vents)));
+  text += step(7, fmt::format("Let it cure ({:.0f} h), demold and trim the stubs as in step 4.", cure));
+  return text + "\n" +
+         wrapped(fmt::format("The fill of both shots was simulated (silicone rising level by level from the sprue): "
+                             "shot 1 reaches {:.1f} % of its cavity and traps {:.2f} mm³ of air, shot 2 reaches "
+                             "{:.1f} % of the grooves (the rest: crevices along the muscles thinner than the "
+                             "simulation's voxel) and traps {:.2f} mm³ (allowed: {:.1f} mm³ per shot). manifest.json "
+                             "lists where each sprue and vent meets the cavity, each part's size, volume, checks and "
+                             "how its printed pose maps back to the body.",
+                             100 * one.reached, one.trapped_air / kMm3, 100 * two.reached, two.trapped_air / kMm3,
+                             one.trapped_air_tolerance / kMm3),
+                 "", "");
 }
 
 ReportTable silicone_table(const CastingSheet& sheet)

@@ -26,8 +26,8 @@ public:
   /// README.txt and the manifest; 12: the labels in report.html's parts table, README.txt without them when [mold]
   /// labels = false; 13: README.txt: the print material, the side each half holds, release on the molds only, gauge
   /// pressures, the default silicone's preset E; 14: at least 5 g of each part mixed; 15: the optimization's warnings
-  /// in README.txt
-  int version() const override { return 15; }
+  /// in README.txt; 16: the casting sheet's steps wrapped within 100 characters whatever the counts of holes
+  int version() const override { return 16; }
   void run(StageContext& ctx) const override;
 };
 

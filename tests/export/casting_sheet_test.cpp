@@ -1,6 +1,6 @@
 // The casting sheet read back as a user reads it: how much to mix per shot (20 % over the shot, at
 // least 5 g of the smaller part), the screws or clamps, the holes named by their count, the muscles'
-// cut lengths and ends.
+// cut lengths and ends, and every line within 100 characters, whatever the counts and the names.
 #include <sstream>
 
 #include <gtest/gtest.h>
@@ -103,6 +103,24 @@ TEST(CastingSheet, GivesEachMuscleItsCutAndItsEnds)
   EXPECT_EQ(t.rows[0][1], "108.0");
   EXPECT_EQ(t.rows[0][3], "(100.0, 0.0, 0.0) mm, buried");
   EXPECT_EQ(t.rows[1][3], "both ends");
+}
+
+TEST(CastingSheet, NoLineIsLongerThanAHundredCharacters)
+{
+  CastingSheet s = sheet();
+  s.preset.clear(); // the longest paragraph: the default material and the preset it stands for
+  s.silicone = *find_silicone_preset(kDefaultSilicone);
+  s.youngs_modulus = 86.4e3;
+  std::istringstream lines(casting_guide(s));
+  int n = 0;
+  for (std::string line; std::getline(lines, line); ++n) {
+    std::size_t width = 0;
+    for (char c : line) width += (c & 0xC0) != 0x80;
+    EXPECT_LE(width, 100U) << line;
+  }
+  EXPECT_GT(n, 40);
+  EXPECT_TRUE(has(casting_guide(s), "E = 86.4 kPa"));
+  EXPECT_TRUE(has(casting_guide(s), "the robot may bend further than simulated"));
 }
 
 } // namespace
