@@ -28,15 +28,27 @@ std::vector<double> parameters_off_exits(const SurfaceDistance& skin, const Herm
 SkinBarrier::SkinBarrier(const SurfaceDistance& skin, double min_distance, double band, const HermiteSpline& initial,
                          int samples)
     : skin_(skin), min_(min_distance), band_(band),
-      t_(parameters_off_exits(skin, initial, segment_parameters(initial, samples), min_distance + band))
+      t_(parameters_off_exits(skin, initial, segment_parameters(initial, samples), min_distance + band)),
+      measured_at_(t_.size(), Eigen::Vector3d::Zero()), measured_(t_.size(), -HUGE_VAL)
 {
+}
+
+bool SkinBarrier::beyond_band(std::size_t k, const Eigen::Vector3d& p, SurfaceDistance::Closest& c) const
+{
+  // The distance to the skin is 1-Lipschitz: d(p) ≥ d(q) − |p − q|.
+  if (measured_[k] - (p - measured_at_[k]).norm() >= min_ + band_) return true;
+  c = skin_.closest(p);
+  measured_at_[k] = p;
+  measured_[k] = c.inside ? c.distance : -HUGE_VAL;
+  return false;
 }
 
 double SkinBarrier::value(const HermiteSpline& spline) const
 {
   double B = 0;
-  for (double t : t_) {
-    const auto c = skin_.closest(spline.position(t));
+  SurfaceDistance::Closest c;
+  for (std::size_t k = 0; k < t_.size(); ++k) {
+    if (beyond_band(k, spline.position(t_[k]), c)) continue; // b = 0 there
     if (!c.inside) return HUGE_VAL;
     B += barrier((c.distance - min_) / band_, 1.0);
   }
@@ -48,10 +60,11 @@ FiberParameterGradient SkinBarrier::gradient(const HermiteSpline& spline) const
   FiberParameterGradient g;
   g.points.assign(spline.points().size(), Eigen::Vector3d::Zero());
   g.tangents.assign(spline.points().size(), Eigen::Vector3d::Zero());
-  for (double t : t_) {
+  SurfaceDistance::Closest c;
+  for (std::size_t i = 0; i < t_.size(); ++i) {
+    const double t = t_[i];
     const Eigen::Vector3d p = spline.position(t);
-    const auto c = skin_.closest(p);
-    if (!c.inside || c.distance >= min_ + band_) continue;
+    if (beyond_band(i, p, c) || !c.inside || c.distance >= min_ + band_) continue;
     // ∂b/∂p = b'((d − d_min)/w)/w ∇d,  ∇d = (p − c)/|p − c| inside the body
     const Eigen::Vector3d by_p =
         barrier_gradient((c.distance - min_) / band_, 1.0) / band_ * (p - c.point) / c.distance;

@@ -13,6 +13,9 @@
 // polygon. Pieces that bound cannot clear d_min (or, once a point within d_min is found, the
 // closest so far) are halved until they are shorter than a micrometre. A route through a notch, whose bottom
 // lies between two samples, is caught there.
+// The same Lipschitz bound spares most distance queries: a sample whose last measured distance, less
+// how far it has moved since, is still beyond d_min + w adds exactly 0 to B and to its gradient (and
+// is inside), so value() and gradient() query the skin only for samples that may be in the band.
 
 #include <vector>
 
@@ -52,9 +55,16 @@ public:
   HeldStretch held() const { return t_.empty() ? HeldStretch{1, 0} : HeldStretch{t_.front(), t_.back()}; }
 
 private:
+  /// Whether sample k, now at p, is provably beyond the band (see above); if not, measures it and
+  /// returns its skin distance in `c`.
+  bool beyond_band(std::size_t k, const Eigen::Vector3d& p, SurfaceDistance::Closest& c) const;
+
   const SurfaceDistance& skin_;
   double min_, band_;
   std::vector<double> t_;
+  /// Each sample where its distance was last measured, and that distance (−∞: outside).
+  mutable std::vector<Eigen::Vector3d> measured_at_;
+  mutable std::vector<double> measured_;
 };
 
 } // namespace fibermold

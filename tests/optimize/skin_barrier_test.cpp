@@ -66,5 +66,30 @@ TEST(SkinBarrier, ARouteUnderANotchBetweenSamplesIsCaught)
   EXPECT_GT(SkinBarrier(skin, 2.5 * mm, 1.5 * mm, lower, 15).closest_approach(lower, where) / mm, 4.99);
 }
 
+TEST(SkinBarrier, ItsValueAndGradientAreThoseOfAFreshBarrierWhereverTheRouteHasBeen)
+{
+  // value() and gradient() skip samples whose last distance, less how far they moved, is beyond the
+  // band. A route walked up under the notch, sideways and back down, step by step, must see at each
+  // step exactly what a barrier that has never seen it sees.
+  static const SurfaceDistance skin = notched_bar();
+  const HermiteSpline start({{0, 0, -4 * mm}, {30 * mm, 0, -4 * mm}, {60 * mm, 0, -4 * mm}});
+  const SkinBarrier walked(skin, 2.5 * mm, 1.5 * mm, start, 30);
+  int in_band = 0;
+  for (int step = 0; step <= 40; ++step) {
+    const double s = step / 40.0, rise = 7.5 * std::sin(M_PI * s) * mm, side = 5 * std::sin(2 * M_PI * s) * mm;
+    const HermiteSpline route({{0, 0, -4 * mm}, {30 * mm, side, -4 * mm + rise}, {60 * mm, 0, -4 * mm}});
+    const SkinBarrier fresh(skin, 2.5 * mm, 1.5 * mm, start, 30);
+    const double value = fresh.value(route);
+    EXPECT_EQ(walked.value(route), value) << "step " << step;
+    const FiberParameterGradient g = walked.gradient(route), expected = fresh.gradient(route);
+    for (std::size_t i = 0; i < g.points.size(); ++i) {
+      EXPECT_EQ(g.points[i], expected.points[i]) << "step " << step;
+      EXPECT_EQ(g.tangents[i], expected.tangents[i]) << "step " << step;
+    }
+    in_band += value > 0 && value < HUGE_VAL;
+  }
+  EXPECT_GT(in_band, 5); // the walk goes through the band, not only past it
+}
+
 } // namespace
 } // namespace fibermold
