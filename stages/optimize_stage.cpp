@@ -16,8 +16,8 @@
 #include "core/units.hpp"
 #include "optimize/clearance_barrier.hpp"
 #include "optimize/optimization_ending.hpp"
-#include "optimize/perturbed_start.hpp"
 #include "optimize/routing_optimizer.hpp"
+#include "optimize/several_starts.hpp"
 #include "stages/design_mesh.hpp"
 #include "stages/design_simulation.hpp"
 #include "stages/fibers_file.hpp"
@@ -91,31 +91,6 @@ private:
   std::string text_;
 };
 
-/// The routes and pressures optimized; first, with `route_only_iterations`, the routes alone at
-/// their starting pressures (reported as stage −1). At zero pressure a route has no effect, so an optimizer that turns
-/// a muscle down before its route does the job can stop there (the twisting bar: a straight muscle bends the bar, so
-/// the pressure falls to zero before a helix forms).
-RoutingResult optimize(const Design& d, RoutingProblem& problem, const MinimizerOptions& o,
-                       const RoutingCallback& on_iteration, Progress& progress)
-{
-  const int route_only = d.optimize.route_only_iterations;
-  if (route_only == 0)
-    return optimize_routing(problem, d.optimize.strategy, o, on_iteration, progress, actuator_mask(d));
-  MinimizerOptions first = o;
-  first.max_iterations = route_only;
-  const ActuatorMask none = ActuatorMask::Constant(problem.num_targets(), problem.num_fibers(), false);
-  const RoutingCallback routes_only = [&](int, const MinimizerIteration& it, const RoutingTerms& terms) {
-    on_iteration(-1, it, terms);
-  };
-  const RoutingResult routes = optimize_routing(problem, Strategy::simultaneous, first, routes_only, progress, none);
-  if (routes.interrupted) return routes;
-  problem.set_base(routes.routing);
-  RoutingResult both = optimize_routing(problem, d.optimize.strategy, o, on_iteration, progress, actuator_mask(d));
-  both.iterations += routes.iterations;
-  both.evaluations += routes.evaluations;
-  return both;
-}
-
 /// The progress and log line of an iteration: which start and fiber stage it is in, and its figures.
 std::string iteration_line(int starts, int start, int stages, int stage, const MinimizerIteration& it,
                            const RoutingTerms& terms)
@@ -129,44 +104,35 @@ std::string iteration_line(int starts, int start, int stages, int stage, const M
 }
 
 /// The optimization from the first guess and, with [optimize] starts = N, from N − 1 perturbations
-/// of it (perturbed_start.hpp, moved by up to one muscle diameter): the run that ends lowest, and
-/// each run's figures for report.json in `runs`. `current` tells the callback which run it is in. A
-/// perturbed start where the objective is not finite (no equilibrium) is left out with a warning.
-RoutingResult optimize_from_starts(const Design& d, RoutingProblem& problem, const Routing& start,
-                                   const MinimizerOptions& o, const RoutingCallback& on_iteration, StageContext& ctx,
-                                   int& current, nlohmann::ordered_json& runs)
+/// of it (moved by up to one muscle diameter): the run that ends lowest, and each run's figures for
+/// report.json in `runs`. `current` tells the callback which run it is in.
+RoutingResult optimize_from_starts(StageContext& ctx, RoutingProblem& problem, const Routing& start,
+                                   const MinimizerOptions& o, const RoutingCallback& on_iteration, int& current,
+                                   nlohmann::ordered_json& runs)
 {
-  RoutingResult best;
+  const Design& d = ctx.design;
+  const SeveralStartsOptions options{d.optimize.strategy, o,
+                                     actuator_mask(d),    d.optimize.route_only_iterations,
+                                     d.optimize.starts,   d.muscle.model.diameter};
+  std::vector<StartRun> ran;
+  RoutingResult best = optimize_from_starts(problem, start, options, on_iteration, ctx.progress, current, ran);
   runs = nlohmann::ordered_json::array();
-  for (int k = 0; k < d.optimize.starts; ++k) {
-    current = k;
-    const Routing from = k == 0 ? start : perturbed_start(problem, start, k, d.muscle.model.diameter);
-    problem.set_base(from);
-    RoutingResult r;
-    try {
-      r = optimize(d, problem, o, on_iteration, ctx.progress);
-    } catch (const std::invalid_argument& e) { // a perturbed start whose equilibrium Newton does not find
-      if (k == 0) throw;
-      ctx.log.warn("start {} of {} left out: {}", k + 1, d.optimize.starts, e.what());
-      runs.push_back({{"start", k}, {"left_out", e.what()}});
+  for (const StartRun& run : ran) {
+    const RoutingResult& r = run.result;
+    if (!run.left_out.empty()) {
+      ctx.log.warn("start {} of {} left out: {}", run.start + 1, d.optimize.starts, run.left_out);
+      runs.push_back({{"start", run.start}, {"left_out", run.left_out}});
       continue;
     }
-    runs.push_back({{"start", k},
+    runs.push_back({{"start", run.start},
                     {"objective", r.value},
                     {"termination", choice_name(r.termination)},
                     {"converged", r.converged},
                     {"iterations", r.iterations}});
     if (d.optimize.starts > 1)
-      ctx.log.info("start {} of {}{}: objective {:.6g}, {} after {} iterations", k + 1, d.optimize.starts,
-                   k == 0 ? " (the first guess)" : "", r.value, choice_name(r.termination), r.iterations);
-    const bool interrupted = r.interrupted;
-    if (k == 0 || r.value < best.value) best = std::move(r);
-    if (interrupted) {
-      best.interrupted = true; // the best design so far is kept
-      break;
-    }
+      ctx.log.info("start {} of {}{}: objective {:.6g}, {} after {} iterations", run.start + 1, d.optimize.starts,
+                   run.start == 0 ? " (the first guess)" : "", r.value, choice_name(r.termination), r.iterations);
   }
-  if (d.optimize.starts > 1) problem.set_base(start); // a single run leaves it as it always did
   return best;
 }
 
@@ -538,7 +504,7 @@ void OptimizeStage::run(StageContext& ctx) const
   nlohmann::ordered_json runs = nlohmann::ordered_json::array();
   RoutingResult result = baseline.result.interrupted
                              ? baseline.result
-                             : optimize_from_starts(d, problem, start, o, on_iteration, ctx, current_start, runs);
+                             : optimize_from_starts(ctx, problem, start, o, on_iteration, current_start, runs);
   const std::string kept_first_guess = keep_the_better(ctx, problem, baseline, result);
   const FibersFile fibers{result.routing, names, true};
 
