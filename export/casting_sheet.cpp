@@ -102,8 +102,14 @@ std::string silicone_text(const CastingSheet& sheet)
 /// Each muscle: its cut length, diameter, which end takes the supply tube and which is sealed.
 std::string muscles_text(const CastingSheet& sheet)
 {
-  std::string text = fmt::format("\nMuscles ({:.1f} mm in diameter): cut each to its length inside the body.\n",
-                                 sheet.muscle_diameter / units::mm);
+  std::string text = "\n";
+  text += wrapped(fmt::format("Muscles ({:.1f} mm in diameter): cut each to its length inside the "
+                              "body, and before you lay it into its groove fit its supply tube and "
+                              "seal its other end (shot 2 buries both). A supply tube leaves the mold "
+                              "through a channel {:.1f} mm wide: one of that outside diameter closes "
+                              "it while shot 2 is poured (wrap a thinner one with tape to that width).",
+                              sheet.muscle_diameter / units::mm, sheet.end_channel_diameter / units::mm),
+                  "", "");
   for (const MuscleCut& c : sheet.cuts) {
     if (!c.supply) {
       text += wrapped(fmt::format("{}: {:.1f} mm. Neither end leaves the body: seal both; no channel leads a supply "

@@ -101,6 +101,7 @@ CastingSheet casting_sheet(const Design& d, const Json& molds, std::vector<Muscl
   sheet.poisson_ratio = m.poisson_ratio;
   sheet.density = m.density;
   sheet.muscle_diameter = d.muscle.model.diameter;
+  sheet.end_channel_diameter = d.mold.end_channel_diameter;
   sheet.cuts = std::move(cuts);
   sheet.pull = molds_pull(molds);
   sheet.shot1 = cast_shot(molds["shots"]["shot1"]);
@@ -219,14 +220,14 @@ std::string poses_to_compare(const Json& poses)
                           format_mm(Eigen::Vector3d(p["rest_mm"][0], p["rest_mm"][1], p["rest_mm"][2]) * units::mm),
                           p.contains("nodes") ? fmt::format(": the centre of its {} nodes", p["nodes"].get<int>()) : "")
             : "";
-    out += fmt::format(
-        "    {}{}: moves {:.1f} mm ({:.1f}, {:.1f}, {:.1f}) and turns {:.1f}° about ({:.2f}, {:.2f}, {:.2f})",
+    std::string line = fmt::format(
+        "{}{}: moves {:.1f} mm ({:.1f}, {:.1f}, {:.1f}) and turns {:.1f}° about ({:.2f}, {:.2f}, {:.2f})",
         p["place"].get<std::string>(), where, t.norm(), t.x(), t.y(), t.z(), turn, p["rotation_axis"][0].get<double>(),
         p["rotation_axis"][1].get<double>(), p["rotation_axis"][2].get<double>());
     if (p.contains("rotation_about_asked_axis_deg") && p.contains("asked_rotation_deg"))
-      out += fmt::format("; {:.1f}° about the axis asked (asked {:.1f}°)",
-                         p["rotation_about_asked_axis_deg"].get<double>(), p["asked_rotation_deg"].get<double>());
-    out += "\n";
+      line += fmt::format("; {:.1f}° about the axis asked (asked {:.1f}°)",
+                          p["rotation_about_asked_axis_deg"].get<double>(), p["asked_rotation_deg"].get<double>());
+    out += wrapped(line, "    ", "      ");
   }
   return out.empty()
              ? fmt::format("    nothing moves more than {} mm or turns more than {}°\n", kStaysPut_mm, kStaysPut_deg)
@@ -406,7 +407,7 @@ std::optional<ReportTable> optimization_table(const StageContext& ctx, std::vect
   };
   ReportTable t{fmt::format("Optimization: {} after {} iterations ({})", report->value("termination", std::string("?")),
                             report->value("iterations", 0), report->value("message", std::string())),
-                {"target", "RMSE at the start (mm)", "RMSE at the end (mm)", "reached"},
+                {"target", "RMSE at the start (mm)", "RMSE at the end (mm)", "reached: 1 − end / start RMSE"},
                 {}};
   std::vector<std::string> fibers; // every target's report names every fiber's pressure
   const Json& first = (*report)["targets"].begin().value();

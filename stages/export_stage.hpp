@@ -14,10 +14,13 @@ public:
   std::string name() const override { return "export"; }
   std::vector<std::string> upstream() const override { return {"mesh", "targets", "optimize", "collide", "molds"}; }
   /// The report shows the tracking curves and names the targets; README.txt gives the silicone (material), the
-  /// muscles' diameter and max pressure, and feeds each muscle from its end nearest the mount (fixed).
+  /// muscles' diameter and max pressure, feeds each muscle from its end nearest the mount (fixed) through its end
+  /// channel (mold.end_channel_diameter: the supply tube's width).
   std::vector<std::string> design_keys() const override
   {
-    return {"design.name", "export", "material", "fixed", "muscle", "tracking_curve", "target", "mold.labels"};
+    return {"design.name", "export",      "material",
+            "fixed",       "muscle",      "tracking_curve",
+            "target",      "mold.labels", "mold.end_channel_diameter"};
   }
   /// 2: the fill in the manifest and README.txt, parts' transforms; 3: no timings in report.html; 4: the optimization
   /// table and the warnings banner; 5: each target drawn beside the robot, the turns reached; 6: the bend radius
@@ -26,8 +29,9 @@ public:
   /// README.txt and the manifest; 12: the labels in report.html's parts table, README.txt without them when [mold]
   /// labels = false; 13: README.txt: the print material, the side each half holds, release on the molds only, gauge
   /// pressures, the default silicone's preset E; 14: at least 5 g of each part mixed; 15: the optimization's warnings
-  /// in README.txt; 16: the casting sheet's steps wrapped within 100 characters whatever the counts of holes
-  int version() const override { return 16; }
+  /// in README.txt; 16: the casting sheet's steps wrapped within 100 characters whatever the counts of holes; 17: when
+  /// to fit and seal the muscles and the supply tube's width, the poses to compare wrapped, "reached" explained
+  int version() const override { return 17; }
   void run(StageContext& ctx) const override;
 };
 

@@ -35,6 +35,7 @@ CastingSheet sheet()
   s.poisson_ratio = kPresetPoissonRatio;
   s.density = s.silicone.density;
   s.muscle_diameter = 3e-3;
+  s.end_channel_diameter = 4e-3;
   MuscleCut supplied{"m1", 0.110, 0.108, {}, {}, 0};
   supplied.start = {{0, 0, 0}, true, {-0.001, 0, 0}};
   supplied.end = {{0.1, 0, 0}, false, {0.1, 0.005, 0}};
@@ -94,6 +95,8 @@ TEST(CastingSheet, GivesEachMuscleItsCutAndItsEnds)
 {
   const std::string guide = casting_guide(sheet());
   EXPECT_TRUE(has(guide, "Muscles (3.0 mm in diameter)"));
+  EXPECT_TRUE(has(guide, "before you lay it into its groove fit its supply tube and seal its other end"));
+  EXPECT_TRUE(has(guide, "through a channel 4.0 mm wide"));
   EXPECT_TRUE(has(guide, "m1: 108.0 mm. Fit the supply tube"));
   EXPECT_TRUE(has(guide, "to its first end, which leaves the body at (-1.0, 0.0, 0.0) mm"));
   EXPECT_TRUE(has(guide, "buried in the body at (100.0, 0.0, 0.0) mm"));
