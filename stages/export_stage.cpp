@@ -283,10 +283,12 @@ std::string muscle_bends_text(const StageContext& ctx)
 {
   const auto report = json_if_any(ctx.upstream("collide", "report.json"));
   if (!report || !report->contains("bends") || !(*report)["min_bend_radius_mm"].is_number()) return {};
-  std::string text = fmt::format(
-      "\nThe muscles take bends no tighter than {:.1f} mm in radius ([muscle] min_bend_radius); the grooves\n"
-      "follow the routes, so lay each muscle along its groove without kinking it. Each route's tightest bend:\n",
-      (*report)["min_bend_radius_mm"].get<double>());
+  std::string text = "\n";
+  text += wrapped(fmt::format("The muscles take bends no tighter than {:.1f} mm in radius ([muscle] min_bend_radius); "
+                              "the grooves follow the routes, so lay each muscle along its groove without kinking it. "
+                              "Each route's tightest bend:",
+                              (*report)["min_bend_radius_mm"].get<double>()),
+                  "", "");
   for (const auto& [fiber, b] : (*report)["bends"].items())
     text += b.contains("min_bend_radius_mm")
                 ? fmt::format("  {}: {:.1f} mm, {:.1f} mm along it\n", fiber, b["min_bend_radius_mm"].get<double>(),

@@ -2,8 +2,10 @@
 // under the final routing beside the molds, each target's error before and after collide as collide
 // measured it, what collide changed, and the optimizer's history as a plot; it draws in headless
 // Chromium without a script error.
+#include <algorithm>
 #include <cstring>
 #include <regex>
+#include <sstream>
 
 #include <fmt/format.h>
 #include <gmock/gmock.h>
@@ -74,6 +76,9 @@ TEST(ReportE2E, ShowsTheDeformedBodyTheErrorsAndTheOptimizationHistory)
   }
   // The casting guide says it too, where the muscles are laid into their grooves.
   const std::string guide = test::read_text(build / "export" / "README.txt");
+  std::istringstream readme(guide); // a plain-text file read in any editor: no line over 100 characters
+  for (std::string line; std::getline(readme, line);)
+    EXPECT_LE(std::count_if(line.begin(), line.end(), [](char c) { return (c & 0xC0) != 0x80; }), 100) << line;
   EXPECT_THAT(guide, HasSubstr(fmt::format("The muscles take bends no tighter than {:.1f} mm in radius", limit)));
   EXPECT_THAT(guide,
               HasSubstr(bend.contains("min_bend_radius_mm")
