@@ -137,6 +137,29 @@ private:
     }
   }
 
+  /// The shot's thin deep ribs, in `shot` and, without a draft to taper them, as warnings that
+  /// name each (the five deepest) and what to do.
+  void warn_thin_ribs(ShotMold& shot, const SurfaceMesh& cavity, const Parting& parting) const
+  {
+    const auto started = Clock::now();
+    shot.thin_ribs = thin_ribs(cavity, parting, kThinRib / 12);
+    log_.info(
+        fmt::format("{}: {} thin deep rib(s) found in {:.2f} s", shot.name, shot.thin_ribs.size(), since(started)));
+    if (m_.draft_deg > 0) return;
+    for (std::size_t k = 0; k < shot.thin_ribs.size() && k < 5; ++k) {
+      const ThinRib& r = shot.thin_ribs[k];
+      log_.warn(fmt::format("{}: the {} half stands a rib {:.1f} mm thick {:.1f} mm deep into the cavity, its tip at "
+                            "{} (the mold's side of a narrow slot or gap of the body): printed without draft it may "
+                            "break, or tear the cast, as the half comes off; set [mold] draft_deg (1–3°), or print "
+                            "that half solid",
+                            shot.name, r.upper ? "upper" : "lower", r.thickness / 1e-3, r.depth / 1e-3,
+                            format_mm(r.at)));
+    }
+    if (shot.thin_ribs.size() > 5)
+      log_.warn(
+          fmt::format("{}: and {} more thin deep ribs (molds/report.json)", shot.name, shot.thin_ribs.size() - 5));
+  }
+
   std::vector<std::string> make_shot(const std::string& name, const SurfaceMesh& shot_cavity, Parting parting,
                                      double silicone, const std::vector<Channel>& shot_channels);
 
@@ -222,6 +245,7 @@ std::vector<std::string> Recipe::make_shot(const std::string& name, const Surfac
   log_.info(fmt::format(
       "{}: {:.0f} % of the upper half's contact lies within 3° of the pull (walls it slides along; draft_deg {})", name,
       100 * shot.upright_share, m_.draft_deg));
+  warn_thin_ribs(shot, cavity, parting);
   shot.parting = parting;
   shot.cavity_volume = signed_volume(cavity);
   shot.silicone_volume = silicone;

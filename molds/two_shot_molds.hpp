@@ -26,6 +26,7 @@
 #include "molds/parting.hpp"
 #include "molds/ports.hpp"
 #include "molds/silicone_thickness.hpp"
+#include "molds/thin_ribs.hpp"
 
 namespace fibermold {
 
@@ -82,6 +83,7 @@ struct ShotMold {
   double upright_share = 0;   ///< of the upper half's contact within 3° of the pull
   double silicone_volume = 0; ///< m³ the shot pours
   std::size_t sprues = 0, vents = 0, keys = 0, screw_holes = 0;
+  std::vector<ThinRib> thin_ribs; ///< thin deep ribs of its halves (thin_ribs.hpp), deepest first
 };
 
 struct CheckedPart {

@@ -130,7 +130,13 @@ Json molds_report(const TwoShotMolds& molds, const Design& d)
 {
   const MoldOptions& m = d.mold;
   Json shots = Json::object(), parts = Json::object();
-  for (const ShotMold& s : molds.shots)
+  for (const ShotMold& s : molds.shots) {
+    Json ribs = Json::array();
+    for (const ThinRib& r : s.thin_ribs)
+      ribs.push_back({{"half", r.upper ? "upper" : "lower"},
+                      {"tip_mm", vec_mm(r.at)},
+                      {"thickness_mm", six_places(r.thickness / 1e-3)},
+                      {"depth_mm", six_places(r.depth / 1e-3)}});
     shots[s.name] = {{"cavity_volume_mL", six_places(s.cavity_volume / 1e-6)},
                      {"upper_contact_within_3deg_of_pull_percent", six_places(100 * s.upright_share)},
                      {"silicone_volume_mL", six_places(s.silicone_volume / 1e-6)},
@@ -142,7 +148,9 @@ Json molds_report(const TwoShotMolds& molds, const Design& d)
                      {"vents", s.vents},
                      {"keys", s.keys},
                      {"screw_holes", s.screw_holes},
+                     {"thin_ribs", ribs},
                      {"fill", fill_report(s.plan, s.fill_voxel, molds)}};
+  }
   for (const CheckedPart& p : molds.parts) {
     const PartCheck& c = p.check;
     Json labels = Json::array();
