@@ -34,7 +34,8 @@ Eigen::MatrixXd square_filter(const Eigen::MatrixXd& m, Eigen::Index r, bool max
 /// The ribs of one half: `w` its pull (out of the cavity, away from the plane), the plane at height
 /// `plane` along w.
 std::vector<ThinRib> half_ribs(const SurfaceDistance& tree, const SurfaceMesh& cavity, const Eigen::Vector3d& w,
-                               double plane, double cell, double thickness, double aspect, bool upper)
+                               double plane, double cell, double thickness, double aspect, bool upper,
+                               Progress* progress)
 {
   const Eigen::Vector3d u = w.unitOrthogonal(), v = w.cross(u);
   const Eigen::VectorXd cu = cavity.vertices * u, cv = cavity.vertices * v, cw = cavity.vertices * w;
@@ -47,11 +48,13 @@ std::vector<ThinRib> half_ribs(const SurfaceDistance& tree, const SurfaceMesh& c
   };
   // The half's floor: where each column, coming down along −w, meets the cavity; the plane below.
   Eigen::MatrixXd floor(nu, nv);
-  for (Eigen::Index i = 0; i < nu; ++i)
+  for (Eigen::Index i = 0; i < nu; ++i) {
+    if (progress && progress->interrupted()) throw Interrupted();
     for (Eigen::Index j = 0; j < nv; ++j) {
       const double hit = tree.ray_distance(point(i, j, top), -w);
       floor(i, j) = std::isfinite(hit) ? std::max(top - hit, plane) : plane;
     }
+  }
   const auto r = static_cast<Eigen::Index>(std::floor(thickness / (2 * cell)));
   const Eigen::MatrixXd depth = square_filter(square_filter(floor, r, true), r, false) - floor;
   // The ribs: connected cells that stand deeper than the facets; each one's thickness from the
@@ -98,14 +101,15 @@ std::vector<ThinRib> half_ribs(const SurfaceDistance& tree, const SurfaceMesh& c
 
 } // namespace
 
-std::vector<ThinRib> thin_ribs(const SurfaceMesh& cavity, const Parting& parting, double cell, double thickness,
-                               double aspect)
+std::vector<ThinRib> thin_ribs(const SurfaceMesh& cavity, const Parting& parting, double cell, Progress* progress,
+                               double thickness, double aspect)
 {
   const SurfaceDistance tree(cavity.vertices, cavity.faces);
   const Eigen::Vector3d pull = parting.normal.normalized();
   const double plane = pull.dot(parting.point);
-  std::vector<ThinRib> ribs = half_ribs(tree, cavity, pull, plane, cell, thickness, aspect, true);
-  for (const ThinRib& r : half_ribs(tree, cavity, -pull, -plane, cell, thickness, aspect, false)) ribs.push_back(r);
+  std::vector<ThinRib> ribs = half_ribs(tree, cavity, pull, plane, cell, thickness, aspect, true, progress);
+  for (const ThinRib& r : half_ribs(tree, cavity, -pull, -plane, cell, thickness, aspect, false, progress))
+    ribs.push_back(r);
   std::sort(ribs.begin(), ribs.end(), [](const ThinRib& a, const ThinRib& b) { return a.depth > b.depth; });
   return ribs;
 }

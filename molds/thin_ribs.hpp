@@ -13,6 +13,7 @@
 
 #include <Eigen/Core>
 
+#include "core/progress.hpp"
 #include "mesh/surface_mesh.hpp"
 #include "molds/parting.hpp"
 
@@ -31,8 +32,9 @@ struct ThinRib {
 };
 
 /// The thin deep ribs of both halves of the mold of `cavity` parted at `parting`, deepest first;
-/// the height maps sampled every `cell` (m).
+/// the height maps sampled every `cell` (m). Throws Interrupted when `progress` says so.
 std::vector<ThinRib> thin_ribs(const SurfaceMesh& cavity, const Parting& parting, double cell,
-                               double thickness = kThinRib, double aspect = kDeepRibAspect);
+                               Progress* progress = nullptr, double thickness = kThinRib,
+                               double aspect = kDeepRibAspect);
 
 } // namespace fibermold

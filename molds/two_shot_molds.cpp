@@ -142,7 +142,7 @@ private:
   void warn_thin_ribs(ShotMold& shot, const SurfaceMesh& cavity, const Parting& parting) const
   {
     const auto started = Clock::now();
-    shot.thin_ribs = thin_ribs(cavity, parting, kThinRib / 12);
+    shot.thin_ribs = thin_ribs(cavity, parting, kThinRib / 12, &progress_);
     log_.info(
         fmt::format("{}: {} thin deep rib(s) found in {:.2f} s", shot.name, shot.thin_ribs.size(), since(started)));
     if (m_.draft_deg > 0) return;

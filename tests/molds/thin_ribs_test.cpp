@@ -55,5 +55,14 @@ TEST(ThinRibs, SlotsWiderThanAThinRibHoldNone)
   EXPECT_TRUE(thin_ribs(slotted_finger(1), {{0, 0, 15 * mm}, {0, 0, -1}, 0}, kThinRib / 12).empty());
 }
 
+TEST(ThinRibs, StopsWhenAskedTo)
+{
+  struct Stopped : Progress {
+    void update(double, std::string_view) override {}
+    bool interrupted() const override { return true; }
+  } stopped;
+  EXPECT_THROW(thin_ribs(slotted_finger(1), {{0, 0, 6.65 * mm}, {0, 0, -1}, 0}, kThinRib / 12, &stopped), Interrupted);
+}
+
 } // namespace
 } // namespace fibermold
