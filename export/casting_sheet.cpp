@@ -12,7 +12,6 @@ namespace fibermold {
 
 namespace {
 
-constexpr double kMm3 = 1e-9, kMl = 1e-6, kGram = 1e-3; // m³ per mm³ and per mL, kg per g
 constexpr double kMinute = 60, kHour = 3600;
 
 /// How much silicone to mix beyond a shot's volume: the cup's and the stirrer's film, the gun's nozzle.
@@ -78,7 +77,7 @@ std::string silicone_text(const CastingSheet& sheet)
                       : "[material] preset = \"" + sheet.preset + "\""),
       "", "  ");
   for (const auto& [shot, info] : shots(sheet)) {
-    const double grams = info->mass / kGram;
+    const double grams = info->mass / units::gram;
     const Mix mix = silicone_mix(s, grams);
     const std::string why =
         mix.least ? fmt::format("the least batch that weighs {:g} g or more of each part, so that a 0.1 g scale gets "
@@ -86,8 +85,8 @@ std::string silicone_text(const CastingSheet& sheet)
                                 kLeastPart_g)
                   : fmt::format("{:.0f} % more, for the cup and the nozzle", 100 * kMixMargin);
     text += wrapped(fmt::format("{}: {:.1f} mL, {:.1f} g; mix {:.1f} g ({:.1f} g of A and {:.1f} g of B: {}).",
-                                info == &sheet.shot1 ? "Shot 1" : "Shot 2", info->volume / kMl, grams, mix.total(),
-                                mix.a, mix.b, why),
+                                info == &sheet.shot1 ? "Shot 1" : "Shot 2", info->volume / units::mL, grams,
+                                mix.total(), mix.a, mix.b, why),
                     "  ", "    ");
   }
   return text + wrapped(fmt::format("Before each shot: spray or brush mold release (one made for platinum silicone) "
@@ -183,7 +182,8 @@ std::string casting_guide(const CastingSheet& sheet)
                                     "the vents are plain.");
   text += step(2, fmt::format("Inject about {:.1f} mL ({:.1f} g) of silicone through {} from below, slowly, until "
                               "silicone comes out of {}; then plug the sprue.",
-                              one.volume / kMl, one.mass / kGram, sprue_holes(one.sprues), vent_holes(one.vents)));
+                              one.volume / units::mL, one.mass / units::gram, sprue_holes(one.sprues),
+                              vent_holes(one.vents)));
   text +=
       step(3, fmt::format("Let it cure ({:.0f} h), and demold: the body has an open groove for each muscle.", cure));
   text += step(4, "Trim the cast's sprue and vent stubs flush with its skin: shot 2's cavity is the body's own shape "
@@ -201,7 +201,8 @@ std::string casting_guide(const CastingSheet& sheet)
                               "below them, so they cannot be filled from below. Inject about {:.1f} mL ({:.1f} g) of "
                               "silicone slowly through {}; it runs down into the grooves and rises around the "
                               "muscles; go on until silicone comes out of {}.",
-                              two.volume / kMl, two.mass / kGram, sprue_holes(two.sprues), vent_holes(two.vents)));
+                              two.volume / units::mL, two.mass / units::gram, sprue_holes(two.sprues),
+                              vent_holes(two.vents)));
   text += step(7, fmt::format("Let it cure ({:.0f} h), demold and trim the stubs as in step 4.", cure));
   return text + "\n" +
          wrapped(fmt::format("The fill of both shots was simulated (silicone rising level by level from the sprue): "
@@ -210,8 +211,8 @@ std::string casting_guide(const CastingSheet& sheet)
                              "simulation's voxel) and traps {:.2f} mm³ (allowed: {:.1f} mm³ per shot). manifest.json "
                              "lists where each sprue and vent meets the cavity, each part's size, volume, checks and "
                              "how its printed pose maps back to the body.",
-                             100 * one.reached, one.trapped_air / kMm3, 100 * two.reached, two.trapped_air / kMm3,
-                             one.trapped_air_tolerance / kMm3),
+                             100 * one.reached, one.trapped_air / units::mm3, 100 * two.reached,
+                             two.trapped_air / units::mm3, one.trapped_air_tolerance / units::mm3),
                  "", "");
 }
 
@@ -227,11 +228,12 @@ ReportTable silicone_table(const CastingSheet& sheet)
        "sprues", "vents", "fill reached", "air trapped (mm³)"},
       {}};
   for (const auto& [shot, info] : shots(sheet)) {
-    const Mix mix = silicone_mix(s, info->mass / kGram);
-    t.rows.push_back(
-        {shot, fixed(info->volume / kMl, 2), fixed(info->mass / kGram, 2), fixed(mix.a, 1) + " + " + fixed(mix.b, 1),
-         fmt::format("{} from {}", info->sprues, info->sprues == 0 ? "" : info->sprue_from),
-         std::to_string(info->vents), fixed(100 * info->reached, 1) + " %", fixed(info->trapped_air / kMm3, 2)});
+    const Mix mix = silicone_mix(s, info->mass / units::gram);
+    t.rows.push_back({shot, fixed(info->volume / units::mL, 2), fixed(info->mass / units::gram, 2),
+                      fixed(mix.a, 1) + " + " + fixed(mix.b, 1),
+                      fmt::format("{} from {}", info->sprues, info->sprues == 0 ? "" : info->sprue_from),
+                      std::to_string(info->vents), fixed(100 * info->reached, 1) + " %",
+                      fixed(info->trapped_air / units::mm3, 2)});
   }
   return t;
 }

@@ -75,15 +75,15 @@ CastShot cast_shot(const Json& shot)
 {
   const Json& fill = shot["fill"];
   CastShot c;
-  c.volume = shot["silicone_volume_mL"].get<double>() * 1e-6;
-  c.mass = shot["silicone_mass_g"].get<double>() * 1e-3;
+  c.volume = shot["silicone_volume_mL"].get<double>() * units::mL;
+  c.mass = shot["silicone_mass_g"].get<double>() * units::gram;
   c.screw_holes = shot.value("screw_holes", 0);
   c.sprues = static_cast<int>(fill["sprues"].size());
   c.vents = static_cast<int>(fill["vents"].size());
   if (c.sprues > 0) c.sprue_from = fill["sprues"][0]["from"].get<std::string>();
   c.reached = fill["reachable_percent"].get<double>() / 100;
-  c.trapped_air = fill["trapped_air_mm3"].get<double>() * 1e-9;
-  c.trapped_air_tolerance = fill["trapped_air_tolerance_mm3"].get<double>() * 1e-9;
+  c.trapped_air = fill["trapped_air_mm3"].get<double>() * units::mm3;
+  c.trapped_air_tolerance = fill["trapped_air_tolerance_mm3"].get<double>() * units::mm3;
   return c;
 }
 
