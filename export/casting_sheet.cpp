@@ -117,8 +117,7 @@ std::string muscles_text(const CastingSheet& sheet)
                       "  ", "    ");
       continue;
     }
-    const MuscleEnd& supply = *c.supply == 0 ? c.start : c.end;
-    const MuscleEnd& sealed = *c.supply == 0 ? c.end : c.start;
+    const MuscleEnd &supply = c.supply_end(), &sealed = c.sealed_end();
     text += wrapped(
         fmt::format(
             "{}: {:.1f} mm. Fit the supply tube (e.g. with a Luer lock fitting) to its {} end, which leaves the "
@@ -249,8 +248,7 @@ ReportTable muscles_table(const CastingSheet& sheet)
           {c.name, fixed(c.length_inside / units::mm, 1), "none: neither end leaves the body", "both ends"});
       continue;
     }
-    const MuscleEnd& supply = *c.supply == 0 ? c.start : c.end;
-    const MuscleEnd& sealed = *c.supply == 0 ? c.end : c.start;
+    const MuscleEnd &supply = c.supply_end(), &sealed = c.sealed_end();
     t.rows.push_back({c.name, fixed(c.length_inside / units::mm, 1), format_mm(supply.skin_point),
                       sealed.leaves_body ? format_mm(sealed.skin_point) : format_mm(sealed.at) + ", buried"});
   }

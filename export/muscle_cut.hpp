@@ -27,6 +27,10 @@ struct MuscleCut {
   MuscleEnd start, end;
   /// 0: the start takes the supply tube, 1: the end; nullopt: neither end leaves the body.
   std::optional<int> supply;
+
+  /// The end that takes the supply tube, and the one sealed; only when `supply` is set.
+  const MuscleEnd& supply_end() const { return *supply == 0 ? start : end; }
+  const MuscleEnd& sealed_end() const { return *supply == 0 ? end : start; }
 };
 
 /// The cut of the muscle along `centre_line` (points at most a fraction of a millimetre apart): an end
