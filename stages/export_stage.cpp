@@ -13,9 +13,11 @@
 #include "core/json_file.hpp"
 #include "core/units.hpp"
 #include "core/wrapped_text.hpp"
+#include "export/behaviour_summary.hpp"
 #include "export/casting_sheet.hpp"
 #include "export/lay_flat.hpp"
 #include "export/muscle_cut.hpp"
+#include "export/optimization_summary.hpp"
 #include "export/report_html.hpp"
 #include "export/stl_writer.hpp"
 #include "export/three_mf_writer.hpp"
@@ -33,9 +35,6 @@ namespace fibermold {
 namespace {
 
 using Json = nlohmann::ordered_json;
-
-// A place that moves less than this, and turns less, stays put: it is not worth comparing.
-constexpr double kStaysPut_mm = 0.5, kStaysPut_deg = 5.0;
 
 std::vector<ReportLine> fiber_lines(const FibersFile& fibers);
 
@@ -170,6 +169,13 @@ std::optional<SurfaceMesh> deformed_body(const TetMesh& body, const std::optiona
   return boundary_surface(body, *nodes);
 }
 
+/// optimize/report.json where it optimized targets; none otherwise.
+std::optional<Json> optimization_report(const StageContext& ctx)
+{
+  auto report = json_if_any(ctx.upstream("optimize", "report.json"));
+  return report && optimized_targets(*report) ? report : std::nullopt;
+}
+
 /// The body at rest and, per target, deformed under the final routing (collide/deformed-*.json),
 /// with its fibers, at `offset`, and the target's own deformation (targets/<name>.json) beside it,
 /// `beside` further; the first target's shown, the rest switched off; the tracking curves at rest.
@@ -201,37 +207,6 @@ void add_bodies(const StageContext& ctx, const TetMesh& body, const Eigen::Vecto
       line.points.push_back(offset + p);
     lines.push_back(std::move(line));
   }
-}
-
-/// What to compare on the cast robot for one target: where its regions and the tracking curves' ends
-/// went (collide's report), leaving out the places that stay put (a curve's clamped first point).
-std::string poses_to_compare(const Json& poses)
-{
-  std::string out;
-  for (const Json& p : poses) {
-    if (!p.is_object() || !p.contains("translation_mm") || !p["rotation_deg"].is_number()) continue;
-    const Eigen::Vector3d t(p["translation_mm"][0], p["translation_mm"][1], p["translation_mm"][2]);
-    const double turn = p["rotation_deg"].get<double>();
-    if (t.norm() < kStaysPut_mm && turn < kStaysPut_deg) continue;
-    // Where it is on the robot: a region's centre at rest, or the curve's point (older reports: the name only).
-    const std::string where =
-        p.contains("rest_mm")
-            ? fmt::format(" (at {} at rest{})",
-                          format_mm(Eigen::Vector3d(p["rest_mm"][0], p["rest_mm"][1], p["rest_mm"][2]) * units::mm),
-                          p.contains("nodes") ? fmt::format(": the centre of its {} nodes", p["nodes"].get<int>()) : "")
-            : "";
-    std::string line = fmt::format(
-        "{}{}: moves {:.1f} mm ({:.1f}, {:.1f}, {:.1f}) and turns {:.1f}° about ({:.2f}, {:.2f}, {:.2f})",
-        p["place"].get<std::string>(), where, t.norm(), t.x(), t.y(), t.z(), turn, p["rotation_axis"][0].get<double>(),
-        p["rotation_axis"][1].get<double>(), p["rotation_axis"][2].get<double>());
-    if (p.contains("rotation_about_asked_axis_deg") && p.contains("asked_rotation_deg"))
-      line += fmt::format("; {:.1f}° about the axis asked (asked {:.1f}°)",
-                          p["rotation_about_asked_axis_deg"].get<double>(), p["asked_rotation_deg"].get<double>());
-    out += wrapped(line, "    ", "      ");
-  }
-  return out.empty()
-             ? fmt::format("    nothing moves more than {} mm or turns more than {}°\n", kStaysPut_mm, kStaysPut_deg)
-             : out;
 }
 
 /// Per target, the body as simulated under the final routing (collide/deformed-<target>.json), as a
@@ -275,203 +250,6 @@ std::string overlay_shapes(const StageContext& ctx, const TetMesh& body, const F
     files.push_back(std::move(entry));
   }
   return text.empty() ? text : "\nChecking the cast robot against the simulation\n" + text;
-}
-
-/// README.txt's paragraph on the muscles' bends, from collide's report: the fibers as cast must not be
-/// bent tighter than the muscle takes where they are laid into their grooves. Empty without it.
-std::string muscle_bends_text(const StageContext& ctx)
-{
-  const auto report = json_if_any(ctx.upstream("collide", "report.json"));
-  if (!report || !report->contains("bends") || !(*report)["min_bend_radius_mm"].is_number()) return {};
-  std::string text = "\n";
-  text += wrapped(fmt::format("The muscles take bends no tighter than {:.1f} mm in radius ([muscle] min_bend_radius); "
-                              "the grooves follow the routes, so lay each muscle along its groove without kinking it. "
-                              "Each route's tightest bend:",
-                              (*report)["min_bend_radius_mm"].get<double>()),
-                  "", "");
-  for (const auto& [fiber, b] : (*report)["bends"].items())
-    text += b.contains("min_bend_radius_mm")
-                ? fmt::format("  {}: {:.1f} mm, {:.1f} mm along it\n", fiber, b["min_bend_radius_mm"].get<double>(),
-                              b["along_mm"].get<double>())
-                : fmt::format("  {}: straight\n", fiber);
-  return text;
-}
-
-/// How well the robot does its job, from collide's report: each target's error before and after the
-/// collisions were resolved, and what collide changed.
-std::vector<ReportTable> behaviour_tables(const StageContext& ctx)
-{
-  std::vector<ReportTable> out;
-  const auto report = json_if_any(ctx.upstream("collide", "report.json"));
-  if (!report) return out;
-  const auto mm = [](const Json& v) { return v.is_number() ? fixed(v.get<double>(), 3) : std::string("–"); };
-  if ((*report)["targets"].is_object() && !(*report)["targets"].empty()) {
-    ReportTable targets{"Targets: error over the tracking curves and the surface (mm)",
-                        {"target", "RMSE before collide", "RMSE after", "change", "max before", "max after",
-                         "surface RMSE after", "surface max after"},
-                        {}};
-    for (const auto& [name, t] : (*report)["targets"].items())
-      targets.rows.push_back({name, mm(t["before"]["rmse_mm"]), mm(t["after"]["rmse_mm"]),
-                              t["rmse_change_percent"].is_number()
-                                  ? fmt::format("{:+.1f} %", t["rmse_change_percent"].get<double>())
-                                  : "–",
-                              mm(t["before"]["max_error_mm"]), mm(t["after"]["max_error_mm"]),
-                              mm(t["after"]["surface_rmse_mm"]), mm(t["after"]["surface_max_error_mm"])});
-    out.push_back(std::move(targets));
-  }
-  ReportTable collisions{"Collisions", {"between", "clearance before (mm)", "at (mm)"}, {}};
-  for (const Json& c : (*report)["collisions"]) {
-    std::string between;
-    for (const Json& n : c["between"]) between += (between.empty() ? "" : " and ") + n.get<std::string>();
-    std::string at;
-    for (const Json& v : c["at_mm"])
-      at += (at.empty() ? "" : ", ") + (v.is_number() ? fixed(v.get<double>(), 1) : std::string("–"));
-    collisions.rows.push_back({between, mm(c["clearance_mm"]), "(" + at + ")"});
-  }
-  if (collisions.rows.empty()) collisions.rows.push_back({"none: every fiber was clear", "", ""});
-  out.push_back(std::move(collisions));
-  ReportTable moves{fmt::format("Collide: smallest clearance {} → {} mm (asked {} mm); {} round(s){}",
-                                mm((*report)["smallest_clearance_mm"].value("before", Json())),
-                                mm((*report)["smallest_clearance_mm"].value("after", Json())),
-                                mm((*report)["clearance_mm"]), (*report)["rounds"].get<int>(),
-                                (*report)["reoptimized"].get<bool>() ? ", optimized again" : ""),
-                    {"fiber", "largest control point move (mm)", "largest tangent change (mm)"},
-                    {}};
-  for (const auto& [fiber, m] : (*report)["moves_mm"].items()) {
-    double point = 0, tangent = 0;
-    for (const Json& v : m["points"]) point = std::max(point, v.is_number() ? v.get<double>() : 0.0);
-    for (const Json& v : m["tangents"]) tangent = std::max(tangent, v.is_number() ? v.get<double>() : 0.0);
-    moves.rows.push_back({fiber, fixed(point, 3), fixed(tangent, 3)});
-  }
-  out.push_back(std::move(moves));
-  // Each fiber's tightest bend as it will be cast, against the muscle's limit.
-  ReportTable bends{fmt::format("Bend radius: each fiber's smallest, as built (the muscle takes {} mm)",
-                                mm((*report)["min_bend_radius_mm"])),
-                    {"fiber", "smallest bend radius (mm)", "at (mm)", "along the fiber (mm)"},
-                    {}};
-  for (const auto& [fiber, b] : (*report)["bends"].items()) {
-    if (!b.contains("min_bend_radius_mm")) {
-      bends.rows.push_back({fiber, "straight", "", ""});
-      continue;
-    }
-    std::string at;
-    for (const Json& v : b["at_mm"]) at += (at.empty() ? "" : ", ") + mm(v);
-    bends.rows.push_back({fiber, mm(b["min_bend_radius_mm"]), "(" + at + ")", mm(b["along_mm"])});
-  }
-  if (!bends.rows.empty()) out.push_back(std::move(bends));
-  return out;
-}
-
-/// How the optimization ended, from optimize/report.json: per target the error at the start and at
-/// the end, how much of it was reached and each fiber's pressure; and its warnings, for the banner.
-/// optimize/report.json where it optimized targets; none otherwise.
-std::optional<Json> optimization_report(const StageContext& ctx)
-{
-  auto report = json_if_any(ctx.upstream("optimize", "report.json"));
-  if (!report || !report->value("optimized", false) || !report->contains("targets") ||
-      !(*report)["targets"].is_object() || (*report)["targets"].empty())
-    return std::nullopt;
-  return report;
-}
-
-/// The optimization's warnings (a target far from reached, a muscle at its limit, no convergence):
-/// report.html's banner, and a paragraph of README.txt.
-std::vector<std::string> optimization_warnings(const Json& report)
-{
-  std::vector<std::string> out;
-  for (const Json& w : report.value("warnings", Json::array()))
-    if (w.is_string()) out.push_back(w.get<std::string>());
-  return out;
-}
-
-/// README.txt's paragraph with the optimization's warnings, before the robot is checked against the
-/// simulation; empty without any.
-std::string optimization_warnings_text(const StageContext& ctx)
-{
-  std::string text;
-  if (const auto report = optimization_report(ctx))
-    for (const std::string& w : optimization_warnings(*report)) text += wrapped(w, "  - ", "    ");
-  return text.empty() ? text
-                      : "\nThe optimization warned (report.html gives its figures); the cast robot will do what the\n"
-                        "simulation does, not what was asked:\n" +
-                            text;
-}
-
-std::optional<ReportTable> optimization_table(const StageContext& ctx, std::vector<std::string>& warnings)
-{
-  const auto report = optimization_report(ctx);
-  if (!report) return std::nullopt;
-  const std::vector<std::string> warned = optimization_warnings(*report);
-  warnings.insert(warnings.end(), warned.begin(), warned.end());
-  const auto number = [](const Json& j, const char* key, int digits, const std::string& unit = "") {
-    return j.is_object() && j.contains(key) && j[key].is_number() ? fixed(j[key].get<double>(), digits) + unit
-                                                                  : std::string("–");
-  };
-  ReportTable t{fmt::format("Optimization: {} after {} iterations ({})", report->value("termination", std::string("?")),
-                            report->value("iterations", 0), report->value("message", std::string())),
-                {"target", "RMSE at the start (mm)", "RMSE at the end (mm)", "reached: 1 − end / start RMSE"},
-                {}};
-  std::vector<std::string> fibers; // every target's report names every fiber's pressure
-  const Json& first = (*report)["targets"].begin().value();
-  if (first.contains("pressure_kPa") && first["pressure_kPa"].is_object())
-    for (const auto& [fiber, p] : first["pressure_kPa"].items()) {
-      fibers.push_back(fiber);
-      t.header.push_back(fiber + " (kPa)");
-    }
-  // A pose target's turns: "54.1° of 60.0° (pose[1])".
-  const auto turns = [](const Json& target) {
-    std::string out;
-    if (target.contains("poses") && target["poses"].is_array())
-      for (const Json& p : target["poses"])
-        if (p.is_object() && p.contains("asked_rotation_deg") && p["asked_rotation_deg"].is_number() &&
-            p.contains("rotation_about_asked_axis_deg") && p["rotation_about_asked_axis_deg"].is_number())
-          out += fmt::format("{}{:.1f}° of {:.1f}° ({})", out.empty() ? "" : "; ",
-                             p["rotation_about_asked_axis_deg"].get<double>(), p["asked_rotation_deg"].get<double>(),
-                             p.value("place", std::string("?")));
-    return out;
-  };
-  bool any_turn = false;
-  for (const auto& [name, target] : (*report)["targets"].items()) any_turn = any_turn || !turns(target).empty();
-  if (any_turn) t.header.insert(t.header.begin() + 4, "turn reached");
-  for (const auto& [name, target] : (*report)["targets"].items()) {
-    std::vector<std::string> row{name, number(target.value("start", Json::object()), "rmse_mm", 3),
-                                 number(target, "rmse_mm", 3), number(target, "reached_percent", 0, " %")};
-    if (any_turn) row.push_back(turns(target).empty() ? "–" : turns(target));
-    for (const std::string& f : fibers)
-      row.push_back(number(target.value("pressure_kPa", Json::object()), f.c_str(), 1));
-    t.rows.push_back(std::move(row));
-  }
-  return t;
-}
-
-/// The optimizer's objective and distance term per iteration, from optimize/history.csv.
-std::optional<ReportPlot> optimization_history(const StageContext& ctx)
-{
-  std::error_code ec;
-  const std::filesystem::path file = ctx.upstream("optimize", "history.csv");
-  if (!std::filesystem::exists(file, ec)) return std::nullopt;
-  std::istringstream lines(read_file(file));
-  std::string header;
-  std::getline(lines, header);
-  std::vector<std::string> columns;
-  std::istringstream names(header);
-  for (std::string c; std::getline(names, c, ',');) columns.push_back(c);
-  const auto column = [&](const std::string& name) {
-    return std::find(columns.begin(), columns.end(), name) - columns.begin();
-  };
-  const auto iteration = column("iteration"), objective = column("objective"), distance = column("distance");
-  if (std::max({iteration, objective, distance}) >= std::ssize(columns)) return std::nullopt;
-  ReportPlot plot{"Optimization", "iteration", "objective", {{"objective", {}}, {"distance term", {}}}, true};
-  for (std::string line; std::getline(lines, line);) {
-    std::vector<double> v;
-    std::istringstream cells(line);
-    for (std::string cell; std::getline(cells, cell, ',');) v.push_back(std::strtod(cell.c_str(), nullptr));
-    if (std::ssize(v) < std::ssize(columns)) continue;
-    plot.series[0].second.emplace_back(v[iteration], v[objective]);
-    plot.series[1].second.emplace_back(v[iteration], v[distance]);
-  }
-  if (plot.series[0].second.empty()) return std::nullopt;
-  return plot;
 }
 
 /// Which hole is which: each sprue and vent of a shot drawn as a line through its half, from where it
@@ -560,11 +338,17 @@ std::string report(const StageContext& ctx, const TetMesh& body, const FibersFil
   }
   std::vector<std::string> warnings;
   std::vector<ReportTable> tables;
-  if (auto optimized = optimization_table(ctx, warnings)) tables.push_back(std::move(*optimized));
-  for (ReportTable& t : behaviour_tables(ctx)) tables.push_back(std::move(t));
+  if (const auto optimized = optimization_report(ctx)) {
+    warnings = optimization_warnings(*optimized);
+    tables.push_back(optimization_table(*optimized));
+  }
+  if (const auto collide = json_if_any(ctx.upstream("collide", "report.json")))
+    for (ReportTable& t : behaviour_tables(*collide)) tables.push_back(std::move(t));
   tables.insert(tables.end(), {checks, silicone_table(sheet), muscles_table(sheet)});
   std::vector<ReportPlot> plots;
-  if (auto history = optimization_history(ctx)) plots.push_back(std::move(*history));
+  std::error_code ec;
+  if (const auto history = ctx.upstream("optimize", "history.csv"); std::filesystem::exists(history, ec))
+    if (auto plot = optimization_history(read_file(history))) plots.push_back(std::move(*plot));
   return report_html("fibermold: " + d.design.name, meshes, lines, tables, plots, warnings);
 }
 
@@ -620,8 +404,11 @@ void ExportStage::run(StageContext& ctx) const
                       {"parts", parts},          {"shots", shots}, {"deformed", deformed}};
   write_json_atomic(ctx.output_dir / "manifest.json", manifest);
   const CastingSheet sheet = casting_sheet(d, molds, muscle_cuts(ctx, body, fibers, molds));
+  const auto collide = json_if_any(ctx.upstream("collide", "report.json"));
+  const auto optimized = optimization_report(ctx);
   write_file_atomic(ctx.output_dir / "README.txt",
-                    casting_guide(sheet) + muscle_bends_text(ctx) + optimization_warnings_text(ctx) + checking);
+                    casting_guide(sheet) + (collide ? muscle_bends_text(*collide) : std::string()) +
+                        (optimized ? optimization_warnings_text(*optimized) : "") + checking);
   ctx.progress.checkpoint(-1, "writing the report");
   write_file_atomic(ctx.output_dir / "report.html", report(ctx, body, fibers, molds, parts, sheet));
 }

@@ -16,6 +16,7 @@
 #include "core/units.hpp"
 #include "optimize/clearance_barrier.hpp"
 #include "optimize/optimization_ending.hpp"
+#include "optimize/routing_history.hpp"
 #include "optimize/routing_optimizer.hpp"
 #include "optimize/several_starts.hpp"
 #include "stages/design_mesh.hpp"
@@ -63,33 +64,6 @@ bool keep_fibers_apart(StageContext& ctx, RoutingProblem& problem, const Surface
                d.collide.clearance / units::mm);
   return true;
 }
-
-/// history.csv: one row per accepted BFGS step.
-class History {
-public:
-  explicit History(const std::vector<std::string>& targets)
-  {
-    text_ = "iteration,stage,objective,distance,curvature,skin_barrier,bend_barrier,pressure_barrier,clearance_barrier";
-    for (const std::string& t : targets) text_ += ",distance_" + t;
-    text_ += ",gradient_norm,predicted_decrease,step,evaluations,seconds,start\n";
-  }
-  /// `start`: which run of [optimize] starts (0: from the first guess).
-  void add(int iteration, int stage, const MinimizerIteration& it, const RoutingTerms& terms, double seconds, int start)
-  {
-    text_ += fmt::format("{},{},{:.9g},{:.9g},{:.9g},{:.9g},{:.9g},{:.9g},{:.9g}", iteration, stage + 1, terms.total,
-                         terms.distance, terms.curvature, terms.skin, terms.bend, terms.pressure, terms.clearance);
-    for (double v : terms.per_target) text_ += fmt::format(",{:.9g}", v);
-    // Levenberg-Marquardt's model may be indefinite (no decrease predicted): the cell stays empty.
-    const std::string predicted =
-        std::isfinite(it.predicted_decrease) ? fmt::format("{:.6g}", it.predicted_decrease) : "";
-    text_ += fmt::format(",{:.6g},{},{:.6g},{},{:.3f},{}\n", it.gradient_norm, predicted, it.step, it.evaluations,
-                         seconds, start);
-  }
-  const std::string& text() const { return text_; }
-
-private:
-  std::string text_;
-};
 
 /// The progress and log line of an iteration: which start and fiber stage it is in, and its figures.
 std::string iteration_line(int starts, int start, int stages, int stage, const MinimizerIteration& it,
@@ -401,8 +375,8 @@ void require_start_inside(const Design& d, RoutingProblem& problem, const Routin
 }
 
 /// An interrupted run's best design and history, kept beside the outputs (which stay as they were).
-[[noreturn]] void keep_interrupted(StageContext& ctx, const FibersFile& fibers, const History& history, int iterations,
-                                   double objective)
+[[noreturn]] void keep_interrupted(StageContext& ctx, const FibersFile& fibers, const RoutingHistory& history,
+                                   int iterations, double objective)
 {
   const fs::path kept = ctx.build_dir / "optimize.interrupted";
   fs::create_directories(kept);
@@ -482,7 +456,7 @@ void OptimizeStage::run(StageContext& ctx) const
 
   const MinimizerOptions o = minimizer_options(d);
   Baseline baseline = first_guess_at_best_pressures(ctx, dr, o, start);
-  History history(names);
+  RoutingHistory history(names);
   int iterations = 0;
   const int stages = d.optimize.strategy == Strategy::sequential ? static_cast<int>(d.fibers.size()) : 1;
   // Progress over the iteration budget: the route-only ones, then max_iterations per stage.

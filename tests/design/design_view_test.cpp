@@ -3,6 +3,7 @@
 // member its stage did not declare.
 #include "design/design_view.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <map>
 #include <set>
@@ -362,6 +363,27 @@ TEST_F(DesignViewTest, EachRowCopiesTheMembersItsKeySetsAndNoOtherRowDoes)
   // Every part is edited but material.model, whose one value is "neo-hookean".
   edited.insert("material.model");
   EXPECT_EQ(edited, std::set<std::string>(parts.begin(), parts.end()));
+}
+
+/// The design file's reader records every key it reads (Design::values, defaults included): each is
+/// a row of the view's table, and each row a key it reads, on the base design and every example. A
+/// key added to the reader without a row (its stages would see the default, never "undeclared"), or a
+/// row left behind by a key taken out, fails here.
+TEST_F(DesignViewTest, TheViewsRowsAreTheKeysTheReaderReads)
+{
+  const std::vector<std::string> parts = design_view_parts();
+  std::vector<Design> designs{parse(kBase)};
+  for (const auto& example : fs::directory_iterator(fs::path(FIBERMOLD_SOURCE_DIR) / "examples"))
+    if (fs::exists(example.path() / "design.toml")) designs.push_back(load_design(example.path() / "design.toml"));
+  std::set<std::string> read;
+  for (const Design& d : designs)
+    for (const auto& [key, value] : d.values) {
+      const auto row = std::find_if(parts.begin(), parts.end(),
+                                    [&](const std::string& part) { return design_key_matches(key, part); });
+      EXPECT_NE(row, parts.end()) << d.file << ": the reader reads " << key << ", which no row of the view copies";
+      if (row != parts.end()) read.insert(*row);
+    }
+  for (const std::string& part : parts) EXPECT_TRUE(read.contains(part)) << part << ": a row for a key nobody reads";
 }
 
 /// What a view holds of a key its stage did not declare, member by member: NaN, kUndeclaredInt or

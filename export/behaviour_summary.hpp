@@ -1,0 +1,28 @@
+#pragma once
+// How the robot does its job once its fibers were moved apart, as the export stage shows it, from
+// collide/report.json: each target's error before and after, the collisions and the moves that
+// resolved them, each fiber's tightest bend, and what to compare on the cast robot.
+
+#include <string>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+#include "export/report_html.hpp"
+
+namespace fibermold {
+
+/// report.html's tables: the targets' errors, the collisions, the control points' moves and each
+/// fiber's smallest bend radius as built.
+std::vector<ReportTable> behaviour_tables(const nlohmann::ordered_json& collide_report);
+
+/// README.txt's paragraph on the muscles' bends: lay each muscle along its groove without kinking it,
+/// and each route's tightest bend. Empty when the report gives no bends.
+std::string muscle_bends_text(const nlohmann::ordered_json& collide_report);
+
+/// What to compare on the cast robot for one target (its "poses" in collide's report): where its
+/// regions and the tracking curves' ends went, one wrapped line each, leaving out the places that
+/// move less than 0.5 mm and turn less than 5° (a curve's clamped first point).
+std::string poses_to_compare(const nlohmann::ordered_json& poses);
+
+} // namespace fibermold

@@ -1,0 +1,114 @@
+#include "export/optimization_summary.hpp"
+
+#include <algorithm>
+#include <sstream>
+
+#include <fmt/format.h>
+
+#include "core/wrapped_text.hpp"
+
+namespace fibermold {
+
+using Json = nlohmann::ordered_json;
+
+bool optimized_targets(const Json& report)
+{
+  return report.value("optimized", false) && report.contains("targets") && report["targets"].is_object() &&
+         !report["targets"].empty();
+}
+
+std::vector<std::string> optimization_warnings(const Json& report)
+{
+  std::vector<std::string> out;
+  for (const Json& w : report.value("warnings", Json::array()))
+    if (w.is_string()) out.push_back(w.get<std::string>());
+  return out;
+}
+
+std::string optimization_warnings_text(const Json& report)
+{
+  std::string text;
+  for (const std::string& w : optimization_warnings(report)) text += wrapped(w, "  - ", "    ");
+  return text.empty() ? text
+                      : "\nThe optimization warned (report.html gives its figures); the cast robot will do what the\n"
+                        "simulation does, not what was asked:\n" +
+                            text;
+}
+
+namespace {
+
+/// A pose target's turns: "54.1° of 60.0° (pose[1])"; empty for a target without turns.
+std::string turns(const Json& target)
+{
+  std::string out;
+  if (target.contains("poses") && target["poses"].is_array())
+    for (const Json& p : target["poses"])
+      if (p.is_object() && p.contains("asked_rotation_deg") && p["asked_rotation_deg"].is_number() &&
+          p.contains("rotation_about_asked_axis_deg") && p["rotation_about_asked_axis_deg"].is_number())
+        out += fmt::format("{}{:.1f}° of {:.1f}° ({})", out.empty() ? "" : "; ",
+                           p["rotation_about_asked_axis_deg"].get<double>(), p["asked_rotation_deg"].get<double>(),
+                           p.value("place", std::string("?")));
+  return out;
+}
+
+} // namespace
+
+ReportTable optimization_table(const Json& report)
+{
+  const auto number = [](const Json& j, const char* key, int digits, const std::string& unit = "") {
+    return j.is_object() && j.contains(key) && j[key].is_number()
+               ? fmt::format("{:.{}f}", j[key].get<double>(), digits) + unit
+               : std::string("–");
+  };
+  ReportTable t{fmt::format("Optimization: {} after {} iterations ({})", report.value("termination", std::string("?")),
+                            report.value("iterations", 0), report.value("message", std::string())),
+                {"target", "RMSE at the start (mm)", "RMSE at the end (mm)", "reached: 1 − end / start RMSE"},
+                {}};
+  std::vector<std::string> fibers; // every target's report names every fiber's pressure
+  const Json& first = report["targets"].begin().value();
+  if (first.contains("pressure_kPa") && first["pressure_kPa"].is_object())
+    for (const auto& [fiber, p] : first["pressure_kPa"].items()) {
+      fibers.push_back(fiber);
+      t.header.push_back(fiber + " (kPa)");
+    }
+  bool any_turn = false;
+  for (const auto& [name, target] : report["targets"].items()) any_turn = any_turn || !turns(target).empty();
+  if (any_turn) t.header.insert(t.header.begin() + 4, "turn reached");
+  for (const auto& [name, target] : report["targets"].items()) {
+    std::vector<std::string> row{name, number(target.value("start", Json::object()), "rmse_mm", 3),
+                                 number(target, "rmse_mm", 3), number(target, "reached_percent", 0, " %")};
+    if (any_turn) row.push_back(turns(target).empty() ? "–" : turns(target));
+    for (const std::string& f : fibers)
+      row.push_back(number(target.value("pressure_kPa", Json::object()), f.c_str(), 1));
+    t.rows.push_back(std::move(row));
+  }
+  return t;
+}
+
+std::optional<ReportPlot> optimization_history(const std::string& history_csv)
+{
+  std::istringstream lines(history_csv);
+  std::string header;
+  std::getline(lines, header);
+  std::vector<std::string> columns;
+  std::istringstream names(header);
+  for (std::string c; std::getline(names, c, ',');) columns.push_back(c);
+  const auto column = [&](const std::string& name) {
+    return std::find(columns.begin(), columns.end(), name) - columns.begin();
+  };
+  const auto iteration = column("iteration"), objective = column("objective"), distance = column("distance");
+  if (std::max({iteration, objective, distance}) >= std::ssize(columns)) return std::nullopt;
+  ReportPlot plot{"Optimization", "iteration", "objective", {{"objective", {}}, {"distance term", {}}}, true};
+  for (std::string line; std::getline(lines, line);) {
+    std::vector<double> v;
+    std::istringstream cells(line);
+    for (std::string cell; std::getline(cells, cell, ',');) v.push_back(std::strtod(cell.c_str(), nullptr));
+    if (std::ssize(v) < std::ssize(columns)) continue;
+    plot.series[0].second.emplace_back(v[iteration], v[objective]);
+    plot.series[1].second.emplace_back(v[iteration], v[distance]);
+  }
+  if (plot.series[0].second.empty()) return std::nullopt;
+  return plot;
+}
+
+} // namespace fibermold
