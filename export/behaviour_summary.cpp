@@ -2,6 +2,7 @@
 
 #include <algorithm>
 
+#include <Eigen/Core>
 #include <fmt/format.h>
 
 #include "core/units.hpp"
@@ -125,6 +126,64 @@ std::string poses_to_compare(const Json& poses)
   return out.empty()
              ? fmt::format("    nothing moves more than {} mm or turns more than {}°\n", kStaysPut_mm, kStaysPut_deg)
              : out;
+}
+
+namespace {
+
+/// The figure of one pose to measure: its value, the key of its stiffness band, its unit and what it is.
+struct Measure {
+  const Json* pose = nullptr;
+  double value = 0;
+  const char* band = "";
+  const char* unit = "";
+  const char* what = "";
+};
+
+/// Which figure of which pose to measure (what_to_measure()); none when nothing moves.
+Measure measure_of(const Json& poses)
+{
+  Measure turn, move;
+  for (const Json& p : poses) {
+    if (!p.is_object() || !p.contains("translation_mm") || !p["rotation_deg"].is_number()) continue;
+    if (p.value("asked_rotation_deg", 0.0) != 0 && p["rotation_about_asked_axis_deg"].is_number())
+      return {&p, p["rotation_about_asked_axis_deg"].get<double>(), "rotation_about_asked_axis_deg", "°",
+              "turn about the axis asked"};
+    const double angle = p["rotation_deg"].get<double>();
+    const double moved = Eigen::Vector3d(p["translation_mm"][0], p["translation_mm"][1], p["translation_mm"][2]).norm();
+    if (angle >= kStaysPut_deg && angle > turn.value) turn = {&p, angle, "rotation_deg", "°", "turn"};
+    if (moved >= kStaysPut_mm && moved > move.value) move = {&p, moved, "displacement_mm", " mm", "move"};
+  }
+  return turn.pose ? turn : move;
+}
+
+} // namespace
+
+std::string what_to_measure(const Json& poses, double youngs_modulus)
+{
+  const Measure m = measure_of(poses);
+  if (!m.pose) return {};
+  const Json& p = *m.pose;
+  std::string text = fmt::format("Measure {}'s {}: {:.1f}{} in the simulation.", p["place"].get<std::string>(), m.what,
+                                 m.value, m.unit);
+  if (p.contains("sensitivity") && p["sensitivity"].contains(m.band)) {
+    const Json& s = p["sensitivity"];
+    const Json& v = s[m.band];
+    const double percent = s["change_percent"].get<double>();
+    const auto value = [&](const char* variation) {
+      return fmt::format("{:.1f}{}", v[variation].get<double>(), m.unit);
+    };
+    text += fmt::format(
+        " It hinges on the silicone's stiffness and the muscles' pressure: {} and {} with a silicone {:g} % stiffer "
+        "and "
+        "softer than the {:.1f} kPa of [material] youngs_modulus, {} and {} at {:g} % less and more pressure. A cast "
+        "robot outside these: check the pressure at the muscle first; then the silicone (hang a weight on a strip of "
+        "the same pour: E = force × length / (cross-section × stretch), under 20 % stretch; set [material] "
+        "youngs_modulus to it and run fibermold again) and the muscle's own contraction at that pressure ([muscle] "
+        "rest_strain_slope).",
+        value("stiffer"), value("softer"), percent, youngs_modulus / units::kPa, value("less_pressure"),
+        value("more_pressure"), percent);
+  }
+  return wrapped(text, "  ", "  ");
 }
 
 } // namespace fibermold

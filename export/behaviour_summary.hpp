@@ -25,4 +25,11 @@ std::string muscle_bends_text(const nlohmann::ordered_json& collide_report);
 /// move less than 0.5 mm and turn less than 5° (a curve's clamped first point).
 std::string poses_to_compare(const nlohmann::ordered_json& poses);
 
+/// README.txt's one figure to check a target by (its "poses" in collide's report): a pose region's turn
+/// about the axis asked; else the largest turn over 5°; else the largest move over 0.5 mm; with what it
+/// is with the silicone stiffer and softer and the pressures lower and higher (each pose's "sensitivity"),
+/// and what to check when the cast robot falls outside. `youngs_modulus` (Pa): the [material] value
+/// simulated. Empty when nothing moves that much.
+std::string what_to_measure(const nlohmann::ordered_json& poses, double youngs_modulus);
+
 } // namespace fibermold

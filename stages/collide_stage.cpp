@@ -1,6 +1,8 @@
 #include "stages/collide_stage.hpp"
 
+#include <array>
 #include <cmath>
+#include <memory>
 
 #include <fmt/format.h>
 #include <nlohmann/json.hpp>
@@ -143,6 +145,54 @@ CollisionResolution resolve(StageContext& ctx, const FiberClearance& measure, co
   return r;
 }
 
+/// The body with its silicone's Young's modulus scaled by `factor`, and the routing problem over it
+/// with its muscle segments placed as in `segments`, to solve the final routing's targets again.
+struct ScaledStiffness {
+  std::unique_ptr<Simulation> sim;
+  std::unique_ptr<RoutingProblem> problem;
+  ScaledStiffness(const DesignRouting& dr, const Routing& segments, double factor)
+  {
+    SimulationOptions o = simulation_options(dr.design, dr.mesh);
+    o.youngs_modulus *= factor;
+    sim = std::make_unique<Simulation>(dr.mesh, o);
+    problem = std::make_unique<RoutingProblem>(*sim, dr.model, *dr.skin, dr.targets, dr.curves, segments,
+                                               routing_settings(dr.design));
+  }
+};
+
+/// Target t's poses under `final` in deformation x, each with where it goes under kPoseVariations: the
+/// silicone stiffer and softer (`scaled`, solved from rest), every pressure lower and higher (from x);
+/// none where a variation finds no equilibrium.
+Json poses_json(StageContext& ctx, DesignRouting& dr, std::array<ScaledStiffness, 2>& scaled, const Routing& final,
+                int t, const Eigen::VectorXd& x)
+{
+  const Design& d = ctx.design;
+  const Target& target = d.targets[static_cast<std::size_t>(t)];
+  const std::vector<PosedRegion> asked =
+      target.kind == TargetKind::pose ? target_poses(d, target, dr.mesh) : std::vector<PosedRegion>{};
+  const std::vector<ReachedPose> reached = reached_poses(d, target, *dr.sim, x, asked);
+  std::array<std::vector<ReachedPose>, 4> varied;
+  try {
+    for (int k = 0; k < 2; ++k)
+      varied[k] = reached_poses(d, target, *scaled[k].sim, scaled[k].problem->equilibrium(final, t), asked);
+    for (int k = 0; k < 2; ++k) {
+      Routing pressed = final;
+      pressed.pressures *= k == 0 ? 1 - kSensitivityChange : 1 + kSensitivityChange;
+      varied[2 + k] = reached_poses(d, target, *dr.sim, dr.problem->equilibrium(pressed, t), asked);
+    }
+  } catch (const std::runtime_error& e) {
+    ctx.log.warn("target {}: with the silicone or the pressures {:.0f} % off: {}; its poses have no sensitivity",
+                 target.name, 100 * kSensitivityChange, e.what());
+    varied = {};
+  }
+  Json poses = Json::array();
+  for (std::size_t i = 0; i < reached.size(); ++i)
+    poses.push_back(varied[3].empty()
+                        ? pose_report(reached[i])
+                        : pose_report(reached[i], {varied[0][i], varied[1][i], varied[2][i], varied[3][i]}));
+  return poses;
+}
+
 /// Every target simulated from rest under the optimized routing and under the final one (optimized
 /// again first when asked), into the report; deformed-<target>.vtu of the final one.
 void simulate_targets(StageContext& ctx, const FiberClearance& measure, const FibersFile& fibers, bool changed,
@@ -150,8 +200,8 @@ void simulate_targets(StageContext& ctx, const FiberClearance& measure, const Fi
 {
   const Design& d = ctx.design;
   DesignRouting dr(ctx);
-  RoutingProblem& problem =
-      dr.start(optimization_start(d, *dr.skin).routing); // the muscle segments as the optimizer had them
+  const Routing segments = optimization_start(d, *dr.skin).routing; // the muscle segments as the optimizer had them
+  RoutingProblem& problem = dr.start(segments);
   ctx.progress.update(0.1, "simulating the targets under the optimized routing");
   const std::vector<TargetErrors> before = errors_under(problem, dr, fibers.routing);
   std::vector<TargetErrors> resolved;
@@ -172,6 +222,8 @@ void simulate_targets(StageContext& ctx, const FiberClearance& measure, const Fi
   ctx.progress.update(0.85, "simulating the targets under the final routing");
   std::vector<Eigen::VectorXd> states;
   const std::vector<TargetErrors> after = errors_under(problem, dr, final, &states);
+  std::array<ScaledStiffness, 2> scaled{ScaledStiffness(dr, segments, 1 + kSensitivityChange),
+                                        ScaledStiffness(dr, segments, 1 - kSensitivityChange)};
   Json targets = Json::object();
   for (int t = 0; t < problem.num_targets(); ++t) {
     const std::string& name = dr.target_names[t];
@@ -182,13 +234,9 @@ void simulate_targets(StageContext& ctx, const FiberClearance& measure, const Fi
         {"before", errors_json(before[t])}, {"after", errors_json(after[t])}, {"rmse_change_percent", change}};
     if (!resolved.empty()) targets[name]["resolved"] = errors_json(resolved[t]);
     // Where the regions and the tracking curves' ends went: what a user measures on the cast robot.
-    const Target& target = d.targets[static_cast<std::size_t>(t)];
-    const std::vector<PosedRegion> asked =
-        target.kind == TargetKind::pose ? target_poses(d, target, dr.mesh) : std::vector<PosedRegion>{};
-    Json poses = Json::array();
-    for (const ReachedPose& p : reached_poses(d, target, problem.simulation(), states[t], asked))
-      poses.push_back(pose_report(p));
-    targets[name]["poses"] = std::move(poses);
+    ctx.progress.update(
+        0.9, fmt::format("target {}: the silicone and the pressures {:.0f} % off", name, 100 * kSensitivityChange));
+    targets[name]["poses"] = poses_json(ctx, dr, scaled, final, t, states[t]);
     ctx.log.info("target {}: RMSE {:.3f} mm before, {:.3f} mm after ({:+.1f} %); max {:.3f} → {:.3f} mm on the "
                  "tracking curves; surface RMSE {:.3f} → {:.3f} mm",
                  name, before[t].rmse / units::mm, after[t].rmse / units::mm, change, before[t].max / units::mm,

@@ -25,8 +25,10 @@ public:
   /// optimizer's skin barrier held it (SkinBarrier::held); 8: each target's poses reached (where its regions and the
   /// tracking curves' ends went); 9: Levenberg-Marquardt's ray model (a re-optimization's steps); 10: each span's
   /// tightest point the tightest of its peaks, Levenberg-Marquardt's choice of model over recent steps; 11: its model
-  /// always B + S, S learning only what B leaves out of the simulation's part; 12: each pose's place at rest (rest_mm)
-  int version() const override { return 12; }
+  /// always B + S, S learning only what B leaves out of the simulation's part; 12: each pose's place at rest (rest_mm);
+  /// 13: each pose's sensitivity (where it goes with the silicone 10 % stiffer and softer, the pressures 10 %
+  /// lower and higher)
+  int version() const override { return 13; }
   void run(StageContext& ctx) const override;
 };
 

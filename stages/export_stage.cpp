@@ -15,7 +15,9 @@
 #include "core/wrapped_text.hpp"
 #include "export/behaviour_summary.hpp"
 #include "export/casting_sheet.hpp"
+#include "export/deformed_body.hpp"
 #include "export/lay_flat.hpp"
+#include "export/mold_parts_summary.hpp"
 #include "export/muscle_cut.hpp"
 #include "export/optimization_summary.hpp"
 #include "export/report_html.hpp"
@@ -122,8 +124,6 @@ std::vector<ReportLine> fiber_lines(const FibersFile& fibers)
   return out;
 }
 
-std::string fixed(double value, int digits) { return fmt::format("{:.{}f}", value, digits); }
-
 /// How a part's printed pose maps back to the body's frame, in mm: printed = rotation · p + translation.
 Json placement_json(const Placement& placed)
 {
@@ -141,32 +141,6 @@ std::optional<Json> json_if_any(const std::filesystem::path& file)
   if (!std::filesystem::exists(file, ec)) return std::nullopt;
   Json j = Json::parse(read_file(file), nullptr, false);
   return j.is_discarded() ? std::nullopt : std::optional<Json>(std::move(j));
-}
-
-/// The body's nodes where `state` (a deformed-*.json or targets/<name>.json) puts them.
-std::optional<Eigen::MatrixX3d> deformed_nodes(const TetMesh& body, const std::optional<Json>& state)
-{
-  if (!state || !state->contains("nodes_mm") || !(*state)["nodes_mm"].is_array() ||
-      (*state)["nodes_mm"].size() != static_cast<std::size_t>(body.nodes.rows()))
-    return std::nullopt;
-  Eigen::MatrixX3d nodes(body.nodes.rows(), 3);
-  for (Eigen::Index i = 0; i < body.nodes.rows(); ++i) {
-    const Json& p = (*state)["nodes_mm"][static_cast<std::size_t>(i)];
-    if (!p.is_array() || p.size() != 3) return std::nullopt;
-    for (int k = 0; k < 3; ++k) {
-      if (!p[static_cast<std::size_t>(k)].is_number()) return std::nullopt;
-      nodes(i, k) = p[static_cast<std::size_t>(k)].get<double>() * units::mm;
-    }
-  }
-  return nodes;
-}
-
-/// The body's skin where `state` puts its nodes.
-std::optional<SurfaceMesh> deformed_body(const TetMesh& body, const std::optional<Json>& state)
-{
-  const std::optional<Eigen::MatrixX3d> nodes = deformed_nodes(body, state);
-  if (!nodes) return std::nullopt;
-  return boundary_surface(body, *nodes);
 }
 
 /// optimize/report.json where it optimized targets; none otherwise.
@@ -239,7 +213,8 @@ std::string overlay_shapes(const StageContext& ctx, const TetMesh& body, const F
                         "  the robot's mount beside the pressurized robot, and compare:\n",
                         name, pressures.empty() ? "no pressure" : pressures, d.muscle.max_pressure / units::kPa, file);
     if (collide && (*collide)["targets"].contains(name))
-      text += poses_to_compare((*collide)["targets"][name].value("poses", Json::array()));
+      text += poses_to_compare((*collide)["targets"][name].value("poses", Json::array())) +
+              what_to_measure((*collide)["targets"][name].value("poses", Json::array()), d.material.youngs_modulus);
     for (const SurfaceProblem& problem : check.problems) {
       text += fmt::format("  Note: the simulated body {} (e.g. at {}): the simulation has no self-contact; a slicer\n"
                           "  merges the overlap.\n",
@@ -250,45 +225,6 @@ std::string overlay_shapes(const StageContext& ctx, const TetMesh& body, const F
     files.push_back(std::move(entry));
   }
   return text.empty() ? text : "\nChecking the cast robot against the simulation\n" + text;
-}
-
-/// Which hole is which: each sprue and vent of a shot drawn as a line through its half, from where it
-/// meets the cavity out along the pull (a sprue from below: down through the lower half), named, the
-/// sprue orange and the vents cyan; the parts of the shot sit at `offset`, its upper half 1.5 ×
-/// `height` further along the pull (report()).
-void add_ports(const Json& fill, const std::string& shot, const Eigen::Vector3d& pull, double height,
-               const Eigen::Vector3d& offset, std::vector<ReportLine>& lines)
-{
-  const auto mouth = [](const Json& port) {
-    const Json& p = port["mouth_mm"];
-    const double x = p[0].get<double>(), y = p[1].get<double>(), z = p[2].get<double>();
-    return Eigen::Vector3d(x * units::mm, y * units::mm, z * units::mm);
-  };
-  const bool shown = shot == "shot1";
-  for (const Json& sprue : fill["sprues"]) {
-    const bool below = sprue.value("from", std::string("below")) == "below";
-    const Eigen::Vector3d at = mouth(sprue) + offset + (below ? 0.0 : 1.5 * height) * pull;
-    lines.push_back({fmt::format("{} sprue, from {}", shot, below ? "below" : "above"),
-                     {at, at + (below ? -height : height) * pull},
-                     {1.0F, 0.55F, 0.0F},
-                     shown});
-  }
-  int k = 0;
-  for (const Json& vent : fill["vents"]) {
-    const Eigen::Vector3d at = mouth(vent) + offset + 1.5 * height * pull;
-    lines.push_back({fmt::format("{} vent {}", shot, ++k), {at, at + height * pull}, {0.0F, 0.7F, 0.8F}, shown});
-  }
-}
-
-/// What a part carries engraved, for the parts table: "“WALKING-ROBOT S1 LOWER” (side, 8 mm) · “IN” (end,
-/// 5 mm)", or "none".
-std::string engraved_text(const Json& labels)
-{
-  std::vector<std::string> out;
-  for (const Json& l : labels)
-    out.push_back(fmt::format("“{}” ({}, {:g} mm)", l["text"].get<std::string>(), l["face"].get<std::string>(),
-                              l["height_mm"].get<double>()));
-  return out.empty() ? "none" : fmt::format("{}", fmt::join(out, " · "));
 }
 
 /// The page users open first: the groove body with its muscles in the shot 1 mold (upper half
@@ -321,21 +257,10 @@ std::string report(const StageContext& ctx, const TetMesh& body, const FibersFil
   }
   std::vector<ReportLine> lines = fiber_lines(fibers);
   for (const auto& [shot, info] : molds["shots"].items())
-    add_ports(info["fill"], shot, pull, height, (shot == "shot1" ? 0.0 : 1.3 * width) * aside, lines);
+    for (ReportLine& l : port_lines(info["fill"], shot, pull, height, (shot == "shot1" ? 0.0 : 1.3 * width) * aside))
+      lines.push_back(std::move(l));
   add_bodies(ctx, body, -1.3 * width * aside, -1.3 * width * aside, meshes, lines);
 
-  ReportTable checks{
-      "Mold parts",
-      {"part", "files", "engraved", "triangles", "volume (mL)", "thinnest wall (mm)", "fits the printer", "checks"},
-      {}};
-  for (const Json& p : parts) {
-    std::string files;
-    for (const Json& f : p["files"]) files += (files.empty() ? "" : ", ") + f.get<std::string>();
-    checks.rows.push_back({p["name"], files, engraved_text(p["labels"]), std::to_string(p["triangles"].get<long>()),
-                           fixed(p["volume_mL"], 2), fixed(p["min_wall_mm"], 2),
-                           p["fits_printer_as_placed"].get<bool>() ? "lying flat" : "turned",
-                           p["checks_passed"].get<bool>() ? "passed" : "FAILED"});
-  }
   std::vector<std::string> warnings;
   std::vector<ReportTable> tables;
   if (const auto optimized = optimization_report(ctx)) {
@@ -344,7 +269,7 @@ std::string report(const StageContext& ctx, const TetMesh& body, const FibersFil
   }
   if (const auto collide = json_if_any(ctx.upstream("collide", "report.json")))
     for (ReportTable& t : behaviour_tables(*collide)) tables.push_back(std::move(t));
-  tables.insert(tables.end(), {checks, silicone_table(sheet), muscles_table(sheet)});
+  tables.insert(tables.end(), {parts_table(parts), silicone_table(sheet), muscles_table(sheet)});
   std::vector<ReportPlot> plots;
   std::error_code ec;
   if (const auto history = ctx.upstream("optimize", "history.csv"); std::filesystem::exists(history, ec))

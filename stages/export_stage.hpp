@@ -30,8 +30,9 @@ public:
   /// labels = false; 13: README.txt: the print material, the side each half holds, release on the molds only, gauge
   /// pressures, the default silicone's preset E; 14: at least 5 g of each part mixed; 15: the optimization's warnings
   /// in README.txt; 16: the casting sheet's steps wrapped within 100 characters whatever the counts of holes; 17: when
-  /// to fit and seal the muscles and the supply tube's width, the poses to compare wrapped, "reached" explained
-  int version() const override { return 17; }
+  /// to fit and seal the muscles and the supply tube's width, the poses to compare wrapped, "reached" explained; 18:
+  /// which figure to measure on the cast robot, and where it goes with the silicone 10 % stiffer and softer
+  int version() const override { return 18; }
   void run(StageContext& ctx) const override;
 };
 

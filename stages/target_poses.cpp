@@ -160,4 +160,22 @@ nlohmann::ordered_json pose_report(const ReachedPose& p)
   return j;
 }
 
+nlohmann::ordered_json pose_report(const ReachedPose& p, const std::array<ReachedPose, 4>& varied)
+{
+  nlohmann::ordered_json j = pose_report(p);
+  const auto each = [&](const auto& of) {
+    nlohmann::ordered_json out = nlohmann::ordered_json::object();
+    for (std::size_t k = 0; k < varied.size(); ++k) out[kPoseVariations[k]] = of(varied[k]);
+    return out;
+  };
+  j["sensitivity"] = {
+      {"change_percent", 100 * kSensitivityChange},
+      {"rotation_deg", each([](const ReachedPose& q) { return q.motion.angle() / units::degree; })},
+      {"displacement_mm", each([](const ReachedPose& q) { return q.displacement.norm() / units::mm; })}};
+  if (p.asked)
+    j["sensitivity"]["rotation_about_asked_axis_deg"] =
+        each([&](const ReachedPose& q) { return q.motion.angle_about(p.asked->axis) / units::degree; });
+  return j;
+}
+
 } // namespace fibermold

@@ -3,6 +3,7 @@
 // target's regions and the tracking curves' ends reach in a deformation (docs/targets.md), so that
 // a user sizes a target by its angle and translation instead of its largest displacement.
 
+#include <array>
 #include <string>
 #include <vector>
 
@@ -51,5 +52,18 @@ std::vector<ReachedPose> reached_poses(const Design& d, const Target& t, const S
 /// A reached pose for a report: translation in mm, rotation in degrees and its axis; for a pose
 /// region also the angle asked and the angle reached about the asked axis.
 nlohmann::ordered_json pose_report(const ReachedPose& p);
+
+/// How far the least certain inputs are varied to show how much a pose hinges on them: the cast
+/// silicone's Young's modulus (sources disagree by 2–3×, docs/design-file.md) and the muscles' pressure
+/// (the gauge's, and the muscle's own contraction at it).
+inline constexpr double kSensitivityChange = 0.1;
+/// The variations, in pose_report's order: the silicone stiffer and softer by kSensitivityChange, every
+/// pressure lower and higher by it.
+inline constexpr std::array<const char*, 4> kPoseVariations{"stiffer", "softer", "less_pressure", "more_pressure"};
+
+/// pose_report(p) and, under "sensitivity", where p went under each of kPoseVariations (`varied`, in
+/// that order): its rotation (deg), its displacement's length (mm) and, for a pose region, its
+/// rotation about the asked axis (deg), each {variation: value}.
+nlohmann::ordered_json pose_report(const ReachedPose& p, const std::array<ReachedPose, 4>& varied);
 
 } // namespace fibermold

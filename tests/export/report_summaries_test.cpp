@@ -1,8 +1,14 @@
-// What report.html and README.txt say of the optimization and of collide, from their reports
-// (export/optimization_summary.hpp, export/behaviour_summary.hpp).
+// What report.html and README.txt say of the optimization, collide and the mold parts, from their reports
+// (export/optimization_summary.hpp, export/behaviour_summary.hpp, export/mold_parts_summary.hpp),
+// and the deformed body of a stage's JSON state (export/deformed_body.hpp).
+#include <regex>
+
+#include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
 #include "export/behaviour_summary.hpp"
+#include "export/deformed_body.hpp"
+#include "export/mold_parts_summary.hpp"
 #include "export/optimization_summary.hpp"
 
 namespace fibermold {
@@ -110,6 +116,106 @@ TEST(BehaviourSummary, PosesToCompareLeaveOutWhatStaysPut)
             "    pose[1] (at (10.0, 0.0, 5.0) mm at rest: the centre of its 12 nodes): moves 5.0 mm (3.0, 4.0,\n"
             "      0.0) and turns 30.0° about (0.00, 1.00, 0.00); 30.0° about the axis asked (asked 35.0°)\n");
   EXPECT_EQ(poses_to_compare(Json::array({poses[0]})), "    nothing moves more than 0.5 mm or turns more than 5°\n");
+}
+
+Json pose(const std::string& place, double moved_mm, double turned_deg)
+{
+  Json p{{"place", place},
+         {"translation_mm", {moved_mm, 0, 0}},
+         {"rotation_deg", turned_deg},
+         {"rotation_axis", {0, 0, 1}}};
+  p["sensitivity"] = {{"change_percent", 10},
+                      {"rotation_deg", {{"stiffer", 1}, {"softer", 2}, {"less_pressure", 3}, {"more_pressure", 4}}},
+                      {"displacement_mm", {{"stiffer", 5}, {"softer", 6}, {"less_pressure", 7}, {"more_pressure", 8}}}};
+  return p;
+}
+
+TEST(BehaviourSummary, WhatToMeasureIsTheTurnAskedElseTheLargestTurnElseTheLargestMove)
+{
+  const auto first_line = [](const Json& poses) {
+    const std::string text = what_to_measure(poses, 86.4e3);
+    return text.substr(0, text.find('\n'));
+  };
+  // The largest move when nothing turns 5°: 9 mm and its sensitivity.
+  const std::string moved = what_to_measure(Json::array({pose("a", 3, 4.9), pose("b", 9, 1)}), 86.4e3);
+  EXPECT_THAT(moved, testing::StartsWith("  Measure b's move: 9.0 mm in the simulation. It hinges on the silicone's"));
+  const std::string flat = std::regex_replace(moved, std::regex("\n  "), " "); // unwrapped
+  for (const char* figure : {"5.0 mm and 6.0 mm with a silicone 10 % stiffer and softer than the 86.4 kPa",
+                             "7.0 mm and 8.0 mm at 10 % less and more pressure"})
+    EXPECT_THAT(flat, testing::HasSubstr(figure)) << moved;
+  // The largest turn over 5°, whatever moves further.
+  EXPECT_THAT(first_line(Json::array({pose("a", 30, 4), pose("b", 1, 6), pose("c", 2, 12)})),
+              testing::StartsWith("  Measure c's turn: 12.0° in the simulation."));
+  // A pose region's turn about the axis asked, before any larger turn.
+  Json asked = pose("pose[1]", 1, 20);
+  asked["asked_rotation_deg"] = 60;
+  asked["rotation_about_asked_axis_deg"] = 19.5;
+  EXPECT_THAT(first_line(Json::array({pose("tip", 40, 45), asked})),
+              testing::StartsWith("  Measure pose[1]'s turn about the axis asked: 19.5° in the simulation."));
+  // Nothing worth measuring: nothing said.
+  EXPECT_EQ(what_to_measure(Json::array({pose("a", 0.4, 4)}), 86.4e3), "");
+  // An older report without the sensitivity: the figure alone.
+  Json bare = pose("a", 3, 0);
+  bare.erase("sensitivity");
+  EXPECT_EQ(what_to_measure(Json::array({bare}), 86.4e3), "  Measure a's move: 3.0 mm in the simulation.\n");
+}
+
+TEST(MoldPartsSummary, TheSprueOfShotOneRunsDownThroughTheLowerHalfAndTheVentsUp)
+{
+  const Json fill = Json::parse(R"({"sprues": [{"mouth_mm": [10, 0, 0], "from": "below"}],
+                                    "vents": [{"mouth_mm": [20, 0, 5]}, {"mouth_mm": [30, 0, 5]}]})");
+  const Eigen::Vector3d pull = Eigen::Vector3d::UnitZ(), offset(0, 0.1, 0);
+  const std::vector<ReportLine> lines = port_lines(fill, "shot1", pull, 0.02, offset);
+  ASSERT_EQ(lines.size(), 3u);
+  EXPECT_EQ(lines[0].name, "shot1 sprue, from below");
+  EXPECT_TRUE(lines[0].points[0].isApprox(Eigen::Vector3d(0.01, 0.1, 0)));
+  EXPECT_TRUE(lines[0].points[1].isApprox(Eigen::Vector3d(0.01, 0.1, -0.02))); // down through the lower half
+  EXPECT_EQ(lines[2].name, "shot1 vent 2");
+  EXPECT_TRUE(lines[2].points[0].isApprox(Eigen::Vector3d(0.03, 0.1, 0.005 + 0.03))); // in the lifted upper half
+  EXPECT_TRUE(lines[2].points[1].isApprox(Eigen::Vector3d(0.03, 0.1, 0.005 + 0.05)));
+  EXPECT_TRUE(lines[0].visible);
+  EXPECT_FALSE(port_lines(fill, "shot2", pull, 0.02, offset)[0].visible);
+}
+
+TEST(MoldPartsSummary, ThePartsTableSaysWhatEachPartCarriesEngraved)
+{
+  const Json parts = Json::parse(R"([{"name": "shot1-lower", "files": ["shot1-lower.stl", "shot1-lower.3mf"],
+    "labels": [{"text": "BAR S1 LOWER", "face": "side", "height_mm": 8}, {"text": "IN", "face": "end", "height_mm": 5}],
+    "triangles": 1234, "volume_mL": 12.345, "min_wall_mm": 3.999, "fits_printer_as_placed": true,
+    "checks_passed": true}, {"name": "shot1-upper", "files": ["shot1-upper.stl"], "labels": [], "triangles": 5,
+    "volume_mL": 1, "min_wall_mm": 0.5, "fits_printer_as_placed": false, "checks_passed": false}])");
+  const ReportTable t = parts_table(parts);
+  ASSERT_EQ(t.rows.size(), 2u);
+  EXPECT_EQ(t.rows[0], (std::vector<std::string>{"shot1-lower", "shot1-lower.stl, shot1-lower.3mf",
+                                                 "“BAR S1 LOWER” (side, 8 mm) · “IN” (end, 5 mm)", "1234", "12.35",
+                                                 "4.00", "lying flat", "passed"}));
+  EXPECT_EQ(t.rows[1][2], "none");
+  EXPECT_EQ(t.rows[1][6], "turned");
+  EXPECT_EQ(t.rows[1][7], "FAILED");
+}
+
+TEST(DeformedBody, IsTheSkinWhereTheStatePutsTheNodesAndNoneForAStateThatDoesNotFit)
+{
+  TetMesh tet;
+  tet.nodes = Eigen::MatrixX3d{{0, 0, 0}, {0.01, 0, 0}, {0, 0.01, 0}, {0, 0, 0.01}};
+  tet.tets = Eigen::Matrix<int, 1, 4>{0, 1, 2, 3};
+  tet.boundary_faces = Eigen::MatrixX3i{{0, 2, 1}, {0, 1, 3}, {0, 3, 2}, {1, 2, 3}};
+  Json state{{"nodes_mm", Json::array()}};
+  for (Eigen::Index i = 0; i < 4; ++i)
+    state["nodes_mm"].push_back({tet.nodes(i, 0) / 1e-3 + 1, tet.nodes(i, 1) / 1e-3, 2 * tet.nodes(i, 2) / 1e-3});
+  const std::optional<SurfaceMesh> skin = deformed_body(tet, state);
+  ASSERT_TRUE(skin);
+  EXPECT_EQ(skin->num_faces(), 4);
+  // Every corner where the state put it: 1 mm along x, z doubled.
+  EXPECT_NEAR(skin->vertices.col(0).minCoeff(), 1e-3, 1e-12);
+  EXPECT_NEAR(skin->vertices.col(2).maxCoeff(), 0.02, 1e-12);
+  EXPECT_FALSE(deformed_body(tet, std::nullopt));
+  Json short_of_one = state;
+  short_of_one["nodes_mm"].erase(3);
+  EXPECT_FALSE(deformed_body(tet, short_of_one));
+  Json not_a_number = state;
+  not_a_number["nodes_mm"][2][1] = "x";
+  EXPECT_FALSE(deformed_body(tet, not_a_number));
 }
 
 } // namespace
