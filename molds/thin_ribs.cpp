@@ -14,21 +14,52 @@ namespace {
 /// m: a valley of the floor shallower than this is the meshed cavity's facets, not a rib.
 constexpr double kLeastRibDepth = 1e-3;
 
-/// The running maximum (or minimum) of each row and column over a window of 2r + 1 cells: a
-/// square's dilation (erosion).
-Eigen::MatrixXd square_filter(const Eigen::MatrixXd& m, Eigen::Index r, bool maximum)
+/// The maximum (or minimum) of each cell's disk of radius r cells: a disk's dilation (erosion). A
+/// disk, not a square, so that a slot's rib is found by its width whatever way the slot runs (a
+/// square's reach across a diagonal slot is √2 times its side).
+Eigen::MatrixXd disk_filter(const Eigen::MatrixXd& m, Eigen::Index r, bool maximum, Progress* progress)
 {
-  const auto pass = [&](const Eigen::MatrixXd& in) {
-    Eigen::MatrixXd out = in;
-    for (Eigen::Index i = 0; i < in.rows(); ++i)
-      for (Eigen::Index j = 0; j < in.cols(); ++j) {
-        const Eigen::Index a = std::max<Eigen::Index>(0, i - r), b = std::min<Eigen::Index>(in.rows() - 1, i + r);
-        const auto window = in.col(j).segment(a, b - a + 1);
-        out(i, j) = maximum ? window.maxCoeff() : window.minCoeff();
-      }
-    return out;
+  std::vector<std::pair<Eigen::Index, Eigen::Index>> disk;
+  for (Eigen::Index a = -r; a <= r; ++a)
+    for (Eigen::Index b = -r; b <= r; ++b)
+      if (a * a + b * b <= r * r) disk.emplace_back(a, b);
+  Eigen::MatrixXd out = m;
+  for (Eigen::Index i = 0; i < m.rows(); ++i) {
+    if (progress && progress->interrupted()) throw Interrupted();
+    for (Eigen::Index j = 0; j < m.cols(); ++j)
+      for (const auto& [a, b] : disk)
+        if (i + a >= 0 && j + b >= 0 && i + a < m.rows() && j + b < m.cols())
+          out(i, j) = maximum ? std::max(out(i, j), m(i + a, j + b)) : std::min(out(i, j), m(i + a, j + b));
+  }
+  return out;
+}
+
+/// Cells from (i, j) to the nearest cell where `outside` holds (up to r + 1).
+template <typename Outside> double inscribed_at(Eigen::Index i, Eigen::Index j, Eigen::Index r, const Outside& outside)
+{
+  double nearest = static_cast<double>(r + 1);
+  for (Eigen::Index a = i - r; a <= i + r; ++a)
+    for (Eigen::Index b = j - r; b <= j + r; ++b)
+      if (outside(a, b)) nearest = std::min(nearest, std::hypot(double(a - i), double(b - j)));
+  return nearest;
+}
+
+/// How far, in cells, the valley of the floor that holds a rib's tip (ti, tj) reaches from its walls: the
+/// largest distance from a cell within 2r of the tip (a valley's middle, from a tip on its wall) and lower than `level`
+/// (just under the rib's root, where the closing put the floor) to the nearest cell higher than that. Where a valley is
+/// a cell wider than the closing's disk, the closing misses a cell along its wall: a rib of its own one cell thick,
+/// which this finds as wide as the valley.
+double valley_reach(const Eigen::MatrixXd& floor, Eigen::Index ti, Eigen::Index tj, Eigen::Index r, double level)
+{
+  const auto wall = [&](Eigen::Index a, Eigen::Index b) {
+    return a >= 0 && b >= 0 && a < floor.rows() && b < floor.cols() && floor(a, b) > level;
   };
-  return pass(pass(m).transpose()).transpose();
+  double widest = 0;
+  for (Eigen::Index a = std::max<Eigen::Index>(0, ti - 2 * r); a <= std::min(floor.rows() - 1, ti + 2 * r); ++a)
+    for (Eigen::Index b = std::max<Eigen::Index>(0, tj - 2 * r); b <= std::min(floor.cols() - 1, tj + 2 * r); ++b)
+      if ((a - ti) * (a - ti) + (b - tj) * (b - tj) <= 4 * r * r && !wall(a, b))
+        widest = std::max(widest, inscribed_at(a, b, r, wall));
+  return widest;
 }
 
 /// The ribs of one half: `w` its pull (out of the cavity, away from the plane), the plane at height
@@ -56,9 +87,8 @@ std::vector<ThinRib> half_ribs(const SurfaceDistance& tree, const SurfaceMesh& c
     }
   }
   const auto r = static_cast<Eigen::Index>(std::floor(thickness / (2 * cell)));
-  const Eigen::MatrixXd depth = square_filter(square_filter(floor, r, true), r, false) - floor;
-  // The ribs: connected cells that stand deeper than the facets; each one's thickness from the
-  // largest distance of its cells to the nearest cell outside it.
+  const Eigen::MatrixXd depth = disk_filter(disk_filter(floor, r, true, progress), r, false, progress) - floor;
+  // The ribs: connected cells that stand deeper than the facets.
   const Eigen::MatrixX<bool> rib = depth.array() >= kLeastRibDepth;
   Eigen::MatrixXi seen = Eigen::MatrixXi::Zero(nu, nv);
   std::vector<ThinRib> out;
@@ -76,24 +106,33 @@ std::vector<ThinRib> half_ribs(const SurfaceDistance& tree, const SurfaceMesh& c
           cells.emplace_back(a, b);
         }
       }
+      // Its thickness: the largest distance from a cell of it to the nearest cell outside it; its tip the
+      // deepest cell (to a hundredth of a cell), of those the nearest its middle (the cells' centroid).
+      const auto outside = [&](Eigen::Index a, Eigen::Index b) {
+        return a < 0 || b < 0 || a >= nu || b >= nv || !rib(a, b);
+      };
+      Eigen::Vector2d middle = Eigen::Vector2d::Zero();
+      for (const auto& [i, j] : cells) middle += Eigen::Vector2d(double(i), double(j)) / double(cells.size());
       ThinRib best{upper, {}, 0, 0};
-      double inscribed = 0, tip = 0; // cells: the largest distance from a rib cell to the nearest cell outside it
+      Eigen::Index ti = i0, tj = j0;
+      double inscribed = 0;
       for (const auto& [i, j] : cells) {
-        double nearest = static_cast<double>(r + 1);
-        for (Eigen::Index a = std::max<Eigen::Index>(0, i - r); a <= std::min(nu - 1, i + r); ++a)
-          for (Eigen::Index b = std::max<Eigen::Index>(0, j - r); b <= std::min(nv - 1, j + r); ++b)
-            if (!rib(a, b)) nearest = std::min(nearest, std::hypot(double(a - i), double(b - j)));
-        inscribed = std::max(inscribed, nearest);
-        // The tip: the deepest cell (to a hundredth of a cell), the one in the rib's middle of those.
+        inscribed = std::max(inscribed, inscribed_at(i, j, r, outside));
         const bool deeper = depth(i, j) > best.depth + 0.01 * cell;
-        if (deeper || (depth(i, j) > best.depth - 0.01 * cell && nearest > tip)) {
+        const double off = (Eigen::Vector2d(double(i), double(j)) - middle).norm();
+        if (deeper || (depth(i, j) > best.depth - 0.01 * cell &&
+                       off < (Eigen::Vector2d(double(ti), double(tj)) - middle).norm())) {
           best.depth = std::max(best.depth, depth(i, j));
           best.at = point(i, j, floor(i, j));
-          tip = nearest;
+          ti = i, tj = j;
         }
       }
-      // A rib n cells across has its middle cell ⌈n/2⌉ cells from the nearer cell outside it.
-      best.thickness = (2 * inscribed - 0.5) * cell;
+      // A rib n cells across has its middle cell ⌈n/2⌉ cells from the nearer cell outside it; a cell along
+      // a wider valley's wall that the closing missed is as thick as that valley.
+      best.thickness =
+          (2 * std::max(inscribed, valley_reach(floor, ti, tj, r, floor(ti, tj) + depth(ti, tj) - kLeastRibDepth)) -
+           0.5) *
+          cell;
       if (best.thickness < thickness && best.depth > aspect * best.thickness) out.push_back(best);
     }
   return out;

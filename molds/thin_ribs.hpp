@@ -4,7 +4,7 @@
 // printed rib can break, or tear the cast, as the half comes off. Found on the half's floor: seen
 // along the half's pull, each column of the half ends where the cavity begins (a ray cast down onto
 // the cavity, or the parting plane where the cavity lies below it), which makes a height map; its
-// morphological closing with a square of side `thickness` fills the valleys narrower than that, the
+// morphological closing with a disk of diameter `thickness` fills the valleys narrower than that, the
 // ribs, and the closing less the map is how deep each stands. A rib is reported when it stands deeper
 // than `aspect` times its thickness (twice the largest distance from a point of it to its edge on the
 // map).
