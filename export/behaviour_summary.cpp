@@ -1,6 +1,9 @@
 #include "export/behaviour_summary.hpp"
 
 #include <algorithm>
+#include <array>
+#include <optional>
+#include <utility>
 
 #include <Eigen/Core>
 #include <fmt/format.h>
@@ -19,10 +22,66 @@ constexpr double kStaysPut_mm = 0.5, kStaysPut_deg = 5.0;
 
 std::string fixed(double value, int digits) { return fmt::format("{:.{}f}", value, digits); }
 
+/// The inputs collide varies to show what a pose hinges on, as its report names them (target_poses.hpp).
+constexpr std::array<const char*, 4> kVariations{"stiffer", "softer", "less_pressure", "more_pressure"};
+
+/// Whether a pose of collide's report says where it went: a translation [x, y, z] and a rotation.
+bool placed(const Json& p)
+{
+  return p.is_object() && p.contains("translation_mm") && p["translation_mm"].is_array() &&
+         p["translation_mm"].size() == 3 && p.contains("rotation_deg") && p["rotation_deg"].is_number() &&
+         p.contains("place") && p["place"].is_string();
+}
+
+/// The figure of one pose to measure: its value, the key of its sensitivity, its unit and what it is.
+struct Measure {
+  const Json* pose = nullptr;
+  double value = 0;
+  const char* band = "";
+  const char* unit = "";
+  const char* what = "";
+};
+
+/// Which figure of which pose to measure (what_to_measure()); none when nothing moves. Its pose points into `poses`.
+Measure measure_of(const Json& poses)
+{
+  Measure turn, move;
+  for (const Json& p : poses) {
+    if (!placed(p)) continue;
+    if (p.value("asked_rotation_deg", 0.0) != 0 && p.contains("rotation_about_asked_axis_deg") &&
+        p["rotation_about_asked_axis_deg"].is_number())
+      return {&p, p["rotation_about_asked_axis_deg"].get<double>(), "rotation_about_asked_axis_deg", "°",
+              "turn about the axis asked"};
+    const double angle = p["rotation_deg"].get<double>();
+    const double moved = Eigen::Vector3d(p["translation_mm"][0], p["translation_mm"][1], p["translation_mm"][2]).norm();
+    if (angle >= kStaysPut_deg && angle > turn.value) turn = {&p, angle, "rotation_deg", "°", "turn"};
+    if (moved >= kStaysPut_mm && moved > move.value) move = {&p, moved, "displacement_mm", " mm", "move"};
+  }
+  return turn.pose ? turn : move;
+}
+
+/// What m's figure is under each of kVariations, and by how much (%) they vary the inputs; none when
+/// its pose's report has no sensitivity.
+std::optional<std::pair<std::array<double, 4>, double>> variations(const Measure& m)
+{
+  const Json& p = *m.pose;
+  if (!p.contains("sensitivity") || !p["sensitivity"].contains(m.band) ||
+      !p["sensitivity"].contains("change_percent") || !p["sensitivity"]["change_percent"].is_number())
+    return std::nullopt;
+  const Json& v = p["sensitivity"][m.band];
+  std::array<double, 4> out{};
+  for (std::size_t k = 0; k < kVariations.size(); ++k) {
+    if (!v.contains(kVariations[k]) || !v[kVariations[k]].is_number()) return std::nullopt;
+    out[k] = v[kVariations[k]].get<double>();
+  }
+  return std::pair{out, p["sensitivity"]["change_percent"].get<double>()};
+}
+
 } // namespace
 
-std::vector<ReportTable> behaviour_tables(const Json& report)
+std::vector<ReportTable> behaviour_tables(const Json& collide_report)
 {
+  Json report = collide_report; // not const: a key missing from another's report reads as null, which throws
   std::vector<ReportTable> out;
   const auto mm = [](const Json& v) { return v.is_number() ? fixed(v.get<double>(), 3) : std::string("–"); };
   if (report["targets"].is_object() && !report["targets"].empty()) {
@@ -38,6 +97,27 @@ std::vector<ReportTable> behaviour_tables(const Json& report)
                               mm(t["before"]["max_error_mm"]), mm(t["after"]["max_error_mm"]),
                               mm(t["after"]["surface_rmse_mm"]), mm(t["after"]["surface_max_error_mm"])});
     out.push_back(std::move(targets));
+    // README.txt's figure to measure on the cast robot, per target, and what it hinges on.
+    ReportTable check{
+        "Checking the cast robot: the figure to measure",
+        {"target", "figure", "simulated", "silicone stiffer", "silicone softer", "less pressure", "more pressure"},
+        {}};
+    for (const auto& [name, t] : report["targets"].items()) {
+      const Json poses = t.value("poses", Json::array()); // m points into it
+      const Measure m = measure_of(poses);
+      if (!m.pose) continue;
+      std::vector<std::string> row{name, fmt::format("{}: {}", (*m.pose)["place"].get<std::string>(), m.what),
+                                   fmt::format("{:.1f}{}", m.value, m.unit)};
+      const auto varied = variations(m);
+      for (std::size_t k = 0; k < kVariations.size(); ++k)
+        row.push_back(varied ? fmt::format("{:.1f}{}", varied->first[k], m.unit) : "–");
+      if (varied)
+        check.title = fmt::format("Checking the cast robot: the figure to measure, and with the silicone's stiffness "
+                                  "or the pressure {:g} % off",
+                                  varied->second);
+      check.rows.push_back(std::move(row));
+    }
+    if (!check.rows.empty()) out.push_back(std::move(check));
   }
   ReportTable collisions{"Collisions", {"between", "clearance before (mm)", "at (mm)"}, {}};
   for (const Json& c : report["collisions"]) {
@@ -84,7 +164,8 @@ std::vector<ReportTable> behaviour_tables(const Json& report)
 
 std::string muscle_bends_text(const Json& report)
 {
-  if (!report.contains("bends") || !report["min_bend_radius_mm"].is_number()) return {};
+  if (!report.contains("bends") || !report.contains("min_bend_radius_mm") || !report["min_bend_radius_mm"].is_number())
+    return {};
   std::string text = "\n";
   text += wrapped(fmt::format("The muscles take bends no tighter than {:.1f} mm in radius ([muscle] min_bend_radius); "
                               "the grooves follow the routes, so lay each muscle along its groove without kinking it. "
@@ -103,7 +184,7 @@ std::string poses_to_compare(const Json& poses)
 {
   std::string out;
   for (const Json& p : poses) {
-    if (!p.is_object() || !p.contains("translation_mm") || !p["rotation_deg"].is_number()) continue;
+    if (!placed(p) || !p.contains("rotation_axis")) continue;
     const Eigen::Vector3d t(p["translation_mm"][0], p["translation_mm"][1], p["translation_mm"][2]);
     const double turn = p["rotation_deg"].get<double>();
     if (t.norm() < kStaysPut_mm && turn < kStaysPut_deg) continue;
@@ -128,60 +209,23 @@ std::string poses_to_compare(const Json& poses)
              : out;
 }
 
-namespace {
-
-/// The figure of one pose to measure: its value, the key of its stiffness band, its unit and what it is.
-struct Measure {
-  const Json* pose = nullptr;
-  double value = 0;
-  const char* band = "";
-  const char* unit = "";
-  const char* what = "";
-};
-
-/// Which figure of which pose to measure (what_to_measure()); none when nothing moves.
-Measure measure_of(const Json& poses)
-{
-  Measure turn, move;
-  for (const Json& p : poses) {
-    if (!p.is_object() || !p.contains("translation_mm") || !p["rotation_deg"].is_number()) continue;
-    if (p.value("asked_rotation_deg", 0.0) != 0 && p["rotation_about_asked_axis_deg"].is_number())
-      return {&p, p["rotation_about_asked_axis_deg"].get<double>(), "rotation_about_asked_axis_deg", "°",
-              "turn about the axis asked"};
-    const double angle = p["rotation_deg"].get<double>();
-    const double moved = Eigen::Vector3d(p["translation_mm"][0], p["translation_mm"][1], p["translation_mm"][2]).norm();
-    if (angle >= kStaysPut_deg && angle > turn.value) turn = {&p, angle, "rotation_deg", "°", "turn"};
-    if (moved >= kStaysPut_mm && moved > move.value) move = {&p, moved, "displacement_mm", " mm", "move"};
-  }
-  return turn.pose ? turn : move;
-}
-
-} // namespace
-
 std::string what_to_measure(const Json& poses, double youngs_modulus)
 {
   const Measure m = measure_of(poses);
   if (!m.pose) return {};
-  const Json& p = *m.pose;
-  std::string text = fmt::format("Measure {}'s {}: {:.1f}{} in the simulation.", p["place"].get<std::string>(), m.what,
-                                 m.value, m.unit);
-  if (p.contains("sensitivity") && p["sensitivity"].contains(m.band)) {
-    const Json& s = p["sensitivity"];
-    const Json& v = s[m.band];
-    const double percent = s["change_percent"].get<double>();
-    const auto value = [&](const char* variation) {
-      return fmt::format("{:.1f}{}", v[variation].get<double>(), m.unit);
-    };
+  std::string text = fmt::format("Measure {}'s {}: {:.1f}{} in the simulation.", (*m.pose)["place"].get<std::string>(),
+                                 m.what, m.value, m.unit);
+  if (const auto varied = variations(m)) {
+    const auto& [v, percent] = *varied;
+    const auto value = [&](std::size_t k) { return fmt::format("{:.1f}{}", v[k], m.unit); };
     text += fmt::format(
-        " It hinges on the silicone's stiffness and the muscles' pressure: {} and {} with a silicone {:g} % stiffer "
-        "and "
-        "softer than the {:.1f} kPa of [material] youngs_modulus, {} and {} at {:g} % less and more pressure. A cast "
-        "robot outside these: check the pressure at the muscle first; then the silicone (hang a weight on a strip of "
-        "the same pour: E = force × length / (cross-section × stretch), under 20 % stretch; set [material] "
-        "youngs_modulus to it and run fibermold again) and the muscle's own contraction at that pressure ([muscle] "
-        "rest_strain_slope).",
-        value("stiffer"), value("softer"), percent, youngs_modulus / units::kPa, value("less_pressure"),
-        value("more_pressure"), percent);
+        " With the least certain inputs {0:g} % off: {1} and {2} with the silicone {0:g} % stiffer and softer than "
+        "[material] youngs_modulus = {3:.0f} Pa, {4} and {5} with every pressure {0:g} % lower and higher. Far from "
+        "all of these, check first the pressure at the muscle; then the silicone: hang a weight on a strip of the "
+        "same pour and set youngs_modulus (Pa) to 3 × force (N) / (cross-section (m²) × (λ − 1/λ²)), λ the strip's "
+        "stretched length over its length and the cross-section unstretched; then the muscle's contraction at that "
+        "pressure ([muscle] rest_strain_slope); and run fibermold again.",
+        percent, value(0), value(1), youngs_modulus, value(2), value(3));
   }
   return wrapped(text, "  ", "  ");
 }

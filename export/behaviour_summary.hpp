@@ -12,8 +12,9 @@
 
 namespace fibermold {
 
-/// report.html's tables: the targets' errors, the collisions, the control points' moves and each
-/// fiber's smallest bend radius as built.
+/// report.html's tables: the targets' errors, the figure to measure on the cast robot per target (as
+/// what_to_measure() chooses it) with its sensitivity, the collisions, the control points' moves and
+/// each fiber's smallest bend radius as built.
 std::vector<ReportTable> behaviour_tables(const nlohmann::ordered_json& collide_report);
 
 /// README.txt's paragraph on the muscles' bends: lay each muscle along its groove without kinking it,

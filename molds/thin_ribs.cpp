@@ -44,21 +44,36 @@ template <typename Outside> double inscribed_at(Eigen::Index i, Eigen::Index j, 
   return nearest;
 }
 
-/// How far, in cells, the valley of the floor that holds a rib's tip (ti, tj) reaches from its walls: the
-/// largest distance from a cell within 2r of the tip (a valley's middle, from a tip on its wall) and lower than `level`
-/// (just under the rib's root, where the closing put the floor) to the nearest cell higher than that. Where a valley is
-/// a cell wider than the closing's disk, the closing misses a cell along its wall: a rib of its own one cell thick,
-/// which this finds as wide as the valley.
-double valley_reach(const Eigen::MatrixXd& floor, Eigen::Index ti, Eigen::Index tj, Eigen::Index r, double level)
+/// Cells from a rib's tip within which the valley it stands in is measured (valley_disk).
+constexpr Eigen::Index kNearTip = 4;
+
+/// The radius, in cells, of the largest disk of the valley of the floor that covers a cell within
+/// kNearTip of a rib's tip (ti, tj): the valley the cells lower than `level` (just under the rib's root,
+/// where the closing put the floor), a disk's radius its centre's distance to the nearest cell higher
+/// than that (up to r + 1). The closing leaves cells that no disk of its size covers, where no rib is:
+/// along the wall of a valley a cell or two wider than the disk, and in the corners of a wide one (a
+/// notch's); a disk of the valley's width covers cells a few from there. A rib the closing filled is
+/// covered by no disk wider than it near its tip, however low the ground a little farther off (a
+/// narrow finger's slot, open to the plane around the finger).
+double valley_disk(const Eigen::MatrixXd& floor, Eigen::Index ti, Eigen::Index tj, Eigen::Index r, double level)
 {
   const auto wall = [&](Eigen::Index a, Eigen::Index b) {
     return a >= 0 && b >= 0 && a < floor.rows() && b < floor.cols() && floor(a, b) > level;
   };
+  const Eigen::Index reach = kNearTip + r + 1; // the disks' centres
+  Eigen::MatrixXd radius = Eigen::MatrixXd::Zero(2 * reach + 1, 2 * reach + 1);
+  for (Eigen::Index a = -reach; a <= reach; ++a)
+    for (Eigen::Index b = -reach; b <= reach; ++b)
+      if (ti + a >= 0 && tj + b >= 0 && ti + a < floor.rows() && tj + b < floor.cols() && !wall(ti + a, tj + b))
+        radius(a + reach, b + reach) = inscribed_at(ti + a, tj + b, r, wall);
   double widest = 0;
-  for (Eigen::Index a = std::max<Eigen::Index>(0, ti - 2 * r); a <= std::min(floor.rows() - 1, ti + 2 * r); ++a)
-    for (Eigen::Index b = std::max<Eigen::Index>(0, tj - 2 * r); b <= std::min(floor.cols() - 1, tj + 2 * r); ++b)
-      if ((a - ti) * (a - ti) + (b - tj) * (b - tj) <= 4 * r * r && !wall(a, b))
-        widest = std::max(widest, inscribed_at(a, b, r, wall));
+  for (Eigen::Index a = -reach; a <= reach; ++a)
+    for (Eigen::Index b = -reach; b <= reach; ++b) {
+      const double rho = radius(a + reach, b + reach);
+      if (rho <= widest) continue;
+      // Does the disk at (a, b) cover a cell within kNearTip of the tip: is it within rho of that disk?
+      if (std::hypot(double(a), double(b)) <= rho + double(kNearTip)) widest = rho;
+    }
   return widest;
 }
 
@@ -106,33 +121,33 @@ std::vector<ThinRib> half_ribs(const SurfaceDistance& tree, const SurfaceMesh& c
           cells.emplace_back(a, b);
         }
       }
-      // Its thickness: the largest distance from a cell of it to the nearest cell outside it; its tip the
-      // deepest cell (to a hundredth of a cell), of those the nearest its middle (the cells' centroid).
+      // Its thickness: the largest distance from a cell of it to the nearest cell outside it. Its tip: the
+      // deepest cell (to a hundredth of a cell); of those the one farthest inside it, then the nearest its
+      // middle (the cells' centroid: along a slot of even width, its middle rather than its end).
       const auto outside = [&](Eigen::Index a, Eigen::Index b) {
         return a < 0 || b < 0 || a >= nu || b >= nv || !rib(a, b);
       };
       Eigen::Vector2d middle = Eigen::Vector2d::Zero();
       for (const auto& [i, j] : cells) middle += Eigen::Vector2d(double(i), double(j)) / double(cells.size());
+      const auto off = [&](Eigen::Index i, Eigen::Index j) {
+        return (Eigen::Vector2d(double(i), double(j)) - middle).norm();
+      };
       ThinRib best{upper, {}, 0, 0};
       Eigen::Index ti = i0, tj = j0;
-      double inscribed = 0;
+      double inscribed = 0, tip = -1;
       for (const auto& [i, j] : cells) {
-        inscribed = std::max(inscribed, inscribed_at(i, j, r, outside));
-        const bool deeper = depth(i, j) > best.depth + 0.01 * cell;
-        const double off = (Eigen::Vector2d(double(i), double(j)) - middle).norm();
-        if (deeper || (depth(i, j) > best.depth - 0.01 * cell &&
-                       off < (Eigen::Vector2d(double(ti), double(tj)) - middle).norm())) {
+        const double nearest = inscribed_at(i, j, r, outside);
+        inscribed = std::max(inscribed, nearest);
+        const bool deeper = depth(i, j) > best.depth + 0.01 * cell, as_deep = depth(i, j) > best.depth - 0.01 * cell;
+        if (deeper || (as_deep && (nearest > tip || (nearest == tip && off(i, j) < off(ti, tj))))) {
           best.depth = std::max(best.depth, depth(i, j));
           best.at = point(i, j, floor(i, j));
-          ti = i, tj = j;
+          ti = i, tj = j, tip = nearest;
         }
       }
-      // A rib n cells across has its middle cell ⌈n/2⌉ cells from the nearer cell outside it; a cell along
-      // a wider valley's wall that the closing missed is as thick as that valley.
-      best.thickness =
-          (2 * std::max(inscribed, valley_reach(floor, ti, tj, r, floor(ti, tj) + depth(ti, tj) - kLeastRibDepth)) -
-           0.5) *
-          cell;
+      // A rib n cells across has its middle cell ⌈n/2⌉ cells from the nearer cell outside it.
+      const double level = floor(ti, tj) + depth(ti, tj) - kLeastRibDepth;
+      best.thickness = (2 * std::max(inscribed, valley_disk(floor, ti, tj, r, level)) - 0.5) * cell;
       if (best.thickness < thickness && best.depth > aspect * best.thickness) out.push_back(best);
     }
   return out;

@@ -161,8 +161,8 @@ struct ScaledStiffness {
 };
 
 /// Target t's poses under `final` in deformation x, each with where it goes under kPoseVariations: the
-/// silicone stiffer and softer (`scaled`, solved from rest), every pressure lower and higher (from x);
-/// none where a variation finds no equilibrium.
+/// silicone stiffer and softer (`scaled`), every pressure lower and higher, each solved from rest as x
+/// was; none where a variation finds no equilibrium.
 Json poses_json(StageContext& ctx, DesignRouting& dr, std::array<ScaledStiffness, 2>& scaled, const Routing& final,
                 int t, const Eigen::VectorXd& x)
 {
@@ -178,8 +178,11 @@ Json poses_json(StageContext& ctx, DesignRouting& dr, std::array<ScaledStiffness
     for (int k = 0; k < 2; ++k) {
       Routing pressed = final;
       pressed.pressures *= k == 0 ? 1 - kSensitivityChange : 1 + kSensitivityChange;
+      dr.problem->forget_states(); // from rest, as the robot and the nominal solve: one branch of a multi-stable body
       varied[2 + k] = reached_poses(d, target, *dr.sim, dr.problem->equilibrium(pressed, t), asked);
     }
+  } catch (const Interrupted&) {
+    throw; // a runtime_error too: Ctrl-C stops the stage, not only this target's sensitivity
   } catch (const std::runtime_error& e) {
     ctx.log.warn("target {}: with the silicone or the pressures {:.0f} % off: {}; its poses have no sensitivity",
                  target.name, 100 * kSensitivityChange, e.what());

@@ -71,6 +71,18 @@ TEST(OptimizationSummary, TheHistoryPlotsTheObjectiveAndDistancePerIteration)
   EXPECT_FALSE(optimization_history("iteration,objective,distance\n"));
 }
 
+Json pose(const std::string& place, double moved_mm, double turned_deg)
+{
+  Json p{{"place", place},
+         {"translation_mm", {moved_mm, 0, 0}},
+         {"rotation_deg", turned_deg},
+         {"rotation_axis", {0, 0, 1}}};
+  p["sensitivity"] = {{"change_percent", 10},
+                      {"rotation_deg", {{"stiffer", 1}, {"softer", 2}, {"less_pressure", 3}, {"more_pressure", 4}}},
+                      {"displacement_mm", {{"stiffer", 5}, {"softer", 6}, {"less_pressure", 7}, {"more_pressure", 8}}}};
+  return p;
+}
+
 const Json kCollide = Json::parse(R"({
   "clearance_mm": 0.5, "rounds": 2, "reoptimized": false, "min_bend_radius_mm": 12,
   "smallest_clearance_mm": {"before": 0.1, "after": 0.52},
@@ -96,6 +108,25 @@ TEST(BehaviourSummary, TheTablesGiveErrorsCollisionsMovesAndBends)
   EXPECT_EQ(t[3].rows.at(1), (std::vector<std::string>{"m2", "straight", "", ""}));
 }
 
+TEST(BehaviourSummary, TheReportGivesEachTargetsFigureToMeasureAndItsSensitivity)
+{
+  Json report = kCollide;
+  Json asked = pose("pose[1]", 1, 20);
+  asked["asked_rotation_deg"] = 60;
+  asked["rotation_about_asked_axis_deg"] = 19.5;
+  asked["sensitivity"]["rotation_about_asked_axis_deg"] = {
+      {"stiffer", 19}, {"softer", 20}, {"less_pressure", 17.25}, {"more_pressure", 21.75}};
+  report["targets"]["bend"]["poses"] = Json::array({pose("tip", 40, 45), asked});
+  report["targets"]["still"] = report["targets"]["bend"];
+  report["targets"]["still"]["poses"] = Json::array({pose("tip", 0.1, 1)}); // nothing to measure: no row
+  const std::vector<ReportTable> t = behaviour_tables(report);
+  ASSERT_EQ(t.size(), 5u);
+  EXPECT_EQ(t[1].header[2], "simulated");
+  ASSERT_EQ(t[1].rows.size(), 1u);
+  EXPECT_EQ(t[1].rows[0], (std::vector<std::string>{"bend", "pose[1]: turn about the axis asked", "19.5°", "19.0°",
+                                                    "20.0°", "17.2°", "21.8°"}));
+}
+
 TEST(BehaviourSummary, ReadmeGivesEachRoutesTightestBend)
 {
   const std::string text = muscle_bends_text(kCollide);
@@ -118,18 +149,6 @@ TEST(BehaviourSummary, PosesToCompareLeaveOutWhatStaysPut)
   EXPECT_EQ(poses_to_compare(Json::array({poses[0]})), "    nothing moves more than 0.5 mm or turns more than 5°\n");
 }
 
-Json pose(const std::string& place, double moved_mm, double turned_deg)
-{
-  Json p{{"place", place},
-         {"translation_mm", {moved_mm, 0, 0}},
-         {"rotation_deg", turned_deg},
-         {"rotation_axis", {0, 0, 1}}};
-  p["sensitivity"] = {{"change_percent", 10},
-                      {"rotation_deg", {{"stiffer", 1}, {"softer", 2}, {"less_pressure", 3}, {"more_pressure", 4}}},
-                      {"displacement_mm", {{"stiffer", 5}, {"softer", 6}, {"less_pressure", 7}, {"more_pressure", 8}}}};
-  return p;
-}
-
 TEST(BehaviourSummary, WhatToMeasureIsTheTurnAskedElseTheLargestTurnElseTheLargestMove)
 {
   const auto first_line = [](const Json& poses) {
@@ -138,10 +157,12 @@ TEST(BehaviourSummary, WhatToMeasureIsTheTurnAskedElseTheLargestTurnElseTheLarge
   };
   // The largest move when nothing turns 5°: 9 mm and its sensitivity.
   const std::string moved = what_to_measure(Json::array({pose("a", 3, 4.9), pose("b", 9, 1)}), 86.4e3);
-  EXPECT_THAT(moved, testing::StartsWith("  Measure b's move: 9.0 mm in the simulation. It hinges on the silicone's"));
+  EXPECT_THAT(moved, testing::StartsWith(
+                         "  Measure b's move: 9.0 mm in the simulation. With the least certain inputs 10 % off:"));
   const std::string flat = std::regex_replace(moved, std::regex("\n  "), " "); // unwrapped
-  for (const char* figure : {"5.0 mm and 6.0 mm with a silicone 10 % stiffer and softer than the 86.4 kPa",
-                             "7.0 mm and 8.0 mm at 10 % less and more pressure"})
+  for (const char* figure : {"5.0 mm and 6.0 mm with the silicone 10 % stiffer and softer than [material] "
+                             "youngs_modulus = 86400 Pa",
+                             "7.0 mm and 8.0 mm with every pressure 10 % lower and higher"})
     EXPECT_THAT(flat, testing::HasSubstr(figure)) << moved;
   // The largest turn over 5°, whatever moves further.
   EXPECT_THAT(first_line(Json::array({pose("a", 30, 4), pose("b", 1, 6), pose("c", 2, 12)})),

@@ -150,6 +150,36 @@ TEST(ThinRibs, AMusclesGrooveWiderThanAThinRibHoldsNoneAlongItsWalls)
   }
 }
 
+TEST(ThinRibs, ANarrowFingersSlotHoldsItsRibThoughTheGroundBesideItIsLow)
+{
+  // A finger 4 mm wide, 40 mm long and 20 mm high (0.5 mm cubes) with one slot 2.5 mm wide and 12.5 mm
+  // deep across it at x = 20 mm: the plane around the finger lies lower than the slot's floor within
+  // a disk's reach of the rib, which must not make the rib look thick.
+  const SurfaceMesh finger = test::voxel_body({0, -2 * mm, 0}, 0.5 * mm, {80, 8, 40},
+                                              [](int i, int, int k) { return !(i >= 40 && i < 45 && k >= 15); });
+  const std::vector<ThinRib> ribs = thin_ribs(finger, {{0, 0, 6.65 * mm}, {0, 0, -1}, 0}, kThinRib / 12);
+  ASSERT_EQ(ribs.size(), 1u);
+  EXPECT_NEAR(ribs[0].thickness / mm, 2.5, 0.3);
+  EXPECT_NEAR(ribs[0].depth / mm, 12.5, 0.01);
+  EXPECT_NEAR(ribs[0].at.x() / mm, 21.25, 0.3);
+}
+
+TEST(ThinRibs, ANotchWiderThanAThinRibHoldsNoneInItsCorners)
+{
+  // The notched finger's notches, 4 mm wide and deep, cut through a 12 × 12 mm finger (0.5 mm cubes):
+  // the closing's disk does not reach into a notch's corners, which must not read as thin ribs, the
+  // notch square to the map's grid or turned 30° to it.
+  for (const double degrees : {0.0, 30.0}) {
+    SurfaceMesh finger = test::voxel_body({0, -6 * mm, 0}, 0.5 * mm, {80, 24, 24},
+                                          [](int i, int j, int) { return !(i >= 36 && i < 44 && j < 8); });
+    const Eigen::Matrix3d turn = Eigen::AngleAxisd(degrees * M_PI / 180, Eigen::Vector3d::UnitZ()).toRotationMatrix();
+    finger.vertices = (finger.vertices * turn.transpose()).eval();
+    const std::vector<ThinRib> ribs = thin_ribs(finger, {{0, 0, 2 * mm}, {0, 0, 1}, 0}, kThinRib / 12);
+    EXPECT_TRUE(ribs.empty()) << degrees << "°: " << ribs.size() << " ribs, the first "
+                              << (ribs.empty() ? 0 : ribs[0].thickness / mm) << " mm thick";
+  }
+}
+
 TEST(ThinRibs, StopsWhenAskedTo)
 {
   struct Stopped : Progress {
