@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <array>
+#include <cmath>
 #include <optional>
 #include <utility>
 
@@ -213,19 +214,38 @@ std::string what_to_measure(const Json& poses, double youngs_modulus)
 {
   const Measure m = measure_of(poses);
   if (!m.pose) return {};
-  std::string text = fmt::format("Measure {}'s {}: {:.1f}{} in the simulation.", (*m.pose)["place"].get<std::string>(),
-                                 m.what, m.value, m.unit);
+  const Json& p = *m.pose;
+  // Where it is at rest, and the axis of the turn (the asked one for a pose region) or the move's direction.
+  const auto vec = [&](const char* key) {
+    if (!p.contains(key) || !p[key].is_array() || p[key].size() != 3) return std::string("?");
+    const auto coordinate = [&](int k) { return std::round(100 * p[key][k].get<double>()) / 100 + 0.0; }; // no -0.00
+    return fmt::format("({:.2f}, {:.2f}, {:.2f})", coordinate(0), coordinate(1), coordinate(2));
+  };
+  const bool asked = m.band == std::string("rotation_about_asked_axis_deg");
+  const std::string at = p.contains("rest_mm") ? fmt::format(" (at {} mm at rest)", vec("rest_mm")) : "";
+  const std::string about = m.band == std::string("displacement_mm") ? ""
+                            : !asked                                 ? " about " + vec("rotation_axis")
+                            : p.contains("asked_axis")               ? " about the axis asked, " + vec("asked_axis")
+                                                                     : " about the axis asked";
+  std::string text = fmt::format("Measure {}'s {}{}{}: {:.1f}{} in the simulation.", p["place"].get<std::string>(),
+                                 asked ? "turn" : m.what, at, about, m.value, m.unit);
   if (const auto varied = variations(m)) {
     const auto& [v, percent] = *varied;
     const auto value = [&](std::size_t k) { return fmt::format("{:.1f}{}", v[k], m.unit); };
+    const double lo = std::min({m.value, v[0], v[1], v[2], v[3]}), hi = std::max({m.value, v[0], v[1], v[2], v[3]});
+    // The modulus to 3 significant figures: the fits and the data sheets hold no more.
+    const double e = std::round(youngs_modulus / std::pow(10.0, std::floor(std::log10(youngs_modulus)) - 2)) *
+                     std::pow(10.0, std::floor(std::log10(youngs_modulus)) - 2);
     text += fmt::format(
         " With the least certain inputs {0:g} % off: {1} and {2} with the silicone {0:g} % stiffer and softer than "
-        "[material] youngs_modulus = {3:.0f} Pa, {4} and {5} with every pressure {0:g} % lower and higher. Far from "
-        "all of these, check first the pressure at the muscle; then the silicone: hang a weight on a strip of the "
-        "same pour and set youngs_modulus (Pa) to 3 × force (N) / (cross-section (m²) × (λ − 1/λ²)), λ the strip's "
-        "stretched length over its length and the cross-section unstretched; then the muscle's contraction at that "
-        "pressure ([muscle] rest_strain_slope); and run fibermold again.",
-        percent, value(0), value(1), youngs_modulus, value(2), value(3));
+        "[material] youngs_modulus = {3:.0f} Pa, {4} and {5} with every pressure {0:g} % lower and higher. Outside "
+        "{6:.1f}–{7:.1f}{8}, check first the pressure at the muscle; then the silicone: stretch a strip of the same "
+        "pour (about 10 × 3 mm across) by 20–50 % under a hanging weight, E = 3 × force / (cross-section × (λ − "
+        "1/λ²)) in Pa, with the force in N (grams × 0.00981), the unstretched cross-section in m² (mm² × 10⁻⁶) and λ "
+        "the stretched length over the length; then the muscle's contraction at that pressure ([muscle] "
+        "rest_strain_slope). Set what you measured in the design before designing the next robot: a run routes the "
+        "muscles for it, and its molds differ.",
+        percent, value(0), value(1), e, value(2), value(3), lo, hi, m.unit);
   }
   return wrapped(text, "  ", "  ");
 }

@@ -59,22 +59,24 @@ std::string silicone_text(const CastingSheet& sheet)
 {
   const SiliconePreset& s = sheet.silicone;
   std::string text = wrapped(
-      fmt::format("Silicone: {} ({}), mixed {:g}A : {:g}B by weight; pot life {:.0f} min, demold after {:.0f} h at "
-                  "23 °C (the maker's data sheet). The simulation took E = {:.1f} kPa, Poisson's ratio {:.2f} and "
-                  "{:.0f} kg/m³ ({}).",
-                  s.name, s.hardness, s.mix_a, s.mix_b, s.pot_life / kMinute, s.demold_time / kHour,
-                  sheet.youngs_modulus / units::kPa, sheet.poisson_ratio, sheet.density,
-                  sheet.preset.empty()
-                      ? fmt::format("[material]: the paper's figures; the handling here is Ecoflex 00-30's, the "
-                                    "default: name a [material] preset for another silicone. {}'s preset, fitted to "
-                                    "its published stress-strain data, has E = {:.1f} kPa ([material] preset = "
-                                    "\"{}\"){}",
-                                    s.name, s.youngs_modulus() / units::kPa, s.key,
-                                    s.youngs_modulus() < sheet.youngs_modulus
-                                        ? ": cast in it, the robot may bend further than simulated; a strip of your "
-                                          "own cast, pulled with a known weight, settles it"
-                                        : "")
-                      : "[material] preset = \"" + sheet.preset + "\""),
+      fmt::format(
+          "Silicone: {} ({}), mixed {:g}A : {:g}B by weight; pot life {:.0f} min, demold after {:.0f} h at "
+          "23 °C (the maker's data sheet). The simulation took E = {:.1f} kPa, Poisson's ratio {:.2f} and "
+          "{:.0f} kg/m³ ({}).",
+          s.name, s.hardness, s.mix_a, s.mix_b, s.pot_life / kMinute, s.demold_time / kHour,
+          sheet.youngs_modulus / units::kPa, sheet.poisson_ratio, sheet.density,
+          sheet.preset.empty()
+              ? fmt::format(
+                    "[material]: the paper's figures; the handling here is Ecoflex 00-30's, the "
+                    "default: name a [material] preset for another silicone. {}'s preset, fitted to "
+                    "its published stress-strain data, has E = {:.1f} kPa ([material] preset = "
+                    "\"{}\"){}",
+                    s.name, s.youngs_modulus() / units::kPa, s.key,
+                    s.youngs_modulus() < sheet.youngs_modulus
+                        ? ": cast in it, the robot moves otherwise than simulated; a strip of your own cast, pulled "
+                          "with a known weight, settles it"
+                        : "")
+              : "[material] preset = \"" + sheet.preset + "\""),
       "", "  ");
   for (const auto& [shot, info] : shots(sheet)) {
     const double grams = info->mass / units::gram;

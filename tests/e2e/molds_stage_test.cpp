@@ -88,8 +88,8 @@ TEST_F(MoldsE2E, HandRoutedBarBecomesFourCheckedParts)
                                "bond to them"));
   EXPECT_THAT(text, HasSubstr("in PLA or PETG: platinum silicone can fail to cure against some printed resins"));
   EXPECT_THAT(sheet, HasSubstr("Smooth-On Ecoflex 00-30's preset, fitted to its published stress-strain data, has "
-                               "E = 45.1 kPa ([material] preset = \"ecoflex-00-30\"): cast in it, the robot may bend "
-                               "further than simulated"));
+                               "E = 45.1 kPa ([material] preset = \"ecoflex-00-30\"): cast in it, the robot moves "
+                               "otherwise than simulated"));
   // What to mix: 20 % more, and at least 5 g of each part (shot 2's 1.8 g would be weighed as 0.9 + 0.9 g).
   for (const char* shot : {"shot1", "shot2"}) {
     const double mL = manifest["shots"][shot]["silicone_volume_mL"], g = manifest["shots"][shot]["silicone_mass_g"];

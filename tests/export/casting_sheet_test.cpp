@@ -123,7 +123,7 @@ TEST(CastingSheet, NoLineIsLongerThanAHundredCharacters)
   }
   EXPECT_GT(n, 40);
   EXPECT_TRUE(has(casting_guide(s), "E = 86.4 kPa"));
-  EXPECT_TRUE(has(casting_guide(s), "the robot may bend further than simulated"));
+  EXPECT_TRUE(has(casting_guide(s), "the robot moves otherwise than simulated"));
 }
 
 } // namespace

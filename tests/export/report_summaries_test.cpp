@@ -164,9 +164,16 @@ TEST(BehaviourSummary, WhatToMeasureIsTheTurnAskedElseTheLargestTurnElseTheLarge
                              "youngs_modulus = 86400 Pa",
                              "7.0 mm and 8.0 mm with every pressure 10 % lower and higher"})
     EXPECT_THAT(flat, testing::HasSubstr(figure)) << moved;
+  EXPECT_THAT(flat, testing::HasSubstr("Outside 5.0–9.0 mm, check first the pressure at the muscle"));
+  Json placed = pose("tip", 9, 1);
+  placed["rest_mm"] = {100, -0.0, 0};
+  EXPECT_THAT(what_to_measure(Json::array({placed}), 137915.0),
+              testing::StartsWith("  Measure tip's move (at (100.00, 0.00, 0.00) mm at rest): 9.0 mm"));
+  EXPECT_THAT(std::regex_replace(what_to_measure(Json::array({placed}), 137915.0), std::regex("\n  "), " "),
+              testing::HasSubstr("youngs_modulus = 138000 Pa"));
   // The largest turn over 5°, whatever moves further.
   EXPECT_THAT(first_line(Json::array({pose("a", 30, 4), pose("b", 1, 6), pose("c", 2, 12)})),
-              testing::StartsWith("  Measure c's turn: 12.0° in the simulation."));
+              testing::StartsWith("  Measure c's turn about (0.00, 0.00, 1.00): 12.0° in the simulation."));
   // A pose region's turn about the axis asked, before any larger turn.
   Json asked = pose("pose[1]", 1, 20);
   asked["asked_rotation_deg"] = 60;
