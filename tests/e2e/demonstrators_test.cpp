@@ -6,6 +6,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <map>
+#include <regex>
 #include <string>
 #include <utility>
 #include <vector>
@@ -16,7 +17,9 @@
 #include <nlohmann/json.hpp>
 
 #include "fill_checks.hpp"
+#include "mesh/surface_distance.hpp"
 #include "mesh/tet_mesh.hpp"
+#include "sim/hermite_spline.hpp"
 #include "test_support.hpp"
 
 namespace fibermold {
@@ -44,8 +47,55 @@ void copy_example(const std::string& folder, const fs::path& dir, const std::str
 
 nlohmann::json read_json(const fs::path& file) { return nlohmann::json::parse(test::read_text(file)); }
 
+/// README.txt's casting sheet read back against the files it is made from: each muscle cut to its
+/// length inside the body (its spline in collide/fibers.json, 4,000 chords, each counted when its
+/// midpoint is inside the body's mesh) within 1 mm; each shot's silicone the manifest's volume and
+/// mass; each target's pressure per fiber collide's; the silicone's handling.
+void expect_casting_sheet(const fs::path& build)
+{
+  const std::string sheet =
+      std::regex_replace(test::read_text(build / "export" / "README.txt"), std::regex("\\s+"), " "); // unwrapped
+  const TetMesh body = load_tet_mesh(build / "mesh" / "body.tetmesh");
+  const SurfaceDistance skin(body.nodes, body.boundary_faces);
+  const auto fibers = read_json(build / "collide" / "fibers.json");
+  for (const auto& f : fibers["fibers"]) {
+    const std::string name = f["name"];
+    std::vector<Eigen::Vector3d> points, tangents;
+    for (std::size_t i = 0; i < f["points_mm"].size(); ++i) {
+      points.emplace_back(Eigen::Vector3d(f["points_mm"][i][0], f["points_mm"][i][1], f["points_mm"][i][2]) * 1e-3);
+      tangents.emplace_back(Eigen::Vector3d(f["tangents_mm"][i][0], f["tangents_mm"][i][1], f["tangents_mm"][i][2]) *
+                            1e-3);
+    }
+    const HermiteSpline spline(points, tangents);
+    double inside = 0;
+    for (int i = 0; i < 4000; ++i) {
+      const Eigen::Vector3d a = spline.position(spline.spans() * i / 4000.0),
+                            b = spline.position(spline.spans() * (i + 1) / 4000.0);
+      if (skin.closest(0.5 * (a + b)).inside) inside += (b - a).norm() / 1e-3;
+    }
+    std::smatch cut;
+    ASSERT_TRUE(std::regex_search(sheet, cut, std::regex(" " + name + R"(: ([0-9.]+) mm\. Fit the supply tube)")))
+        << name << ": " << sheet;
+    std::printf("%s: %s is cut to %s mm; inside the body it runs %.2f mm\n", build.parent_path().filename().c_str(),
+                name.c_str(), cut[1].str().c_str(), inside);
+    EXPECT_NEAR(std::stod(cut[1]), inside, 1.0) << name;
+    for (const auto& [target, kPa] : f["pressure_kPa"].items())
+      EXPECT_THAT(sheet, HasSubstr(fmt::format("{} {:.0f} kPa", name, kPa.get<double>()))) << target;
+  }
+  const auto manifest = read_json(build / "export" / "manifest.json");
+  for (const auto& [shot, info] : manifest["shots"].items())
+    EXPECT_THAT(sheet,
+                HasSubstr(fmt::format("Inject about {:.1f} mL ({:.1f} g)", info["silicone_volume_mL"].get<double>(),
+                                      info["silicone_mass_g"].get<double>())))
+        << shot;
+  for (const char* handling :
+       {"Silicone: Smooth-On", "mixed 1A : 1B by weight; pot life", "demold after", "mold release"})
+    EXPECT_THAT(sheet, HasSubstr(handling));
+}
+
 void expect_parts_pass(const fs::path& build)
 {
+  ASSERT_NO_FATAL_FAILURE(expect_casting_sheet(build));
   const auto manifest = read_json(build / "export" / "manifest.json");
   ASSERT_EQ(manifest["parts"].size(), 4u);
   for (const auto& part : manifest["parts"]) EXPECT_TRUE(part["checks_passed"].get<bool>()) << part["name"];
