@@ -224,7 +224,16 @@ std::string overlay_shapes(const StageContext& ctx, const TetMesh& body, const F
     }
     files.push_back(std::move(entry));
   }
-  return text.empty() ? text : "\nChecking the cast robot against the simulation\n" + text;
+  if (text.empty()) return text;
+  // How the robot hangs decides where its weight bends it: as simulated, or the figures do not hold.
+  const Eigen::Vector3d g = d.material.gravity;
+  const std::string hang =
+      g.norm() > 0 ? fmt::format("Mount the robot as it was simulated: held at its fixed faces, with the design's "
+                                 "direction ({:.2f}, {:.2f}, {:.2f}) pointing down ([material] gravity).",
+                                 g.x() / g.norm() + 0.0, g.y() / g.norm() + 0.0, g.z() / g.norm() + 0.0)
+                   : "The simulation leaves out the robot's weight ([material] gravity = [0, 0, 0]): support it so "
+                     "that its weight does not bend it.";
+  return "\nChecking the cast robot against the simulation\n" + wrapped(hang, "", "") + text;
 }
 
 /// The page users open first: the groove body with its muscles in the shot 1 mold (upper half

@@ -192,6 +192,10 @@ TEST(ReportE2E, ShowsTheDeformedBodyTheErrorsAndTheOptimizationHistory)
   EXPECT_TRUE(compared) << "collide reports where the tracking curve's end went";
   // The one figure to measure, and how much it hinges on the least certain inputs (collide solves the
   // target again with the silicone and the pressure 10 % off): README.txt gives collide's figures.
+  // How to mount it: as simulated, under the default gravity (0, 0, −9.81) m/s².
+  EXPECT_THAT(std::regex_replace(guide, std::regex("\\s+"), " "),
+              HasSubstr("Mount the robot as it was simulated: held at its fixed faces, with the design's direction "
+                        "(0.00, 0.00, -1.00) pointing down ([material] gravity)."));
   const std::size_t measure_at = guide.find("\n  Measure ");
   ASSERT_NE(measure_at, std::string::npos) << guide;
   const std::size_t measure_end = guide.find("and its molds differ.\n", measure_at);
