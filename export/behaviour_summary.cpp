@@ -210,7 +210,7 @@ std::string poses_to_compare(const Json& poses)
              : out;
 }
 
-std::string what_to_measure(const Json& poses, double youngs_modulus)
+std::string what_to_measure(const Json& poses, double youngs_modulus, bool beyond_max_pressure)
 {
   const Measure m = measure_of(poses);
   if (!m.pose) return {};
@@ -229,6 +229,10 @@ std::string what_to_measure(const Json& poses, double youngs_modulus)
                                                                      : " about the axis asked";
   std::string text = fmt::format("Measure {}'s {}{}{}: {:.1f}{} in the simulation.", p["place"].get<std::string>(),
                                  asked ? "turn" : m.what, at, about, m.value, m.unit);
+  if (m.unit == std::string("°") && p.contains("nodes") && p["nodes"].is_number())
+    text += fmt::format(" That is the best rigid fit of its {} nodes (the whole face); a point of it, such as a "
+                        "tracking curve's end, may turn a few degrees more or less.",
+                        p["nodes"].get<int>());
   if (const auto varied = variations(m)) {
     const auto& [v, percent] = *varied;
     const auto value = [&](std::size_t k) { return fmt::format("{:.1f}{}", v[k], m.unit); };
@@ -238,14 +242,17 @@ std::string what_to_measure(const Json& poses, double youngs_modulus)
                      std::pow(10.0, std::floor(std::log10(youngs_modulus)) - 2);
     text += fmt::format(
         " With the least certain inputs {0:g} % off: {1} and {2} with the silicone {0:g} % stiffer and softer than "
-        "[material] youngs_modulus = {3:.0f} Pa, {4} and {5} with every pressure {0:g} % lower and higher. Outside "
+        "[material] youngs_modulus = {3:.0f} Pa, {4} and {5} with every pressure {0:g} % lower and higher{9}. Outside "
         "{6:.1f}–{7:.1f}{8}, check first the pressure at the muscle; then the silicone: stretch a strip of the same "
         "pour (about 10 × 3 mm across) by 20–50 % under a hanging weight, E = 3 × force / (cross-section × (λ − "
         "1/λ²)) in Pa, with the force in N (grams × 0.00981), the unstretched cross-section in m² (mm² × 10⁻⁶) and λ "
         "the stretched length over the length; then the muscle's contraction at that pressure ([muscle] "
         "rest_strain_slope). Set what you measured in the design before designing the next robot: a run routes the "
         "muscles for it, and its molds differ.",
-        percent, value(0), value(1), e, value(2), value(3), lo, hi, m.unit);
+        percent, value(0), value(1), e, value(2), value(3), lo, hi, m.unit,
+        beyond_max_pressure ? " (the higher is above [muscle] max_pressure for a muscle: a figure to compare, not a "
+                              "pressure to drive it at)"
+                            : "");
   }
   return wrapped(text, "  ", "  ");
 }

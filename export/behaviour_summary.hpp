@@ -30,7 +30,8 @@ std::string poses_to_compare(const nlohmann::ordered_json& poses);
 /// about the axis asked; else the largest turn over 5°; else the largest move over 0.5 mm; with what it
 /// is with the silicone stiffer and softer and the pressures lower and higher (each pose's "sensitivity"),
 /// and what to check when the cast robot falls outside. `youngs_modulus` (Pa): the [material] value
-/// simulated. Empty when nothing moves that much.
-std::string what_to_measure(const nlohmann::ordered_json& poses, double youngs_modulus);
+/// simulated; `beyond_max_pressure`: whether the higher pressure is above [muscle] max_pressure for a
+/// muscle (it is said so). Empty when nothing moves that much.
+std::string what_to_measure(const nlohmann::ordered_json& poses, double youngs_modulus, bool beyond_max_pressure);
 
 } // namespace fibermold

@@ -31,6 +31,7 @@
 #include "sim/hermite_spline.hpp"
 #include "stages/design_simulation.hpp"
 #include "stages/fibers_file.hpp"
+#include "stages/target_poses.hpp"
 
 namespace fibermold {
 
@@ -203,18 +204,23 @@ std::string overlay_shapes(const StageContext& ctx, const TetMesh& body, const F
     const SurfaceCheck check = check_surface(*deformed);
     Json entry{{"target", name}, {"file", file}, {"volume_mL", check.volume / 1e-6}, {"checks_passed", check.ok()}};
     std::string pressures;
+    bool beyond = false; // the higher pressure of collide's sensitivity above max_pressure for a muscle
     const auto row = std::find(fibers.targets.begin(), fibers.targets.end(), name) - fibers.targets.begin();
-    for (std::size_t f = 0; f < fibers.routing.routes.size() && row < std::ssize(fibers.targets); ++f)
-      pressures += fmt::format("{}{} {:.0f} kPa", pressures.empty() ? "" : ", ", fibers.routing.routes[f].name,
-                               fibers.routing.pressures(row, static_cast<Eigen::Index>(f)) / units::kPa);
+    for (std::size_t f = 0; f < fibers.routing.routes.size() && row < std::ssize(fibers.targets); ++f) {
+      const double p = fibers.routing.pressures(row, static_cast<Eigen::Index>(f));
+      pressures +=
+          fmt::format("{}{} {:.0f} kPa", pressures.empty() ? "" : ", ", fibers.routing.routes[f].name, p / units::kPa);
+      beyond = beyond || (1 + kSensitivityChange) * p > d.muscle.max_pressure;
+    }
     text += fmt::format("\nTarget \"{}\": drive the muscles at {} gauge (at most {:.0f} kPa, [muscle] max_pressure).\n"
                         "  {} is the body as simulated at these pressures, in the frame of the robot as\n"
                         "  mounted (its fixed faces where they are at rest). Print it, hold its fixed end against\n"
                         "  the robot's mount beside the pressurized robot, and compare:\n",
                         name, pressures.empty() ? "no pressure" : pressures, d.muscle.max_pressure / units::kPa, file);
     if (collide && (*collide)["targets"].contains(name))
-      text += poses_to_compare((*collide)["targets"][name].value("poses", Json::array())) +
-              what_to_measure((*collide)["targets"][name].value("poses", Json::array()), d.material.youngs_modulus);
+      text +=
+          poses_to_compare((*collide)["targets"][name].value("poses", Json::array())) +
+          what_to_measure((*collide)["targets"][name].value("poses", Json::array()), d.material.youngs_modulus, beyond);
     for (const SurfaceProblem& problem : check.problems) {
       text += fmt::format("  Note: the simulated body {} (e.g. at {}): the simulation has no self-contact; a slicer\n"
                           "  merges the overlap.\n",
