@@ -144,22 +144,33 @@ std::optional<Json> json_if_any(const std::filesystem::path& file)
   return j.is_discarded() ? std::nullopt : std::optional<Json>(std::move(j));
 }
 
-/// optimize/report.json where it optimized targets; none otherwise.
-std::optional<Json> optimization_report(const StageContext& ctx)
+/// What the export shows of the simulation, read once: collide's report, optimize's where it optimized
+/// targets, and per [[target]] the body as collide left it (collide/deformed-<target>.json).
+struct Simulated {
+  std::optional<Json> collide, optimized;
+  std::vector<std::optional<Json>> states;
+};
+
+Simulated read_simulated(const StageContext& ctx)
 {
-  auto report = json_if_any(ctx.upstream("optimize", "report.json"));
-  return report && optimized_targets(*report) ? report : std::nullopt;
+  Simulated s{
+      json_if_any(ctx.upstream("collide", "report.json")), json_if_any(ctx.upstream("optimize", "report.json")), {}};
+  if (s.optimized && !optimized_targets(*s.optimized)) s.optimized.reset();
+  for (const Target& t : ctx.design.targets)
+    s.states.push_back(json_if_any(ctx.upstream("collide", "deformed-" + t.name + ".json")));
+  return s;
 }
 
 /// The body at rest and, per target, deformed under the final routing (collide/deformed-*.json),
 /// with its fibers, at `offset`, and the target's own deformation (targets/<name>.json) beside it,
 /// `beside` further; the first target's shown, the rest switched off; the tracking curves at rest.
-void add_bodies(const StageContext& ctx, const TetMesh& body, const Eigen::Vector3d& offset,
+void add_bodies(const StageContext& ctx, const TetMesh& body, const Simulated& simulated, const Eigen::Vector3d& offset,
                 const Eigen::Vector3d& beside, std::vector<ReportMesh>& meshes, std::vector<ReportLine>& lines)
 {
   bool first = true;
-  for (const Target& target : ctx.design.targets) {
-    const std::optional<Json> state = json_if_any(ctx.upstream("collide", "deformed-" + target.name + ".json"));
+  for (std::size_t t = 0; t < ctx.design.targets.size(); ++t) {
+    const Target& target = ctx.design.targets[t];
+    const std::optional<Json>& state = simulated.states[t];
     std::optional<SurfaceMesh> deformed = deformed_body(body, state);
     if (!deformed) continue;
     meshes.push_back({"body, " + target.name, std::move(*deformed), {0.5F, 0.78F, 0.5F}, first, offset});
@@ -188,15 +199,15 @@ void add_bodies(const StageContext& ctx, const TetMesh& body, const Eigen::Vecto
 /// printable STL in the body's frame, which is the frame of the robot as mounted (its [[fixed]]
 /// regions stay where they are at rest); README.txt's section on checking the cast robot with it,
 /// and the files for the manifest.
-std::string overlay_shapes(const StageContext& ctx, const TetMesh& body, const FibersFile& fibers, Json& files)
+std::string overlay_shapes(const StageContext& ctx, const TetMesh& body, const FibersFile& fibers,
+                           const Simulated& simulated, Json& files)
 {
   const Design& d = ctx.design;
-  const auto collide = json_if_any(ctx.upstream("collide", "report.json"));
+  const std::optional<Json>& collide = simulated.collide;
   std::string text;
   for (std::size_t t = 0; t < d.targets.size(); ++t) {
     const std::string& name = d.targets[t].name;
-    std::optional<SurfaceMesh> deformed =
-        deformed_body(body, json_if_any(ctx.upstream("collide", "deformed-" + name + ".json")));
+    std::optional<SurfaceMesh> deformed = deformed_body(body, simulated.states[t]);
     if (!deformed) continue;
     const std::string file = "deformed-" + name + ".stl";
     write_stl(ctx.output_dir / file, *deformed,
@@ -245,8 +256,8 @@ std::string overlay_shapes(const StageContext& ctx, const TetMesh& body, const F
 /// The page users open first: the groove body with its muscles in the shot 1 mold (upper half
 /// lifted off along pull), the shot 2 mold beside it (hidden), the parts' checks and the silicone.
 /// No timings (they are in make's output and the stage logs): the same design gives the same page.
-std::string report(const StageContext& ctx, const TetMesh& body, const FibersFile& fibers, const Json& molds,
-                   const Json& parts, const CastingSheet& sheet)
+std::string report(const StageContext& ctx, const TetMesh& body, const FibersFile& fibers, const Simulated& simulated,
+                   const Json& molds, const Json& parts, const CastingSheet& sheet)
 {
   const Design& d = ctx.design;
   const auto load = [&](const std::string& file) { return import_surface(ctx.upstream("molds", file), units::mm); };
@@ -274,16 +285,16 @@ std::string report(const StageContext& ctx, const TetMesh& body, const FibersFil
   for (const auto& [shot, info] : molds["shots"].items())
     for (ReportLine& l : port_lines(info["fill"], shot, pull, height, (shot == "shot1" ? 0.0 : 1.3 * width) * aside))
       lines.push_back(std::move(l));
-  add_bodies(ctx, body, -1.3 * width * aside, -1.3 * width * aside, meshes, lines);
+  add_bodies(ctx, body, simulated, -1.3 * width * aside, -1.3 * width * aside, meshes, lines);
 
   std::vector<std::string> warnings;
   std::vector<ReportTable> tables;
-  if (const auto optimized = optimization_report(ctx)) {
-    warnings = optimization_warnings(*optimized);
-    tables.push_back(optimization_table(*optimized));
+  if (simulated.optimized) {
+    warnings = optimization_warnings(*simulated.optimized);
+    tables.push_back(optimization_table(*simulated.optimized));
   }
-  if (const auto collide = json_if_any(ctx.upstream("collide", "report.json")))
-    for (ReportTable& t : behaviour_tables(*collide)) tables.push_back(std::move(t));
+  if (simulated.collide)
+    for (ReportTable& t : behaviour_tables(*simulated.collide)) tables.push_back(std::move(t));
   tables.insert(tables.end(), {parts_table(parts), silicone_table(sheet), muscles_table(sheet)});
   std::vector<ReportPlot> plots;
   std::error_code ec;
@@ -339,18 +350,17 @@ void ExportStage::run(StageContext& ctx) const
   Json deformed = Json::array();
   const TetMesh body = load_tet_mesh(ctx.upstream("mesh", "body.tetmesh"));
   const FibersFile fibers = read_fibers_json(ctx.upstream("collide", "fibers.json"));
-  const std::string checking = overlay_shapes(ctx, body, fibers, deformed);
+  const Simulated simulated = read_simulated(ctx);
+  const std::string checking = overlay_shapes(ctx, body, fibers, simulated, deformed);
   const Json manifest{{"design", d.design.name}, {"units", "mm"},  {"voxel_mm", molds["voxel_mm"]},
                       {"parts", parts},          {"shots", shots}, {"deformed", deformed}};
   write_json_atomic(ctx.output_dir / "manifest.json", manifest);
   const CastingSheet sheet = casting_sheet(d, molds, muscle_cuts(ctx, body, fibers, molds));
-  const auto collide = json_if_any(ctx.upstream("collide", "report.json"));
-  const auto optimized = optimization_report(ctx);
   write_file_atomic(ctx.output_dir / "README.txt",
-                    casting_guide(sheet) + (collide ? muscle_bends_text(*collide) : std::string()) +
-                        (optimized ? optimization_warnings_text(*optimized) : "") + checking);
+                    casting_guide(sheet) + (simulated.collide ? muscle_bends_text(*simulated.collide) : std::string()) +
+                        (simulated.optimized ? optimization_warnings_text(*simulated.optimized) : "") + checking);
   ctx.progress.checkpoint(-1, "writing the report");
-  write_file_atomic(ctx.output_dir / "report.html", report(ctx, body, fibers, molds, parts, sheet));
+  write_file_atomic(ctx.output_dir / "report.html", report(ctx, body, fibers, simulated, molds, parts, sheet));
 }
 
 } // namespace fibermold
