@@ -47,4 +47,15 @@ template <typename Json> void write_json_atomic(const std::filesystem::path& pat
   write_file_atomic(path, checked_json(j, path));
 }
 
+/// The JSON in `path`, or none when it does not exist or does not parse (an optional output of another
+/// stage, or one an older version wrote otherwise).
+template <typename Json> std::optional<Json> read_json_if_any(const std::filesystem::path& path)
+{
+  std::error_code ec;
+  if (!std::filesystem::exists(path, ec)) return std::nullopt;
+  Json j = Json::parse(read_file(path), nullptr, false);
+  if (j.is_discarded()) return std::nullopt;
+  return j;
+}
+
 } // namespace fibermold

@@ -136,14 +136,6 @@ Json placement_json(const Placement& placed)
           {"maps", "printed = rotation · body + translation"}};
 }
 
-std::optional<Json> json_if_any(const std::filesystem::path& file)
-{
-  std::error_code ec;
-  if (!std::filesystem::exists(file, ec)) return std::nullopt;
-  Json j = Json::parse(read_file(file), nullptr, false);
-  return j.is_discarded() ? std::nullopt : std::optional<Json>(std::move(j));
-}
-
 /// What the export shows of the simulation, read once: collide's report, optimize's where it optimized
 /// targets, and per [[target]] the body as collide left it (collide/deformed-<target>.json).
 struct Simulated {
@@ -153,11 +145,12 @@ struct Simulated {
 
 Simulated read_simulated(const StageContext& ctx)
 {
-  Simulated s{
-      json_if_any(ctx.upstream("collide", "report.json")), json_if_any(ctx.upstream("optimize", "report.json")), {}};
+  Simulated s{read_json_if_any<Json>(ctx.upstream("collide", "report.json")),
+              read_json_if_any<Json>(ctx.upstream("optimize", "report.json")),
+              {}};
   if (s.optimized && !optimized_targets(*s.optimized)) s.optimized.reset();
   for (const Target& t : ctx.design.targets)
-    s.states.push_back(json_if_any(ctx.upstream("collide", "deformed-" + t.name + ".json")));
+    s.states.push_back(read_json_if_any<Json>(ctx.upstream("collide", "deformed-" + t.name + ".json")));
   return s;
 }
 
@@ -175,7 +168,7 @@ void add_bodies(const StageContext& ctx, const TetMesh& body, const Simulated& s
     if (!deformed) continue;
     meshes.push_back({"body, " + target.name, std::move(*deformed), {0.5F, 0.78F, 0.5F}, first, offset});
     if (std::optional<SurfaceMesh> asked =
-            deformed_body(body, json_if_any(ctx.upstream("targets", target.name + ".json"))))
+            deformed_body(body, read_json_if_any<Json>(ctx.upstream("targets", target.name + ".json"))))
       meshes.push_back(
           {"target " + target.name + " (asked)", std::move(*asked), {0.45F, 0.6F, 0.95F}, first, offset + beside});
     for (const auto& [fiber, points] : (*state)["fibers_mm"].items()) {

@@ -44,5 +44,17 @@ TEST(JsonFile, ANonFiniteNumberIsNotWritten)
   EXPECT_EQ(test::read_text(path), old.dump(2) + "\n") << "the old file stays";
 }
 
+TEST(JsonFile, AnOptionalFileIsReadWhenItIsThereAndParses)
+{
+  test::TempDir dir;
+  EXPECT_FALSE(read_json_if_any<nlohmann::json>(dir / "missing.json"));
+  test::write_text(dir / "cut.json", "{\"a\": [1, 2");
+  EXPECT_FALSE(read_json_if_any<nlohmann::json>(dir / "cut.json"));
+  test::write_text(dir / "report.json", "{\"rounds\": 2}");
+  const auto j = read_json_if_any<nlohmann::ordered_json>(dir / "report.json");
+  ASSERT_TRUE(j);
+  EXPECT_EQ((*j)["rounds"].get<int>(), 2);
+}
+
 } // namespace
 } // namespace fibermold
