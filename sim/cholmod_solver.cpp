@@ -10,25 +10,30 @@
 namespace fibermold {
 
 namespace {
-/// BLAS (under CHOLMOD's supernodal factorization) runs on one thread, on every machine: OpenBLAS
-/// splits dpotrf and dsyrk by its thread count, and the rounding with them, so that a 2-core and a
-/// 64-core machine would optimize the same design along different paths (session 16: the twisting
-/// bar's optimization took 382 iterations with 2 BLAS threads, 374 with one, surface RMSE 1.073 and
-/// 1.081 mm). One thread costs little here: the assembly runs on all cores through oneTBB, and with
-/// two BLAS threads their spinning took the assembly's time (session 9); inside a factorization
-/// two threads saved 10–25 % of it (session 14). A user's OPENBLAS_NUM_THREADS is left alone; another
-/// BLAS is not touched. The kernel OpenBLAS picks for the CPU (OPENBLAS_CORETYPE) still rounds its
-/// own way: docs/optimize.md, "The same design on other machines", gives what that moves.
-void one_blas_thread()
+/// BLAS (under CHOLMOD's supernodal factorization) runs on a number of threads that the matrix
+/// decides, never the machine: OpenBLAS splits dpotrf and dsyrk by its thread count, and the
+/// rounding with them, so that a 2-core and a 64-core machine would otherwise optimize the same
+/// design along different paths (session 16: the twisting bar's optimization took 382 iterations
+/// with 2 BLAS threads, 374 with one). A factorization of fewer than kTwoThreadFlops (about 80 ms
+/// on one thread) runs on one thread: there a second BLAS thread costs more than it saves, as its
+/// spinning after each call takes a core from the assembly (session 9; the twisting bar optimized
+/// in 12.6 s with two, 9.9 s with one). A larger one runs on two, also on a one-core machine (the
+/// same rounding; there the threads take turns): the gripper finger at 3.4 mm (n = 11,652,
+/// 18.9 Gflop) factorizes in 0.33 s instead of 0.55 s. The examples' bodies at their own meshes
+/// stay on one thread (the recovery bar's 1.0 Gflop is the largest), except the gripper finger's
+/// (4.9 Gflop). A user's OPENBLAS_NUM_THREADS is left alone; another BLAS is not touched. The
+/// kernel OpenBLAS picks for the CPU (OPENBLAS_CORETYPE) still rounds its own way:
+/// docs/optimize.md, "The same design on other machines", gives what that moves.
+constexpr double kTwoThreadFlops = 2e9;
+
+void blas_threads(int threads)
 {
-  static const bool done = [] {
-    if (std::getenv("OPENBLAS_NUM_THREADS")) return false;
-    using SetThreads = void (*)(int);
-    const auto set = reinterpret_cast<SetThreads>(dlsym(RTLD_DEFAULT, "openblas_set_num_threads"));
-    if (set) set(1);
-    return set != nullptr;
+  using SetThreads = void (*)(int);
+  static const SetThreads set = []() -> SetThreads {
+    if (std::getenv("OPENBLAS_NUM_THREADS")) return nullptr;
+    return reinterpret_cast<SetThreads>(dlsym(RTLD_DEFAULT, "openblas_set_num_threads"));
   }();
-  (void)done;
+  if (set) set(threads);
 }
 
 /// Debian's CHOLMOD is built with OpenMP and asks for 4 threads (CHOLMOD_OMP_NUM_THREADS, fixed
@@ -51,11 +56,12 @@ void no_openmp_regions()
 struct CholmodSolver::Impl {
   Eigen::CholmodSupernodalLLT<Eigen::SparseMatrix<double>, Eigen::Upper> llt;
   std::vector<int> outer, inner; ///< the pattern last analyzed
+  int threads = 1;               ///< BLAS threads for that pattern's factor (kTwoThreadFlops)
 };
 
 CholmodSolver::CholmodSolver() : impl_(std::make_unique<Impl>())
 {
-  one_blas_thread();
+  blas_threads(1);
   impl_->llt.cholmod().print = 0; // "not positive definite" is an answer here, not an error to print
 }
 CholmodSolver::~CholmodSolver() = default;
@@ -72,13 +78,26 @@ bool CholmodSolver::factorize(const Eigen::SparseMatrix<double>& A, double shift
     impl_->outer.assign(A.outerIndexPtr(), A.outerIndexPtr() + n + 1);
     impl_->inner.assign(A.innerIndexPtr(), A.innerIndexPtr() + A.nonZeros());
     ++analyses_;
+    impl_->threads = impl_->llt.cholmod().fl >= kTwoThreadFlops ? 2 : 1; // the analysis's flop count
   }
+  blas_threads(impl_->threads);
   impl_->llt.setShift(shift);
   impl_->llt.factorize(A);
   return impl_->llt.info() == Eigen::Success;
 }
 
-Eigen::VectorXd CholmodSolver::solve(const Eigen::VectorXd& b) const { return impl_->llt.solve(b); }
-Eigen::MatrixXd CholmodSolver::solve(const Eigen::MatrixXd& B) const { return impl_->llt.solve(B); }
+double CholmodSolver::flops() const { return impl_->llt.cholmod().fl; }
+
+Eigen::VectorXd CholmodSolver::solve(const Eigen::VectorXd& b) const
+{
+  blas_threads(impl_->threads); // another solver may have factorized since
+  return impl_->llt.solve(b);
+}
+
+Eigen::MatrixXd CholmodSolver::solve(const Eigen::MatrixXd& B) const
+{
+  blas_threads(impl_->threads);
+  return impl_->llt.solve(B);
+}
 
 } // namespace fibermold

@@ -24,6 +24,9 @@ public:
   Eigen::MatrixXd solve(const Eigen::MatrixXd& B) const;
 
   int analyses() const { return analyses_; }
+  /// The floating-point operations of one factorization of the pattern last analyzed (CHOLMOD's
+  /// count), which sets the BLAS threads it runs on (cholmod_solver.cpp, kTwoThreadFlops).
+  double flops() const;
 
 private:
   struct Impl;
