@@ -81,11 +81,14 @@ FiberParameterGradient SkinBarrier::gradient(const HermiteSpline& spline) const
 
 namespace {
 
-/// Where the spline is within one span: its point, and its distance to the skin (inside positive).
+/// Where the spline is within one span: its point, and its distance to the skin (inside positive),
+/// measured, or a lower bound of it from a sample's last measurement (exact = false).
 struct Probe {
   double t;
   Eigen::Vector3d p;
   double d;
+  bool exact = true;
+  std::size_t sample = 0; ///< which sample, when not exact
 };
 
 /// An upper bound of the arc length between parameters a < b of one span: the length of the cubic
@@ -104,38 +107,59 @@ double SkinBarrier::closest_approach(const HermiteSpline& spline, Eigen::Vector3
 {
   constexpr double kShortest = 1e-6; // m: a piece this short is as close as its ends
   if (t_.empty()) return HUGE_VAL;
-  const auto probe = [&](double t) {
-    const Eigen::Vector3d p = spline.position(t);
-    const auto c = skin_.closest(p);
-    return Probe{t, p, c.inside ? c.distance : -c.distance};
-  };
   double d = HUGE_VAL;
   const auto keep = [&](const Probe& q) {
     if (q.d < d) d = q.d, where = q.p;
   };
+  const auto probe = [&](double t) {
+    const Eigen::Vector3d p = spline.position(t);
+    const auto c = skin_.closest(p);
+    const Probe q{t, p, c.inside ? c.distance : -c.distance};
+    keep(q);
+    return q;
+  };
+  // A feasibility test starts the samples from their last measurements (value() keeps them
+  // fresh): d ≥ d_last − |p − p_last|, enough to clear most pieces without a query.
+  const auto sample = [&](std::size_t k) {
+    if (!first_only) return probe(t_[k]);
+    const Eigen::Vector3d p = spline.position(t_[k]);
+    return Probe{t_[k], p, measured_[k] - (p - measured_at_[k]).norm(), false, k};
+  };
+  const auto measure = [&](Probe& q) {
+    if (q.exact) return;
+    q = probe(q.t);
+    measured_at_[q.sample] = q.p;
+    measured_[q.sample] = q.d > 0 ? q.d : -HUGE_VAL;
+  };
   // Each piece between consecutive samples, cut at the knots.
   std::vector<std::pair<Probe, Probe>> pieces;
-  Probe last = probe(t_.front());
-  keep(last);
+  Probe last = sample(0);
   for (std::size_t k = 1; k < t_.size(); ++k) {
     for (double knot = std::floor(last.t) + 1; knot < t_[k]; knot += 1) {
       const Probe at_knot = probe(knot);
       pieces.push_back({last, at_knot});
       last = at_knot;
     }
-    const Probe next = probe(t_[k]);
+    const Probe next = sample(k);
     pieces.push_back({last, next});
     last = next;
   }
+  if (pieces.empty()) measure(last); // one sample
   // Branch and bound: a piece whose bound clears d_min (or, once a point within d_min is found,
   // the closest so far) holds no point that matters.
   while (!pieces.empty()) {
-    const auto [a, b] = pieces.back();
+    auto [a, b] = pieces.back();
     pieces.pop_back();
-    keep(b);
     if (first_only && d <= min_) return d;
     const double L = arc_bound(spline, a.t, b.t);
-    if ((a.d + b.d - L) / 2 > std::min(min_, d) || L < kShortest) continue;
+    if ((a.d + b.d - L) / 2 > std::min(min_, d)) continue;
+    if (!a.exact || !b.exact) { // a bound that does not clear: measure the ends and look again
+      measure(a);
+      measure(b);
+      pieces.push_back({a, b});
+      continue;
+    }
+    if (L < kShortest) continue;
     const Probe m = probe((a.t + b.t) / 2);
     pieces.push_back({a, m});
     pieces.push_back({m, b});

@@ -15,7 +15,10 @@
 // lies between two samples, is caught there.
 // The same Lipschitz bound spares most distance queries: a sample whose last measured distance, less
 // how far it has moved since, is still beyond d_min + w adds exactly 0 to B and to its gradient (and
-// is inside), so value() and gradient() query the skin only for samples that may be in the band.
+// is inside), so value() and gradient() query the skin only for samples that may be in the band,
+// and closest_approach's feasibility test (first_only) starts each sample's piece from that bound,
+// measuring only where it does not clear d_min (the tentacle tip's optimize: 39.1 → 34.2 s, the
+// same routes).
 
 #include <vector>
 

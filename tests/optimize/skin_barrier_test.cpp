@@ -91,5 +91,33 @@ TEST(SkinBarrier, ItsValueAndGradientAreThoseOfAFreshBarrierWhereverTheRouteHasB
   EXPECT_GT(in_band, 5); // the walk goes through the band, not only past it
 }
 
+TEST(SkinBarrier, ItsFeasibilityTestIsAFreshBarriersExactOneWhereverTheRouteHasBeen)
+{
+  // closest_approach(…, first_only) starts each sample from its last measurement less how far it
+  // has moved. A route that jumps up into the notch and back down, by steps of up to 8 mm, must be
+  // refused at exactly the steps a barrier that has never seen it finds a point within d_min, and
+  // where it is refused the point found must be within d_min.
+  static const SurfaceDistance skin = notched_bar();
+  const HermiteSpline start({{0, 0, -4 * mm}, {30 * mm, 0, -4 * mm}, {60 * mm, 0, -4 * mm}});
+  const SkinBarrier walked(skin, 2.5 * mm, 1.5 * mm, start, 12);
+  int refused = 0, cleared = 0;
+  for (int step = 0; step <= 60; ++step) {
+    const double rise = 8.0 * std::fmod(0.618034 * step, 1.0) * mm;
+    const HermiteSpline route({{0, 0, -4 * mm}, {30 * mm, 0.3 * mm, -4 * mm + rise}, {60 * mm, 0, -4 * mm}});
+    const SkinBarrier fresh(skin, 2.5 * mm, 1.5 * mm, start, 12);
+    Eigen::Vector3d where, fresh_where;
+    const double exact = fresh.closest_approach(route, fresh_where);
+    if (step % 3 == 0) (void)walked.value(route); // as the optimizer calls it, which measures some samples
+    const double d = walked.closest_approach(route, where, true);
+    EXPECT_EQ(d <= 2.5 * mm, exact <= 2.5 * mm) << "step " << step << ": exact " << exact / mm << " mm";
+    if (d <= 2.5 * mm) {
+      EXPECT_LE(skin.closest(where).distance, 2.5 * mm + 1e-9) << "step " << step;
+    }
+    (d <= 2.5 * mm ? refused : cleared) += 1;
+  }
+  EXPECT_GT(refused, 5);
+  EXPECT_GT(cleared, 5);
+}
+
 } // namespace
 } // namespace fibermold
