@@ -158,6 +158,7 @@ int run_simulate(const Design& design, const Runner& runner, const fs::path& bui
              r.name, r.max_displacement / 1e-3, r.summary.iterations, r.summary.residual, r.summary.seconds_total,
              r.summary.seconds_assembly, r.summary.seconds_factorization, r.summary.seconds_solve, r.vtu.string());
   if (!r.conditioning.empty()) fmt::print("  warning: {}\n", r.conditioning);
+  if (!r.poses.empty()) fmt::print("{}\n", r.poses);
   if (const auto& f = r.refinement) {
     fmt::print("refined: {} nodes, {} tets, mean edge {:.2f} mm; max displacement {:.3f} mm\n"
                "  difference: surface max {:.3f} mm, RMS {:.3f} mm",
@@ -293,6 +294,10 @@ int fibermold_main(int argc, char** argv)
   bool refine = false;
   simulate->add_flag("--refine", refine,
                      "Solve again at half the edge length and report the difference (the discretization error)");
+  bool as_built = false;
+  simulate->add_flag("--as-built", as_built,
+                     "The routes the molds were made for (collide/fibers.json) and, with --target, its pressures "
+                     "there: the cast robot with today's [material]");
   simulate->add_option("--build-dir", build_dir_option, "Build folder (default: out/<design name>)");
 
   SweepRequest sweep_request;
@@ -320,7 +325,8 @@ int fibermold_main(int argc, char** argv)
                         check->parsed() || simulate->parsed() ? std::vector<std::string>{} : runner.stage_names());
     const Design design = load_design(args.design);
     if (simulate->parsed())
-      return run_simulate(design, runner, build_dir_for(design, build_dir_option), {target, pressures, refine});
+      return run_simulate(design, runner, build_dir_for(design, build_dir_option),
+                          {target, pressures, refine, as_built});
     if (check->parsed()) return run_check(design);
     const fs::path build_dir = build_dir_for(design, build_dir_option);
     if (status->parsed()) {

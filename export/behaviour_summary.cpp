@@ -210,7 +210,8 @@ std::string poses_to_compare(const Json& poses)
              : out;
 }
 
-std::string what_to_measure(const Json& poses, double youngs_modulus, bool beyond_max_pressure)
+std::string what_to_measure(const Json& poses, double youngs_modulus, bool beyond_max_pressure,
+                            const std::string& as_built_command)
 {
   const Measure m = measure_of(poses);
   if (!m.pose) return {};
@@ -248,11 +249,13 @@ std::string what_to_measure(const Json& poses, double youngs_modulus, bool beyon
         "1/λ²)) in Pa, with the force in N (grams × 0.00981), the unstretched cross-section in m² (mm² × 10⁻⁶) and λ "
         "the stretched length over the length; then the muscle's contraction at that pressure ([muscle] "
         "rest_strain_slope). Set what you measured in the design before designing the next robot: a run routes the "
-        "muscles for it, and its molds differ.",
+        "muscles for it, and its molds differ. To predict this robot with it, run (it keeps the routes and pressures "
+        "these molds were made for):",
         percent, value(0), value(1), e, value(2), value(3), lo, hi, m.unit,
         beyond_max_pressure ? " (the higher is above [muscle] max_pressure for a muscle: a figure to compare, not a "
                               "pressure to drive it at)"
                             : "");
+    return wrapped(text, "  ", "  ") + "      " + as_built_command + "\n";
   }
   return wrapped(text, "  ", "  ");
 }

@@ -31,7 +31,9 @@ std::string poses_to_compare(const nlohmann::ordered_json& poses);
 /// is with the silicone stiffer and softer and the pressures lower and higher (each pose's "sensitivity"),
 /// and what to check when the cast robot falls outside. `youngs_modulus` (Pa): the [material] value
 /// simulated; `beyond_max_pressure`: whether the higher pressure is above [muscle] max_pressure for a
-/// muscle (it is said so). Empty when nothing moves that much.
-std::string what_to_measure(const nlohmann::ordered_json& poses, double youngs_modulus, bool beyond_max_pressure);
+/// muscle (it is said so); `as_built_command`: the command that simulates the cast robot again with the
+/// values measured (`fibermold simulate … --as-built --target …`). Empty when nothing moves that much.
+std::string what_to_measure(const nlohmann::ordered_json& poses, double youngs_modulus, bool beyond_max_pressure,
+                            const std::string& as_built_command);
 
 } // namespace fibermold

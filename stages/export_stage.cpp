@@ -222,9 +222,10 @@ std::string overlay_shapes(const StageContext& ctx, const TetMesh& body, const F
                         "  the robot's mount beside the pressurized robot, and compare:\n",
                         name, pressures.empty() ? "no pressure" : pressures, d.muscle.max_pressure / units::kPa, file);
     if (collide && (*collide)["targets"].contains(name))
-      text +=
-          poses_to_compare((*collide)["targets"][name].value("poses", Json::array())) +
-          what_to_measure((*collide)["targets"][name].value("poses", Json::array()), d.material.youngs_modulus, beyond);
+      text += poses_to_compare((*collide)["targets"][name].value("poses", Json::array())) +
+              what_to_measure(
+                  (*collide)["targets"][name].value("poses", Json::array()), d.material.youngs_modulus, beyond,
+                  fmt::format("fibermold simulate {} --as-built --target {}", d.file.filename().string(), name));
     for (const SurfaceProblem& problem : check.problems) {
       text += fmt::format("  Note: the simulated body {} (e.g. at {}): the simulation has no self-contact; a slicer\n"
                           "  merges the overlap.\n",

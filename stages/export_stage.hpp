@@ -34,7 +34,7 @@ public:
   /// which figure to measure on the cast robot, and what it is with the silicone and the pressures 10 % off; 19: the
   /// same in report.html; 20: how to mount the robot to check it (gravity's direction); 21: a region's turn is its
   /// nodes' fit, the higher pressure said to be above max_pressure where it is
-  int version() const override { return 21; }
+  int version() const override { return 22; }
   void run(StageContext& ctx) const override;
 };
 

@@ -10,6 +10,7 @@
 
 #include "core/input_error.hpp"
 #include "core/units.hpp"
+#include "export/behaviour_summary.hpp"
 #include "mesh/mesh_quality.hpp"
 #include "mesh/tet_mesh.hpp"
 #include "optimize/tracking_curve.hpp"
@@ -18,6 +19,8 @@
 #include "sim/muscle_energy.hpp"
 #include "sim/neo_hookean.hpp"
 #include "sim/simulation.hpp"
+#include "stages/fibers_file.hpp"
+#include "stages/target_poses.hpp"
 
 namespace fibermold {
 
@@ -61,6 +64,57 @@ std::vector<Actuation> requested_actuations(const Design& d, const SimulateReque
   return out;
 }
 
+/// --as-built: the routes of collide/fibers.json in place of the design's, and with a target its
+/// pressures there. InputError when the file is missing or unreadable, or does not hold a fiber
+/// or the target the request names.
+std::vector<Actuation> as_built(const Design& d, const fs::path& build_dir, const Target* target,
+                                std::vector<Actuation> requested)
+{
+  const fs::path path = build_dir / "collide" / "fibers.json";
+  const auto refuse = [&](const std::string& message) {
+    throw InputError(Diagnostic{path, 0, 0, "--as-built", message});
+  };
+  if (!fs::exists(path))
+    refuse(fmt::format("no routes the molds were made for: run `fibermold make {} collide` first (or any stage after "
+                       "it), with --build-dir where the molds were made",
+                       d.file.string()));
+  FibersFile file;
+  try {
+    file = read_fibers_json(path);
+  } catch (const std::runtime_error& e) {
+    refuse(e.what());
+  }
+  const auto route = [&](const std::string& name) {
+    const auto r = std::find_if(file.routing.routes.begin(), file.routing.routes.end(),
+                                [&](const Route& each) { return each.name == name; });
+    if (r == file.routing.routes.end())
+      refuse(fmt::format("holds no fiber \"{}\": it was made for another version of the design; run `fibermold make "
+                         "{} collide` again",
+                         name, d.file.string()));
+    return r;
+  };
+  if (!target) {
+    for (Actuation& a : requested) {
+      const auto r = route(a.fiber);
+      a.points = r->points;
+      a.tangents = r->tangents;
+    }
+    return requested;
+  }
+  const auto row = std::find(file.targets.begin(), file.targets.end(), target->name);
+  if (row == file.targets.end())
+    refuse(fmt::format("holds no pressures for target \"{}\" (it has {})", target->name,
+                       file.targets.empty() ? std::string("none") : fmt::format("{}", fmt::join(file.targets, ", "))));
+  std::vector<Actuation> out;
+  for (std::size_t k = 0; k < file.routing.routes.size(); ++k) {
+    const Route& r = file.routing.routes[k];
+    const double p = file.routing.pressures(row - file.targets.begin(), static_cast<Eigen::Index>(k));
+    if (!(p >= 0 && std::isfinite(p))) refuse(fmt::format("fiber {}: pressure {} kPa", r.name, p / units::kPa));
+    out.push_back({r.name, r.points, r.tangents, p});
+  }
+  return out;
+}
+
 /// The design's body on `mesh` under the request's load, at equilibrium.
 struct Solved {
   std::unique_ptr<MuscleModel> model; ///< before sim: its muscles hold a reference to it
@@ -98,26 +152,41 @@ SimulateResult simulate(const Design& d, const Runner& runner, const fs::path& b
   for (const Target& t : d.targets)
     if (t.name == request.target) target = &t;
   if (!request.target.empty() && !target) bad(d, "--target", fmt::format("no [[target]] named \"{}\"", request.target));
-  if (target && target->kind == TargetKind::surface)
+  if (request.as_built && !target && request.pressures.empty())
+    bad(d, "--as-built", "give --target NAME (the pressures the molds' routing has for it) or --pressure FIBER=kPa");
+  if (target && target->kind == TargetKind::surface && !request.as_built)
     bad(d, "--target",
-        fmt::format("target \"{}\" is a deformed surface, not a load: nothing to simulate", target->name));
-  if (target && target->kind == TargetKind::pose)
+        fmt::format("target \"{}\" is a deformed surface, not a load: nothing to simulate (--as-built simulates "
+                    "the pressures found for it)",
+                    target->name));
+  if (target && target->kind == TargetKind::pose && !request.as_built)
     bad(d, "--target",
         fmt::format("target \"{}\" is a pose, not a load: `fibermold make DESIGN targets` fills it in "
                     "(targets/{}.vtu)",
                     target->name, target->name));
   std::vector<Actuation> actuations = requested_actuations(d, request);
   if (target && target->kind == TargetKind::fibers) actuations = target_actuations(d, *target);
+  if (request.as_built) actuations = as_built(d, build_dir, target, std::move(actuations));
+  // As built, a target is reached by the muscles alone: its forces or known fibers made its shape.
+  const Target* load = request.as_built ? nullptr : target;
 
   runner.make(d, {build_dir, {"mesh"}, false}, progress);
   const TetMesh mesh = load_tet_mesh(build_dir / "mesh" / "body.tetmesh");
   std::unique_ptr<Progress> reporter = progress ? progress("simulate") : nullptr;
   NullProgress silent;
   Progress& p = reporter ? *reporter : silent;
-  const Solved coarse = solve(d, mesh, target, actuations, p);
+  const Solved coarse = solve(d, mesh, load, actuations, p);
 
   SimulateResult result;
-  result.name = target ? target->name : "pressures";
+  result.name = fmt::format("{}{}", target ? target->name : "pressures", request.as_built ? "-as-built" : "");
+  if (request.as_built && target) { // the lines README.txt gives to compare with the cast robot
+    const std::vector<PosedRegion> asked =
+        target->kind == TargetKind::pose ? target_poses(d, *target, mesh) : std::vector<PosedRegion>{};
+    nlohmann::ordered_json poses = nlohmann::ordered_json::array();
+    for (const ReachedPose& r : reached_poses(d, *target, *coarse.sim, coarse.x, asked))
+      poses.push_back(pose_report(r));
+    result.poses = poses_to_compare(poses);
+  }
   result.summary = coarse.summary;
   result.max_displacement = (coarse.sim->deformed_nodes(coarse.x) - mesh.nodes).rowwise().norm().maxCoeff();
   if (const auto* mls = dynamic_cast<const MlsBasis*>(&coarse.sim->basis()); mls && mls->conditioning().widened > 0) {
@@ -132,7 +201,7 @@ SimulateResult simulate(const Design& d, const Runner& runner, const fs::path& b
   if (request.refine) {
     p.checkpoint(-1, "meshing at half the edge length");
     const TetMesh fine_mesh = refined_design_mesh(d, p);
-    const Solved fine = solve(d, fine_mesh, target, actuations, p);
+    const Solved fine = solve(d, fine_mesh, load, actuations, p);
     result.refinement = compare_refined(d, *coarse.sim, coarse.x, *fine.sim, fine.x);
     write_deformed(build_dir / "simulate" / fmt::format("deformed-{}-refined.vtu", result.name), *fine.sim, fine.x,
                    fine.muscles,

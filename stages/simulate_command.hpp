@@ -1,6 +1,10 @@
 #pragma once
-// `fibermold simulate DESIGN [--target NAME | --pressure FIBER=kPa ...]`: a forward simulation of
-// the design on its mesh (made first when stale), written as <build>/simulate/deformed-<name>.vtu.
+// `fibermold simulate DESIGN [--target NAME | --pressure FIBER=kPa ...] [--as-built]`: a forward
+// simulation of the design on its mesh (made first when stale), written as
+// <build>/simulate/deformed-<name>.vtu. --as-built takes the routes the molds were carved for
+// (<build>/collide/fibers.json) instead of the design's first guess, and with --target that target's
+// pressures from the same file: the cast robot predicted again with today's [material], e.g. the
+// Young's modulus measured on a strip of the cast silicone.
 
 #include <filesystem>
 #include <optional>
@@ -18,6 +22,7 @@ struct SimulateRequest {
   std::string target;                 ///< a [[target]] name, or empty
   std::vector<std::string> pressures; ///< "FIBER=kPa"
   bool refine = false;                ///< solve again at half the edge length and compare
+  bool as_built = false;              ///< the routes (and a target's pressures) of collide/fibers.json
 };
 
 struct SimulateResult {
@@ -27,6 +32,9 @@ struct SimulateResult {
   NewtonSummary summary;
   std::string conditioning;             ///< where the MLS radius had to be widened; empty when nowhere
   std::optional<Refinement> refinement; ///< with --refine
+  /// With --as-built --target: where the target's regions and the tracking curves' ends went, the
+  /// lines README.txt gives to compare with the cast robot (poses_to_compare); empty otherwise.
+  std::string poses;
 };
 
 /// Throws InputError for a bad request or design (exit 2), std::runtime_error when the solve fails.

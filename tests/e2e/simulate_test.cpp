@@ -38,6 +38,7 @@ protected:
   }
 
   test::TempDir dir_;
+  test::CommandResult r_;
 };
 
 TEST_F(SimulateE2E, PressurizedMuscleDeformsTheBarAndWritesTheVtu)
@@ -161,6 +162,69 @@ TEST_F(SimulateE2E, FreeBodyIsRefused)
   const auto r = simulate("--target pull");
   EXPECT_EQ(r.exit_code, 2);
   EXPECT_THAT(r.err, HasSubstr("the body is held nowhere"));
+}
+
+/// `--as-built` takes the routes and a target's pressures from collide/fibers.json, the routing the
+/// molds were carved for, and not the design's first guess: the bar with the file's route at the
+/// file's pressure is exactly the bar whose design has that route, pressurized so.
+TEST_F(SimulateE2E, AsBuiltSimulatesTheRoutesAndPressuresTheMoldsWereMadeFor)
+{
+  const std::string route = "[[0, 0, 0], [30, -2, 1], [60, 0, 0]]", tangents = "[[30, 0, 0], [30, -1, 0], [30, 0, 0]]";
+  design();
+  r_ = simulate("--as-built --target pull");
+  EXPECT_EQ(r_.exit_code, 2);
+  EXPECT_THAT(r_.err, HasSubstr("collide/fibers.json: --as-built: no routes the molds were made for: run `fibermold "
+                                "make"));
+  fs::create_directories(dir_ / "build" / "collide");
+  const auto fibers = [&](const std::string& name, const std::string& target) {
+    test::write_text(dir_ / "build" / "collide" / "fibers.json",
+                     "{\"optimized\": true, \"fibers\": [{\"name\": \"" + name + "\", \"points_mm\": " + route +
+                         ", \"tangents_mm\": " + tangents + ", \"length_mm\": 60.2, \"pressure_kPa\": {\"" + target +
+                         "\": 150.0}}]}");
+  };
+  fibers("m1", "pull");
+  const auto as_built = simulate("--as-built --target pull");
+  ASSERT_EQ(as_built.exit_code, 0) << as_built.err;
+  EXPECT_THAT(as_built.out, HasSubstr("simulate pull-as-built: max displacement"));
+  // Where the target's load region went, as README.txt's lines to compare give it.
+  EXPECT_THAT(as_built.out, HasSubstr("load[1] (at (60.0, "));
+  const std::string vtu = test::read_text(dir_ / "build" / "simulate" / "deformed-pull-as-built.vtu");
+  const auto with_pressure = simulate("--as-built --pressure m1=150");
+  ASSERT_EQ(with_pressure.exit_code, 0) << with_pressure.err;
+  EXPECT_EQ(test::read_text(dir_ / "build" / "simulate" / "deformed-pressures-as-built.vtu"), vtu);
+
+  // The design given that route, simulated as a design is.
+  std::string text = test::read_text(dir_ / "design.toml");
+  const std::string guess = "points = [[0, 0, 0], [30, 2, 0], [60, 0, 0]]";
+  test::write_text(dir_ / "design.toml",
+                   text.replace(text.find(guess), guess.size(), "points = " + route + "\ntangents = " + tangents));
+  const auto designed = simulate("--pressure m1=150");
+  ASSERT_EQ(designed.exit_code, 0) << designed.err;
+  EXPECT_EQ(test::read_text(dir_ / "build" / "simulate" / "deformed-pressures.vtu"), vtu);
+  const auto max_mm = [](const std::string& out) { return std::stod(out.substr(out.find("max displacement") + 17)); };
+  EXPECT_EQ(max_mm(designed.out), max_mm(as_built.out));
+  // …and not the first guess's.
+  design();
+  const auto first_guess = simulate("--pressure m1=150");
+  ASSERT_EQ(first_guess.exit_code, 0) << first_guess.err;
+  EXPECT_GT(std::abs(max_mm(first_guess.out) - max_mm(as_built.out)), 0.01);
+
+  // A file for another design, or none of the target's pressures, or not a fibers file: exit 2, and why.
+  fibers("m2", "pull");
+  r_ = simulate("--as-built --pressure m1=150");
+  EXPECT_EQ(r_.exit_code, 2);
+  EXPECT_THAT(r_.err, HasSubstr("holds no fiber \"m1\": it was made for another version of the design"));
+  fibers("m1", "lift");
+  r_ = simulate("--as-built --target pull");
+  EXPECT_EQ(r_.exit_code, 2);
+  EXPECT_THAT(r_.err, HasSubstr("holds no pressures for target \"pull\" (it has lift)"));
+  test::write_text(dir_ / "build" / "collide" / "fibers.json", "{\"fibers\": 3}");
+  r_ = simulate("--as-built --target pull");
+  EXPECT_EQ(r_.exit_code, 2);
+  EXPECT_THAT(r_.err, HasSubstr("not a fibers file"));
+  r_ = simulate("--as-built");
+  EXPECT_EQ(r_.exit_code, 2);
+  EXPECT_THAT(r_.err, HasSubstr("--as-built: give --target NAME"));
 }
 
 } // namespace

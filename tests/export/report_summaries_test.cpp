@@ -149,14 +149,17 @@ TEST(BehaviourSummary, PosesToCompareLeaveOutWhatStaysPut)
   EXPECT_EQ(poses_to_compare(Json::array({poses[0]})), "    nothing moves more than 0.5 mm or turns more than 5°\n");
 }
 
+/// The command README.txt gives to predict the cast robot again with the values measured.
+const std::string kAsBuilt = "fibermold simulate d.toml --as-built --target t";
+
 TEST(BehaviourSummary, WhatToMeasureIsTheTurnAskedElseTheLargestTurnElseTheLargestMove)
 {
   const auto first_line = [](const Json& poses) {
-    const std::string text = what_to_measure(poses, 86.4e3, false);
+    const std::string text = what_to_measure(poses, 86.4e3, false, kAsBuilt);
     return text.substr(0, text.find('\n'));
   };
   // The largest move when nothing turns 5°: 9 mm and its sensitivity.
-  const std::string moved = what_to_measure(Json::array({pose("a", 3, 4.9), pose("b", 9, 1)}), 86.4e3, false);
+  const std::string moved = what_to_measure(Json::array({pose("a", 3, 4.9), pose("b", 9, 1)}), 86.4e3, false, kAsBuilt);
   EXPECT_THAT(moved, testing::StartsWith(
                          "  Measure b's move: 9.0 mm in the simulation. With the least certain inputs 10 % off:"));
   const std::string flat = std::regex_replace(moved, std::regex("\n  "), " "); // unwrapped
@@ -165,12 +168,16 @@ TEST(BehaviourSummary, WhatToMeasureIsTheTurnAskedElseTheLargestTurnElseTheLarge
                              "7.0 mm and 8.0 mm with every pressure 10 % lower and higher"})
     EXPECT_THAT(flat, testing::HasSubstr(figure)) << moved;
   EXPECT_THAT(flat, testing::HasSubstr("Outside 5.0–9.0 mm, check first the pressure at the muscle"));
+  EXPECT_THAT(flat, testing::HasSubstr("To predict this robot with it, run (it keeps the routes and pressures these "
+                                       "molds were made for):"));
+  EXPECT_THAT(moved, testing::EndsWith("made for):\n      " + kAsBuilt + "\n")); // a line to copy, whole
   Json placed = pose("tip", 9, 1);
   placed["rest_mm"] = {100, -0.0, 0};
-  EXPECT_THAT(what_to_measure(Json::array({placed}), 137915.0, false),
+  EXPECT_THAT(what_to_measure(Json::array({placed}), 137915.0, false, kAsBuilt),
               testing::StartsWith("  Measure tip's move (at (100.00, 0.00, 0.00) mm at rest): 9.0 mm"));
-  EXPECT_THAT(std::regex_replace(what_to_measure(Json::array({placed}), 137915.0, false), std::regex("\n  "), " "),
-              testing::HasSubstr("youngs_modulus = 138000 Pa"));
+  EXPECT_THAT(
+      std::regex_replace(what_to_measure(Json::array({placed}), 137915.0, false, kAsBuilt), std::regex("\n  "), " "),
+      testing::HasSubstr("youngs_modulus = 138000 Pa"));
   // The largest turn over 5°, whatever moves further.
   EXPECT_THAT(first_line(Json::array({pose("a", 30, 4), pose("b", 1, 6), pose("c", 2, 12)})),
               testing::StartsWith("  Measure c's turn about (0.00, 0.00, 1.00): 12.0° in the simulation."));
@@ -185,16 +192,17 @@ TEST(BehaviourSummary, WhatToMeasureIsTheTurnAskedElseTheLargestTurnElseTheLarge
   Json region = pose("load[1]", 1, 30);
   region["nodes"] = 16;
   const std::string fitted =
-      std::regex_replace(what_to_measure(Json::array({region}), 86.4e3, true), std::regex("\n  "), " ");
+      std::regex_replace(what_to_measure(Json::array({region}), 86.4e3, true, kAsBuilt), std::regex("\n  "), " ");
   EXPECT_THAT(fitted, testing::HasSubstr("That is the best rigid fit of its 16 nodes (the whole face)"));
   EXPECT_THAT(fitted, testing::HasSubstr("lower and higher (the higher is above [muscle] max_pressure for a muscle"));
   EXPECT_THAT(flat, testing::Not(testing::HasSubstr("max_pressure")));
   // Nothing worth measuring: nothing said.
-  EXPECT_EQ(what_to_measure(Json::array({pose("a", 0.4, 4)}), 86.4e3, false), "");
+  EXPECT_EQ(what_to_measure(Json::array({pose("a", 0.4, 4)}), 86.4e3, false, kAsBuilt), "");
   // An older report without the sensitivity: the figure alone.
   Json bare = pose("a", 3, 0);
   bare.erase("sensitivity");
-  EXPECT_EQ(what_to_measure(Json::array({bare}), 86.4e3, false), "  Measure a's move: 3.0 mm in the simulation.\n");
+  EXPECT_EQ(what_to_measure(Json::array({bare}), 86.4e3, false, kAsBuilt),
+            "  Measure a's move: 3.0 mm in the simulation.\n");
 }
 
 TEST(MoldPartsSummary, TheSprueOfShotOneRunsDownThroughTheLowerHalfAndTheVentsUp)
