@@ -249,7 +249,8 @@ std::string what_to_measure(const Json& poses, double youngs_modulus, bool beyon
         "1/λ²)) in Pa, with the force in N (grams × 0.00981), the unstretched cross-section in m² (mm² × 10⁻⁶) and λ "
         "the stretched length over the length; then the muscle's contraction at that pressure ([muscle] "
         "rest_strain_slope). Set what you measured in the design before designing the next robot: a run routes the "
-        "muscles for it, and its molds differ. To predict this robot with it, run (it keeps the routes and pressures "
+        "muscles for it and makes other molds, so give it a new build folder (--build-dir) and keep this one. To "
+        "predict this robot with what you measured, run from the design's folder (it keeps the routes and pressures "
         "these molds were made for):",
         percent, value(0), value(1), e, value(2), value(3), lo, hi, m.unit,
         beyond_max_pressure ? " (the higher is above [muscle] max_pressure for a muscle: a figure to compare, not a "

@@ -67,12 +67,12 @@ std::string silicone_text(const CastingSheet& sheet)
           sheet.youngs_modulus / units::kPa, sheet.poisson_ratio, sheet.density,
           sheet.preset.empty()
               ? fmt::format(
-                    "[material]: the paper's figures; the handling here is Ecoflex 00-30's, the "
-                    "default: name a [material] preset for another silicone. {}'s preset, fitted to "
-                    "its published stress-strain data, has E = {:.1f} kPa ([material] preset = "
-                    "\"{}\"){}",
+                    "{}; the handling here is Ecoflex 00-30's, the default: name a [material] preset for another "
+                    "silicone. {}'s preset, fitted to its published stress-strain data, has E = {:.1f} kPa "
+                    "([material] preset = \"{}\"){}",
+                    sheet.paper_material ? "[material]: the paper's figures" : "[material] as the design sets them",
                     s.name, s.youngs_modulus() / units::kPa, s.key,
-                    s.youngs_modulus() < sheet.youngs_modulus
+                    sheet.paper_material && s.youngs_modulus() < sheet.youngs_modulus
                         ? ": cast in it, the robot moves otherwise than simulated; a strip of your own cast, pulled "
                           "with a known weight, settles it"
                         : "")

@@ -34,7 +34,8 @@ struct CastingSheet {
   SiliconePreset silicone;    ///< whose handling the sheet gives
   std::string preset;         ///< `[material] preset` as named; empty: the paper's default material
   double youngs_modulus = 0, poisson_ratio = 0, density = 0; ///< Pa, –, kg/m³: what the simulation took
-  double muscle_diameter = 0;                                ///< m
+  bool paper_material = false;     ///< no preset and those three at the paper's EcoFlex 00-30 figures
+  double muscle_diameter = 0;      ///< m
   double end_channel_diameter = 0; ///< m: the channel a supply tube leaves the molds by (its width)
   std::vector<MuscleCut> cuts;
   Eigen::Vector3d pull = Eigen::Vector3d::UnitZ(); ///< the molds open along it

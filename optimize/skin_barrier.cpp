@@ -127,9 +127,15 @@ double SkinBarrier::closest_approach(const HermiteSpline& spline, Eigen::Vector3
   };
   const auto measure = [&](Probe& q) {
     if (q.exact) return;
+    if (measured_at_[q.sample] == q.p && measured_[q.sample] > 0) { // measured since, for the piece beside
+      q.d = measured_[q.sample];
+      q.exact = true;
+      return;
+    }
+    const std::size_t k = q.sample;
     q = probe(q.t);
-    measured_at_[q.sample] = q.p;
-    measured_[q.sample] = q.d > 0 ? q.d : -HUGE_VAL;
+    measured_at_[k] = q.p;
+    measured_[k] = q.d > 0 ? q.d : -HUGE_VAL;
   };
   // Each piece between consecutive samples, cut at the knots.
   std::vector<std::pair<Probe, Probe>> pieces;

@@ -1,6 +1,7 @@
 #include "stages/export_stage.hpp"
 
 #include <algorithm>
+#include <cctype>
 #include <optional>
 #include <sstream>
 
@@ -38,6 +39,7 @@ namespace fibermold {
 namespace {
 
 using Json = nlohmann::ordered_json;
+namespace fs = std::filesystem;
 
 std::vector<ReportLine> fiber_lines(const FibersFile& fibers);
 
@@ -102,6 +104,8 @@ CastingSheet casting_sheet(const Design& d, const Json& molds, std::vector<Muscl
   sheet.youngs_modulus = m.youngs_modulus;
   sheet.poisson_ratio = m.poisson_ratio;
   sheet.density = m.density;
+  sheet.paper_material = m.preset.empty() && m.youngs_modulus == MaterialOptions{}.youngs_modulus &&
+                         m.poisson_ratio == MaterialOptions{}.poisson_ratio && m.density == MaterialOptions{}.density;
   sheet.muscle_diameter = d.muscle.model.diameter;
   sheet.end_channel_diameter = d.mold.end_channel_diameter;
   sheet.cuts = std::move(cuts);
@@ -188,6 +192,26 @@ void add_bodies(const StageContext& ctx, const TetMesh& body, const Simulated& s
   }
 }
 
+/// The command that simulates the cast robot again (`fibermold simulate --as-built`), run from the
+/// design's folder: the build folder relative to it where it lies inside, else absolute.
+std::string as_built_command(const Design& d, const fs::path& build_dir, const std::string& target)
+{
+  const fs::path build = fs::weakly_canonical(build_dir), folder = fs::weakly_canonical(d.folder);
+  const fs::path relative = build.lexically_relative(folder);
+  const bool inside = !relative.empty() && *relative.begin() != "..";
+  const auto quoted = [](const std::string& word) { // for a POSIX shell, where it needs it
+    if (!word.empty() && std::all_of(word.begin(), word.end(), [](unsigned char c) {
+          return std::isalnum(c) || std::string_view("_./-+:=,@").find(static_cast<char>(c)) != std::string_view::npos;
+        }))
+      return word;
+    std::string out = "'";
+    for (char c : word) out += c == '\'' ? std::string("'\\''") : std::string(1, c);
+    return out + "'";
+  };
+  return fmt::format("fibermold simulate {} --as-built --target {} --build-dir {}", quoted(d.file.filename().string()),
+                     quoted(target), quoted((inside ? relative : build).string()));
+}
+
 /// Per target, the body as simulated under the final routing (collide/deformed-<target>.json), as a
 /// printable STL in the body's frame, which is the frame of the robot as mounted (its [[fixed]]
 /// regions stay where they are at rest); README.txt's section on checking the cast robot with it,
@@ -223,9 +247,8 @@ std::string overlay_shapes(const StageContext& ctx, const TetMesh& body, const F
                         name, pressures.empty() ? "no pressure" : pressures, d.muscle.max_pressure / units::kPa, file);
     if (collide && (*collide)["targets"].contains(name))
       text += poses_to_compare((*collide)["targets"][name].value("poses", Json::array())) +
-              what_to_measure(
-                  (*collide)["targets"][name].value("poses", Json::array()), d.material.youngs_modulus, beyond,
-                  fmt::format("fibermold simulate {} --as-built --target {}", d.file.filename().string(), name));
+              what_to_measure((*collide)["targets"][name].value("poses", Json::array()), d.material.youngs_modulus,
+                              beyond, as_built_command(d, ctx.build_dir, name));
     for (const SurfaceProblem& problem : check.problems) {
       text += fmt::format("  Note: the simulated body {} (e.g. at {}): the simulation has no self-contact; a slicer\n"
                           "  merges the overlap.\n",

@@ -11,6 +11,7 @@
 #include "core/input_error.hpp"
 #include "core/units.hpp"
 #include "export/behaviour_summary.hpp"
+#include "make/stamp.hpp"
 #include "mesh/mesh_quality.hpp"
 #include "mesh/tet_mesh.hpp"
 #include "optimize/tracking_curve.hpp"
@@ -65,34 +66,48 @@ std::vector<Actuation> requested_actuations(const Design& d, const SimulateReque
 }
 
 /// --as-built: the routes of collide/fibers.json in place of the design's, and with a target its
-/// pressures there. InputError when the file is missing or unreadable, or does not hold a fiber
-/// or the target the request names.
+/// pressures there. InputError when the build folder was made from another body, when the file is
+/// missing or unreadable, or does not hold a fiber or the target the request names.
 std::vector<Actuation> as_built(const Design& d, const fs::path& build_dir, const Target* target,
-                                std::vector<Actuation> requested)
+                                std::vector<Actuation> requested, std::string& said)
 {
   const fs::path path = build_dir / "collide" / "fibers.json";
   const auto refuse = [&](const std::string& message) {
     throw InputError(Diagnostic{path, 0, 0, "--as-built", message});
   };
+  const std::string elsewhere = fmt::format("give --build-dir the folder {}'s molds were made in", d.design.name);
+  // Before anything is meshed there: a folder of another body's molds is not this robot's.
+  if (const auto mesh = Stamp::load(Runner::stamp_path(build_dir, "mesh"));
+      mesh && !mesh->files.empty() && !mesh->files.count(d.design.surface.string()))
+    refuse(fmt::format("this build folder was made from {}, not from {}'s surface {}: {}", mesh->files.begin()->first,
+                       d.design.name, d.design.surface.string(), elsewhere));
   if (!fs::exists(path))
-    refuse(fmt::format("no routes the molds were made for: run `fibermold make {} collide` first (or any stage after "
-                       "it), with --build-dir where the molds were made",
-                       d.file.string()));
+    refuse(fmt::format("does not exist. --as-built reads the routes the molds were made for from the build folder "
+                       "they were made in: {} (by default out/{} under the folder you run in). If no molds were "
+                       "made yet, `fibermold make {} collide` routes the muscles first",
+                       elsewhere, d.design.name, d.file.string()));
   FibersFile file;
   try {
     file = read_fibers_json(path);
-  } catch (const std::runtime_error& e) {
-    refuse(e.what());
+  } catch (const std::runtime_error& e) { // "<path>: not a fibers file: …", the path given once
+    const std::string what = e.what(), prefix = path.string() + ": ";
+    refuse(what.rfind(prefix, 0) == 0 ? what.substr(prefix.size()) : what);
   }
+  for (const Route& r : file.routing.routes)
+    if (std::none_of(d.fibers.begin(), d.fibers.end(), [&](const Fiber& f) { return f.name == r.name; }))
+      refuse(fmt::format("holds fiber \"{}\", which the design has not: its molds were made for another design, or "
+                         "before the fiber was named so; {}",
+                         r.name, elsewhere));
   const auto route = [&](const std::string& name) {
     const auto r = std::find_if(file.routing.routes.begin(), file.routing.routes.end(),
                                 [&](const Route& each) { return each.name == name; });
     if (r == file.routing.routes.end())
-      refuse(fmt::format("holds no fiber \"{}\": it was made for another version of the design; run `fibermold make "
-                         "{} collide` again",
-                         name, d.file.string()));
+      refuse(fmt::format("holds no fiber \"{}\": its molds were made for another design, or before the fiber was "
+                         "named so; {}",
+                         name, elsewhere));
     return r;
   };
+  said = fmt::format("as built: the routes of {}", path.string());
   if (!target) {
     for (Actuation& a : requested) {
       const auto r = route(a.fiber);
@@ -103,15 +118,23 @@ std::vector<Actuation> as_built(const Design& d, const fs::path& build_dir, cons
   }
   const auto row = std::find(file.targets.begin(), file.targets.end(), target->name);
   if (row == file.targets.end())
-    refuse(fmt::format("holds no pressures for target \"{}\" (it has {})", target->name,
-                       file.targets.empty() ? std::string("none") : fmt::format("{}", fmt::join(file.targets, ", "))));
+    refuse(fmt::format("holds no pressures for target \"{}\" (it has {}): its molds were made for another design, "
+                       "or before the target was named so; {}",
+                       target->name,
+                       file.targets.empty() ? std::string("none") : fmt::format("{}", fmt::join(file.targets, ", ")),
+                       elsewhere));
   std::vector<Actuation> out;
+  std::string pressures;
   for (std::size_t k = 0; k < file.routing.routes.size(); ++k) {
     const Route& r = file.routing.routes[k];
     const double p = file.routing.pressures(row - file.targets.begin(), static_cast<Eigen::Index>(k));
-    if (!(p >= 0 && std::isfinite(p))) refuse(fmt::format("fiber {}: pressure {} kPa", r.name, p / units::kPa));
+    if (!(p >= 0 && p <= d.muscle.max_pressure))
+      refuse(fmt::format("fiber {}: target {}'s pressure {:.0f} kPa is outside [0, {:.0f}] kPa ([muscle].max_pressure)",
+                         r.name, target->name, p / units::kPa, d.muscle.max_pressure / units::kPa));
     out.push_back({r.name, r.points, r.tangents, p});
+    pressures += fmt::format("{}{} {:.0f} kPa", pressures.empty() ? "" : ", ", r.name, p / units::kPa);
   }
+  said += fmt::format(", at target {}'s pressures there ({})", target->name, pressures);
   return out;
 }
 
@@ -162,11 +185,12 @@ SimulateResult simulate(const Design& d, const Runner& runner, const fs::path& b
   if (target && target->kind == TargetKind::pose && !request.as_built)
     bad(d, "--target",
         fmt::format("target \"{}\" is a pose, not a load: `fibermold make DESIGN targets` fills it in "
-                    "(targets/{}.vtu)",
+                    "(targets/{}.vtu); --as-built simulates the pressures found for it",
                     target->name, target->name));
   std::vector<Actuation> actuations = requested_actuations(d, request);
   if (target && target->kind == TargetKind::fibers) actuations = target_actuations(d, *target);
-  if (request.as_built) actuations = as_built(d, build_dir, target, std::move(actuations));
+  std::string as_built_said;
+  if (request.as_built) actuations = as_built(d, build_dir, target, std::move(actuations), as_built_said);
   // As built, a target is reached by the muscles alone: its forces or known fibers made its shape.
   const Target* load = request.as_built ? nullptr : target;
 
@@ -175,10 +199,25 @@ SimulateResult simulate(const Design& d, const Runner& runner, const fs::path& b
   std::unique_ptr<Progress> reporter = progress ? progress("simulate") : nullptr;
   NullProgress silent;
   Progress& p = reporter ? *reporter : silent;
-  const Solved coarse = solve(d, mesh, load, actuations, p);
+  const Solved coarse = [&] {
+    try {
+      return solve(d, mesh, load, actuations, p);
+    } catch (const InputError& e) { // a route of collide/fibers.json that today's body does not hold
+      if (!request.as_built) throw;
+      std::vector<Diagnostic> said = e.diagnostics();
+      for (Diagnostic& each : said)
+        each.message += fmt::format(" (the route as built, {}: the body or its mesh changed since)",
+                                    (build_dir / "collide" / "fibers.json").string());
+      throw InputError(said);
+    }
+  }();
 
   SimulateResult result;
   result.name = fmt::format("{}{}", target ? target->name : "pressures", request.as_built ? "-as-built" : "");
+  if (request.as_built)
+    result.as_built =
+        fmt::format("{}; [material] youngs_modulus {:.0f} Pa, poisson_ratio {:g}, density {:g} kg/m³", as_built_said,
+                    d.material.youngs_modulus, d.material.poisson_ratio, d.material.density);
   if (request.as_built && target) { // the lines README.txt gives to compare with the cast robot
     const std::vector<PosedRegion> asked =
         target->kind == TargetKind::pose ? target_poses(d, *target, mesh) : std::vector<PosedRegion>{};

@@ -35,6 +35,8 @@ struct SimulateResult {
   /// With --as-built --target: where the target's regions and the tracking curves' ends went, the
   /// lines README.txt gives to compare with the cast robot (poses_to_compare); empty otherwise.
   std::string poses;
+  /// With --as-built: what was simulated (the routes' file, the pressures, the material); empty otherwise.
+  std::string as_built;
 };
 
 /// Throws InputError for a bad request or design (exit 2), std::runtime_error when the solve fails.

@@ -91,6 +91,24 @@ void expect_casting_sheet(const fs::path& build)
   for (const char* handling :
        {"Silicone: Smooth-On", "mixed 1A : 1B by weight; pot life", "demold after", "mold release"})
     EXPECT_THAT(sheet, HasSubstr(handling));
+  // Each figure to measure comes with the command that predicts the cast robot again, on a line of its
+  // own, naming one of the targets and this build folder.
+  const std::string raw = test::read_text(build / "export" / "README.txt");
+  const std::regex command(R"(\n      fibermold simulate (\S+) --as-built --target (\S+) --build-dir (\S+)\n)");
+  std::size_t commands = 0;
+  for (auto it = std::sregex_iterator(raw.begin(), raw.end(), command); it != std::sregex_iterator(); ++it) {
+    ++commands;
+    EXPECT_TRUE(fibers["fibers"][0]["pressure_kPa"].contains((*it)[2].str())) << it->str();
+    const fs::path dir = (*it)[3].str();
+    if (dir.is_absolute()) {
+      EXPECT_TRUE(fs::equivalent(dir, build)) << it->str();
+    }
+  }
+  std::size_t measures = 0;
+  for (std::size_t at = raw.find("  Measure "); at != std::string::npos; at = raw.find("  Measure ", at + 1))
+    ++measures;
+  EXPECT_EQ(commands, measures);
+  EXPECT_GT(commands, 0u);
 }
 
 void expect_parts_pass(const fs::path& build)

@@ -173,19 +173,22 @@ TEST_F(SimulateE2E, AsBuiltSimulatesTheRoutesAndPressuresTheMoldsWereMadeFor)
   design();
   r_ = simulate("--as-built --target pull");
   EXPECT_EQ(r_.exit_code, 2);
-  EXPECT_THAT(r_.err, HasSubstr("collide/fibers.json: --as-built: no routes the molds were made for: run `fibermold "
-                                "make"));
+  EXPECT_THAT(r_.err, HasSubstr("collide/fibers.json: --as-built: does not exist. --as-built reads the routes the "
+                                "molds were made for from the build folder they were made in: give --build-dir the "
+                                "folder bar's molds were made in"));
   fs::create_directories(dir_ / "build" / "collide");
-  const auto fibers = [&](const std::string& name, const std::string& target) {
+  const auto fibers = [&](const std::string& name, const std::string& target, const std::string& kpa = "150.0") {
     test::write_text(dir_ / "build" / "collide" / "fibers.json",
                      "{\"optimized\": true, \"fibers\": [{\"name\": \"" + name + "\", \"points_mm\": " + route +
                          ", \"tangents_mm\": " + tangents + ", \"length_mm\": 60.2, \"pressure_kPa\": {\"" + target +
-                         "\": 150.0}}]}");
+                         "\": " + kpa + "}}]}");
   };
   fibers("m1", "pull");
   const auto as_built = simulate("--as-built --target pull");
   ASSERT_EQ(as_built.exit_code, 0) << as_built.err;
   EXPECT_THAT(as_built.out, HasSubstr("simulate pull-as-built: max displacement"));
+  EXPECT_THAT(as_built.out, HasSubstr("as built: the routes of build/collide/fibers.json, at target pull's pressures "
+                                      "there (m1 150 kPa); [material] youngs_modulus 86400 Pa"));
   // Where the target's load region went, as README.txt's lines to compare give it.
   EXPECT_THAT(as_built.out, HasSubstr("load[1] (at (60.0, "));
   const std::string vtu = test::read_text(dir_ / "build" / "simulate" / "deformed-pull-as-built.vtu");
@@ -213,18 +216,36 @@ TEST_F(SimulateE2E, AsBuiltSimulatesTheRoutesAndPressuresTheMoldsWereMadeFor)
   fibers("m2", "pull");
   r_ = simulate("--as-built --pressure m1=150");
   EXPECT_EQ(r_.exit_code, 2);
-  EXPECT_THAT(r_.err, HasSubstr("holds no fiber \"m1\": it was made for another version of the design"));
+  EXPECT_THAT(r_.err, HasSubstr("holds fiber \"m2\", which the design has not: its molds were made for another "
+                                "design"));
+  fibers("m1", "pull", "500.0");
+  r_ = simulate("--as-built --target pull");
+  EXPECT_EQ(r_.exit_code, 2);
+  EXPECT_THAT(r_.err, HasSubstr("fiber m1: target pull's pressure 500 kPa is outside [0, 425] kPa"));
   fibers("m1", "lift");
   r_ = simulate("--as-built --target pull");
   EXPECT_EQ(r_.exit_code, 2);
-  EXPECT_THAT(r_.err, HasSubstr("holds no pressures for target \"pull\" (it has lift)"));
+  EXPECT_THAT(r_.err, HasSubstr("holds no pressures for target \"pull\" (it has lift): its molds were made for "
+                                "another design"));
   test::write_text(dir_ / "build" / "collide" / "fibers.json", "{\"fibers\": 3}");
   r_ = simulate("--as-built --target pull");
   EXPECT_EQ(r_.exit_code, 2);
   EXPECT_THAT(r_.err, HasSubstr("not a fibers file"));
+  EXPECT_EQ(r_.err.find("fibers.json: not a fibers file"), std::string::npos) << r_.err; // the path said once
   r_ = simulate("--as-built");
   EXPECT_EQ(r_.exit_code, 2);
   EXPECT_THAT(r_.err, HasSubstr("--as-built: give --target NAME"));
+  // Another body's design on this build folder is refused before anything is meshed there.
+  fibers("m1", "pull");
+  const std::string mesh_before = test::read_text(dir_ / "build" / "mesh" / "body.tetmesh");
+  write_stl(dir_ / "other.stl", test::box({0, -0.008, -0.008}, {0.07, 0.008, 0.008}, Eigen::Vector3i(10, 3, 3)));
+  text = test::read_text(dir_ / "design.toml");
+  test::write_text(dir_ / "design.toml", text.replace(text.find("bar.stl"), 7, "other.stl"));
+  r_ = simulate("--as-built --target pull");
+  EXPECT_EQ(r_.exit_code, 2);
+  EXPECT_THAT(r_.err, HasSubstr("this build folder was made from "));
+  EXPECT_THAT(r_.err, HasSubstr("bar.stl, not from bar's surface "));
+  EXPECT_EQ(test::read_text(dir_ / "build" / "mesh" / "body.tetmesh"), mesh_before);
 }
 
 } // namespace

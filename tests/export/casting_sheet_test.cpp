@@ -1,6 +1,7 @@
 // The casting sheet read back as a user reads it: how much to mix per shot (20 % over the shot, at
 // least 5 g of the smaller part), the screws or clamps, the holes named by their count, the muscles'
 // cut lengths and ends, and every line within 100 characters, whatever the counts and the names.
+#include <regex>
 #include <sstream>
 
 #include <gtest/gtest.h>
@@ -114,6 +115,7 @@ TEST(CastingSheet, NoLineIsLongerThanAHundredCharacters)
   s.preset.clear(); // the longest paragraph: the default material and the preset it stands for
   s.silicone = *find_silicone_preset(kDefaultSilicone);
   s.youngs_modulus = 86.4e3;
+  s.paper_material = true;
   std::istringstream lines(casting_guide(s));
   int n = 0;
   for (std::string line; std::getline(lines, line); ++n) {
@@ -124,6 +126,20 @@ TEST(CastingSheet, NoLineIsLongerThanAHundredCharacters)
   EXPECT_GT(n, 40);
   EXPECT_TRUE(has(casting_guide(s), "E = 86.4 kPa"));
   EXPECT_TRUE(has(casting_guide(s), "the robot moves otherwise than simulated"));
+  EXPECT_TRUE(has(casting_guide(s), "([material]: the paper's figures;"));
+}
+
+TEST(CastingSheet, AModulusTheDesignSetsIsNotCalledThePapers)
+{
+  CastingSheet s = sheet(); // a modulus measured on the cast silicone, set without a preset
+  s.preset.clear();
+  s.silicone = *find_silicone_preset(kDefaultSilicone);
+  s.youngs_modulus = 166.2e3;
+  const std::string guide = std::regex_replace(casting_guide(s), std::regex("\n  "), " ");
+  EXPECT_TRUE(has(guide, "The simulation took E = 166.2 kPa")) << guide;
+  EXPECT_TRUE(has(guide, "([material] as the design sets them;")) << guide;
+  EXPECT_FALSE(has(guide, "the paper's figures")) << guide;
+  EXPECT_FALSE(has(guide, "moves otherwise than simulated")) << guide;
 }
 
 } // namespace

@@ -150,7 +150,7 @@ TEST(BehaviourSummary, PosesToCompareLeaveOutWhatStaysPut)
 }
 
 /// The command README.txt gives to predict the cast robot again with the values measured.
-const std::string kAsBuilt = "fibermold simulate d.toml --as-built --target t";
+const std::string kAsBuilt = "fibermold simulate d.toml --as-built --target t --build-dir out";
 
 TEST(BehaviourSummary, WhatToMeasureIsTheTurnAskedElseTheLargestTurnElseTheLargestMove)
 {
@@ -168,8 +168,8 @@ TEST(BehaviourSummary, WhatToMeasureIsTheTurnAskedElseTheLargestTurnElseTheLarge
                              "7.0 mm and 8.0 mm with every pressure 10 % lower and higher"})
     EXPECT_THAT(flat, testing::HasSubstr(figure)) << moved;
   EXPECT_THAT(flat, testing::HasSubstr("Outside 5.0–9.0 mm, check first the pressure at the muscle"));
-  EXPECT_THAT(flat, testing::HasSubstr("To predict this robot with it, run (it keeps the routes and pressures these "
-                                       "molds were made for):"));
+  EXPECT_THAT(flat, testing::HasSubstr("To predict this robot with what you measured, run from the design's folder "
+                                       "(it keeps the routes and pressures these molds were made for):"));
   EXPECT_THAT(moved, testing::EndsWith("made for):\n      " + kAsBuilt + "\n")); // a line to copy, whole
   Json placed = pose("tip", 9, 1);
   placed["rest_mm"] = {100, -0.0, 0};

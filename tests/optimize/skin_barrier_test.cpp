@@ -117,6 +117,21 @@ TEST(SkinBarrier, ItsFeasibilityTestIsAFreshBarriersExactOneWhereverTheRouteHasB
   }
   EXPECT_GT(refused, 5);
   EXPECT_GT(cleared, 5);
+  // Then by steps of 0.2 mm and without value(), samples 1 mm apart: the distances closest_approach
+  // measured itself decide, and the bound's slack between samples (half their spacing) is small.
+  const SkinBarrier dense(skin, 2.5 * mm, 1.5 * mm, start, 60);
+  refused = cleared = 0;
+  for (int step = 0; step <= 80; ++step) {
+    const double rise = 8.0 * (1 - std::abs(step - 40) / 40.0) * mm;
+    const HermiteSpline route({{0, 0, -4 * mm}, {30 * mm, 0.3 * mm, -4 * mm + rise}, {60 * mm, 0, -4 * mm}});
+    Eigen::Vector3d where, fresh_where;
+    const double exact = SkinBarrier(skin, 2.5 * mm, 1.5 * mm, start, 60).closest_approach(route, fresh_where);
+    const double d = dense.closest_approach(route, where, true);
+    EXPECT_EQ(d <= 2.5 * mm, exact <= 2.5 * mm) << "step " << step << ": exact " << exact / mm << " mm";
+    (d <= 2.5 * mm ? refused : cleared) += 1;
+  }
+  EXPECT_GT(refused, 5);
+  EXPECT_GT(cleared, 5);
 }
 
 } // namespace
