@@ -174,7 +174,13 @@ SimulateResult simulate(const Design& d, const Runner& runner, const fs::path& b
   const Target* target = nullptr;
   for (const Target& t : d.targets)
     if (t.name == request.target) target = &t;
-  if (!request.target.empty() && !target) bad(d, "--target", fmt::format("no [[target]] named \"{}\"", request.target));
+  if (!request.target.empty() && !target) {
+    std::vector<std::string> names;
+    for (const Target& t : d.targets) names.push_back(t.name);
+    bad(d, "--target",
+        fmt::format("no [[target]] named \"{}\" (the design has {})", request.target,
+                    names.empty() ? std::string("none") : fmt::format("{}", fmt::join(names, ", "))));
+  }
   if (request.as_built && !target && request.pressures.empty())
     bad(d, "--as-built", "give --target NAME (the pressures the molds' routing has for it) or --pressure FIBER=kPa");
   if (target && target->kind == TargetKind::surface && !request.as_built)

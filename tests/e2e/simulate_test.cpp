@@ -235,6 +235,9 @@ TEST_F(SimulateE2E, AsBuiltSimulatesTheRoutesAndPressuresTheMoldsWereMadeFor)
   r_ = simulate("--as-built");
   EXPECT_EQ(r_.exit_code, 2);
   EXPECT_THAT(r_.err, HasSubstr("--as-built: give --target NAME"));
+  r_ = simulate("--as-built --target plul"); // a typo: the targets there are
+  EXPECT_EQ(r_.exit_code, 2);
+  EXPECT_THAT(r_.err, HasSubstr("--target: no [[target]] named \"plul\" (the design has pull)"));
   // Another body's design on this build folder is refused before anything is meshed there.
   fibers("m1", "pull");
   const std::string mesh_before = test::read_text(dir_ / "build" / "mesh" / "body.tetmesh");
