@@ -23,9 +23,6 @@ constexpr double kStaysPut_mm = 0.5, kStaysPut_deg = 5.0;
 
 std::string fixed(double value, int digits) { return fmt::format("{:.{}f}", value, digits); }
 
-/// The inputs collide varies to show what a pose hinges on, as its report names them (target_poses.hpp).
-constexpr std::array<const char*, 4> kVariations{"stiffer", "softer", "less_pressure", "more_pressure"};
-
 /// Whether a pose of collide's report says where it went: a translation [x, y, z] and a rotation.
 bool placed(const Json& p)
 {
@@ -61,7 +58,7 @@ Measure measure_of(const Json& poses)
   return turn.pose ? turn : move;
 }
 
-/// What m's figure is under each of kVariations, and by how much (%) they vary the inputs; none when
+/// What m's figure is under each of kPoseVariations, and by how much (%) they vary the inputs; none when
 /// its pose's report has no sensitivity.
 std::optional<std::pair<std::array<double, 4>, double>> variations(const Measure& m)
 {
@@ -71,9 +68,9 @@ std::optional<std::pair<std::array<double, 4>, double>> variations(const Measure
     return std::nullopt;
   const Json& v = p["sensitivity"][m.band];
   std::array<double, 4> out{};
-  for (std::size_t k = 0; k < kVariations.size(); ++k) {
-    if (!v.contains(kVariations[k]) || !v[kVariations[k]].is_number()) return std::nullopt;
-    out[k] = v[kVariations[k]].get<double>();
+  for (std::size_t k = 0; k < kPoseVariations.size(); ++k) {
+    if (!v.contains(kPoseVariations[k]) || !v[kPoseVariations[k]].is_number()) return std::nullopt;
+    out[k] = v[kPoseVariations[k]].get<double>();
   }
   return std::pair{out, p["sensitivity"]["change_percent"].get<double>()};
 }
@@ -110,7 +107,7 @@ std::vector<ReportTable> behaviour_tables(const Json& collide_report)
       std::vector<std::string> row{name, fmt::format("{}: {}", (*m.pose)["place"].get<std::string>(), m.what),
                                    fmt::format("{:.1f}{}", m.value, m.unit)};
       const auto varied = variations(m);
-      for (std::size_t k = 0; k < kVariations.size(); ++k)
+      for (std::size_t k = 0; k < kPoseVariations.size(); ++k)
         row.push_back(varied ? fmt::format("{:.1f}{}", varied->first[k], m.unit) : "–");
       if (varied)
         check.title = fmt::format("Checking the cast robot: the figure to measure, and with the silicone's stiffness "

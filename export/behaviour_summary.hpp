@@ -3,6 +3,7 @@
 // collide/report.json: each target's error before and after, the collisions and the moves that
 // resolved them, each fiber's tightest bend, and what to compare on the cast robot.
 
+#include <array>
 #include <string>
 #include <vector>
 
@@ -11,6 +12,14 @@
 #include "export/report_html.hpp"
 
 namespace fibermold {
+
+/// How far collide varies the least certain inputs to show how much a pose hinges on them: the cast
+/// silicone's Young's modulus (sources disagree by 2–3×, docs/design-file.md) and the muscles' pressure
+/// (the gauge's, and the muscle's own contraction at it).
+inline constexpr double kSensitivityChange = 0.1;
+/// The variations as collide's report names them (stages/target_poses.hpp's pose_report), in order: the
+/// silicone stiffer and softer by kSensitivityChange, every pressure lower and higher by it.
+inline constexpr std::array<const char*, 4> kPoseVariations{"stiffer", "softer", "less_pressure", "more_pressure"};
 
 /// report.html's tables: the targets' errors, the figure to measure on the cast robot per target (as
 /// what_to_measure() chooses it) with its sensitivity, the collisions, the control points' moves and

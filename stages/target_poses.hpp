@@ -11,6 +11,7 @@
 #include <nlohmann/json.hpp>
 
 #include "design/design.hpp"
+#include "export/behaviour_summary.hpp" // kSensitivityChange, kPoseVariations
 #include "mesh/tet_mesh.hpp"
 #include "sim/rigid_motion.hpp"
 #include "sim/simulation.hpp"
@@ -52,14 +53,6 @@ std::vector<ReachedPose> reached_poses(const Design& d, const Target& t, const S
 /// A reached pose for a report: translation in mm, rotation in degrees and its axis; for a pose
 /// region also the angle asked and the angle reached about the asked axis.
 nlohmann::ordered_json pose_report(const ReachedPose& p);
-
-/// How far the least certain inputs are varied to show how much a pose hinges on them: the cast
-/// silicone's Young's modulus (sources disagree by 2–3×, docs/design-file.md) and the muscles' pressure
-/// (the gauge's, and the muscle's own contraction at it).
-inline constexpr double kSensitivityChange = 0.1;
-/// The variations, in pose_report's order: the silicone stiffer and softer by kSensitivityChange, every
-/// pressure lower and higher by it.
-inline constexpr std::array<const char*, 4> kPoseVariations{"stiffer", "softer", "less_pressure", "more_pressure"};
 
 /// pose_report(p) and, under "sensitivity", where p went under each of kPoseVariations (`varied`, in
 /// that order): its rotation (deg), its displacement's length (mm) and, for a pose region, its
