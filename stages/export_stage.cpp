@@ -1,7 +1,6 @@
 #include "stages/export_stage.hpp"
 
 #include <algorithm>
-#include <cctype>
 #include <optional>
 #include <sstream>
 
@@ -12,6 +11,7 @@
 
 #include "core/atomic_file.hpp"
 #include "core/json_file.hpp"
+#include "core/shell_words.hpp"
 #include "core/units.hpp"
 #include "core/wrapped_text.hpp"
 #include "export/behaviour_summary.hpp"
@@ -199,17 +199,9 @@ std::string as_built_command(const Design& d, const fs::path& build_dir, const s
   const fs::path build = fs::weakly_canonical(build_dir), folder = fs::weakly_canonical(d.folder);
   const fs::path relative = build.lexically_relative(folder);
   const bool inside = !relative.empty() && *relative.begin() != "..";
-  const auto quoted = [](const std::string& word) { // for a POSIX shell, where it needs it
-    if (!word.empty() && std::all_of(word.begin(), word.end(), [](unsigned char c) {
-          return std::isalnum(c) || std::string_view("_./-+:=,@").find(static_cast<char>(c)) != std::string_view::npos;
-        }))
-      return word;
-    std::string out = "'";
-    for (char c : word) out += c == '\'' ? std::string("'\\''") : std::string(1, c);
-    return out + "'";
-  };
-  return fmt::format("fibermold simulate {} --as-built --target {} --build-dir {}", quoted(d.file.filename().string()),
-                     quoted(target), quoted((inside ? relative : build).string()));
+  return fmt::format("fibermold simulate {} --as-built --target {} --build-dir {}",
+                     shell_word(d.file.filename().string()), shell_word(target),
+                     shell_word((inside ? relative : build).string()));
 }
 
 /// Per target, the body as simulated under the final routing (collide/deformed-<target>.json), as a

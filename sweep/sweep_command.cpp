@@ -23,6 +23,7 @@
 #include "core/input_error.hpp"
 #include "core/json_file.hpp"
 #include "core/progress.hpp"
+#include "core/shell_words.hpp"
 #include "design/design_file.hpp"
 #include "make/build_lock.hpp"
 #include "make/content_hash.hpp"
@@ -42,19 +43,12 @@ namespace {
 
 fs::path this_program() { return fs::read_symlink("/proc/self/exe"); }
 
-std::string quoted(const std::string& s)
-{
-  std::string out = "'";
-  for (char c : s) out += c == '\'' ? std::string("'\\''") : std::string(1, c);
-  return out + "'";
-}
-
 /// A command's standard output and exit status; its standard error goes to `errors` when given
 /// (else to ours).
 std::pair<int, std::string> capture(const std::string& command, const fs::path& errors = {})
 {
   std::string out;
-  FILE* pipe = popen((errors.empty() ? command : command + " 2>" + quoted(errors.string())).c_str(), "r");
+  FILE* pipe = popen((errors.empty() ? command : command + " 2>" + shell_quoted(errors.string())).c_str(), "r");
   if (!pipe) return {-1, out};
   char buffer[4096];
   while (fgets(buffer, sizeof buffer, pipe)) out += buffer;
@@ -236,14 +230,14 @@ std::map<std::string, std::string> submit_slurm(const SweepPlan& plan,
     if (!o.time.empty()) script += "#SBATCH --time=" + o.time + "\n";
     if (o.cpus_per_task > 0) script += fmt::format("#SBATCH --cpus-per-task={}\n", o.cpus_per_task);
     script += fmt::format("set -- {}\nshift \"$SLURM_ARRAY_TASK_ID\"\n", fmt::join(it->second, " "));
-    script += fmt::format("exec {} sweep-task {} {} \"$1\"\n", quoted(this_program().string()),
-                          quoted(fs::absolute(build_dir).string()), stage);
+    script += fmt::format("exec {} sweep-task {} {} \"$1\"\n", shell_quoted(this_program().string()),
+                          shell_quoted(fs::absolute(build_dir).string()), stage);
     const fs::path file = dir / fmt::format("{}-{}.sh", stage, hash_bytes(script).substr(0, 8));
     write_file_atomic(file, script);
     std::string command = "sbatch --parsable";
     if (!previous.empty()) command += " --dependency=afterany:" + previous;
-    for (const std::string& flag : o.extra) command.append(" ").append(quoted(flag));
-    command.append(" ").append(quoted(file.string()));
+    for (const std::string& flag : o.extra) command.append(" ").append(shell_quoted(flag));
+    command.append(" ").append(shell_quoted(file.string()));
     const auto [code, out] = capture(command, dir / "sbatch.err");
     if (code != 0 || out.empty())
       throw std::runtime_error(
