@@ -19,6 +19,7 @@ public:
   double value(const Eigen::VectorXd& x) const override { return -f_.dot(x); }
   void add_gradient(const Eigen::VectorXd&, Eigen::VectorXd& g) const override { g -= f_; }
   void add_hessian(const Eigen::VectorXd&, SparseHessian&, bool) const override {}
+  void add_hessian_product(const Eigen::VectorXd&, const Eigen::VectorXd&, Eigen::VectorXd&) const override {}
   void stencils(std::vector<std::vector<int>>&) const override {}
   const Eigen::VectorXd& forces() const { return f_; }
 

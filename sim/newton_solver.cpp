@@ -131,19 +131,18 @@ bool NewtonSolver::conjugate_gradient_solve(const Eigen::VectorXd& x, const Eige
                                             Eigen::VectorXd& lambda) const
 {
   // Preconditioned conjugate gradients (Nocedal & Wright, Algorithm 5.3) on H(x) λ = b, with the
-  // factorization K held as the preconditioner and H(x)v from central differences of ∇E over a
-  // displacement of 1e-6 of the body's extent. K is of the Hessian a few steps before x (the
+  // factorization K held as the preconditioner and H(x)v from the energies' products (the elastic
+  // energy's in closed form, the others' from central differences of their gradients: energy.hpp).
+  // K is of the Hessian a few steps before x (the
   // last solve's finishing factorization), or at x with lumped pairs: close to H(x), so a few
   // products do (on the test's bar K⁻¹b is 3e-7 from H(x)⁻¹b, and one product brings it to 8e-10).
   // H(x) must be positive definite (a stable equilibrium).
   constexpr int kMaxProducts = 50;
   constexpr double kResidual = 1e-8; // of |b|
-  const auto nodes = x.reshaped(3, x.size() / 3);
-  const double extent = (nodes.rowwise().maxCoeff() - nodes.rowwise().minCoeff()).maxCoeff();
-  const auto product = [&](const Eigen::VectorXd& v) -> Eigen::VectorXd {
-    const double h = 1e-6 * extent / v.cwiseAbs().maxCoeff();
-    if (!(std::isfinite(h) && h > 0)) return Eigen::VectorXd::Constant(v.size(), NAN);
-    return (gradient(x + h * v) - gradient(x - h * v)) / (2 * h);
+  const auto product = [&](const Eigen::VectorXd& v) {
+    Eigen::VectorXd Hv = Eigen::VectorXd::Zero(v.size());
+    for (const Energy* e : energies_) e->add_hessian_product(x, v, Hv);
+    return Hv;
   };
   if (b.isZero(0)) {
     lambda = Eigen::VectorXd::Zero(b.size());

@@ -42,6 +42,15 @@ void SoftDirichlet::add_hessian(const Eigen::VectorXd&, SparseHessian& H, bool) 
         H.add_block(s.nodes[a], s.nodes[b], k_ * s.N[a] * s.N[b] * Eigen::Matrix3d::Identity());
 }
 
+void SoftDirichlet::add_hessian_product(const Eigen::VectorXd&, const Eigen::VectorXd& v, Eigen::VectorXd& out) const
+{
+  // Σ_j k N_i N_j v_j = k N_i v(X_i): the gradient's formula with v for x and no target.
+  for (const ShapeEval& s : at_) {
+    const Eigen::Vector3d r = k_ * s.position(v);
+    for (Eigen::Index k = 0; k < s.size(); ++k) out.segment<3>(3 * s.nodes[k]) += s.N[k] * r;
+  }
+}
+
 void SoftDirichlet::stencils(std::vector<std::vector<int>>& out) const
 {
   for (const ShapeEval& s : at_) out.push_back(s.nodes);

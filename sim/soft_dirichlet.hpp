@@ -19,6 +19,7 @@ public:
   double value(const Eigen::VectorXd& x) const override;
   void add_gradient(const Eigen::VectorXd& x, Eigen::VectorXd& g) const override;
   void add_hessian(const Eigen::VectorXd& x, SparseHessian& H, bool project) const override;
+  void add_hessian_product(const Eigen::VectorXd& x, const Eigen::VectorXd& v, Eigen::VectorXd& out) const override;
   void stencils(std::vector<std::vector<int>>& out) const override;
 
   /// Holds points first, first + 1, … at `targets` instead (the Hessian, k N_i N_j I, is unchanged).
