@@ -25,6 +25,11 @@ constexpr double kFarBelow = 1e-2;
 /// 6.4e-8 N against 1.8e-8 N for 100 iterations under OpenBLAS's Sandybridge kernels, and converged
 /// in 4 under the others (session 17).
 constexpr double kRoundOffStep = 1e-6, kRoundOffAccept = 1e2;
+/// Products at most in the conjugate gradients of an adjoint solve, and of an exact Newton step
+/// (where a failure costs the products, about two assemblies' worth, once in a solve: the step
+/// falls back to the factorization's). Most take 5; a strong muscle on a coarse stencil (the test's
+/// bar of 4 segments) 26–30.
+constexpr int kAdjointProducts = 50, kNewtonProducts = 30;
 /// Steps on one factorization at most.
 constexpr int kLongestReuse = 50;
 /// A solve takes at most max_iterations steps on fresh factorizations and this many times
@@ -97,14 +102,15 @@ double NewtonSolver::value_and_gradient(const Eigen::VectorXd& x, Eigen::VectorX
 
 bool NewtonSolver::solve_with_hessian(const Eigen::VectorXd& x, const Eigen::VectorXd& b, Eigen::VectorXd& lambda)
 {
-  if (adjoint_ready_ && x.size() == adjoint_x_.size() && x == adjoint_x_ && conjugate_gradient_solve(x, b, lambda))
+  if (adjoint_ready_ && x.size() == adjoint_x_.size() && x == adjoint_x_ &&
+      conjugate_gradient_solve(x, b, lambda, kAdjointProducts))
     return true;
   adjoint_ready_ = false;
   if (keep_pattern_ && hessian(x, true).lumped() > 0) {
     // The projected Hessian with lumped pairs (semi-definite as they are) preconditions conjugate
     // gradients on the exact one; where that does not converge, the pattern grows to hold the
     // pairs (a symbolic analysis).
-    if (cholmod_.factorize(hessian_.matrix(), 0) && conjugate_gradient_solve(x, b, lambda)) {
+    if (cholmod_.factorize(hessian_.matrix(), 0) && conjugate_gradient_solve(x, b, lambda, kAdjointProducts)) {
       kind_ = Factorization::projected; // of the Hessian at x all the same: a solve from x may begin on it
       return true;
     }
@@ -127,8 +133,8 @@ bool NewtonSolver::solve_with_factorization(const Eigen::MatrixXd& B, Eigen::Mat
   return X.allFinite();
 }
 
-bool NewtonSolver::conjugate_gradient_solve(const Eigen::VectorXd& x, const Eigen::VectorXd& b,
-                                            Eigen::VectorXd& lambda) const
+bool NewtonSolver::conjugate_gradient_solve(const Eigen::VectorXd& x, const Eigen::VectorXd& b, Eigen::VectorXd& lambda,
+                                            int max_products) const
 {
   // Preconditioned conjugate gradients (Nocedal & Wright, Algorithm 5.3) on H(x) λ = b, with the
   // factorization K held as the preconditioner and H(x)v from the energies' products (the elastic
@@ -137,7 +143,6 @@ bool NewtonSolver::conjugate_gradient_solve(const Eigen::VectorXd& x, const Eige
   // last solve's finishing factorization), or at x with lumped pairs: close to H(x), so a few
   // products do (on the test's bar K⁻¹b is 3e-7 from H(x)⁻¹b, and one product brings it to 8e-10).
   // H(x) must be positive definite (a stable equilibrium).
-  constexpr int kMaxProducts = 50;
   constexpr double kResidual = 1e-8; // of |b|
   const auto product = [&](const Eigen::VectorXd& v) {
     Eigen::VectorXd Hv = Eigen::VectorXd::Zero(v.size());
@@ -151,7 +156,7 @@ bool NewtonSolver::conjugate_gradient_solve(const Eigen::VectorXd& x, const Eige
   lambda = cholmod_.solve(b);
   Eigen::VectorXd r = b - product(lambda), z = cholmod_.solve(r), p = z;
   double rz = r.dot(z);
-  for (int k = 0; k < kMaxProducts; ++k) {
+  for (int k = 0; k < max_products; ++k) {
     if (!(r.norm() > kResidual * b.norm())) return lambda.allFinite() && r.allFinite();
     const Eigen::VectorXd q = product(p);
     const double pq = p.dot(q);
@@ -250,14 +255,15 @@ struct NewtonSolver::SolveState {
   double E = 0;      // E(x)
   double goal = 0;   // the tolerance on |∇E|, N
   double last_alpha = 0, shift = 0;
-  bool fresh = false;      // the factorization is of the Hessian at x
-  bool stale = true;       // the next step needs a new factorization
-  bool exact_first = true; // false: the next factorization is the projected Hessian
-  bool near = false;       // the factorization is of the Hessian at a state within kNearTolerance
-  bool finishing = false;  // below the tolerance, taking the step that finish_on_fresh_step asks for
-  int full_steps = 0;      // steps on a fresh factorization: what max_iterations bounds
-  int reused_run = 0;      // steps on the factorization held
-  LbfgsCorrection secant;  // the steps since the last factorization
+  bool fresh = false;         // the factorization is of the Hessian at x
+  bool stale = true;          // the next step needs a new factorization
+  bool exact_first = true;    // false: the next factorization is the projected Hessian
+  bool near = false;          // the factorization is of the Hessian at a state within kNearTolerance
+  bool finishing = false;     // below the tolerance, taking the step that finish_on_fresh_step asks for
+  bool krylov_failed = false; // an exact Newton step's conjugate gradients did not converge
+  int full_steps = 0;         // steps on a fresh factorization: what max_iterations bounds
+  int reused_run = 0;         // steps on the factorization held
+  LbfgsCorrection secant;     // the steps since the last factorization
 };
 
 /// A line search's outcome: the state it accepted, or found = false.
@@ -298,7 +304,7 @@ NewtonSummary NewtonSolver::solve(Eigen::VectorXd& x, const NewtonOptions& optio
                                         st.fresh ? "" : ", Hessian reused"));
     auto t = Clock::now();
     if (st.fresh) st.secant.clear();
-    const Eigen::VectorXd dx = -st.secant.apply(st.g, [&](const Eigen::VectorXd& q) { return cholmod_.solve(q); });
+    const Eigen::VectorXd dx = step(st);
     st.s.seconds_solve += since(t);
     Trial trial = line_search(st, dx);
     if (!trial.found) {
@@ -310,6 +316,25 @@ NewtonSummary NewtonSolver::solve(Eigen::VectorXd& x, const NewtonOptions& optio
   }
   st.s.seconds_total = since(start);
   return st.s;
+}
+
+Eigen::VectorXd NewtonSolver::step(SolveState& st) const
+{
+  // Near the tolerance, on a fresh factorization of a Hessian with lumped pairs (keep_pattern),
+  // the exact Newton step: conjugate gradients on the exact Hessian's products preconditioned by
+  // that factorization, as the adjoint solve does. Steps on the lumped Hessian alone contract
+  // |∇E| only linearly there, and a solve that must finish far below the tolerance crawled: the
+  // tentacle tip's from rest took its last 29 of 100 steps, and 15 of its 26 assemblies, from
+  // 1e3× the tolerance to it. Elsewhere (far from equilibrium, where the Hessian may be
+  // indefinite and a line search cuts the step anyway), and once conjugate gradients have failed
+  // in this solve (lumped pairs too heavy for the factorization to precondition), the
+  // quasi-Newton step on the factorization held.
+  Eigen::VectorXd dx;
+  if (st.fresh && st.near && !st.krylov_failed && kind_ == Factorization::exact && hessian_.lumped() > 0) {
+    if (conjugate_gradient_solve(st.x, -st.g, dx, kNewtonProducts)) return dx;
+    st.krylov_failed = true;
+  }
+  return -st.secant.apply(st.g, [&](const Eigen::VectorXd& q) { return cholmod_.solve(q); });
 }
 
 void NewtonSolver::converge(SolveState& st, bool factorization_serves_adjoint)

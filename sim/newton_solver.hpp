@@ -109,13 +109,16 @@ private:
   bool factorize_shifted(NewtonSummary& s, double& shift);
   /// The adjoint solve by conjugate gradients on the exact Hessian's products, preconditioned by the
   /// factorization held (the last solve's, or of the Hessian at x with lumped pairs); false when it
-  /// does not converge.
-  bool conjugate_gradient_solve(const Eigen::VectorXd& x, const Eigen::VectorXd& b, Eigen::VectorXd& lambda) const;
+  /// does not converge in `max_products` products.
+  bool conjugate_gradient_solve(const Eigen::VectorXd& x, const Eigen::VectorXd& b, Eigen::VectorXd& lambda,
+                                int max_products) const;
 
   // The steps of solve(), a state machine over SolveState (newton_solver.cpp): each says whether
   // the solve goes on.
   struct SolveState;
   struct Trial;
+  /// The step from st.x: exact Newton near the tolerance where pairs are lumped, else quasi-Newton.
+  Eigen::VectorXd step(SolveState& st) const;
   void converge(SolveState& st, bool factorization_serves_adjoint);
   bool stops_before_step(SolveState& st);
   bool refactorizes_if_stale(SolveState& st);
