@@ -24,8 +24,8 @@ public:
   virtual void add_hessian(const Eigen::VectorXd& x, SparseHessian& H, bool project) const = 0;
   /// out += ∂²E/∂x² v, the exact Hessian's product (never projected): what conjugate gradients on
   /// the adjoint ask, at one x for many v. By default from central differences of add_gradient
-  /// over a displacement of 1e-6 of the body's extent along v (energy.cpp); the elastic energy
-  /// gives it in closed form.
+  /// over a displacement of 1e-6 of the body's extent along v (energy.cpp); the elastic energy,
+  /// the held nodes and the loads give it in closed form.
   virtual void add_hessian_product(const Eigen::VectorXd& x, const Eigen::VectorXd& v, Eigen::VectorXd& out) const;
   /// Node sets coupled by this energy (the Hessian's sparsity pattern).
   virtual void stencils(std::vector<std::vector<int>>& out) const = 0;

@@ -27,9 +27,9 @@ constexpr double kFarBelow = 1e-2;
 constexpr double kRoundOffStep = 1e-6, kRoundOffAccept = 1e2;
 /// Products at most in the conjugate gradients of an adjoint solve, and of an exact Newton step
 /// (where a failure costs the products, about two assemblies' worth, once in a solve: the step
-/// falls back to the factorization's). Most take 5; a strong muscle on a coarse stencil (the test's
-/// bar of 4 segments) 26–30.
-constexpr int kAdjointProducts = 50, kNewtonProducts = 30;
+/// falls back to the factorization's). Most take 5–6; a strong muscle on a coarse stencil (the
+/// test's bar of 4 segments) 23.
+constexpr int kAdjointProducts = 50, kNewtonProducts = 40;
 /// Steps on one factorization at most.
 constexpr int kLongestReuse = 50;
 /// A solve takes at most max_iterations steps on fresh factorizations and this many times
@@ -56,6 +56,7 @@ NewtonTotals& NewtonTotals::operator+=(const NewtonSummary& s)
   iterations += s.iterations;
   assemblies += s.assemblies;
   factorizations += s.factorizations;
+  products += s.products;
   seconds_assembly += s.seconds_assembly;
   seconds_factorization += s.seconds_factorization;
   return *this;
@@ -102,15 +103,17 @@ double NewtonSolver::value_and_gradient(const Eigen::VectorXd& x, Eigen::VectorX
 
 bool NewtonSolver::solve_with_hessian(const Eigen::VectorXd& x, const Eigen::VectorXd& b, Eigen::VectorXd& lambda)
 {
+  int products = 0;
   if (adjoint_ready_ && x.size() == adjoint_x_.size() && x == adjoint_x_ &&
-      conjugate_gradient_solve(x, b, lambda, kAdjointProducts))
+      conjugate_gradient_solve(x, b, lambda, kAdjointProducts, products))
     return true;
   adjoint_ready_ = false;
   if (keep_pattern_ && hessian(x, true).lumped() > 0) {
     // The projected Hessian with lumped pairs (semi-definite as they are) preconditions conjugate
     // gradients on the exact one; where that does not converge, the pattern grows to hold the
     // pairs (a symbolic analysis).
-    if (cholmod_.factorize(hessian_.matrix(), 0) && conjugate_gradient_solve(x, b, lambda, kAdjointProducts)) {
+    if (cholmod_.factorize(hessian_.matrix(), 0) &&
+        conjugate_gradient_solve(x, b, lambda, kAdjointProducts, products)) {
       kind_ = Factorization::projected; // of the Hessian at x all the same: a solve from x may begin on it
       return true;
     }
@@ -134,7 +137,7 @@ bool NewtonSolver::solve_with_factorization(const Eigen::MatrixXd& B, Eigen::Mat
 }
 
 bool NewtonSolver::conjugate_gradient_solve(const Eigen::VectorXd& x, const Eigen::VectorXd& b, Eigen::VectorXd& lambda,
-                                            int max_products) const
+                                            int max_products, int& products) const
 {
   // Preconditioned conjugate gradients (Nocedal & Wright, Algorithm 5.3) on H(x) λ = b, with the
   // factorization K held as the preconditioner and H(x)v from the energies' products (the elastic
@@ -147,8 +150,10 @@ bool NewtonSolver::conjugate_gradient_solve(const Eigen::VectorXd& x, const Eige
   const auto product = [&](const Eigen::VectorXd& v) {
     Eigen::VectorXd Hv = Eigen::VectorXd::Zero(v.size());
     for (const Energy* e : energies_) e->add_hessian_product(x, v, Hv);
+    ++products;
     return Hv;
   };
+  products = 0;
   if (b.isZero(0)) {
     lambda = Eigen::VectorXd::Zero(b.size());
     return true;
@@ -156,8 +161,8 @@ bool NewtonSolver::conjugate_gradient_solve(const Eigen::VectorXd& x, const Eige
   lambda = cholmod_.solve(b);
   Eigen::VectorXd r = b - product(lambda), z = cholmod_.solve(r), p = z;
   double rz = r.dot(z);
-  for (int k = 0; k < max_products; ++k) {
-    if (!(r.norm() > kResidual * b.norm())) return lambda.allFinite() && r.allFinite();
+  while (r.norm() > kResidual * b.norm()) { // false for NaN too, which r.allFinite() then refuses
+    if (products >= max_products) return false;
     const Eigen::VectorXd q = product(p);
     const double pq = p.dot(q);
     if (!(pq > 0)) return false; // not definite
@@ -169,7 +174,7 @@ bool NewtonSolver::conjugate_gradient_solve(const Eigen::VectorXd& x, const Eige
     p = z + (next / rz) * p;
     rz = next;
   }
-  return false;
+  return lambda.allFinite() && r.allFinite();
 }
 
 NewtonSolver::Factorization NewtonSolver::factorize_at(const Eigen::VectorXd& x, NewtonSummary& s, double& shift,
@@ -260,7 +265,8 @@ struct NewtonSolver::SolveState {
   bool exact_first = true;    // false: the next factorization is the projected Hessian
   bool near = false;          // the factorization is of the Hessian at a state within kNearTolerance
   bool finishing = false;     // below the tolerance, taking the step that finish_on_fresh_step asks for
-  bool krylov_failed = false; // an exact Newton step's conjugate gradients did not converge
+  bool krylov_failed = false; // an exact Newton step failed: its conjugate gradients, or its line search
+  bool exact_step = false;    // the step being tried is an exact Newton step
   int full_steps = 0;         // steps on a fresh factorization: what max_iterations bounds
   int reused_run = 0;         // steps on the factorization held
   LbfgsCorrection secant;     // the steps since the last factorization
@@ -320,18 +326,26 @@ NewtonSummary NewtonSolver::solve(Eigen::VectorXd& x, const NewtonOptions& optio
 
 Eigen::VectorXd NewtonSolver::step(SolveState& st) const
 {
-  // Near the tolerance, on a fresh factorization of a Hessian with lumped pairs (keep_pattern),
-  // the exact Newton step: conjugate gradients on the exact Hessian's products preconditioned by
-  // that factorization, as the adjoint solve does. Steps on the lumped Hessian alone contract
-  // |∇E| only linearly there, and a solve that must finish far below the tolerance crawled: the
-  // tentacle tip's from rest took its last 29 of 100 steps, and 15 of its 26 assemblies, from
-  // 1e3× the tolerance to it. Elsewhere (far from equilibrium, where the Hessian may be
-  // indefinite and a line search cuts the step anyway), and once conjugate gradients have failed
-  // in this solve (lumped pairs too heavy for the factorization to precondition), the
+  // Near the tolerance, on a fresh factorization of the exact Hessian with lumped pairs
+  // (keep_pattern), the exact Newton step: conjugate gradients on the exact Hessian's products
+  // preconditioned by that factorization, as the adjoint solve does. Steps on the lumped Hessian
+  // alone contract |∇E| only linearly there, and a solve that must finish far below the tolerance
+  // crawled: the tentacle tip's from rest took its last 29 of 100 steps, and 15 of its 26
+  // assemblies, from 1e3× the tolerance to it. Elsewhere (far from equilibrium, where the Hessian
+  // may be indefinite and a line search cuts the step anyway), and once conjugate gradients have
+  // failed in this solve (lumped pairs too heavy for the factorization to precondition, or a step
+  // that does not descend: the lumped Hessian can be definite where the exact one is not), the
   // quasi-Newton step on the factorization held.
-  Eigen::VectorXd dx;
+  st.exact_step = false;
   if (st.fresh && st.near && !st.krylov_failed && kind_ == Factorization::exact && hessian_.lumped() > 0) {
-    if (conjugate_gradient_solve(st.x, -st.g, dx, kNewtonProducts)) return dx;
+    Eigen::VectorXd dx;
+    int products = 0;
+    const bool solved = conjugate_gradient_solve(st.x, -st.g, dx, kNewtonProducts, products);
+    st.s.products += products;
+    if (solved && st.g.dot(dx) < 0) {
+      st.exact_step = true;
+      return dx;
+    }
     st.krylov_failed = true;
   }
   return -st.secant.apply(st.g, [&](const Eigen::VectorXd& q) { return cholmod_.solve(q); });
@@ -420,6 +434,10 @@ NewtonSolver::Trial NewtonSolver::line_search(SolveState& st, const Eigen::Vecto
 
 bool NewtonSolver::retries_after_failed_search(SolveState& st)
 {
+  if (st.exact_step) { // the factorization's own step next, on the same factorization
+    st.krylov_failed = true;
+    return true;
+  }
   if (!st.fresh || kind_ == Factorization::shifted) { // an old Hessian's direction: refactorize
     st.stale = true;                                  // and try again; a shifted one's: project
     st.exact_first = !st.fresh;

@@ -42,6 +42,7 @@ struct NewtonSummary {
   double energy = 0; ///< J
   double seconds_assembly = 0, seconds_factorization = 0, seconds_solve = 0, seconds_total = 0;
   int assemblies = 0, factorizations = 0;
+  int products = 0;    ///< Hessian products of its exact Newton steps' conjugate gradients
   std::string message; ///< why it stopped
 
   std::string brief() const;
@@ -49,7 +50,7 @@ struct NewtonSummary {
 
 /// What many solves did together (the optimizer's cost account).
 struct NewtonTotals {
-  int solves = 0, iterations = 0, assemblies = 0, factorizations = 0;
+  int solves = 0, iterations = 0, assemblies = 0, factorizations = 0, products = 0;
   double seconds_assembly = 0, seconds_factorization = 0;
 
   NewtonTotals& operator+=(const NewtonSummary& s);
@@ -109,9 +110,9 @@ private:
   bool factorize_shifted(NewtonSummary& s, double& shift);
   /// The adjoint solve by conjugate gradients on the exact Hessian's products, preconditioned by the
   /// factorization held (the last solve's, or of the Hessian at x with lumped pairs); false when it
-  /// does not converge in `max_products` products.
+  /// does not converge in `max_products` products (`products`: how many it took).
   bool conjugate_gradient_solve(const Eigen::VectorXd& x, const Eigen::VectorXd& b, Eigen::VectorXd& lambda,
-                                int max_products) const;
+                                int max_products, int& products) const;
 
   // The steps of solve(), a state machine over SolveState (newton_solver.cpp): each says whether
   // the solve goes on.

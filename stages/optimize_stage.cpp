@@ -187,6 +187,7 @@ nlohmann::ordered_json newton_json(RoutingProblem& problem)
   return {{"solves", n.solves},
           {"assemblies", n.assemblies},
           {"factorizations", n.factorizations},
+          {"hessian_products", n.products},
           {"symbolic_analyses", problem.simulation().symbolic_analyses()},
           {"seconds_assembly", n.seconds_assembly},
           {"seconds_factorization", n.seconds_factorization}};

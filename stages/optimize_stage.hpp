@@ -35,8 +35,10 @@ public:
   /// Levenberg-Marquardt's secant term, method hybrid (the default); 8: the start's skin tested where the skin
   /// barrier holds it; 9: Levenberg-Marquardt's ray model, [optimize] starts (report.json starts, history.csv start);
   /// 10: each span's tightest point the tightest of its peaks, Levenberg-Marquardt's choice of model over recent steps;
-  /// 11: Levenberg-Marquardt's model always B + S, S learning only what B leaves out of the simulation's part
-  int version() const override { return 11; }
+  /// 11: Levenberg-Marquardt's model always B + S, S learning only what B leaves out of the simulation's part;
+  /// 12: exact Newton steps near the tolerance where pairs are lumped, closed-form Hessian products (report.json
+  /// newton.hessian_products)
+  int version() const override { return 12; }
   void run(StageContext& ctx) const override;
 };
 

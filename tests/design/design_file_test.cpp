@@ -68,7 +68,7 @@ TEST_F(DesignFileTest, DemoParsesIntoSIUnits)
   ASSERT_EQ(d.targets[0].loads.size(), 1u);
   EXPECT_DOUBLE_EQ(d.targets[0].loads[0].torque->x(), 0.00452);
   EXPECT_DOUBLE_EQ((*d.targets[0].loads[0].region.box)[0].x(), 0.127);
-  EXPECT_EQ(d.optimize.max_iterations, 400);
+  EXPECT_EQ(d.optimize.max_iterations, 1000);
   EXPECT_EQ(d.optimize.route_only_iterations, 30);
   EXPECT_DOUBLE_EQ(d.mold.block.wall, 4e-3);
   EXPECT_DOUBLE_EQ(d.mold.voxel, 0.2e-3);

@@ -140,7 +140,7 @@ TEST(FuzzE2E, MutantsOfEveryExampleThatCheckPassesMakeDoesNotRefuse)
   const std::vector<Example> examples = {
       {"twisting-bar",
        "design.toml",
-       {{"max_iterations = 400", "max_iterations = 2"},
+       {{"max_iterations = 1000", "max_iterations = 2"},
         {"route_only_iterations = 30 ", "route_only_iterations = 1 "},
         {"voxel = 0.2 ", "voxel = 0.6 "}}},
       {"hand-routed-twist",
