@@ -3,6 +3,7 @@
 // gradient, Hessian, and a line-search hook that rejects invalid states.
 
 #include <cmath>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -11,6 +12,15 @@
 #include "sim/sparse_hessian.hpp"
 
 namespace fibermold {
+
+/// An energy's exact Hessian at one state as an operator, for the many products conjugate
+/// gradients take at one x: what the state alone decides is worked out once.
+class HessianProduct {
+public:
+  virtual ~HessianProduct() = default;
+  /// out += ∂²E/∂x²(x) v
+  virtual void add(const Eigen::VectorXd& v, Eigen::VectorXd& out) const = 0;
+};
 
 class Energy {
 public:
@@ -27,6 +37,9 @@ public:
   /// over a displacement of 1e-6 of the body's extent along v (energy.cpp); the elastic energy,
   /// the held nodes and the loads give it in closed form.
   virtual void add_hessian_product(const Eigen::VectorXd& x, const Eigen::VectorXd& v, Eigen::VectorXd& out) const;
+  /// The same products at one x (x is copied). By default each is add_hessian_product(x, v, out);
+  /// the elastic energy keeps each point's F⁻ᵀ and ln J.
+  virtual std::unique_ptr<HessianProduct> hessian_at(const Eigen::VectorXd& x) const;
   /// Node sets coupled by this energy (the Hessian's sparsity pattern).
   virtual void stencils(std::vector<std::vector<int>>& out) const = 0;
   /// False for a state the energy is not defined at (e.g. an inverted element).

@@ -174,33 +174,60 @@ double NeoHookean::value_and_gradient(const Eigen::VectorXd& x, Eigen::VectorXd&
 
 void NeoHookean::add_hessian_product(const Eigen::VectorXd& x, const Eigen::VectorXd& v, Eigen::VectorXd& out) const
 {
+  hessian_at(x)->add(v, out);
+}
+
+std::unique_ptr<HessianProduct> NeoHookean::hessian_at(const Eigen::VectorXd& x) const
+{
   // The gradient's pass with P's derivative along v: at each point δF = Σ_k v_{i_k} ∇N_kᵀ and
   //   δP = μ δF + λ (G : δF) G + (μ − λ ln J) G δFᵀ G,  G = F⁻ᵀ
-  // (δG = −G δFᵀ G, δ ln J = G : δF), scattered as V_q δP ∇N_i: one gather more than a gradient
-  // and no energy, against the two gradients of a central difference (and none of its round-off).
-  // The same fixed chunks and tree as the gradient: the same bits on any number of threads.
-  const Eigen::VectorXd total = tbb::parallel_deterministic_reduce(
-      tbb::blocked_range<Eigen::Index>(0, qp_.size(), chunk_size()), Eigen::VectorXd(),
-      [&](const tbb::blocked_range<Eigen::Index>& range, Eigen::VectorXd p) {
-        if (p.size() == 0) p = Eigen::VectorXd::Zero(out.size());
-        for (Eigen::Index q = range.begin(); q < range.end(); ++q) {
-          const int k = qp_.offset[q], count = qp_.offset[q + 1] - k;
-          const Eigen::Matrix3d F = gather_deformation_gradient(x.data(), &qp_.node[k], &qp_.dN[k], count);
-          const Eigen::Matrix3d dF = gather_deformation_gradient(v.data(), &qp_.node[k], &qp_.dN[k], count);
-          const Eigen::Matrix3d G = F.inverse().transpose();
-          const double c = lame_.mu - lame_.lambda * std::log(F.determinant());
-          const Eigen::Matrix3d dP =
-              lame_.mu * dF + lame_.lambda * G.cwiseProduct(dF).sum() * G + c * G * dF.transpose() * G;
-          scatter_point_forces(qp_.volume[q] * dP, &qp_.node[k], &qp_.dN[k], count, p.data());
-        }
-        return p;
-      },
-      [](Eigen::VectorXd a, const Eigen::VectorXd& b) {
-        if (a.size() == 0) return b;
-        if (b.size() != 0) a += b;
-        return a;
-      });
-  if (total.size() != 0) out += total;
+  // (δG = −G δFᵀ G, δ ln J = G : δF), scattered as V_q δP ∇N_i. G and μ − λ ln J depend on x
+  // alone and are kept per point, so a product is one gather and one scatter, against the two
+  // gradients of a central difference (and none of its round-off). The same fixed chunks and tree
+  // as the gradient: the same bits on any number of threads.
+  struct Point {
+    Eigen::Matrix3d G;
+    double c;
+  };
+  class AtState final : public HessianProduct {
+  public:
+    AtState(const NeoHookean& e, std::vector<Point> points) : e_(e), points_(std::move(points)) {}
+    void add(const Eigen::VectorXd& v, Eigen::VectorXd& out) const override
+    {
+      const QuadraturePoints& qp = e_.qp_;
+      const LameParameters& lame = e_.lame_;
+      const Eigen::VectorXd total = tbb::parallel_deterministic_reduce(
+          tbb::blocked_range<Eigen::Index>(0, qp.size(), e_.chunk_size()), Eigen::VectorXd(),
+          [&](const tbb::blocked_range<Eigen::Index>& range, Eigen::VectorXd p) {
+            if (p.size() == 0) p = Eigen::VectorXd::Zero(out.size());
+            for (Eigen::Index q = range.begin(); q < range.end(); ++q) {
+              const int k = qp.offset[q], count = qp.offset[q + 1] - k;
+              const Eigen::Matrix3d dF = gather_deformation_gradient(v.data(), &qp.node[k], &qp.dN[k], count);
+              const Eigen::Matrix3d& G = points_[q].G;
+              const Eigen::Matrix3d dP =
+                  lame.mu * dF + lame.lambda * G.cwiseProduct(dF).sum() * G + points_[q].c * G * dF.transpose() * G;
+              scatter_point_forces(qp.volume[q] * dP, &qp.node[k], &qp.dN[k], count, p.data());
+            }
+            return p;
+          },
+          [](Eigen::VectorXd a, const Eigen::VectorXd& b) {
+            if (a.size() == 0) return b;
+            if (b.size() != 0) a += b;
+            return a;
+          });
+      if (total.size() != 0) out += total;
+    }
+
+  private:
+    const NeoHookean& e_;
+    std::vector<Point> points_;
+  };
+  std::vector<Point> points(static_cast<std::size_t>(qp_.size()));
+  tbb::parallel_for(Eigen::Index{0}, qp_.size(), [&](Eigen::Index q) {
+    const Eigen::Matrix3d F = deformation_gradient(x, q);
+    points[q] = {F.inverse().transpose(), lame_.mu - lame_.lambda * std::log(F.determinant())};
+  });
+  return std::make_unique<AtState>(*this, std::move(points));
 }
 
 Eigen::Index NeoHookean::chunk_size() const { return std::max<Eigen::Index>(1024, qp_.size() / 16); }

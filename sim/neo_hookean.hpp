@@ -35,6 +35,7 @@ public:
   bool is_step_valid(const Eigen::VectorXd& x) const override;
   double value_and_gradient(const Eigen::VectorXd& x, Eigen::VectorXd& g) const override;
   void add_hessian_product(const Eigen::VectorXd& x, const Eigen::VectorXd& v, Eigen::VectorXd& out) const override;
+  std::unique_ptr<HessianProduct> hessian_at(const Eigen::VectorXd& x) const override;
 
   /// F at quadrature point q.
   Eigen::Matrix3d deformation_gradient(const Eigen::VectorXd& x, Eigen::Index q) const;

@@ -147,17 +147,19 @@ bool NewtonSolver::conjugate_gradient_solve(const Eigen::VectorXd& x, const Eige
   // products do (on the test's bar K⁻¹b is 3e-7 from H(x)⁻¹b, and one product brings it to 8e-10).
   // H(x) must be positive definite (a stable equilibrium).
   constexpr double kResidual = 1e-8; // of |b|
-  const auto product = [&](const Eigen::VectorXd& v) {
-    Eigen::VectorXd Hv = Eigen::VectorXd::Zero(v.size());
-    for (const Energy* e : energies_) e->add_hessian_product(x, v, Hv);
-    ++products;
-    return Hv;
-  };
   products = 0;
   if (b.isZero(0)) {
     lambda = Eigen::VectorXd::Zero(b.size());
     return true;
   }
+  std::vector<std::unique_ptr<HessianProduct>> at_x;
+  for (const Energy* e : energies_) at_x.push_back(e->hessian_at(x));
+  const auto product = [&](const Eigen::VectorXd& v) {
+    Eigen::VectorXd Hv = Eigen::VectorXd::Zero(v.size());
+    for (const auto& H : at_x) H->add(v, Hv);
+    ++products;
+    return Hv;
+  };
   lambda = cholmod_.solve(b);
   Eigen::VectorXd r = b - product(lambda), z = cholmod_.solve(r), p = z;
   double rz = r.dot(z);

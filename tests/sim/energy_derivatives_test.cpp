@@ -126,6 +126,14 @@ TEST_P(EnergyDerivatives, GradientAndHessianMatchFiniteDifferences)
       Hv.array() -= 1.0;
       const double rtol = named.name == "muscle" ? test::kFdTolerance : 1e-12;
       EXPECT_TRUE(test::matches_fd(Hd * d, Hv, rtol, 1e-15 * Hd.norm() + 1e-12)) << "Hessian product, trial " << trial;
+      // The operator at x that conjugate gradients build once: the same bits, product after product.
+      const auto at_x = energy->hessian_at(x);
+      for (int twice = 0; twice < 2; ++twice) {
+        Eigen::VectorXd again = Eigen::VectorXd::Constant(x.size(), 1.0);
+        at_x->add(d, again);
+        again.array() -= 1.0;
+        EXPECT_EQ(again, Hv) << "trial " << trial;
+      }
     }
     EXPECT_LE((Hd - Hd.transpose()).norm(), 1e-12 * std::max(1.0, Hd.norm()));
   }
