@@ -32,13 +32,12 @@ public:
   virtual void add_gradient(const Eigen::VectorXd& x, Eigen::VectorXd& g) const = 0;
   /// H += ∂²E/∂x²; with `project`, each local contribution is projected to positive semi-definite.
   virtual void add_hessian(const Eigen::VectorXd& x, SparseHessian& H, bool project) const = 0;
-  /// out += ∂²E/∂x² v, the exact Hessian's product (never projected): what conjugate gradients on
-  /// the adjoint ask, at one x for many v. By default from central differences of add_gradient
-  /// over a displacement of 1e-6 of the body's extent along v (energy.cpp); the elastic energy,
-  /// the held nodes and the loads give it in closed form.
-  virtual void add_hessian_product(const Eigen::VectorXd& x, const Eigen::VectorXd& v, Eigen::VectorXd& out) const;
+  /// out += ∂²E/∂x² v, the exact Hessian's product (never projected, no pair lumped): what
+  /// conjugate gradients on the adjoint ask, at one x for many v; in closed form. (Until session
+  /// 36 a muscle's was a central difference of add_gradient, 1e-6 relative.)
+  virtual void add_hessian_product(const Eigen::VectorXd& x, const Eigen::VectorXd& v, Eigen::VectorXd& out) const = 0;
   /// The same products at one x (x is copied). By default each is add_hessian_product(x, v, out);
-  /// the elastic energy keeps each point's F⁻ᵀ and ln J.
+  /// the elastic energy keeps each point's F⁻ᵀ and ln J, a muscle each chord's 3 × 3 block.
   virtual std::unique_ptr<HessianProduct> hessian_at(const Eigen::VectorXd& x) const;
   /// Node sets coupled by this energy (the Hessian's sparsity pattern).
   virtual void stencils(std::vector<std::vector<int>>& out) const = 0;

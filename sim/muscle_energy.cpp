@@ -70,24 +70,30 @@ void MuscleEnergy::add_gradient(const Eigen::VectorXd& x, Eigen::VectorXd& g) co
   }
 }
 
+Eigen::Matrix3d MuscleEnergy::chord_hessian(const Eigen::VectorXd& x, std::size_t j, bool project) const
+{
+  // M = A_act [Ψ_εε / L n nᵀ + Ψ_ε / l (I − n nᵀ)]: along the chord and across it.
+  const double area = model_.parameters().area();
+  const SegmentState s = state(x, j);
+  const MuscleDensity d = model_.density(pressure_, s.strain);
+  double along = area * d.d_eps_eps / s.rest_length, across = area * d.d_eps / s.length;
+  if (project) {
+    along = std::max(along, 0.0);
+    across = std::max(across, 0.0);
+  }
+  const Eigen::Matrix3d nn = s.direction * s.direction.transpose();
+  return along * nn + across * (Eigen::Matrix3d::Identity() - nn);
+}
+
 void MuscleEnergy::add_hessian(const Eigen::VectorXd& x, SparseHessian& H, bool project) const
 {
-  // ∂²E/∂x_i∂x_k = α_i α_k M,  M = A_act [Ψ_εε / L n nᵀ + Ψ_ε / l (I − n nᵀ)]
-  // α αᵀ is positive semi-definite, so projecting M (eigenvalues along n and across it) suffices.
+  // ∂²E/∂x_i∂x_k = α_i α_k M (chord_hessian). α αᵀ is positive semi-definite, so projecting M
+  // (eigenvalues along n and across it) suffices.
   // A pair of nodes the Hessian's pattern lacks (the pattern may be kept while the fiber moves:
   // newton_solver.hpp) is lumped onto their diagonals, which keeps the projected Hessian
   // positive semi-definite.
-  const double area = model_.parameters().area();
   for (std::size_t j = 0; j < chords_.size(); ++j) {
-    const SegmentState s = state(x, j);
-    const MuscleDensity d = model_.density(pressure_, s.strain);
-    double along = area * d.d_eps_eps / s.rest_length, across = area * d.d_eps / s.length;
-    if (project) {
-      along = std::max(along, 0.0);
-      across = std::max(across, 0.0);
-    }
-    const Eigen::Matrix3d nn = s.direction * s.direction.transpose();
-    const Eigen::Matrix3d M = along * nn + across * (Eigen::Matrix3d::Identity() - nn);
+    const Eigen::Matrix3d M = chord_hessian(x, j, project);
     const Chord& c = chords_[j]; // nodes ascending
     for (std::size_t a = 0; a < c.nodes.size(); ++a) {
       const double alpha_a = c.alpha[static_cast<Eigen::Index>(a)];
@@ -96,6 +102,42 @@ void MuscleEnergy::add_hessian(const Eigen::VectorXd& x, SparseHessian& H, bool 
         H.add_coupling(c.nodes[a], c.nodes[b], alpha_a * c.alpha[static_cast<Eigen::Index>(b)], M);
     }
   }
+}
+
+void MuscleEnergy::add_hessian_product(const Eigen::VectorXd& x, const Eigen::VectorXd& v, Eigen::VectorXd& out) const
+{
+  hessian_at(x)->add(v, out);
+}
+
+std::unique_ptr<HessianProduct> MuscleEnergy::hessian_at(const Eigen::VectorXd& x) const
+{
+  // The exact (unprojected, unlumped) Hessian's product, chord by chord: with the chord of v,
+  // δu = Σ_k α_k v_k, it adds α_i M δu at each of the chord's nodes. M depends on x alone and is
+  // kept per chord. Until session 36 a central difference of the gradient (1e-6 relative).
+  class AtState final : public HessianProduct {
+  public:
+    AtState(const MuscleEnergy& e, std::vector<Eigen::Matrix3d> M) : e_(e), M_(std::move(M)) {}
+    void add(const Eigen::VectorXd& v, Eigen::VectorXd& out) const override
+    {
+      for (std::size_t j = 0; j < e_.chords_.size(); ++j) {
+        const Chord& c = e_.chords_[j];
+        Eigen::Vector3d du = Eigen::Vector3d::Zero();
+        for (std::size_t k = 0; k < c.nodes.size(); ++k)
+          du += c.alpha[static_cast<Eigen::Index>(k)] * v.segment<3>(3 * c.nodes[k]);
+        const Eigen::Vector3d f = M_[j] * du;
+        for (std::size_t k = 0; k < c.nodes.size(); ++k)
+          out.segment<3>(3 * c.nodes[k]) += c.alpha[static_cast<Eigen::Index>(k)] * f;
+      }
+    }
+
+  private:
+    const MuscleEnergy& e_;
+    std::vector<Eigen::Matrix3d> M_;
+  };
+  std::vector<Eigen::Matrix3d> M;
+  M.reserve(chords_.size());
+  for (std::size_t j = 0; j < chords_.size(); ++j) M.push_back(chord_hessian(x, j, false));
+  return std::make_unique<AtState>(*this, std::move(M));
 }
 
 void MuscleEnergy::stencils(std::vector<std::vector<int>>& out) const

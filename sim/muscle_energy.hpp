@@ -37,6 +37,9 @@ public:
   double value(const Eigen::VectorXd& x) const override;
   void add_gradient(const Eigen::VectorXd& x, Eigen::VectorXd& g) const override;
   void add_hessian(const Eigen::VectorXd& x, SparseHessian& H, bool project) const override;
+  /// In closed form: the exact Hessian's product, chord by chord (no lumped pairs).
+  void add_hessian_product(const Eigen::VectorXd& x, const Eigen::VectorXd& v, Eigen::VectorXd& out) const override;
+  std::unique_ptr<HessianProduct> hessian_at(const Eigen::VectorXd& x) const override;
   void stencils(std::vector<std::vector<int>>& out) const override;
 
   double pressure() const { return pressure_; }
@@ -67,6 +70,9 @@ private:
     Eigen::VectorXd alpha;
   };
   SegmentState state(const Eigen::VectorXd& x, std::size_t j) const;
+  /// ∂²E/∂u² of segment j's energy in its deformed chord u (3 × 3), eigenvalues projected to ≥ 0
+  /// with `project`: the Hessian's block between nodes i and k is α_i α_k times it.
+  Eigen::Matrix3d chord_hessian(const Eigen::VectorXd& x, std::size_t j, bool project) const;
   /// Adds a derivative with respect to segment j's ends e_j and e_{j+1} to the spline's parameters.
   void chain_to_parameters(std::size_t j, const Eigen::Vector3d& by_start, const Eigen::Vector3d& by_end,
                            FiberParameterGradient& out) const;

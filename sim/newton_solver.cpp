@@ -140,9 +140,8 @@ bool NewtonSolver::conjugate_gradient_solve(const Eigen::VectorXd& x, const Eige
                                             int max_products, int& products) const
 {
   // Preconditioned conjugate gradients (Nocedal & Wright, Algorithm 5.3) on H(x) λ = b, with the
-  // factorization K held as the preconditioner and H(x)v from the energies' products (the elastic
-  // energy's in closed form, the others' from central differences of their gradients: energy.hpp),
-  // each energy's Hessian at x built once (Energy::hessian_at). K is of the Hessian a few steps
+  // factorization K held as the preconditioner and H(x)v from the energies' products in closed
+  // form (energy.hpp), each energy's Hessian at x built once (Energy::hessian_at). K is of the Hessian a few steps
   // before x (the last solve's finishing factorization), or at x with lumped pairs: close to H(x),
   // so a few products do (on the test's bar K⁻¹b is 3e-7 from H(x)⁻¹b, and one product brings it to
   // 8e-10). H(x) must be positive definite (a stable equilibrium).

@@ -119,13 +119,12 @@ TEST_P(EnergyDerivatives, GradientAndHessianMatchFiniteDifferences)
       EXPECT_TRUE(test::matches_fd(Hd * d, test::central_difference(gradient, x, d, h), test::kFdTolerance,
                                    1e-15 * Hd.norm() + 1e-12))
           << "Hessian, trial " << trial;
-      // The product conjugate gradients use: in closed form (elastic, springs, loads) it is the
-      // assembled Hessian's to round-off; by default (the muscle's) a central difference.
+      // The product conjugate gradients use: in closed form (elastic, muscle, springs, loads) it is
+      // the assembled Hessian's to round-off.
       Eigen::VectorXd Hv = Eigen::VectorXd::Constant(x.size(), 1.0);
       energy->add_hessian_product(x, d, Hv);
       Hv.array() -= 1.0;
-      const double rtol = named.name == "muscle" ? test::kFdTolerance : 1e-12;
-      EXPECT_TRUE(test::matches_fd(Hd * d, Hv, rtol, 1e-15 * Hd.norm() + 1e-12)) << "Hessian product, trial " << trial;
+      EXPECT_TRUE(test::matches_fd(Hd * d, Hv, 1e-12, 1e-15 * Hd.norm() + 1e-12)) << "Hessian product, trial " << trial;
       // The operator at x that conjugate gradients build once: the same bits, product after product.
       const auto at_x = energy->hessian_at(x);
       for (int twice = 0; twice < 2; ++twice) {

@@ -37,6 +37,10 @@ public:
     const double along = k2_ + 3 * k4_ * x[0] * x[0];
     H.add_block(0, 0, Eigen::Vector3d(project ? std::max(along, 0.0) : along, hold_, hold_).asDiagonal());
   }
+  void add_hessian_product(const Eigen::VectorXd& x, const Eigen::VectorXd& v, Eigen::VectorXd& out) const override
+  {
+    out.head<3>() += Eigen::Vector3d(k2_ + 3 * k4_ * x[0] * x[0], hold_, hold_).cwiseProduct(v.head<3>());
+  }
   void stencils(std::vector<std::vector<int>>& out) const override { out.push_back({0}); }
 
 private:
