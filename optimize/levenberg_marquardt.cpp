@@ -113,11 +113,11 @@ struct SecantTerm {
   const ExactPart& exact;
   Eigen::MatrixXd S;
   Eigen::VectorXd exact_gradient; ///< the exact part's at the current point, where given
+  Eigen::MatrixXd exact_hessian;  ///< and the Hessian of it that B holds there
 
   SecantTerm(const ExactPart& e, const Eigen::VectorXd& x) : exact(e), S(Eigen::MatrixXd::Zero(x.size(), x.size()))
   {
-    Eigen::MatrixXd unused;
-    if (exact.derivatives) exact.derivatives(x, exact_gradient, unused);
+    if (exact.derivatives) exact.derivatives(x, exact_gradient, exact_hessian);
   }
 
   void learn(const Eigen::VectorXd& x_new, const Eigen::VectorXd& s, Eigen::VectorXd y, Eigen::MatrixXd B_new)
@@ -129,10 +129,21 @@ struct SecantTerm {
       y -= gradient - exact_gradient;
       B_new -= hessian;
       exact_gradient = std::move(gradient);
+      exact_hessian = std::move(hessian);
     }
     if (s.cwiseAbs().maxCoeff() >= kLeastSecantStep) secant_update(S, B_new, s, y);
   }
 };
+
+/// The step along d on the model with the exact part's values, where there is one (ray_model.hpp),
+/// taking out the exact part's expansion as B holds it where the derivatives are given.
+RayStep step_on_ray(const ExactPart& exact, const SecantTerm& secant, const Eigen::VectorXd& x,
+                    const Eigen::VectorXd& g, const Eigen::MatrixXd& M, const Eigen::VectorXd& d)
+{
+  if (!exact) return {1, predicted_decrease(g, M, d)};
+  if (!exact.derivatives) return ray_step(exact.value, x, g, M, d);
+  return ray_step(exact.value, x, g, M, d, secant.exact_gradient.dot(d), d.dot(secant.exact_hessian * d));
+}
 
 } // namespace
 
@@ -195,7 +206,7 @@ MinimizerResult minimize_levenberg_marquardt(const ModelObjective& f, Eigen::Vec
       }
       if (const double largest = d.cwiseAbs().maxCoeff(); largest > options.max_step) d *= options.max_step / largest;
       // Along d on the model with the cheap part exact, where there is one: short of its walls.
-      const RayStep ray = exact ? ray_step(exact.value, x, g, M, d) : RayStep{1, predicted_decrease(g, M, d)};
+      const RayStep ray = step_on_ray(exact, secant, x, g, M, d);
       d *= ray.alpha;
       const double predicted = ray.predicted;
       Eigen::VectorXd trial_g;

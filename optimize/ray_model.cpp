@@ -31,7 +31,16 @@ RayStep ray_step(const std::function<double(const Eigen::VectorXd&)>& r, const E
   }
   if (!(std::isfinite(up) && std::isfinite(down))) return quadratic;
   h *= 10; // the loop divided once more after the last evaluation
-  const double r1 = (up - down) / (2 * h), r2 = (up - 2 * r0 + down) / (h * h);
+  return ray_step(r, x, g, M, delta, (up - down) / (2 * h), (up - 2 * r0 + down) / (h * h));
+}
+
+RayStep ray_step(const std::function<double(const Eigen::VectorXd&)>& r, const Eigen::VectorXd& x,
+                 const Eigen::VectorXd& g, const Eigen::MatrixXd& M, const Eigen::VectorXd& delta, double r1, double r2)
+{
+  const double gd = g.dot(delta), dMd = delta.dot(M * delta);
+  const RayStep quadratic{1, -(gd + 0.5 * dMd)};
+  const double r0 = r(x);
+  if (!std::isfinite(r0) || !(delta.cwiseAbs().maxCoeff() > 0)) return quadratic;
   // f − m(α): the decrease the model predicts for the step αδ.
   const auto decrease = [&](double a) {
     const double ra = r(x + a * delta);

@@ -2,7 +2,8 @@
 // The model of an objective along a step's ray x + αδ with its cheap part r exact
 // (levenberg_marquardt.hpp): with g and M the gradient and model Hessian at x,
 //   m(α) = f + α gᵀδ + ½α² δᵀMδ − (α r₁ + ½α² r₂) + r(x + αδ) − r(x),
-// r₁, r₂ r's first and second derivatives along δ at x (central differences). m keeps the quadratic
+// r₁, r₂ r's first and second derivatives along δ at x as M holds them (∇rᵀδ and δᵀRδ, R the
+// Hessian of r in M, where the caller has them; else central differences of r). m keeps the quadratic
 // model of what r is not (the tracking distance's Gauss-Newton part) and takes r's exact values,
 // +∞ past its walls, so a step is chosen where the barriers really are.
 
@@ -22,5 +23,12 @@ struct RayStep {
 /// full step.
 RayStep ray_step(const std::function<double(const Eigen::VectorXd&)>& r, const Eigen::VectorXd& x,
                  const Eigen::VectorXd& g, const Eigen::MatrixXd& M, const Eigen::VectorXd& delta);
+/// The same with r's expansion along δ given: r₁ = ∇rᵀδ and r₂ = δᵀRδ for the Hessian R of r that
+/// M holds, so that m takes out exactly the part of M that r's exact values replace. (With r₂ from
+/// central differences of r, M's projected R, positive semi-definite where r is not, such as a skin
+/// barrier along a notch, was left in m as a curvature no term has, and it cut the steps short.)
+RayStep ray_step(const std::function<double(const Eigen::VectorXd&)>& r, const Eigen::VectorXd& x,
+                 const Eigen::VectorXd& g, const Eigen::MatrixXd& M, const Eigen::VectorXd& delta, double r1,
+                 double r2);
 
 } // namespace fibermold

@@ -49,5 +49,35 @@ TEST(RayModel, PredictsNoDecreaseOnARayThatClimbs)
   EXPECT_LE(step.predicted, 0);
 }
 
+TEST(RayModel, TakesOutTheCurvatureTheModelHoldsNotTheTermsOwn)
+{
+  // f = ½|x − (2, 0)|² + r, r = −0.4 x₁² + 0.1 x₁⁴: concave at x = 0, where a model Hessian projected
+  // to be positive semi-definite holds r's as 0, so M = I and δ = −M⁻¹g = (2, 0). Along the ray,
+  // f(αδ) = 2(α − 1)² − 1.6α² + 1.6α⁴, least at α* = 0.806. Given r's expansion as M holds it (r₁ = 0,
+  // r₂ = δᵀ0δ = 0), m is f along the ray, so the step is α* and the prediction f's own decrease.
+  // From central differences of r (r₂ = −3.2), m keeps +1.6α², a curvature no term has, and stops
+  // short at 0.62, predicting less than f gives (the gain ratios of 1.4–1.9 the twisting bar met).
+  const auto r = [](const Eigen::VectorXd& x) { return -0.4 * x[0] * x[0] + 0.1 * std::pow(x[0], 4); };
+  const auto f = [&](double alpha) { return 2 * (alpha - 1) * (alpha - 1) + r(Eigen::Vector2d(2 * alpha, 0)); };
+  const Eigen::Vector2d x(0, 0), g(-2, 0), delta(2, 0);
+  const Eigen::Matrix2d M = Eigen::Matrix2d::Identity();
+  double lo = 0, hi = 1; // f'(α) = 0.8α + 6.4α³ − 4 rises: bisection for its root
+  for (int k = 0; k < 60; ++k) {
+    const double mid = (lo + hi) / 2;
+    if (0.8 * mid + 6.4 * std::pow(mid, 3) - 4 < 0)
+      lo = mid;
+    else
+      hi = mid;
+  }
+  const double best = lo;
+  ASSERT_NEAR(best, 0.806, 1e-3);
+  const RayStep given = ray_step(r, x, g, M, delta, 0.0, 0.0);
+  EXPECT_NEAR(given.alpha, best, 2e-3);
+  EXPECT_NEAR(given.predicted, f(0) - f(best), 1e-5);
+  const RayStep differenced = ray_step(r, x, g, M, delta);
+  EXPECT_NEAR(differenced.alpha, 0.62, 0.02);
+  EXPECT_LT(differenced.predicted, f(0) - f(differenced.alpha) - 0.1);
+}
+
 } // namespace
 } // namespace fibermold
