@@ -5,6 +5,7 @@
 #include <fmt/format.h>
 
 #include "core/units.hpp"
+#include "optimize/bend_radius.hpp"
 
 namespace fibermold {
 
@@ -42,6 +43,19 @@ OptimizationEnding optimization_ending(const RoutingResult& result, const Actuat
                     "from where its route ended",
                     target, fiber, p(t, f) / units::kPa));
     }
+  for (std::size_t f = 0; f < result.routing.routes.size() && settings.min_bend_radius > 0; ++f) {
+    const Route& route = result.routing.routes[f];
+    const SmallestBend b = smallest_bend(HermiteSpline(route.points, route.tangents));
+    if (!(b.radius <= (1 + kBendAtLimit) * settings.min_bend_radius)) continue;
+    e.bends.push_back({static_cast<int>(f), b.radius, b.where});
+    e.warnings.push_back(fmt::format(
+        "fiber {} bends through {:.2f} mm at {}, {:.1f} mm along it: at its limit, [muscle] min_bend_radius = {:.2f} "
+        "mm "
+        "(within {:.0f} %, where the bend barrier holds it): the targets would take a tighter bend than the muscle "
+        "takes",
+        fiber_names[f], b.radius / units::mm, format_mm(b.where), b.arc_length / units::mm,
+        settings.min_bend_radius / units::mm, 100 * kBendAtLimit));
+  }
   for (std::size_t t = 0; t < before.size(); ++t) {
     TargetReach r{before[t].rmse, after[t].rmse, before[t].rmse > 0 ? 1 - after[t].rmse / before[t].rmse : 1.0};
     e.targets.push_back(r);
@@ -59,15 +73,18 @@ OptimizationEnding optimization_ending(const RoutingResult& result, const Actuat
       how_far = fmt::format("{:.0f} % of the way (tracking-curve RMSE {:.2f} → {:.2f} mm)", 100 * r.reached,
                             r.start_rmse / units::mm, r.end_rmse / units::mm);
     if (how_far.empty()) continue; // nothing to reach, or reached
-    bool limited = false;
+    bool limited = false, bent = false;
     for (const PressureLimit& l : e.limits) limited = limited || (l.target == static_cast<int>(t) && l.at_max);
-    e.warnings.push_back(fmt::format("target {} is far from reached: {}; {}", target_names[t], how_far,
-                                     limited ? "its muscles are at max_pressure: raise [muscle] max_pressure if the "
-                                               "muscle takes it, add a muscle, or use a "
-                                               "softer material"
-                                             : "add a muscle, start the routes elsewhere, or use a softer material; "
-                                               "raise [optimize] max_iterations if the "
-                                               "optimizer stopped at its limit"));
+    for (const BendLimit& b : e.bends) bent = bent || actuators(static_cast<Eigen::Index>(t), b.fiber);
+    e.warnings.push_back(fmt::format(
+        "target {} is far from reached: {}; {}{}", target_names[t], how_far,
+        limited ? "its muscles are at max_pressure: raise [muscle] max_pressure if the muscle takes it, add a muscle, "
+                  "or use a softer material"
+                : "add a muscle, start the routes elsewhere, or use a softer material; raise [optimize] "
+                  "max_iterations if the optimizer stopped at its limit",
+        bent ? "; a muscle of it is at its smallest bend radius: lower [muscle] min_bend_radius only if the muscle "
+               "takes a tighter bend"
+             : ""));
   }
   return e;
 }

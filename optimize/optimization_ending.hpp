@@ -30,21 +30,33 @@ struct AngleReach {
   double asked = 0, reached = 0;
 };
 
+/// A route whose tightest bend is within this share of [muscle] min_bend_radius is at that limit:
+/// there the bend barrier, not the targets, holds it.
+inline constexpr double kBendAtLimit = 0.02;
+
 struct PressureLimit {
   int target = 0, fiber = 0;
   double pressure = 0; ///< Pa
   bool at_max = false; ///< at max_pressure; else at 0
 };
 
+struct BendLimit {
+  int fiber = 0;
+  double radius = 0; ///< m, the route's tightest bend
+  Eigen::Vector3d where = Eigen::Vector3d::Zero();
+};
+
 struct OptimizationEnding {
   std::vector<TargetReach> targets;
   std::vector<PressureLimit> limits;
+  std::vector<BendLimit> bends;      ///< routes at their smallest bend radius (kBendAtLimit)
   std::vector<std::string> warnings; ///< sentences naming the target, the fiber, the figures and what to try
 };
 
 /// `actuators` (targets × fibers): which fibers the optimizer could pressurize for which target;
 /// the others are not reported at 0. A pressure within `settings.pressure_margin` of 0 or of
 /// max_pressure is at that limit: there the pressure barrier, not the target, holds it.
+/// A route bent within kBendAtLimit of settings.min_bend_radius is at that limit, named with where.
 /// `angles[t]`: target t's turns (empty for a target that asks none); such a target is far from
 /// reached when a region turned less than 2/3 of its angle, whatever the tracking curves say.
 OptimizationEnding optimization_ending(const RoutingResult& result, const ActuatorMask& actuators,

@@ -2,13 +2,18 @@
 
 #include <cmath>
 
+#include <fmt/format.h>
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
+
+#include "core/units.hpp"
+#include "optimize/bend_radius.hpp"
 
 namespace fibermold {
 namespace {
 
 using ::testing::HasSubstr;
+using ::testing::Not;
 
 constexpr double kDeg = M_PI / 180;
 
@@ -66,6 +71,45 @@ TEST(OptimizationEnding, ATargetWithoutATurnIsJudgedByItsTrackingCurvesAndALimit
                         "max_pressure"));
   ASSERT_EQ(far.limits.size(), 1u);
   EXPECT_TRUE(far.limits[0].at_max);
+}
+
+TEST(OptimizationEnding, ARouteAtItsSmallestBendRadiusIsNamedWithWhereAndWhatToTry)
+{
+  // A Hermite quarter turn between points 10 mm off a corner: its tightest bend, 8.6 mm where the
+  // arc strays from the circle, is at a limit 1 % below it and not at one 5 % below.
+  RoutingResult r;
+  r.routing.pressures = Eigen::MatrixXd::Constant(1, 1, 200e3);
+  r.converged = true;
+  r.termination = Termination::decrease_tolerance;
+  const double R = 10e-3, k = M_PI / 2 * R;
+  r.routing.routes.push_back({"flexor",
+                              {Eigen::Vector3d(0, 0, 0), Eigen::Vector3d(R, R, 0)},
+                              {Eigen::Vector3d(k, 0, 0), Eigen::Vector3d(0, k, 0)}});
+  const SmallestBend tightest = smallest_bend(HermiteSpline(r.routing.routes[0].points, r.routing.routes[0].tangents));
+  ASSERT_NEAR(tightest.radius, 8.63e-3, 0.01e-3);
+  TargetErrors before, after;
+  before.rmse = 3e-3;
+  after.rmse = 1.5e-3; // far from reached
+  RoutingSettings s;
+  s.max_pressure = 425e3;
+  const auto end_with = [&](double min_radius) {
+    s.min_bend_radius = min_radius;
+    return optimization_ending(r, ActuatorMask::Constant(1, 1, true), s, {before}, {after}, {{}}, {"curl"}, {"flexor"});
+  };
+  const OptimizationEnding at = end_with(tightest.radius / 1.01);
+  ASSERT_EQ(at.bends.size(), 1u);
+  EXPECT_EQ(at.bends[0].fiber, 0);
+  EXPECT_DOUBLE_EQ(at.bends[0].radius, tightest.radius);
+  ASSERT_EQ(at.warnings.size(), 2u);
+  EXPECT_THAT(at.warnings[0], HasSubstr(fmt::format("fiber flexor bends through {:.2f} mm at {}", tightest.radius * 1e3,
+                                                    format_mm(tightest.where))));
+  EXPECT_THAT(at.warnings[0], HasSubstr("at its limit, [muscle] min_bend_radius"));
+  EXPECT_THAT(at.warnings[1], HasSubstr("far from reached"));
+  EXPECT_THAT(at.warnings[1], HasSubstr("lower [muscle] min_bend_radius only if the muscle takes a tighter bend"));
+  const OptimizationEnding clear = end_with(tightest.radius / 1.05);
+  EXPECT_TRUE(clear.bends.empty());
+  ASSERT_EQ(clear.warnings.size(), 1u);
+  EXPECT_THAT(clear.warnings[0], Not(HasSubstr("bend radius")));
 }
 
 } // namespace
