@@ -27,7 +27,8 @@
 // model, built where the barrier was flat, takes whole. Where the objective has a part r that is
 // cheap to evaluate (for the routing problem: the curvature term and the barriers, no simulation),
 // the step is chosen along the ray x + αδ, α ∈ (0, 1], on the model with that part exact
-// (ray_model.hpp): the quadratic model less r's own second-order expansion along δ, plus r. So a
+// (ray_model.hpp): the quadratic model less r's second-order expansion along δ as the model holds
+// it (ExactPart::derivatives; else r's own, by central differences), plus r. So a
 // step stops short of a wall, or of where a barrier climbs faster than the model knew, before any
 // simulation is run there (as IPC's line search is filtered by the largest step that stays
 // feasible: Li et al., Incremental Potential Contact, 2020, §4.3), and the gain ratio compares f

@@ -50,9 +50,7 @@ OptimizationEnding optimization_ending(const RoutingResult& result, const Actuat
     e.bends.push_back({static_cast<int>(f), b.radius, b.where});
     e.warnings.push_back(fmt::format(
         "fiber {} bends through {:.2f} mm at {}, {:.1f} mm along it: at its limit, [muscle] min_bend_radius = {:.2f} "
-        "mm "
-        "(within {:.0f} %, where the bend barrier holds it): the targets would take a tighter bend than the muscle "
-        "takes",
+        "mm (within {:.0f} %): there the bend radius, not the targets, decides the route",
         fiber_names[f], b.radius / units::mm, format_mm(b.where), b.arc_length / units::mm,
         settings.min_bend_radius / units::mm, 100 * kBendAtLimit));
   }

@@ -31,7 +31,8 @@ struct AngleReach {
 };
 
 /// A route whose tightest bend is within this share of [muscle] min_bend_radius is at that limit:
-/// there the bend barrier, not the targets, holds it.
+/// the bend radius, not the targets, decides it there. (The bend barrier acts from 1.11 R,
+/// BendBarrier::kBand; a route it holds further out is not named.)
 inline constexpr double kBendAtLimit = 0.02;
 
 struct PressureLimit {

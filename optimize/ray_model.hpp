@@ -23,10 +23,12 @@ struct RayStep {
 /// full step.
 RayStep ray_step(const std::function<double(const Eigen::VectorXd&)>& r, const Eigen::VectorXd& x,
                  const Eigen::VectorXd& g, const Eigen::MatrixXd& M, const Eigen::VectorXd& delta);
-/// The same with r's expansion along δ given: r₁ = ∇rᵀδ and r₂ = δᵀRδ for the Hessian R of r that
-/// M holds, so that m takes out exactly the part of M that r's exact values replace. (With r₂ from
-/// central differences of r, M's projected R, positive semi-definite where r is not, such as a skin
-/// barrier along a notch, was left in m as a curvature no term has, and it cut the steps short.)
+/// The same with r's expansion along δ given: r₁ = ∇rᵀδ and r₂ = δᵀRδ for the Hessian R of r in
+/// the model B that M is built from, so that m takes out the part of M that r's exact values
+/// replace (where M is B + S with its eigenvalues' magnitudes, as much as B holds). With r₂ from
+/// central differences of r, B's projected R, positive semi-definite where r is not (a skin barrier
+/// along a notch), was left in m as a curvature no term has, and it cut the steps short. Unlike
+/// the overload above it has no fallback for r not finite just behind x: it searches the ray.
 RayStep ray_step(const std::function<double(const Eigen::VectorXd&)>& r, const Eigen::VectorXd& x,
                  const Eigen::VectorXd& g, const Eigen::MatrixXd& M, const Eigen::VectorXd& delta, double r1,
                  double r2);

@@ -27,8 +27,9 @@ public:
   /// tightest point the tightest of its peaks, Levenberg-Marquardt's choice of model over recent steps; 11: its model
   /// always B + S, S learning only what B leaves out of the simulation's part; 12: each pose's place at rest (rest_mm);
   /// 13: each pose's sensitivity (where it goes with the silicone 10 % stiffer and softer, the pressures 10 %
-  /// lower and higher)
-  int version() const override { return 13; }
+  /// lower and higher); 14: the muscles' Hessian products exact, Levenberg-Marquardt's ray model taking out the
+  /// barriers' expansion as its model holds it (a re-optimization's steps)
+  int version() const override { return 14; }
   void run(StageContext& ctx) const override;
 };
 

@@ -104,6 +104,7 @@ TEST(OptimizationEnding, ARouteAtItsSmallestBendRadiusIsNamedWithWhereAndWhatToT
   EXPECT_THAT(at.warnings[0], HasSubstr(fmt::format("fiber flexor bends through {:.2f} mm at {}", tightest.radius * 1e3,
                                                     format_mm(tightest.where))));
   EXPECT_THAT(at.warnings[0], HasSubstr("at its limit, [muscle] min_bend_radius"));
+  EXPECT_THAT(at.warnings[0], HasSubstr("the bend radius, not the targets, decides the route"));
   EXPECT_THAT(at.warnings[1], HasSubstr("far from reached"));
   EXPECT_THAT(at.warnings[1], HasSubstr("lower [muscle] min_bend_radius only if the muscle takes a tighter bend"));
   const OptimizationEnding clear = end_with(tightest.radius / 1.05);
