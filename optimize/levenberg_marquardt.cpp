@@ -166,8 +166,9 @@ MinimizerResult minimize_levenberg_marquardt(const ModelObjective& f, Eigen::Vec
   double mu = kInitialDamping, nu = 2;
   SecantTerm secant(exact, x);
   const auto model = [&] { return secant_model(B, secant.S); };
-  std::vector<double> values{fx}; // f after each iteration
-  int rejected = 0;               // trial steps rejected in a row
+  std::vector<double> values{fx};  // f after each iteration
+  std::vector<double> predictions; // the model's whole decrease after each iteration
+  int rejected = 0;                // trial steps rejected in a row
   auto finish = [&](Termination why, std::string message) {
     result.x = x;
     result.value = fx;
@@ -230,11 +231,9 @@ MinimizerResult minimize_levenberg_marquardt(const ModelObjective& f, Eigen::Vec
         const double ahead = model_decrease(model(), g);
         if (on_iteration) on_iteration({result.iterations, fx, g.norm(), d.norm(), result.evaluations, ahead}, x);
         values.push_back(fx);
-        // A stall is a model that keeps predicting more than the window's tolerance and does not
-        // deliver it (a wall it does not know); where it predicts less, the run is that close to
-        // converging and goes on (the tentacle stalled 3 iterations short of it).
-        if (auto message = stall_message(values, fx, options);
-            message && ahead > options.relative_tolerance * std::abs(fx))
+        predictions.push_back(ahead);
+        // A stall: a model that kept predicting more than it delivered (model_stall_message).
+        if (auto message = model_stall_message(values, predictions, options))
           return finish(Termination::stalled, std::move(*message));
         continue;
       }

@@ -26,4 +26,14 @@ std::optional<std::string> stall_message(const std::vector<double>& values, doub
                      options.window);
 }
 
+std::optional<std::string> model_stall_message(const std::vector<double>& values, const std::vector<double>& predicted,
+                                               const MinimizerOptions& options)
+{
+  const auto window = static_cast<std::size_t>(options.window);
+  if (predicted.size() < window || values.size() != predicted.size() + 1) return std::nullopt;
+  for (std::size_t i = predicted.size() - window; i < predicted.size(); ++i)
+    if (!(predicted[i] > options.relative_tolerance * std::abs(values[i + 1]))) return std::nullopt;
+  return stall_message(values, values.back(), options);
+}
+
 } // namespace fibermold

@@ -38,8 +38,9 @@ public:
   /// 11: Levenberg-Marquardt's model always B + S, S learning only what B leaves out of the simulation's part;
   /// 12: exact Newton steps near the tolerance where pairs are lumped, closed-form Hessian products (report.json
   /// newton.hessian_products); 13: the muscles' Hessian products exact, Levenberg-Marquardt's ray model taking
-  /// out the barriers' expansion as its model holds it, a route at its smallest bend radius named in the warnings
-  int version() const override { return 13; }
+  /// out the barriers' expansion as its model holds it, a route at its smallest bend radius named in the warnings;
+  /// 14: Levenberg-Marquardt stalls only where its model predicted too much at every iteration of the window
+  int version() const override { return 14; }
   void run(StageContext& ctx) const override;
 };
 
