@@ -28,7 +28,7 @@ double ClearanceBarrier::value(const std::vector<Route>& routes) const
   return B;
 }
 
-std::vector<FiberParameterGradient> ClearanceBarrier::gradient(const std::vector<Route>& routes) const
+std::vector<FiberParameterGradient> ClearanceBarrier::gradient(const std::vector<Route>& routes, int only) const
 {
   std::vector<FiberParameterGradient> g(routes.size());
   std::vector<HermiteSpline> splines;
@@ -47,7 +47,7 @@ std::vector<FiberParameterGradient> ClearanceBarrier::gradient(const std::vector
     g[f].points[span + 1] += w * h[2] * by_p;
     g[f].tangents[span + 1] += w * h[3] * by_p;
   };
-  for (const Contact& c : measure_.contacts(measure_.lines(routes), min_ + band_, false)) {
+  for (const Contact& c : measure_.contacts(measure_.lines(routes), min_ + band_, false, only)) {
     if (c.clearance <= min_) continue;
     const Eigen::Vector3d by_p =
         length_[c.a][c.segment_a] * barrier_gradient((c.clearance - min_) / band_, 1.0) / band_ * c.normal;

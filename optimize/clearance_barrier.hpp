@@ -21,8 +21,9 @@ public:
   ClearanceBarrier(const FiberClearance& measure, const std::vector<Route>& start, double clearance, double band);
 
   double value(const std::vector<Route>& routes) const;
-  /// ∂B/∂(points, tangents) of every fiber (pressure entries 0); zero where B is +∞.
-  std::vector<FiberParameterGradient> gradient(const std::vector<Route>& routes) const;
+  /// ∂B/∂(points, tangents) of every fiber (pressure entries 0); zero where B is +∞. With `only` ≥ 0,
+  /// that of the terms of the pairs that include fiber `only`: all that changes as it alone moves.
+  std::vector<FiberParameterGradient> gradient(const std::vector<Route>& routes, int only = -1) const;
 
 private:
   const FiberClearance& measure_;

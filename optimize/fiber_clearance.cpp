@@ -155,7 +155,7 @@ Contact pair_contact(const std::vector<Eigen::Vector3d>& la, int a, int i, const
 
 } // namespace
 
-std::vector<Contact> FiberClearance::contacts(const Lines& lines, double below, bool skin) const
+std::vector<Contact> FiberClearance::contacts(const Lines& lines, double below, bool skin, int only) const
 {
   const int F = num_fibers();
   // Every sample (skin) and every segment (pairs) is measured on its own, in parallel, into its
@@ -190,13 +190,14 @@ std::vector<Contact> FiberClearance::contacts(const Lines& lines, double below, 
   std::vector<std::vector<Contact>> between(owner.size());
   tbb::parallel_for(std::size_t{0}, owner.size(), [&](std::size_t n) {
     const auto [a, i] = owner[n];
+    if (only >= 0 && a > only) return; // its pairs are with fibers after it
     const Eigen::Vector3d m = mids.row(static_cast<Eigen::Index>(n)).transpose();
     std::vector<std::pair<Eigen::Index, double>> found;
     tree.index->radiusSearch(m.data(), reach * reach, found, nanoflann::SearchParams(32, 0, false));
     std::map<int, Contact> closest; // per other fiber
     for (const auto& [index, squared] : found) {
       const auto [b, j] = owner[static_cast<std::size_t>(index)];
-      if (b <= a) continue;
+      if (b <= a || (only >= 0 && a != only && b != only)) continue;
       const Contact c = pair_contact(lines[a], a, i, lines[b], b, j, radius_);
       if (auto it = closest.find(b); it == closest.end() || c.clearance < it->second.clearance) closest[b] = c;
     }

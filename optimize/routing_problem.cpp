@@ -262,9 +262,9 @@ void RoutingProblem::add_route_gradient(const Routing& r, int f, Eigen::VectorXd
   if (bend_barrier_) add_fiber_gradient(f, bend_barrier_->gradient(s), settings_.weight_bend, -1, out);
 }
 
-void RoutingProblem::add_clearance_gradient(const Routing& r, Eigen::VectorXd& out) const
+void RoutingProblem::add_clearance_gradient(const Routing& r, Eigen::VectorXd& out, int only) const
 {
-  const std::vector<FiberParameterGradient> g = clearance_barrier_->gradient(r.routes);
+  const std::vector<FiberParameterGradient> g = clearance_barrier_->gradient(r.routes, only);
   for (int f = 0; f < num_fibers(); ++f) add_fiber_gradient(f, g[f], weight_clearance_, -1, out);
 }
 
@@ -274,11 +274,13 @@ Eigen::MatrixXd RoutingProblem::regularizer_hessian(const Eigen::VectorXd& z) co
   constexpr double h = 1e-6;
   const Eigen::Index n = size();
   Eigen::MatrixXd H = Eigen::MatrixXd::Zero(n, n);
+  // A column moves one fiber's route: of the clearance barrier, only its pairs with that fiber
+  // change (the others cancel in the difference), and only they are measured.
   const auto route_gradient = [&](const Eigen::VectorXd& at, int f) {
     const Routing r = routing(at);
     Eigen::VectorXd g = Eigen::VectorXd::Zero(n);
     add_route_gradient(r, f, g);
-    if (clearance_barrier_) add_clearance_gradient(r, g);
+    if (clearance_barrier_) add_clearance_gradient(r, g, f);
     return g;
   };
   const Routing r = routing(z);

@@ -102,8 +102,8 @@ public:
   Eigen::MatrixXd sensitivities(const Routing& r, int t, const Eigen::VectorXd& x);
   /// The Hessian of the curvature, skin, bend, pressure and clearance terms at z: central
   /// differences of their analytic gradient, one route at a time (a route's terms see only its own
-  /// variables; the clearance barrier all), the pressure barrier's exactly; projected to be
-  /// positive semi-definite.
+  /// variables; of the clearance barrier, the pairs with that route), the pressure barrier's
+  /// exactly; projected to be positive semi-definite.
   Eigen::MatrixXd regularizer_hessian(const Eigen::VectorXd& z) const;
   /// The curvature, skin, bend, pressure and clearance terms at z, which need no simulation: +∞
   /// past a wall (as evaluate scores it) or with a fiber outside the body. The exact part of
@@ -157,7 +157,8 @@ private:
   double regularizers(const Routing& r, Eigen::VectorXd* gradient, RoutingTerms& terms) const;
   /// Adds the gradient of fiber f's route terms (curvature, skin, bend) to `out`.
   void add_route_gradient(const Routing& r, int f, Eigen::VectorXd& out) const;
-  void add_clearance_gradient(const Routing& r, Eigen::VectorXd& out) const;
+  /// With `only` ≥ 0, of the pairs that include fiber `only` alone (ClearanceBarrier::gradient).
+  void add_clearance_gradient(const Routing& r, Eigen::VectorXd& out, int only = -1) const;
   /// The free variables whose columns of ∂²E/∂x∂z are not zero for target t (its pressures, the
   /// free routes' points and tangents), and those columns with `muscles` at x.
   Eigen::MatrixXd mixed_columns(int t, const Eigen::VectorXd& x, const std::vector<const MuscleEnergy*>& muscles,

@@ -29,8 +29,9 @@ public:
   /// 13: each pose's sensitivity (where it goes with the silicone 10 % stiffer and softer, the pressures 10 %
   /// lower and higher); 14: the muscles' Hessian products exact, Levenberg-Marquardt's ray model taking out the
   /// barriers' expansion as its model holds it (a re-optimization's steps); 15: Levenberg-Marquardt's stall rule
-  /// over the whole window (a re-optimization's ending)
-  int version() const override { return 15; }
+  /// over the whole window (a re-optimization's ending); 16: the model's clearance-barrier Hessian from each
+  /// fiber's own pairs (a re-optimization's steps)
+  int version() const override { return 16; }
   void run(StageContext& ctx) const override;
 };
 

@@ -45,5 +45,45 @@ TEST(ClearanceBarrier, InfiniteAtTheClearanceZeroBeyondItsBandAndItsGradientMatc
   EXPECT_GT(analytic.cwiseAbs().maxCoeff(), 100); // per m: the barrier pushes
 }
 
+TEST(ClearanceBarrier, AFibersOwnPairsHoldAllOfTheGradientThatChangesWhenItAloneMoves)
+{
+  // Three fibers, each within the band of the other two: the gradient of the pairs that include a
+  // fiber (what the optimizer's model differentiates when that fiber alone moves) is the whole
+  // gradient less the third pair's, so the three restricted gradients sum to twice the whole. A
+  // fourth fiber far from the others has no pair in the band: its restricted gradient is zero.
+  const Body body(mm(-30, -30, -15), mm(30, 30, 15));
+  const std::vector<Route> r{route("a", {mm(-25, 0, -2.4), mm(0, 1, -2.4), mm(25, 0, -2.4)}),
+                             route("b", {mm(2, -25, 2.4), mm(0, 0, 2.7), mm(-1, 25, 2.4)}),
+                             route("c", {mm(-25, 5.8, -2.4), mm(0, 5.8, -2.4), mm(25, 5.8, -2.4)}),
+                             route("d", {mm(-25, -20, 8), mm(0, -20, 8), mm(25, -20, 8)})};
+  const FiberClearance measure(body.skin, r, kRadius, kClearance, kSamplesPerLength);
+  const ClearanceBarrier B(measure, r, kClearance, kRadius);
+  ASSERT_TRUE(std::isfinite(B.value(r)));
+  const auto flat = [](const std::vector<FiberParameterGradient>& g) {
+    std::vector<std::vector<Eigen::Vector3d>> lists;
+    for (const FiberParameterGradient& each : g) {
+      lists.push_back(each.points);
+      lists.push_back(each.tangents);
+    }
+    return test::stacked(lists);
+  };
+  const Eigen::VectorXd whole = flat(B.gradient(r));
+  const Eigen::VectorXd sum = flat(B.gradient(r, 0)) + flat(B.gradient(r, 1)) + flat(B.gradient(r, 2));
+  ASSERT_GT(whole.cwiseAbs().maxCoeff(), 100); // every pair within the band: the barrier pushes
+  EXPECT_LE((sum - 2 * whole).cwiseAbs().maxCoeff(), 1e-12 * whole.cwiseAbs().maxCoeff());
+  // a's pairs are the whole less the b-c pair's, measured on its own by a barrier of b and c alone.
+  const std::vector<Route> bc{r[1], r[2]};
+  const FiberClearance measure_bc(body.skin, bc, kRadius, kClearance, kSamplesPerLength);
+  const ClearanceBarrier B_bc(measure_bc, bc, kClearance, kRadius);
+  std::vector<FiberParameterGradient> pair_bc = B.gradient(r, 3); // zeros in every fiber's shape
+  const std::vector<FiberParameterGradient> g_bc = B_bc.gradient(bc);
+  pair_bc[1] = g_bc[0];
+  pair_bc[2] = g_bc[1];
+  ASSERT_GT(flat(pair_bc).cwiseAbs().maxCoeff(), 100);
+  EXPECT_LE((flat(B.gradient(r, 0)) - (whole - flat(pair_bc))).cwiseAbs().maxCoeff(),
+            1e-12 * whole.cwiseAbs().maxCoeff());
+  EXPECT_EQ(flat(B.gradient(r, 3)).cwiseAbs().maxCoeff(), 0.0);
+}
+
 } // namespace
 } // namespace fibermold
