@@ -3,6 +3,7 @@
 #include <array>
 #include <cmath>
 #include <memory>
+#include <string_view>
 
 #include <fmt/format.h>
 #include <nlohmann/json.hpp>
@@ -26,6 +27,8 @@ namespace {
 using Json = nlohmann::ordered_json;
 
 constexpr double kReportReach = 10e-3; // m: clearances are reported up to this much above the asked one
+/// What to try where moving fibers apart bent one too tightly or pushed it to the skin.
+constexpr const char* kSmoothnessAdvice = "; or raise [collide] smoothness, which spreads a move along the fiber";
 
 /// The smallest clearance (mm) among fibers and skin, before and after; a value more than
 /// kReportReach above the clearance asked for is not measured, and left out.
@@ -96,6 +99,33 @@ std::vector<TargetErrors> errors_under(RoutingProblem& problem, DesignRouting& d
   return out;
 }
 
+/// require_bend_radius (routing_evaluation.hpp) on routes collide moved, as the stage's failure: the
+/// fiber, where, by how much and what to do.
+void require_bend_radius_after_moving(const Design& d, const std::vector<Route>& routes, std::string_view whose)
+{
+  try {
+    require_bend_radius(d, routes, whose);
+  } catch (const InputError& e) {
+    const Diagnostic& said = e.diagnostics().front();
+    throw std::runtime_error(fmt::format("{}: {}{}", said.key, said.message, kSmoothnessAdvice));
+  }
+}
+
+/// Optimizing again starts from the routing moved apart, which moving may have bent under the
+/// muscle's smallest radius or pushed against the skin, walls of the optimizer's: the fiber, where
+/// and what to do, rather than the optimizer's "not finite at the starting point".
+void require_optimizable(const Design& d, const RoutingProblem& problem, const Routing& moved)
+{
+  require_bend_radius_after_moving(d, moved.routes, "the route as collide moved it apart");
+  double distance = 0;
+  Eigen::Vector3d where;
+  if (const int f = problem.skin_violation(moved, distance, where); f >= 0)
+    throw std::runtime_error(fmt::format("[fiber.{}]: the route as collide moved it apart comes within {:.2f} mm of "
+                                         "the skin at {}, under the skin distance the optimizer keeps{}",
+                                         moved.routes[f].name, distance / units::mm, format_mm(where),
+                                         kSmoothnessAdvice));
+}
+
 /// Optimizes again from the resolved routing with the clearance between fibers as a barrier
 /// (the skin barrier keeps them off the skin), as the paper suggests (section V-B).
 Routing reoptimize(StageContext& ctx, RoutingProblem& problem, const FiberClearance& measure, const Routing& resolved)
@@ -104,6 +134,7 @@ Routing reoptimize(StageContext& ctx, RoutingProblem& problem, const FiberCleara
   const ClearanceBarrier barrier(measure, resolved.routes, d.collide.clearance, d.muscle.model.radius());
   problem.set_base(resolved);
   problem.set_clearance_barrier(&barrier, kClearanceBarrierWeight);
+  require_optimizable(d, problem, resolved);
   const MinimizerOptions o = minimizer_options(d);
   const RoutingCallback on_iteration = [&](int, const MinimizerIteration& it, const RoutingTerms& terms) {
     const std::string what = fmt::format("optimizing again, iteration {}: objective {:.4g} (distance {:.4g}, clearance "
@@ -287,12 +318,7 @@ void CollideStage::run(StageContext& ctx) const
     ctx.log.info("the routing was not optimized: nothing to compare against the targets");
   }
   // Moving fibers apart can bend them: the molds would refuse a route under the muscle's radius.
-  try {
-    require_bend_radius(d, out.routing.routes, "the route as collide left it");
-  } catch (const InputError& e) {
-    throw std::runtime_error(e.diagnostics().front().message +
-                             "; or raise [collide] smoothness, which spreads a move along the fiber");
-  }
+  require_bend_radius_after_moving(d, out.routing.routes, "the route as collide left it");
   report["min_bend_radius_mm"] = d.muscle.min_bend_radius / units::mm;
   report["bends"] = bends_json(out.routing.routes);
   report["moves_mm"] = moves_json(fibers.routing.routes, out.routing.routes);

@@ -115,6 +115,26 @@ TEST_F(CollideE2E, ImpossibleClearanceStopsTheStage)
   EXPECT_THAT(r.err, HasSubstr("[fiber.a]: the fiber (as routed in optimize/fibers.json) leaves the body at"));
 }
 
+TEST_F(CollideE2E, AMoveThatBendsAFiberUnderItsRadiusNamesTheFiberAndWhatToTry)
+{
+  // Moved apart over 2 mm, a's route bends through 33 mm, under a 40 mm muscle's limit: the stage
+  // fails naming the fiber, the radius and where, and the advice holds: spread over the default
+  // 10 mm, the same move bends it through 132 mm and the stage passes.
+  design(std::string(kCrossing) + "[optimize]\nenabled = false\n[muscle]\nmin_bend_radius = 40\n[collide]\n"
+                                  "smoothness = 2\n");
+  auto r = make();
+  EXPECT_EQ(r.exit_code, 1);
+  // 33 mm on this block's mesh (the skin the move keeps clear of is the mesh's).
+  EXPECT_THAT(r.err, ::testing::ContainsRegex("\\[fiber\\.a\\]: the route as collide left it bends with a radius of "
+                                              "3[0-9]\\.[0-9][0-9] mm at \\(60\\.0, 0\\.0, -0\\.5\\) mm"));
+  EXPECT_THAT(r.err, HasSubstr("or raise [collide] smoothness, which spreads a move along the fiber"));
+  EXPECT_FALSE(fs::exists(dir_ / "build" / "collide" / "fibers.json"));
+  design(std::string(kCrossing) + "[optimize]\nenabled = false\n[muscle]\nmin_bend_radius = 40\n");
+  r = make();
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_GT(json("collide", "report.json")["bends"]["a"]["min_bend_radius_mm"].get<double>(), 100);
+}
+
 TEST_F(CollideE2E, CrossingFibersArePartedBeforeOptimizingAndCollideHasNothingLeft)
 {
   // a and b cross 1 mm apart (centre to centre): the optimize stage parts them to the clearance
