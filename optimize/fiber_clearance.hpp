@@ -55,7 +55,7 @@ public:
 
   /// Every place whose clearance is below `below` (m): for each sample segment of a fiber, the
   /// closest segment of each fiber after it; for each tested sample, the skin (unless `skin` is false).
-  /// With `only` ≥ 0, the pairs of fibers that include fiber `only` alone.
+  /// With `only` ≥ 0, of the pairs of fibers those that include fiber `only` alone (the skin's all).
   std::vector<Contact> contacts(const Lines& lines, double below, bool skin = true, int only = -1) const;
   std::vector<Contact> contacts(const std::vector<Route>& routes, double below) const
   {

@@ -18,8 +18,9 @@
 // Vandenberghe, Convex Optimization, §9.5.1): the whole decrease each of M and B predicts from x,
 // ½ gᵀM⁻¹g and ½ gᵀB⁻¹g, is at most decrease_tolerance × f. Barriers raise B where they act, so a minimum held
 // by a barrier converges too. It stalls where f fell by at most relative_tolerance × f over
-// `window` iterations while the model still predicts more than that (a wall the model does not
-// know); where it predicts less, the run goes on to converge. The objective may return +∞ (a
+// `window` iterations while the model predicted more than that after each of them (a wall the
+// model does not know, minimizer.hpp's model_stall_message); where it predicted less, the run goes
+// on to converge. The objective may return +∞ (a
 // failed simulation, a barrier crossed): the step is then rejected. Steps are only taken
 // downhill, so x is always the best point.
 //

@@ -98,7 +98,7 @@ std::optional<std::string> stall_message(const std::vector<double>& values, doub
 /// iteration; values[i + 1] is f then) above relative_tolerance of f. Where it predicted less at one
 /// of them, the run is that close to converging and goes on: on the last prediction alone the
 /// tentacle stalled 3 iterations short of converging, and the twisting bar 53 (one prediction of
-/// 1.3e-3 of f after ten from 1.0e-4).
+/// 1.3e-3 of f after nine from 1.5e-4 to 7.6e-4).
 std::optional<std::string> model_stall_message(const std::vector<double>& values, const std::vector<double>& predicted,
                                                const MinimizerOptions& options);
 

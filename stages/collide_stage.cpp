@@ -131,10 +131,10 @@ void require_optimizable(const Design& d, const RoutingProblem& problem, const R
 Routing reoptimize(StageContext& ctx, RoutingProblem& problem, const FiberClearance& measure, const Routing& resolved)
 {
   const Design& d = ctx.design;
+  require_optimizable(d, problem, resolved);
   const ClearanceBarrier barrier(measure, resolved.routes, d.collide.clearance, d.muscle.model.radius());
   problem.set_base(resolved);
   problem.set_clearance_barrier(&barrier, kClearanceBarrierWeight);
-  require_optimizable(d, problem, resolved);
   const MinimizerOptions o = minimizer_options(d);
   const RoutingCallback on_iteration = [&](int, const MinimizerIteration& it, const RoutingTerms& terms) {
     const std::string what = fmt::format("optimizing again, iteration {}: objective {:.4g} (distance {:.4g}, clearance "

@@ -55,7 +55,7 @@ TEST(ClearanceBarrier, AFibersOwnPairsHoldAllOfTheGradientThatChangesWhenItAlone
   const std::vector<Route> r{route("a", {mm(-25, 0, -2.4), mm(0, 1, -2.4), mm(25, 0, -2.4)}),
                              route("b", {mm(2, -25, 2.4), mm(0, 0, 2.7), mm(-1, 25, 2.4)}),
                              route("c", {mm(-25, 5.8, -2.4), mm(0, 5.8, -2.4), mm(25, 5.8, -2.4)}),
-                             route("d", {mm(-25, -20, 8), mm(0, -20, 8), mm(25, -20, 8)})};
+                             route("d", {mm(-25, -20, 12), mm(0, -20, 12), mm(25, -20, 12)})};
   const FiberClearance measure(body.skin, r, kRadius, kClearance, kSamplesPerLength);
   const ClearanceBarrier B(measure, r, kClearance, kRadius);
   ASSERT_TRUE(std::isfinite(B.value(r)));

@@ -3,7 +3,7 @@
 // windows f fell by under 1e-3 of its value, so the relative-tolerance rule alone calls both
 // stalls. Levenberg-Marquardt's rule asks too that the model kept predicting more than that:
 // the walking robot's did at all ten iterations (against a wall: its steps had shrunk to 1e-5
-// units), the twisting bar's not at four of them, and that run went on to converge 53 iterations
+// units), the twisting bar's at the last alone, and that run went on to converge 53 iterations
 // later.
 #include <algorithm>
 #include <vector>
@@ -57,12 +57,21 @@ TEST(StallRules, AModelThatPredictedLittleLeftAtOneIterationOfTheWindowIsNotASta
   EXPECT_FALSE(model_stall_message(raised.values, raised.predicted, o));
 }
 
-TEST(StallRules, NoStallBeforeAWholeWindow)
+TEST(StallRules, OnlyTheLastWindowsPredictionsCount)
 {
+  // The walking robot's window after an iteration whose model predicted little: that iteration is
+  // outside the window, so the run stalls all the same; inside it, it would not.
   const MinimizerOptions o;
-  const std::vector<double> values(kWalkingRobot.values.begin() + 1, kWalkingRobot.values.end());
-  const std::vector<double> predicted(kWalkingRobot.predicted.begin() + 1, kWalkingRobot.predicted.end());
-  EXPECT_FALSE(model_stall_message(values, predicted, o));
+  Window longer = kWalkingRobot;
+  longer.values.insert(longer.values.begin(), 2.04393);
+  longer.predicted.insert(longer.predicted.begin(), 1e-6);
+  EXPECT_TRUE(model_stall_message(longer.values, longer.predicted, o));
+  longer.predicted[5] = 1e-6;
+  EXPECT_FALSE(model_stall_message(longer.values, longer.predicted, o));
+  // Fewer than a window of iterations: no stall.
+  const Window shorter{std::vector<double>(kWalkingRobot.values.begin() + 1, kWalkingRobot.values.end()),
+                       std::vector<double>(kWalkingRobot.predicted.begin() + 1, kWalkingRobot.predicted.end())};
+  EXPECT_FALSE(model_stall_message(shorter.values, shorter.predicted, o));
 }
 
 } // namespace
