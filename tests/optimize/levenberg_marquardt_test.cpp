@@ -1,11 +1,13 @@
 // Levenberg-Marquardt on a Gauss-Newton model: the Rosenbrock valley as the least-squares problem
 // r = (10(x₂ − x₁²), 1 − x₁), which converges by the model's decrease (a first-order criterion,
 // not a stall) with |x − (1, 1)| ≤ 1e-6; a region of +∞ in the way; and a model that cannot
-// reach the minimum (a barrier the objective has and the model lacks) ends by its rejections;
+// reach the minimum (a barrier the objective has and the model lacks) ends by its rejections, or,
+// with the stall rule on, stalls;
 // a barrier whose exact values the minimizer is given (ray_model.hpp) is approached, not hit, and
 // with its derivatives given the secant term learns nothing of it.
 #include <cmath>
 #include <utility>
+#include <vector>
 
 #include <gtest/gtest.h>
 
@@ -91,6 +93,38 @@ TEST(LevenbergMarquardt, ASlowButFaithfulModelIsNotAStall)
   const MinimizerResult r = minimize_levenberg_marquardt(f, Eigen::VectorXd::Constant(1, 10.0), o, nullptr, progress);
   EXPECT_EQ(r.termination, Termination::decrease_tolerance) << r.message;
   EXPECT_LT(std::abs(r.x[0]), 0.02);
+}
+
+TEST(LevenbergMarquardt, AModelThatKeepsPredictingWhatItDoesNotDeliverStalls)
+{
+  // f = ½|x − (2, 0)|², +∞ for x₁ > 1, as below, with the stall rule on (minimizer.hpp's
+  // model_stall_message): against the wall (f ≈ 0.625) the model predicts all of f left after
+  // every iteration, while the steps it is allowed gain less and less. That is a stall, named so,
+  // at the best point found, before the rejections would end the run.
+  const ModelObjective f = [](const Eigen::VectorXd& x, Eigen::VectorXd& g, Eigen::MatrixXd& B) {
+    if (x[0] > 1) return HUGE_VAL;
+    g = x - Eigen::Vector2d(2, 0);
+    B = Eigen::Matrix2d::Identity();
+    return 0.5 * g.squaredNorm();
+  };
+  NullProgress progress;
+  MinimizerOptions o;
+  o.window = 3;
+  o.relative_tolerance = 1e-3;
+  std::vector<double> predicted, values;
+  const MinimizerResult r = minimize_levenberg_marquardt(
+      f, Eigen::Vector2d(0, 1), o,
+      [&](const MinimizerIteration& it, const Eigen::VectorXd&) {
+        predicted.push_back(it.predicted_decrease);
+        values.push_back(it.value);
+      },
+      progress);
+  EXPECT_EQ(r.termination, Termination::stalled) << r.message;
+  EXPECT_LE(r.x[0], 1);
+  EXPECT_GT(r.x[0], 0.9);
+  ASSERT_GE(predicted.size(), 3u);
+  for (std::size_t i = predicted.size() - 3; i < predicted.size(); ++i)
+    EXPECT_GT(predicted[i], 0.9 * values[i]); // all of f (it is ½|g|²), far above the window's 1e-3
 }
 
 TEST(LevenbergMarquardt, RejectsStepsIntoInfiniteValuesAndStillConverges)
