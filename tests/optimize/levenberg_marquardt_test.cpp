@@ -95,25 +95,28 @@ TEST(LevenbergMarquardt, ASlowButFaithfulModelIsNotAStall)
   EXPECT_LT(std::abs(r.x[0]), 0.02);
 }
 
+/// f = ½|x − (2, 0)|², +∞ for x₁ > 1, with the model B = I, which does not know the wall.
+double behind_a_wall(const Eigen::VectorXd& x, Eigen::VectorXd& g, Eigen::MatrixXd& B)
+{
+  if (x[0] > 1) return HUGE_VAL;
+  g = x - Eigen::Vector2d(2, 0);
+  B = Eigen::Matrix2d::Identity();
+  return 0.5 * g.squaredNorm();
+}
+
 TEST(LevenbergMarquardt, AModelThatKeepsPredictingWhatItDoesNotDeliverStalls)
 {
   // f = ½|x − (2, 0)|², +∞ for x₁ > 1, as below, with the stall rule on (minimizer.hpp's
   // model_stall_message): against the wall (f ≈ 0.625) the model predicts all of f left after
   // every iteration, while the steps it is allowed gain less and less. That is a stall, named so,
   // at the best point found, before the rejections would end the run.
-  const ModelObjective f = [](const Eigen::VectorXd& x, Eigen::VectorXd& g, Eigen::MatrixXd& B) {
-    if (x[0] > 1) return HUGE_VAL;
-    g = x - Eigen::Vector2d(2, 0);
-    B = Eigen::Matrix2d::Identity();
-    return 0.5 * g.squaredNorm();
-  };
   NullProgress progress;
   MinimizerOptions o;
   o.window = 3;
   o.relative_tolerance = 1e-3;
   std::vector<double> predicted, values;
   const MinimizerResult r = minimize_levenberg_marquardt(
-      f, Eigen::Vector2d(0, 1), o,
+      behind_a_wall, Eigen::Vector2d(0, 1), o,
       [&](const MinimizerIteration& it, const Eigen::VectorXd&) {
         predicted.push_back(it.predicted_decrease);
         values.push_back(it.value);
@@ -156,16 +159,10 @@ TEST(LevenbergMarquardt, AWallTheModelDoesNotKnowEndsTheRunAtTheBestPointNotConv
   // f = ½|x − (2, 0)|², +∞ for x₁ > 1: the model keeps pointing into the wall, so steps shrink
   // until max_line_search of them in a row are rejected. (The routing problem meets this where a
   // fiber's end, unguarded by the skin barrier, reaches the skin: docs/optimize.md.)
-  const ModelObjective f = [](const Eigen::VectorXd& x, Eigen::VectorXd& g, Eigen::MatrixXd& B) {
-    if (x[0] > 1) return HUGE_VAL;
-    g = x - Eigen::Vector2d(2, 0);
-    B = Eigen::Matrix2d::Identity();
-    return 0.5 * g.squaredNorm();
-  };
   NullProgress progress;
   MinimizerOptions o;
   o.relative_tolerance = 0;
-  const MinimizerResult r = minimize_levenberg_marquardt(f, Eigen::Vector2d(0, 1), o, nullptr, progress);
+  const MinimizerResult r = minimize_levenberg_marquardt(behind_a_wall, Eigen::Vector2d(0, 1), o, nullptr, progress);
   EXPECT_FALSE(r.converged());
   EXPECT_EQ(r.termination, Termination::line_search) << r.message;
   EXPECT_LE(r.x[0], 1);
