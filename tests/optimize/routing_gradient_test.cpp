@@ -1,10 +1,12 @@
 // The gradient of the whole objective of eq. 4 (distance through equilibrium for two targets,
 // curvature, skin barrier, pressure barrier, clearance barrier between the fibers) against central
 // finite differences of the objective itself: relative error ≤ 1e-5 for control points, tangents
-// and pressures.
+// and pressures. The parts of Levenberg-Marquardt's model against differences too: the forward
+// sensitivities, and the regularizers' Hessian, which is measured one route at a time.
 #include <cmath>
 #include <random>
 
+#include <Eigen/Eigenvalues>
 #include <gtest/gtest.h>
 
 #include "finite_differences.hpp"
@@ -85,6 +87,64 @@ TEST(RoutingProblem, GradientMatchesFiniteDifferencesAtRandomDesigns)
   problem.regularizer_derivatives(z, kept_gradient, kept_hessian);
   EXPECT_EQ(kept_gradient, exact_gradient);
   EXPECT_EQ(kept_hessian, exact_hessian);
+}
+
+TEST(RoutingProblem, RegularizerHessianOfThreeFibersMatchesDifferencesOfTheWholeGradient)
+{
+  // regularizer_hessian measures a column by moving one route and differencing only that route's
+  // terms and the clearance pairs that include it. With three fibers, each pair within the
+  // clearance barrier's reach, that must equal central differences of the whole regularizer
+  // gradient (every term, every pair), both projected to be positive semi-definite the same way.
+  test::RoutingFixture fx(kL, kA, 0.004, 12, 0.1, 1e-11);
+  const std::vector<Eigen::VectorXd> targets{
+      fx.actuated({{{0, 0.003, 0}, {0.02, 0.004, -0.003}, {kL, 0.003, 0}}}, {250e3})};
+  Routing start;
+  start.routes = {
+      test::RoutingFixture::route("a",
+                                  {{0, 0.002, 0}, {0.015, 0.0025, 0.0005}, {0.028, 0.002, -0.0005}, {kL, 0.002, 0}}),
+      test::RoutingFixture::route("b", {{0, -0.001, 0.0015}, {0.02, -0.0005, 0.001}, {kL, -0.001, 0.0015}}),
+      test::RoutingFixture::route("c", {{0, -0.001, -0.0015}, {0.02, -0.0015, -0.001}, {kL, -0.001, -0.0015}})};
+  start.pressures = Eigen::MatrixXd::Constant(1, 3, 200e3);
+  RoutingSettings settings;
+  settings.weight_curvature = 1e-3;
+  RoutingProblem problem(*fx.sim, fx.model, *fx.skin, targets, fx.curves, start, settings);
+  const FiberClearance measure(*fx.skin, start.routes, 0.2e-3, 0.1e-3, 4000);
+  const ClearanceBarrier clearance(measure, start.routes, 0.1e-3, 3e-3);
+  problem.set_clearance_barrier(&clearance, 0.1);
+
+  const Eigen::VectorXd z = problem.variables(start);
+  const Eigen::MatrixXd model = problem.regularizer_hessian(z);
+  const auto whole_gradient = [&](const Eigen::VectorXd& at) {
+    Eigen::VectorXd g;
+    Eigen::MatrixXd unused;
+    problem.regularizer_derivatives(at, g, unused);
+    return g;
+  };
+  Eigen::MatrixXd fd(z.size(), z.size());
+  for (Eigen::Index i = 0; i < z.size(); ++i) {
+    const double h = 1e-5; // 10 nm, or 0.1 Pa
+    Eigen::VectorXd up = z, down = z;
+    up[i] += h;
+    down[i] -= h;
+    fd.col(i) = (whole_gradient(up) - whole_gradient(down)) / (2 * h);
+  }
+  const Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> eigen((fd + fd.transpose()) / 2);
+  const Eigen::MatrixXd projected =
+      eigen.eigenvectors() * eigen.eigenvalues().cwiseMax(0).asDiagonal() * eigen.eigenvectors().transpose();
+  const double error = (model - projected).norm() / projected.norm();
+  std::printf("regularizer Hessian, three fibers: relative error %.2e over %ld variables\n", error,
+              static_cast<long>(z.size()));
+  EXPECT_LT(error, 1e-5);
+  // Each pair couples its two fibers: b's and c's variables, neither of them a, have a block of
+  // their own (a filter that dropped the pairs a column does not move first would zero it).
+  // A fiber's variables: its inner points' and all its tangents' components (its ends stay fixed).
+  const Eigen::Index na = (2 + 4) * 3, nb = (1 + 3) * 3;
+  ASSERT_EQ(z.size(), na + 2 * nb + 3);
+  const double bc = model.block(na, na + nb, nb, nb).norm();
+  const double bc_fd = projected.block(na, na + nb, nb, nb).norm();
+  std::printf("b-c block: %.3e (differences %.3e)\n", bc, bc_fd);
+  EXPECT_GT(bc_fd, 1e-3 * projected.norm());
+  EXPECT_NEAR(bc, bc_fd, 1e-4 * bc_fd);
 }
 
 TEST(RoutingProblem, SensitivitiesAndModelHessianMatchFiniteDifferences)
