@@ -1,5 +1,6 @@
 #include "stages/optimize_stage.hpp"
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <stdexcept>
@@ -358,9 +359,9 @@ std::string too_near_the_skin(const Design& d, double closest, const Eigen::Vect
   const SkinDistance need = skin_distance(d);
   return fmt::format(
       "the starting route passes {:.3f} mm from the skin at {}, where the optimizer keeps a fiber's centre line "
-      "more than {:.3f} mm inside ({}): move the route {:.3f} mm or more inward there, or give a thinner muscle or {}",
+      "more than {:.3f} mm inside ({}): move the route more than {:.3f} mm inward there, or give a thinner muscle or {}",
       closest / units::mm, format_mm(where), need.distance / units::mm, need.terms,
-      (need.distance - closest) / units::mm,
+      std::max(0.0, need.distance - closest) / units::mm,
       need.groove_margin > 0 ? "a smaller [mold] groove_clearance or min_silicone" : "a smaller clearance");
 }
 

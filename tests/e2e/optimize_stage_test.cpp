@@ -321,7 +321,7 @@ TEST_F(OptimizeE2E, AFiberTooNearTheSkinIsRefusedByCheckWithTheFix)
               ContainsRegex("design.toml:[0-9]+:[0-9]+: \\[fiber.m1\\]: the starting route passes 1\\.[0-9]{3} mm from "
                             "the skin at \\([0-9.]+, 6\\.[0-9], -?[0-9.]+\\) mm, where the optimizer keeps a fiber's "
                             "centre line more than 2\\.500 mm inside \\(\\[muscle\\] diameter/2 = 1\\.5 mm \\+ "
-                            "\\[collide\\] clearance = 1 mm\\): move the route 1\\.000 mm or more inward there"));
+                            "\\[collide\\] clearance = 1 mm\\): move the route more than 1\\.000 mm inward there"));
   EXPECT_FALSE(fs::exists(dir_ / "build"));
 }
 
