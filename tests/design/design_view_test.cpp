@@ -403,7 +403,7 @@ TEST_F(DesignViewTest, AViewWithNothingDeclaredHoldsAnUndeclaredValueInEveryMemb
 TEST_F(DesignViewTest, UndeclaredValuesAreNaNOutOfRangeOrNamed)
 {
   const Design d = load_design(fs::path(FIBERMOLD_SOURCE_DIR) / "examples/walking-robot/design.toml");
-  ASSERT_EQ(d.fibers.size(), 3u);
+  ASSERT_EQ(d.fibers.size(), 5u);
   const Design v = design_view(d, {"muscle.diameter"});
   EXPECT_EQ(v.muscle.model.diameter, d.muscle.model.diameter);
   EXPECT_TRUE(std::isnan(v.muscle.max_pressure));
