@@ -359,7 +359,8 @@ std::string too_near_the_skin(const Design& d, double closest, const Eigen::Vect
   const SkinDistance need = skin_distance(d);
   return fmt::format(
       "the starting route passes {:.3f} mm from the skin at {}, where the optimizer keeps a fiber's centre line "
-      "more than {:.3f} mm inside ({}): move the route more than {:.3f} mm inward there, or give a thinner muscle or {}",
+      "more than {:.3f} mm inside ({}): move the route more than {:.3f} mm inward there, or give a thinner "
+      "muscle or {}",
       closest / units::mm, format_mm(where), need.distance / units::mm, need.terms,
       std::max(0.0, need.distance - closest) / units::mm,
       need.groove_margin > 0 ? "a smaller [mold] groove_clearance or min_silicone" : "a smaller clearance");
