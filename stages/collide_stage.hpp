@@ -30,8 +30,9 @@ public:
   /// lower and higher); 14: the muscles' Hessian products exact, Levenberg-Marquardt's ray model taking out the
   /// barriers' expansion as its model holds it (a re-optimization's steps); 15: Levenberg-Marquardt's stall rule
   /// over the whole window (a re-optimization's ending); 16: the model's clearance-barrier Hessian from each
-  /// fiber's own pairs (a re-optimization's steps)
-  int version() const override { return 16; }
+  /// fiber's own pairs (a re-optimization's steps); 17: Levenberg-Marquardt forgets its secant term where B + S
+  /// alone claims convergence (a re-optimization's steps)
+  int version() const override { return 17; }
   void run(StageContext& ctx) const override;
 };
 

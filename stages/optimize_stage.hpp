@@ -40,8 +40,9 @@ public:
   /// newton.hessian_products); 13: the muscles' Hessian products exact, Levenberg-Marquardt's ray model taking
   /// out the barriers' expansion as its model holds it, a route at its smallest bend radius named in the warnings;
   /// 14: Levenberg-Marquardt stalls only where its model predicted too much at every iteration of the window;
-  /// 15: the model's clearance-barrier Hessian from each fiber's own pairs
-  int version() const override { return 15; }
+  /// 15: the model's clearance-barrier Hessian from each fiber's own pairs; 16: Levenberg-Marquardt forgets its
+  /// secant term where B + S alone claims convergence
+  int version() const override { return 16; }
   void run(StageContext& ctx) const override;
 };
 
