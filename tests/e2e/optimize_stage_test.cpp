@@ -299,7 +299,7 @@ TEST_F(OptimizeE2E, CheckOptimizeCollideAndMoldsKeepFibersFromTheSkinByOneRule)
   EXPECT_THAT(refused.err, HasSubstr("[fiber.m1]: the starting route passes 1.520 mm from the skin"));
   EXPECT_THAT(refused.err,
               HasSubstr("more than 1.800 mm inside ([muscle] diameter/2 = 1 mm + [mold] groove_clearance = 0.3 mm + "
-                        "[mold] min_silicone = 0.5 mm, what the groove needs): move the route 0.280 mm"));
+                        "[mold] min_silicone = 0.5 mm, what the groove needs): move the route more than 0.280 mm"));
   at(8 - 1.85);
   const auto passed = test::run_fibermold("check design.toml", dir_.path());
   ASSERT_EQ(passed.exit_code, 0) << passed.err;
