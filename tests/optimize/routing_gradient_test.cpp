@@ -18,12 +18,30 @@ namespace {
 
 constexpr double kL = 0.04, kA = 0.012;
 
+/// The bar of the fixture with one wavy muscle at 250 kPa: the target every test here has first.
+Eigen::VectorXd wave_target(test::RoutingFixture& fx)
+{
+  return fx.actuated({{{0, 0.003, 0}, {0.02, 0.004, -0.003}, {kL, 0.003, 0}}}, {250e3});
+}
+
+/// Thin muscles (0.2 mm radius) kept 0.1 mm apart at least by a clearance barrier acting over 3 mm,
+/// given to `problem` with weight 0.1: routes a few mm apart are within its reach.
+struct ThinMuscleClearance {
+  FiberClearance measure;
+  ClearanceBarrier barrier;
+
+  ThinMuscleClearance(const test::RoutingFixture& fx, const Routing& start, RoutingProblem& problem)
+      : measure(*fx.skin, start.routes, 0.2e-3, 0.1e-3, 4000), barrier(measure, start.routes, 0.1e-3, 3e-3)
+  {
+    problem.set_clearance_barrier(&barrier, 0.1);
+  }
+};
+
 TEST(RoutingProblem, GradientMatchesFiniteDifferencesAtRandomDesigns)
 {
   test::RoutingFixture fx(kL, kA, 0.004, 12, 0.1, 1e-11);
   std::vector<Eigen::VectorXd> targets{
-      fx.actuated({{{0, 0.003, 0}, {0.02, 0.004, -0.003}, {kL, 0.003, 0}}}, {250e3}),
-      fx.actuated({{{0, 0, -0.003}, {0.013, 0.003, 0}, {0.026, 0, 0.003}, {kL, -0.003, 0}}}, {300e3})};
+      wave_target(fx), fx.actuated({{{0, 0, -0.003}, {0.013, 0.003, 0}, {0.026, 0, 0.003}, {kL, -0.003, 0}}}, {300e3})};
   std::mt19937 rng(7);
   std::uniform_real_distribution<double> jitter(-0.001, 0.001);
   const auto wiggle = [&](Eigen::Vector3d p) {
@@ -45,11 +63,7 @@ TEST(RoutingProblem, GradientMatchesFiniteDifferencesAtRandomDesigns)
   settings.skin_distance = 1e-3;
   settings.skin_band = 1.5e-3;
   RoutingProblem problem(*fx.sim, fx.model, *fx.skin, targets, fx.curves, start, settings);
-  // Thin muscles (0.2 mm radius) 0.1 mm apart at least, the barrier acting over 3 mm: a and b, a
-  // few mm apart, are within its reach.
-  const FiberClearance measure(*fx.skin, start.routes, 0.2e-3, 0.1e-3, 4000);
-  const ClearanceBarrier clearance(measure, start.routes, 0.1e-3, 3e-3);
-  problem.set_clearance_barrier(&clearance, 0.1);
+  const ThinMuscleClearance clearance(fx, start, problem); // a and b, a few mm apart, within its reach
 
   const Eigen::VectorXd z = problem.variables(start);
   Eigen::VectorXd analytic;
@@ -96,8 +110,7 @@ TEST(RoutingProblem, RegularizerHessianOfThreeFibersMatchesDifferencesOfTheWhole
   // clearance barrier's reach, that must equal central differences of the whole regularizer
   // gradient (every term, every pair), both projected to be positive semi-definite the same way.
   test::RoutingFixture fx(kL, kA, 0.004, 12, 0.1, 1e-11);
-  const std::vector<Eigen::VectorXd> targets{
-      fx.actuated({{{0, 0.003, 0}, {0.02, 0.004, -0.003}, {kL, 0.003, 0}}}, {250e3})};
+  const std::vector<Eigen::VectorXd> targets{wave_target(fx)};
   Routing start;
   start.routes = {
       test::RoutingFixture::route("a",
@@ -108,9 +121,7 @@ TEST(RoutingProblem, RegularizerHessianOfThreeFibersMatchesDifferencesOfTheWhole
   RoutingSettings settings;
   settings.weight_curvature = 1e-3;
   RoutingProblem problem(*fx.sim, fx.model, *fx.skin, targets, fx.curves, start, settings);
-  const FiberClearance measure(*fx.skin, start.routes, 0.2e-3, 0.1e-3, 4000);
-  const ClearanceBarrier clearance(measure, start.routes, 0.1e-3, 3e-3);
-  problem.set_clearance_barrier(&clearance, 0.1);
+  const ThinMuscleClearance clearance(fx, start, problem);
 
   const Eigen::VectorXd z = problem.variables(start);
   const Eigen::MatrixXd model = problem.regularizer_hessian(z);
@@ -158,8 +169,7 @@ TEST(RoutingProblem, SensitivitiesAndModelHessianMatchFiniteDifferences)
   // The forward sensitivities dx/dz of Levenberg-Marquardt's model against central differences of
   // the equilibria, and its Gauss-Newton Hessian Σ SᵀQS against the one built from those differences.
   test::RoutingFixture fx(kL, kA, 0.004, 12, 0.1, 1e-11);
-  const std::vector<Eigen::VectorXd> targets{
-      fx.actuated({{{0, 0.003, 0}, {0.02, 0.004, -0.003}, {kL, 0.003, 0}}}, {250e3})};
+  const std::vector<Eigen::VectorXd> targets{wave_target(fx)};
   Routing start;
   start.routes = {
       test::RoutingFixture::route("a", {{0, 0.001, 0}, {0.014, 0.003, 0.001}, {0.027, -0.002, 0.002}, {kL, 0.001, 0}})};
