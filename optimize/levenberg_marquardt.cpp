@@ -192,10 +192,10 @@ MinimizerResult minimize_levenberg_marquardt(const ModelObjective& f, Eigen::Vec
       const double gnorm = g.norm();
       if (gnorm <= options.gradient_tolerance)
         return finish(Termination::gradient_tolerance, fmt::format("|∇f| = {:.3g} below tolerance", gnorm));
+      secant.forget_if_alone_it_claims_convergence(B, g, options.decrease_tolerance * std::abs(fx));
       // Converged where both B + S and B alone predict little left: a secant term that overstates
       // the curvature (learnt where it was steeper) claims too little (the twisting bar "converged"
       // at 0.941 on B + S's word alone, and went on to 0.648).
-      secant.forget_if_alone_it_claims_convergence(B, g, options.decrease_tolerance * std::abs(fx));
       const Eigen::MatrixXd M = model();
       if (const double decrease = std::max(model_decrease(M, g), model_decrease(B, g));
           decrease <= options.decrease_tolerance * std::abs(fx))
