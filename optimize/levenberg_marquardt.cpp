@@ -134,14 +134,25 @@ struct SecantTerm {
     if (s.cwiseAbs().maxCoeff() >= kLeastSecantStep) secant_update(S, B_new, s, y);
   }
 
-  /// Where B + S predicts at most `enough` left (the run has converged) and B alone more, S is the
-  /// suspect (it overstates the curvature where it learnt it steeper): it is forgotten, and the next
-  /// steps are taken on B and teach S afresh. Kept, it held the twisting bar under OpenBLAS's
-  /// SkylakeX kernels to steps of 0.02-0.05 units for 730 iterations, f 0.968 → 0.940 at the limit
-  /// of 1000; forgotten (three times), that run converges at 372 iterations, f 0.6226.
-  void forget_if_alone_it_claims_convergence(const Eigen::MatrixXd& B, const Eigen::VectorXd& g, double enough)
+  /// The model M = B + S at gradient g, and in `decrease` the larger of the whole decreases M and B
+  /// alone predict (the convergence test's). Where M predicts at most `enough` left (the run has
+  /// converged) and B alone more, S is the suspect (it overstates the curvature where it learnt it
+  /// steeper): it is forgotten first, and the next steps are taken on B and teach S afresh. Kept,
+  /// it held the twisting bar under OpenBLAS's SkylakeX kernels to steps of 0.02-0.05 units for 730
+  /// iterations, f 0.968 → 0.940 at the limit of 1000; forgotten (three times), that run converges
+  /// at 372 iterations, f 0.6226.
+  Eigen::MatrixXd model(const Eigen::MatrixXd& B, const Eigen::VectorXd& g, double enough, double& decrease)
   {
-    if (S.any() && model_decrease(secant_model(B, S), g) <= enough && model_decrease(B, g) > enough) S.setZero();
+    Eigen::MatrixXd M = secant_model(B, S);
+    double by_model = model_decrease(M, g);
+    const double by_B = model_decrease(B, g);
+    if (S.any() && by_model <= enough && by_B > enough) {
+      S.setZero();
+      M = secant_model(B, S);
+      by_model = model_decrease(M, g);
+    }
+    decrease = std::max(by_model, by_B);
+    return M;
   }
 };
 
@@ -192,13 +203,12 @@ MinimizerResult minimize_levenberg_marquardt(const ModelObjective& f, Eigen::Vec
       const double gnorm = g.norm();
       if (gnorm <= options.gradient_tolerance)
         return finish(Termination::gradient_tolerance, fmt::format("|∇f| = {:.3g} below tolerance", gnorm));
-      secant.forget_if_alone_it_claims_convergence(B, g, options.decrease_tolerance * std::abs(fx));
       // Converged where both B + S and B alone predict little left: a secant term that overstates
       // the curvature (learnt where it was steeper) claims too little (the twisting bar "converged"
       // at 0.941 on B + S's word alone, and went on to 0.648).
-      const Eigen::MatrixXd M = model();
-      if (const double decrease = std::max(model_decrease(M, g), model_decrease(B, g));
-          decrease <= options.decrease_tolerance * std::abs(fx))
+      double decrease = 0;
+      const Eigen::MatrixXd M = secant.model(B, g, options.decrease_tolerance * std::abs(fx), decrease);
+      if (decrease <= options.decrease_tolerance * std::abs(fx))
         return finish(Termination::decrease_tolerance,
                       fmt::format("the models' whole decrease (B + S's and B's) is at most {:.3g}, {:.2g} of f",
                                   decrease, decrease / std::abs(fx)));
