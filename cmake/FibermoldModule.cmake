@@ -1,3 +1,9 @@
+# The warnings every fibermold target compiles with (fibermold_warnings(TARGET)), errors with
+# FIBERMOLD_WARNINGS_AS_ERRORS.
+function(fibermold_warnings target)
+  target_compile_options(${target} PRIVATE -Wall -Wextra $<$<BOOL:${FIBERMOLD_WARNINGS_AS_ERRORS}>:-Werror>)
+endfunction()
+
 # fibermold_module(NAME SOURCES ... [PUBLIC deps...] [PRIVATE deps...])
 # One static library per module folder, target fibermold_<NAME>, alias fibermold::<NAME>.
 # Headers are included as "<module>/<file>.hpp" from the source root.
@@ -6,7 +12,7 @@ function(fibermold_module name)
   add_library(fibermold_${name} STATIC ${M_SOURCES})
   add_library(fibermold::${name} ALIAS fibermold_${name})
   target_include_directories(fibermold_${name} PUBLIC ${PROJECT_SOURCE_DIR})
-  target_compile_options(fibermold_${name} PRIVATE -Wall -Wextra)
+  fibermold_warnings(fibermold_${name})
   target_link_libraries(fibermold_${name} PUBLIC ${M_PUBLIC} PRIVATE ${M_PRIVATE})
 endfunction()
 
@@ -14,7 +20,7 @@ endfunction()
 function(fibermold_test name)
   cmake_parse_arguments(T "" "" "SOURCES;LIBS;PROPERTIES" ${ARGN})
   add_executable(${name} ${T_SOURCES})
-  target_compile_options(${name} PRIVATE -Wall -Wextra)
+  fibermold_warnings(${name})
   target_link_libraries(${name} PRIVATE ${T_LIBS} fibermold_test_support GTest::gmock GTest::gtest_main)
   target_compile_definitions(${name} PRIVATE
     FIBERMOLD_SOURCE_DIR="${PROJECT_SOURCE_DIR}"
