@@ -139,7 +139,7 @@ SiliconeThickness silicone_thickness(const SurfaceMesh& groove_body, const Surfa
     if (!(n.norm() > 0)) continue;
     const Eigen::Vector3d centre = (p0 + p1 + p2) / 3, inward = -n.normalized();
     // One ray first; the cone only where it sees thin silicone.
-    if (to_skin(centre, inward) >= 2e-3) continue;
+    if (to_skin(centre, inward) >= kThickestMeasuredWeb) continue;
     if (const double t = behind(centre, inward); t < out.groove_web) out.groove_web = t, out.groove_web_at = centre;
   }
 

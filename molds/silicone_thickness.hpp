@@ -14,12 +14,15 @@
 
 namespace fibermold {
 
+/// m: shot 1's webs thicker than this are not measured (a groove wall whose skin is farther).
+inline constexpr double kThickestMeasuredWeb = 2e-3;
+
 struct SiliconeThickness {
   /// m: the thinnest shot-1 silicone between a groove's walls (more than its radius below its
-  /// mouth) and the skin; below 2 mm, else +∞
+  /// mouth) and the skin; below kThickestMeasuredWeb, else +∞
   double groove_web = HUGE_VAL;
   Eigen::Vector3d groove_web_at = Eigen::Vector3d::Zero();
-  double overmold = HUGE_VAL; ///< m: the thinnest shot-2 silicone over a muscle
+  double overmold = HUGE_VAL; ///< m: the thinnest shot-2 silicone over a muscle; +∞ where none is measured
   Eigen::Vector3d overmold_at = Eigen::Vector3d::Zero();
 };
 

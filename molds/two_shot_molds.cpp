@@ -346,10 +346,16 @@ TwoShotMolds Recipe::make()
   out_.thickness = silicone_thickness(out_.groove.mesh, shot2_cavity, lines_, out_.groove_radius,
                                       job_.muscle_diameter / 2, pull_, m_.voxel, job_.exits);
   const SiliconeThickness& t = out_.thickness;
-  log_.info(fmt::format("silicone: {:.2f} mm at the thinnest groove wall near {}, {:.2f} mm over the muscles at the "
-                        "thinnest, near {}; in {:.2f} s",
-                        t.groove_web / 1e-3, format_mm(out_.scaled(t.groove_web_at)), t.overmold / 1e-3,
-                        format_mm(out_.scaled(t.overmold_at)), since(started)));
+  // A thickness is +∞ where none was measured: no web thinner than the scan's depth, no muscle
+  // outside its exit stretches. It then has no place.
+  const auto thinnest = [&](double thickness, const Eigen::Vector3d& at, const std::string& otherwise) {
+    return std::isfinite(thickness) ? fmt::format("{:.2f} mm near {}", thickness / 1e-3, format_mm(out_.scaled(at)))
+                                    : otherwise;
+  };
+  log_.info(
+      fmt::format("silicone: {} at the thinnest groove wall, {} over the muscles at the thinnest; in {:.2f} s",
+                  thinnest(t.groove_web, t.groove_web_at, fmt::format("over {:.0f} mm", kThickestMeasuredWeb / 1e-3)),
+                  thinnest(t.overmold, t.overmold_at, "nothing measured"), since(started)));
   if (t.groove_web < m_.min_silicone - kPlacementTolerance)
     failures.push_back(
         fmt::format("shot1: the cast's silicone is {:.3f} mm thin between a groove and the skin near {}, below [mold] "

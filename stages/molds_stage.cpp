@@ -176,12 +176,15 @@ Json molds_report(const TwoShotMolds& molds, const Design& d)
                           {"labels_left_out", p.part.unlabelled}};
   }
   const SiliconeThickness& t = molds.thickness;
-  const auto finite_mm = [](double v) { return std::isfinite(v) ? Json(v / units::mm) : Json("none"); };
-  const Json silicone{{"groove_wall_mm", finite_mm(t.groove_web)},
-                      {"groove_wall_at_mm", vec_mm(molds.scaled(t.groove_web_at))},
-                      {"over_muscle_mm", finite_mm(t.overmold)},
-                      {"over_muscle_at_mm", vec_mm(molds.scaled(t.overmold_at))},
-                      {"min_silicone_mm", m.min_silicone / units::mm}};
+  // A thickness nothing measured is "none", and has no place.
+  Json silicone = Json::object();
+  const auto thinnest = [&](const char* key, double v, const Eigen::Vector3d& at) {
+    silicone[fmt::format("{}_mm", key)] = std::isfinite(v) ? Json(v / units::mm) : Json("none");
+    if (std::isfinite(v)) silicone[fmt::format("{}_at_mm", key)] = vec_mm(molds.scaled(at));
+  };
+  thinnest("groove_wall", t.groove_web, t.groove_web_at);
+  thinnest("over_muscle", t.overmold, t.overmold_at);
+  silicone["min_silicone_mm"] = m.min_silicone / units::mm;
   const GrooveBody& g = molds.groove;
   return {{"voxel_mm", m.voxel / units::mm},
           {"groove_radius_mm", molds.groove_radius / units::mm},

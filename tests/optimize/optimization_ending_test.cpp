@@ -73,6 +73,35 @@ TEST(OptimizationEnding, ATargetWithoutATurnIsJudgedByItsTrackingCurvesAndALimit
   EXPECT_TRUE(far.limits[0].at_max);
 }
 
+TEST(OptimizationEnding, ATargetWithEveryMuscleOffIsSaidToBeTheBodyUnactuatedWithWhatToCheck)
+{
+  // A new user's level finger sagged 54 mm under its weight, past the 45° asked: the optimizer
+  // turned the muscle off, and the warning pointed at the route, not at how the body is held.
+  const OptimizationEnding off = ending(0.9, 52e-3, 4.1e-3, {{"pose[1]", 45 * kDeg, 46.4 * kDeg}});
+  ASSERT_EQ(off.warnings.size(), 1u);
+  EXPECT_THAT(off.warnings[0], HasSubstr("target curl: every muscle of it ends at 0 kPa"));
+  EXPECT_THAT(off.warnings[0], HasSubstr("the body unactuated, which its loads and its weight alone bring to a "
+                                         "tracking-curve RMSE of 4.10 mm"));
+  EXPECT_THAT(off.warnings[0], HasSubstr("check [material] gravity and the [[fixed]] regions"));
+  EXPECT_THAT(off.warnings[0], Not(HasSubstr("turned it off")));
+  ASSERT_EQ(off.limits.size(), 1u);
+  EXPECT_FALSE(off.limits[0].at_max);
+
+  // With another muscle on, the one turned off is named on its own.
+  RoutingResult r;
+  r.routing.pressures = (Eigen::MatrixXd(1, 2) << 0.0, 200e3).finished();
+  r.converged = true;
+  RoutingSettings s;
+  s.max_pressure = 425e3;
+  TargetErrors before, after;
+  before.rmse = 52e-3;
+  after.rmse = 4.1e-3;
+  const OptimizationEnding one = optimization_ending(r, ActuatorMask::Constant(1, 2, true), s, {before}, {after}, {{}},
+                                                     {"curl"}, {"flexor", "extensor"});
+  ASSERT_EQ(one.warnings.size(), 1u);
+  EXPECT_THAT(one.warnings[0], HasSubstr("fiber flexor ends at 0.0 kPa: the optimizer turned it off"));
+}
+
 TEST(OptimizationEnding, ARouteAtItsSmallestBendRadiusIsNamedWithWhereAndWhatToTry)
 {
   // A Hermite quarter turn between points 10 mm off a corner: its tightest bend, 8.6 mm where the
