@@ -258,13 +258,10 @@ MinimizerResult minimize_levenberg_marquardt(const ModelObjective& f, Eigen::Vec
           return finish(Termination::stalled, std::move(*message));
         continue;
       }
-      // The last trial's length says what a stop here means (a μ that doubling took to 1e68 does not):
-      // f rises along even a tiny step where its gradient disagrees with it.
-      if (++rejected >= options.max_line_search)
-        return finish(Termination::line_search,
-                      fmt::format("{} trial steps in a row did not lower f, the last moving no variable more than "
-                                  "{:.2g} (mm, or 10 kPa for a pressure)",
-                                  rejected, d.cwiseAbs().maxCoeff()));
+      if (++rejected >= options.max_line_search) // the last trial's length, not μ (which doubling takes to 1e68)
+        return finish(Termination::line_search, fmt::format("{} trial steps in a row did not lower f, the last moving "
+                                                            "no variable more than {:.2g} (mm, or 10 kPa)",
+                                                            rejected, d.cwiseAbs().maxCoeff()));
       mu = std::max(mu, kLeastRaisedDamping) * nu;
       nu *= 2;
     }
