@@ -158,6 +158,7 @@ int run_simulate(const Design& design, const Runner& runner, const fs::path& bui
              r.name, r.max_displacement / 1e-3, r.summary.iterations, r.summary.residual, r.summary.seconds_total,
              r.summary.seconds_assembly, r.summary.seconds_factorization, r.summary.seconds_solve, r.vtu.string());
   if (!r.conditioning.empty()) fmt::print("  warning: {}\n", r.conditioning);
+  fmt::print("  {}\n", r.muscles);
   if (!r.as_built.empty()) fmt::print("  {}\n", r.as_built);
   if (!r.poses.empty()) fmt::print("{}", r.poses); // its lines end in a newline
   if (const auto& f = r.refinement) {

@@ -26,7 +26,7 @@ struct SimulateRequest {
 };
 
 struct SimulateResult {
-  std::string name; ///< "twist", or "pressures"
+  std::string name; ///< the target's ("twist"), or "pressures" (--pressure), or "unactuated" (neither)
   std::filesystem::path vtu;
   double max_displacement = 0; ///< m
   NewtonSummary summary;
@@ -37,6 +37,8 @@ struct SimulateResult {
   std::string poses;
   /// With --as-built: what was simulated (the routes' file, the pressures, the material); empty otherwise.
   std::string as_built;
+  /// What drove the body: each muscle's pressure ("m1 300 kPa, spine 0 kPa"), or that none did.
+  std::string muscles;
 };
 
 /// Throws InputError for a bad request or design (exit 2), std::runtime_error when the solve fails.

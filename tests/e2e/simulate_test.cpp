@@ -1,4 +1,5 @@
 // `fibermold simulate` as a user runs it: a small bar with one muscle.
+#include <cstdio>
 #include <regex>
 
 #include <fmt/format.h>
@@ -54,6 +55,42 @@ TEST_F(SimulateE2E, PressurizedMuscleDeformsTheBarAndWritesTheVtu)
   const double max_mm = std::stod(r.out.substr(r.out.find("max displacement") + 17));
   EXPECT_GT(max_mm, 0.5); // a 300 kPa muscle in a 60 mm EcoFlex bar moves it by millimetres
   EXPECT_LT(max_mm, 30);
+}
+
+/// The cast robot holds every muscle: one not given a pressure is in the body at 0 kPa, and stiffens
+/// it (a new user's finger sagged 66.9 mm with its muscle left out, 57.7 mm with it at rest).
+TEST_F(SimulateE2E, AFiberGivenNoPressureIsInTheBodyAtRest)
+{
+  design();
+  std::string text = test::read_text(dir_ / "design.toml");
+  text += "[[fiber]]\nname = \"m2\"\npoints = [[0, 0, -4], [60, 0, -4]]\n";
+  text.replace(text.find("gravity = [0, 0, 0]"), 19, "gravity = [0, 0, -9.81]");
+  test::write_text(dir_ / "design.toml", text);
+  const auto max_mm = [](const std::string& out) { return std::stod(out.substr(out.find("max displacement") + 17)); };
+
+  const auto one = simulate("--pressure m1=300");
+  ASSERT_EQ(one.exit_code, 0) << one.err;
+  EXPECT_THAT(one.out, HasSubstr("muscles: m1 300 kPa, m2 0 kPa"));
+  const std::string vtu = test::read_text(dir_ / "build" / "simulate" / "deformed-pressures.vtu");
+  const auto both = simulate("--pressure m1=300 --pressure m2=0");
+  ASSERT_EQ(both.exit_code, 0) << both.err;
+  EXPECT_EQ(test::read_text(dir_ / "build" / "simulate" / "deformed-pressures.vtu"), vtu);
+
+  // Neither flag: the robot unactuated, both muscles at rest, under its weight.
+  const auto rest = simulate("");
+  ASSERT_EQ(rest.exit_code, 0) << rest.err;
+  EXPECT_THAT(rest.out, HasSubstr("simulate unactuated: max displacement"));
+  EXPECT_THAT(rest.out, HasSubstr("muscles: m1 0 kPa, m2 0 kPa"));
+  EXPECT_TRUE(fs::exists(dir_ / "build" / "simulate" / "deformed-unactuated.vtu"));
+  // The muscles at rest stiffen the sagging bar: a body without them sags further.
+  test::write_text(dir_ / "design.toml",
+                   text.substr(0, text.find("[[fiber]]")) +
+                       text.substr(text.find("[[target]]"), text.rfind("[[fiber]]") - text.find("[[target]]")));
+  const auto bare = simulate("");
+  ASSERT_EQ(bare.exit_code, 0) << bare.err;
+  EXPECT_THAT(bare.out, HasSubstr("no muscle: the body under its weight and its held regions"));
+  std::printf("sag with the muscles at rest %.3f mm, without them %.3f mm\n", max_mm(rest.out), max_mm(bare.out));
+  EXPECT_GT(max_mm(bare.out), 1.02 * max_mm(rest.out)) << rest.out << bare.out;
 }
 
 /// `--refine` solves again at half the edge length and says how far the figures are from
