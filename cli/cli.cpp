@@ -333,6 +333,15 @@ int fibermold_main(int argc, char** argv)
     const fs::path build_dir = build_dir_for(design, build_dir_option);
     if (status->parsed()) {
       if (runner.stage_names().empty()) fmt::print("this build of fibermold has no stages yet\n");
+      // Which folder was looked in: the default is relative to the folder fibermold runs in.
+      const fs::path absolute = fs::absolute(build_dir).lexically_normal();
+      fmt::print("build folder {}{}\n", absolute.string(),
+                 fs::exists(build_dir) ? ""
+                 : build_dir_option.empty()
+                     ? fmt::format(": none yet (the default, out/{} under the folder you run in; --build-dir "
+                                   "names another)",
+                                   design.design.name)
+                     : ": none yet");
       print_status(runner.status(design, build_dir, args.stages));
       return 0;
     }

@@ -158,16 +158,32 @@ Eigen::VectorXd target_forces(const Design& d, const Target& t, const Simulation
   return f;
 }
 
+std::string leaves_the_body(const std::string& what, const std::vector<Eigen::Vector3d>& points,
+                            const Eigen::Vector3d& where, const std::function<bool(const Eigen::Vector3d&)>& inside)
+{
+  std::vector<std::string> outside;
+  for (std::size_t k = 0; k < points.size(); ++k)
+    if (!inside(points[k])) outside.push_back(fmt::format("point {} {}", k + 1, format_mm(points[k])));
+  if (!outside.empty())
+    return fmt::format("the {} leaves the body at {}; of its {} points, {} {} outside: move {} inside the body", what,
+                       format_mm(where), points.size(), fmt::join(outside, ", "), outside.size() == 1 ? "lies" : "lie",
+                       outside.size() == 1 ? "it" : "them");
+  return fmt::format("the {} leaves the body at {}, between its points, which all lie inside: the curve through them "
+                     "bulges out there; add a point near it, inside, or move its neighbours inward",
+                     what, format_mm(where));
+}
+
 namespace {
 
 /// Refuses a fiber that leaves the body: every segment end must lie in a tet (within 1e-6 of it).
-void require_inside(const Design& d, const std::string& fiber, const FemBasis& locator, const HermiteSpline& spline,
+void require_inside(const Design& d, const Actuation& fiber, const FemBasis& locator, const HermiteSpline& spline,
                     const FiberSegments& segments)
 {
   for (double t : segments.t) {
     const Eigen::Vector3d p = spline.position(t);
     if (!inside_body(locator, p))
-      bad(d, fmt::format("[fiber.{}]", fiber), fmt::format("the fiber leaves the body at {}", format_mm(p)));
+      bad(d, fmt::format("[fiber.{}]", fiber.fiber),
+          leaves_the_body("fiber", fiber.points, p, [&](const Eigen::Vector3d& q) { return inside_body(locator, q); }));
   }
 }
 
@@ -202,7 +218,7 @@ std::vector<const MuscleEnergy*> add_muscles(Simulation& sim, const Design& d, c
       if (!(segments.vectors[j].norm() > 1e-9))
         bad(d, fmt::format("[fiber.{}]", a.fiber),
             fmt::format("the fiber has no length near {} (repeated points?)", format_mm(segments.centres[j])));
-    require_inside(d, a.fiber, locator, spline, segments);
+    require_inside(d, a, locator, spline, segments);
     auto muscle = std::make_unique<MuscleEnergy>(sim.basis(), model, std::move(spline), std::move(t), a.pressure);
     muscles.push_back(muscle.get());
     sim.add_energy(std::move(muscle));

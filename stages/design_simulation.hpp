@@ -3,6 +3,7 @@
 // targets stage and `fibermold simulate`.
 
 #include <filesystem>
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -37,6 +38,12 @@ void require_regions_reach_the_body(const Design& d, const SurfaceMesh& surface)
 
 /// The nodal forces of a `kind = "forces"` target's loads.
 Eigen::VectorXd target_forces(const Design& d, const Target& t, const Simulation& sim);
+
+/// "the fiber leaves the body at P", for a fiber's or a tracking curve's `points`, with which of the
+/// given points lie outside (`inside` says; counted from 1, as a user counts a TOML array's entries)
+/// or, where all lie inside, that the curve bulges out between them; and what to do.
+std::string leaves_the_body(const std::string& what, const std::vector<Eigen::Vector3d>& points,
+                            const Eigen::Vector3d& where, const std::function<bool(const Eigen::Vector3d&)>& inside);
 
 /// The fibers and pressures of a `kind = "fibers"` target.
 std::vector<Actuation> target_actuations(const Design& d, const Target& t);

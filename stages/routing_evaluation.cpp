@@ -23,7 +23,10 @@ std::vector<TrackingSamples> tracking_samples(const Design& d, const SurfaceDist
     for (const Eigen::Vector3d& q : curves.back().points)
       if (const auto at = skin.closest(q); !at.inside && at.distance > 1e-6)
         throw InputError(design_problem(d, fmt::format("[tracking_curve.{}]", c.name),
-                                        fmt::format("the curve leaves the body at {}", format_mm(q))));
+                                        leaves_the_body("curve", c.points, q, [&](const Eigen::Vector3d& p) {
+                                          const auto at = skin.closest(p);
+                                          return at.inside || at.distance <= 1e-6;
+                                        })));
   }
   return curves;
 }

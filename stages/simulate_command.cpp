@@ -56,7 +56,13 @@ std::vector<Actuation> requested_actuations(const Design& d, const SimulateReque
     if (eq == std::string::npos || !std::isfinite(kpa))
       bad(d, "--pressure", fmt::format("'{}': expected FIBER=kPa", item));
     const Fiber* f = fiber(name);
-    if (!f) bad(d, "--pressure", fmt::format("no [[fiber]] named \"{}\"", name));
+    if (!f) {
+      std::vector<std::string> names;
+      for (const Fiber& each : d.fibers) names.push_back(each.name);
+      bad(d, "--pressure",
+          fmt::format("no [[fiber]] named \"{}\" (the design has {})", name,
+                      names.empty() ? std::string("none") : fmt::format("{}", fmt::join(names, ", "))));
+    }
     if (kpa < 0 || kpa * units::kPa > d.muscle.max_pressure)
       bad(d, "--pressure",
           fmt::format("{} kPa for {} is outside [0, {}] kPa ([muscle].max_pressure)", kpa, name,

@@ -132,7 +132,9 @@ TEST_F(SimulateE2E, PressureOutOfRange)
   const auto r = simulate("--pressure m1=500");
   EXPECT_EQ(r.exit_code, 2);
   EXPECT_THAT(r.err, HasSubstr("500 kPa for m1 is outside [0, 425] kPa"));
-  EXPECT_EQ(simulate("--pressure m9=100").exit_code, 2);
+  const auto unknown = simulate("--pressure m9=100");
+  EXPECT_EQ(unknown.exit_code, 2);
+  EXPECT_THAT(unknown.err, HasSubstr("no [[fiber]] named \"m9\" (the design has m1)"));
   EXPECT_EQ(simulate("--pressure m1").exit_code, 2);
 }
 
@@ -142,6 +144,15 @@ TEST_F(SimulateE2E, FiberOutsideTheBody)
   const auto r = simulate("--pressure m1=100");
   EXPECT_EQ(r.exit_code, 2);
   EXPECT_THAT(r.err, HasSubstr("[fiber.m1]: the fiber leaves the body at ("));
+  // Which of the points the user gave to move, counted as they count them.
+  EXPECT_THAT(r.err, HasSubstr("of its 3 points, point 2 (30.0, 20.0, 0.0) mm lies outside: move it inside the body"));
+  // All points inside (the bar is ±8 mm in z), the curve through them bulging out: its first span
+  // rises to z = 7 + 30 · 4/27 = 11.4 mm.
+  design("[[fixed]]\nbox = { min = [-1, -9, -9], max = [0.5, 9, 9] }\n",
+         "[[0, 0, 7], [30, 0, 7], [60, 0, 7]]\ntangents = [[30, 0, 30], [30, 0, 0], [30, 0, -30]]");
+  const auto bulge = simulate("--pressure m1=100");
+  EXPECT_EQ(bulge.exit_code, 2);
+  EXPECT_THAT(bulge.err, HasSubstr("between its points, which all lie inside: the curve through them bulges out"));
 }
 
 TEST_F(SimulateE2E, FixedRegionThatCatchesNoNode)
