@@ -11,6 +11,7 @@
 #include "core/input_error.hpp"
 #include "core/units.hpp"
 #include "mesh/detail/cgal_surface.hpp"
+#include "mesh/surface_repair.hpp"
 
 namespace fibermold {
 
@@ -51,7 +52,7 @@ Point point(const SurfaceMesh& s, int v) { return {s.vertices(v, 0), s.vertices(
 
 void add(SurfaceCheck& check, const Tally& t, std::string message, bool repairable)
 {
-  if (t.count > 0) check.problems.push_back({std::move(message), t.where, repairable});
+  if (t.count > 0) check.problems.push_back({std::move(message), t.where, repairable, {}});
 }
 
 /// Faces with a repeated vertex or three collinear vertices (exact predicate).
@@ -179,6 +180,9 @@ SurfaceCheck check_surface(const SurfaceMesh& s)
   add(check, degenerate, fmt::format("has {} degenerate (zero-area) faces", degenerate.count), true);
   const EdgeTallies edges = edge_tallies(s);
   add(check, edges.border, fmt::format("is not closed: {} border edges", edges.border.count), true);
+  if (edges.border.count > 0)
+    check.problems.back().repair_scope = fmt::format(
+        "it stitches gaps narrower than 1e-6 of the body's size and fills holes of up to {} edges", kLargestFilledHole);
   add(check, edges.non_manifold,
       fmt::format("is not manifold: {} edges shared by more than two faces", edges.non_manifold.count), false);
   add(check, edges.flipped,
@@ -229,11 +233,13 @@ SurfaceCheck check_surface(const SurfaceMesh& s)
     const double size = (check.max - check.min).norm();
     const Eigen::Vector3d centre = (check.min + check.max) / 2;
     if (std::abs(check.volume) <= 1e-9 * size * size * size) {
-      check.problems.push_back({"encloses no volume: it is flat", centre, false});
+      check.problems.push_back({"encloses no volume: it is flat", centre, false, {}});
     } else if (check.volume < 0) {
       check.problems.push_back(
           {fmt::format("is oriented inward: its faces enclose a negative volume ({:.4g} mm³)", check.volume / 1e-9),
-           centre, true});
+           centre,
+           true,
+           {}});
     }
   }
   const double size = (check.max - check.min).maxCoeff();
@@ -251,12 +257,13 @@ void require_valid_surface(const SurfaceCheck& check, const SurfaceMesh& surface
   const std::string name = surface.source.filename().string();
   for (const SurfaceProblem& p : check.problems) {
     std::string hint;
+    const std::string scope = p.repair_scope.empty() ? "" : " (" + p.repair_scope + ")";
     if (p.repairable && !repaired)
-      hint = "; set [mesh] repair = true to fix it";
+      hint = "; set [mesh] repair = true to fix it" + scope;
     else if (!p.repairable)
       hint = "; fix it in a mesh editor";
     else
-      hint = "; repair could not fix it, fix it in a mesh editor";
+      hint = "; repair could not fix it" + scope + ", fix it in a mesh editor";
     diagnostics.push_back(
         {surface.source, 0, 0, "", fmt::format("surface {} {}, e.g. at {}{}", name, p.message, mm(p.where), hint)});
   }

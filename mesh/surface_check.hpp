@@ -14,9 +14,10 @@ namespace fibermold {
 
 /// One way in which the surface fails, with a count and one example location.
 struct SurfaceProblem {
-  std::string message;     ///< "is not closed: 4 border edges"
-  Eigen::Vector3d where;   ///< m
-  bool repairable = false; ///< `[mesh] repair = true` can fix it
+  std::string message;      ///< "is not closed: 4 border edges"
+  Eigen::Vector3d where;    ///< m
+  bool repairable = false;  ///< `[mesh] repair = true` can fix it
+  std::string repair_scope; ///< what repair fixes of it, where it fixes only some ("fills holes of up to 12 edges")
 };
 
 /// A closed void inside the body: a shell that points inward.

@@ -3,12 +3,14 @@
 #include <numeric>
 
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
+#include <CGAL/Polygon_mesh_processing/border.h>
 #include <CGAL/Polygon_mesh_processing/orient_polygon_soup.h>
 #include <CGAL/Polygon_mesh_processing/orientation.h>
 #include <CGAL/Polygon_mesh_processing/polygon_soup_to_polygon_mesh.h>
 #include <CGAL/Polygon_mesh_processing/repair_polygon_soup.h>
 #include <CGAL/Polygon_mesh_processing/self_intersections.h>
 #include <CGAL/Polygon_mesh_processing/stitch_borders.h>
+#include <CGAL/Polygon_mesh_processing/triangulate_hole.h>
 #include <CGAL/Surface_mesh.h>
 #include <fmt/format.h>
 #include <nanoflann.hpp>
@@ -57,6 +59,9 @@ std::vector<std::string> RepairReport::changes() const
   if (removed_vertices) lines.push_back(fmt::format("removed {} vertices that no face used", removed_vertices));
   if (reoriented) lines.push_back("flipped faces to agree with their neighbours");
   if (stitched_edges) lines.push_back(fmt::format("stitched {} pairs of border edges", stitched_edges));
+  if (filled_holes)
+    lines.push_back(fmt::format("filled {} hole(s) of at most {} edges with {} faces", filled_holes, kLargestFilledHole,
+                                hole_faces));
   if (turned_outward) lines.push_back("turned shells to point away from the material (outer outward, cavities inward)");
   return lines;
 }
@@ -90,6 +95,19 @@ SurfaceMesh repair_surface(const SurfaceMesh& surface, const RepairOptions& opti
   Mesh mesh;
   PMP::polygon_soup_to_polygon_mesh(points, polygons, mesh);
   report.stitched_edges = PMP::stitch_borders(mesh);
+  // What stitching left open: small holes filled on their borders, larger ones left for the check.
+  std::vector<Mesh::Halfedge_index> holes;
+  PMP::extract_boundary_cycles(mesh, std::back_inserter(holes));
+  for (Mesh::Halfedge_index h : holes) {
+    std::size_t edges = 0;
+    for ([[maybe_unused]] Mesh::Halfedge_index e : CGAL::halfedges_around_face(h, mesh)) ++edges;
+    if (edges > kLargestFilledHole) continue;
+    std::vector<Mesh::Face_index> added;
+    PMP::triangulate_hole(mesh, h, std::back_inserter(added));
+    if (added.empty()) continue;
+    ++report.filled_holes;
+    report.hole_faces += added.size();
+  }
   if (CGAL::is_closed(mesh) && !PMP::does_self_intersect(mesh)) {
     // Every shell pointing away from the material: outer shells outward, cavities inward.
     std::vector<Mesh::Vertex_index> first_before;

@@ -1,8 +1,11 @@
 #include "mesh/surface_repair.hpp"
 
+#include <functional>
+
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
+#include "core/input_error.hpp"
 #include "mesh/surface_check.hpp"
 #include "primitives.hpp"
 
@@ -66,6 +69,57 @@ TEST(SurfaceRepair, CavityShellIsTurnedInward)
   EXPECT_TRUE(c.ok());
   EXPECT_TRUE(report.turned_outward);
   EXPECT_NEAR(c.volume, signed_volume(test::sphere(0.02)) - signed_volume(test::sphere(0.01)), 1e-15);
+}
+
+/// `s` without the faces `drop` says to leave out.
+SurfaceMesh without_faces(const SurfaceMesh& s, const std::function<bool(Eigen::Index)>& drop)
+{
+  SurfaceMesh out = s;
+  Eigen::Index kept = 0;
+  for (Eigen::Index f = 0; f < s.num_faces(); ++f)
+    if (!drop(f)) out.faces.row(kept++) = s.faces.row(f);
+  out.faces.conservativeResize(kept, 3);
+  return out;
+}
+
+TEST(SurfaceRepair, AMissingTriangleIsFilledAndTheVolumeRestored)
+{
+  // A new user's export had dropped one triangle: check said repair fixes it, and repair did not.
+  const SurfaceMesh box = test::box(kLo, kHi, 2);
+  const SurfaceMesh holed = without_faces(box, [](Eigen::Index f) { return f == 7; });
+  ASSERT_FALSE(check_surface(holed).ok());
+  RepairReport report;
+  const SurfaceCheck c = check_surface(repair_surface(holed, {}, report));
+  EXPECT_TRUE(c.ok());
+  EXPECT_NEAR(c.volume, 2e-6, 1e-15); // the box's own: its missing face was flat with its neighbours
+  EXPECT_EQ(report.filled_holes, 1u);
+  EXPECT_EQ(report.hole_faces, 1u);
+  EXPECT_THAT(report.changes(), Contains("filled 1 hole(s) of at most 12 edges with 1 faces"));
+}
+
+TEST(SurfaceRepair, AMissingCapIsLeftForItsAuthorAndTheMessageSaysWhy)
+{
+  // The cap above z = 0.7 r of a sphere: a hole bounded by more than 12 edges, a missing part.
+  const SurfaceMesh sphere = test::sphere(0.01);
+  const SurfaceMesh holed = without_faces(sphere, [&](Eigen::Index f) {
+    double z = 0;
+    for (int k = 0; k < 3; ++k) z += sphere.vertices(sphere.faces(f, k), 2) / 3;
+    return z > 0.007;
+  });
+  RepairReport report;
+  const SurfaceMesh r = repair_surface(holed, {}, report);
+  EXPECT_EQ(report.filled_holes, 0u);
+  const SurfaceCheck c = check_surface(r);
+  ASSERT_FALSE(c.ok());
+  try {
+    require_valid_surface(c, r, true);
+    FAIL() << "a surface with a hole was accepted";
+  } catch (const InputError& e) {
+    EXPECT_THAT(std::string(e.what()), ::testing::HasSubstr("is not closed"));
+    EXPECT_THAT(std::string(e.what()),
+                ::testing::HasSubstr("repair could not fix it (it stitches gaps narrower than 1e-6 of the body's size "
+                                     "and fills holes of up to 12 edges), fix it in a mesh editor"));
+  }
 }
 
 TEST(SurfaceRepair, ValidSurfaceIsLeftAsIs)
