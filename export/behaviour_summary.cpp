@@ -235,9 +235,9 @@ std::string what_to_measure(const Json& poses, double youngs_modulus, bool beyon
     const auto& [v, percent] = *varied;
     const auto value = [&](std::size_t k) { return fmt::format("{:.1f}{}", v[k], m.unit); };
     const double lo = std::min({m.value, v[0], v[1], v[2], v[3]}), hi = std::max({m.value, v[0], v[1], v[2], v[3]});
-    // The modulus to 3 significant figures: the fits and the data sheets hold no more.
-    const double e = std::round(youngs_modulus / std::pow(10.0, std::floor(std::log10(youngs_modulus)) - 2)) *
-                     std::pow(10.0, std::floor(std::log10(youngs_modulus)) - 2);
+    // The modulus the simulation used, to the pascal: the value `simulate --as-built` prints (rounded
+    // to 3 figures it read as another, 45100 against 45129 Pa, to a new user).
+    const double e = youngs_modulus;
     text += fmt::format(
         " With the least certain inputs {0:g} % off: {1} and {2} with the silicone {0:g} % stiffer and softer than "
         "[material] youngs_modulus = {3:.0f} Pa, {4} and {5} with every pressure {0:g} % lower and higher{9}. Outside "

@@ -369,6 +369,8 @@ StageRun Runner::run_stage(const Stage& stage, const Design& design, const fs::p
   for (const fs::path& file : files_under(out_dir))
     if (!stamp.outputs.contains(file.string())) fs::remove(out_dir / file);
   fs::remove_all(staging);
+  std::error_code not_empty; // another stage's staging: kept; none left: the folder goes too
+  fs::remove(staging.parent_path(), not_empty);
   stamp.seconds = elapsed();
   stamp.finished = utc_now();
   write_file_atomic(stamp_file, stamp.to_json());

@@ -107,7 +107,14 @@ TEST_F(SimulateE2E, RefineReportsTheDiscretizationErrorAndItShrinksWithTheMesh)
     std::smatch m;
     EXPECT_TRUE(std::regex_search(r.out, m, std::regex(R"(surface max ([0-9.]+) mm, RMS ([0-9.]+) mm)"))) << r.out;
     EXPECT_TRUE(fs::exists(dir_ / "build" / "simulate" / "deformed-pull-refined.vtu"));
-    return m.size() > 1 ? std::stod(m[1]) : 0.0;
+    const double surface = m.size() > 1 ? std::stod(m[1]) : 0.0;
+    // Warned of exactly where the surface moves more than 5 % of the largest displacement.
+    const double largest = std::stod(r.out.substr(r.out.find("max displacement") + 17));
+    std::printf("edge %g mm: surface moves %.3f mm of %.3f mm\n", edge, surface, largest);
+    EXPECT_EQ(r.out.find("the design's mesh is coarse for this deformation") != std::string::npos,
+              surface > 0.05 * largest)
+        << r.out;
+    return surface;
   };
   const double coarse = refined(10), fine = refined(6);
   std::printf("bar under a tip load: refinement changes the surface by up to %.3f mm at 10 mm edges, %.3f mm at 6 mm\n",

@@ -175,6 +175,7 @@ TEST_F(RunnerTest, FirstMakeRunsEverythingSecondNothing)
   EXPECT_EQ(runs_["mesh"], 1);
   EXPECT_THAT(output("export"), HasSubstr("[mold].wall=4"));
   EXPECT_THAT(output("export"), HasSubstr("surface v1"));
+  EXPECT_FALSE(fs::exists(build_ / ".staging")) << "an empty staging folder left in the build folder";
 }
 
 TEST_F(RunnerTest, DownstreamEditRerunsOnlyDownstream)
