@@ -171,7 +171,7 @@ int run_simulate(const Design& design, const Runner& runner, const fs::path& bui
                  f->curves_rms / 1e-3, f->curve_samples);
     fmt::print("\n");
     if (f->surface_max > kCoarseMeshShare * r.max_displacement)
-      fmt::print("  warning: the surface moves {:.0f} % of the largest displacement between the two meshes (more than "
+      fmt::print("  warning: the surface moves {:.1f} % of the largest displacement between the two meshes (more than "
                  "{:.0f} %): the design's mesh is coarse for this deformation; a smaller [mesh] edge_length brings its "
                  "figures closer to the refined ones\n",
                  100 * f->surface_max / r.max_displacement, 100 * kCoarseMeshShare);

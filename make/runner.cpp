@@ -353,6 +353,8 @@ StageRun Runner::run_stage(const Stage& stage, const Design& design, const fs::p
     const bool interrupted = dynamic_cast<const Interrupted*>(&e) != nullptr;
     record.error("{} after {:.2f} s: {}", interrupted ? "interrupted" : "failed", elapsed(), e.what());
     fs::remove_all(staging);
+    std::error_code not_empty;
+    fs::remove(staging.parent_path(), not_empty);
     append_make_log(build_dir, fmt::format("{} {} {:.3f}", name, interrupted ? "interrupted" : "failed", elapsed()));
     if (interrupted || dynamic_cast<const InputError*>(&e)) throw;
     throw StageFailed(name, e.what(), log_path(build_dir, name));

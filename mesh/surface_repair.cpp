@@ -1,9 +1,11 @@
 #include "mesh/surface_repair.hpp"
 
+#include <algorithm>
 #include <numeric>
 
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
 #include <CGAL/Polygon_mesh_processing/border.h>
+#include <CGAL/Polygon_mesh_processing/connected_components.h>
 #include <CGAL/Polygon_mesh_processing/orient_polygon_soup.h>
 #include <CGAL/Polygon_mesh_processing/orientation.h>
 #include <CGAL/Polygon_mesh_processing/polygon_soup_to_polygon_mesh.h>
@@ -96,18 +98,30 @@ SurfaceMesh repair_surface(const SurfaceMesh& surface, const RepairOptions& opti
   PMP::polygon_soup_to_polygon_mesh(points, polygons, mesh);
   report.stitched_edges = PMP::stitch_borders(mesh);
   // What stitching left open: small holes filled on their borders, larger ones left for the check.
+  // Not filled either: a border that passes a vertex twice (two holes touching: CGAL's triangulation
+  // needs a simple border), and the border of a piece with no more faces than border edges (a stray
+  // triangle or fin: filled, it would be a flat two-sided pillow, not a body).
   std::vector<Mesh::Halfedge_index> holes;
   PMP::extract_boundary_cycles(mesh, std::back_inserter(holes));
+  auto piece = mesh.add_property_map<Mesh::Face_index, std::size_t>("f:piece", 0).first;
+  const std::size_t pieces = PMP::connected_components(mesh, piece);
+  std::vector<std::size_t> piece_faces(pieces, 0);
+  for (Mesh::Face_index f : mesh.faces()) ++piece_faces[piece[f]];
   for (Mesh::Halfedge_index h : holes) {
-    std::size_t edges = 0;
-    for ([[maybe_unused]] Mesh::Halfedge_index e : CGAL::halfedges_around_face(h, mesh)) ++edges;
-    if (edges > kLargestFilledHole) continue;
+    std::vector<Mesh::Vertex_index> border;
+    for (Mesh::Halfedge_index e : CGAL::halfedges_around_face(h, mesh)) border.push_back(mesh.target(e));
+    std::vector<Mesh::Vertex_index> sorted = border;
+    std::sort(sorted.begin(), sorted.end());
+    const bool simple = std::adjacent_find(sorted.begin(), sorted.end()) == sorted.end();
+    if (border.size() > kLargestFilledHole || !simple) continue;
+    if (piece_faces[piece[mesh.face(mesh.opposite(h))]] <= border.size()) continue;
     std::vector<Mesh::Face_index> added;
     PMP::triangulate_hole(mesh, h, std::back_inserter(added));
     if (added.empty()) continue;
     ++report.filled_holes;
     report.hole_faces += added.size();
   }
+  mesh.remove_property_map(piece);
   if (CGAL::is_closed(mesh) && !PMP::does_self_intersect(mesh)) {
     // Every shell pointing away from the material: outer shells outward, cavities inward.
     std::vector<Mesh::Vertex_index> first_before;

@@ -24,10 +24,10 @@ OptimizationEnding optimization_ending(const RoutingResult& result, const Actuat
         fmt::format("the optimizer stopped before converging ({}: {}); the routes are the best it found",
                     choice_name(result.termination), result.message));
   for (Eigen::Index t = 0; t < p.rows(); ++t) {
-    // Every muscle of the target off: the optimized robot is the body unactuated, under its loads
-    // and its weight alone. Said once for the target, with what to check: a body that sags where
-    // the target asks for it to bend (held the wrong way, or gravity along the wrong axis) is "met"
-    // with its muscles off (a 90 mm finger of Ecoflex 00-30 held level sags 54 mm).
+    // Every muscle of the target off: the optimized robot is the body unactuated, under its weight
+    // and held as the design holds it (a forces target's loads only made its shape). Said once for the target, with
+    // what to check: a body that sags where the target asks for it to bend (held the wrong way, or gravity along the
+    // wrong axis) is "met" with its muscles off (a 90 mm finger of Ecoflex 00-30 held level sags 54 mm).
     bool any = false, all_off = true;
     for (Eigen::Index f = 0; f < p.cols(); ++f)
       if (actuators(t, f)) {
@@ -36,11 +36,12 @@ OptimizationEnding optimization_ending(const RoutingResult& result, const Actuat
       }
     if (any && all_off)
       e.warnings.push_back(fmt::format(
-          "target {}: every muscle of it ends at 0 kPa (within the pressure barrier's margin): the optimized robot "
-          "is the body unactuated, which its loads and its weight alone bring to a tracking-curve RMSE of {:.2f} mm. "
-          "If the body is not to move that way by itself, check [material] gravity and the [[fixed]] regions (how "
-          "the body is held) against how it will be used; else it needs no muscle for this target",
-          target_names[t], t < static_cast<Eigen::Index>(after.size()) ? after[t].rmse / units::mm : 0.0));
+          "target {}: every muscle of it ends at 0 kPa (at most {:.1f} kPa, the pressure barrier's margin): the "
+          "optimized robot is the body unactuated, which its weight and how it is held alone bring to a "
+          "tracking-curve RMSE of {:.2f} mm. If the body is not to move that way by itself, check [material] gravity "
+          "and the [[fixed]] regions against how it will be used; else it needs no muscle for this target",
+          target_names[t], margin / units::kPa,
+          t < static_cast<Eigen::Index>(after.size()) ? after[t].rmse / units::mm : 0.0));
     for (Eigen::Index f = 0; f < p.cols(); ++f) {
       if (!actuators(t, f)) continue;
       const bool at_max = p(t, f) >= max_pressure - margin, at_zero = p(t, f) <= margin;

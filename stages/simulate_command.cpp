@@ -122,13 +122,16 @@ std::vector<Actuation> as_built(const Design& d, const fs::path& build_dir, cons
     return r;
   };
   said = fmt::format("as built: the routes of {}", path.string());
-  if (!target) {
-    for (Actuation& a : requested) {
-      const auto r = route(a.fiber);
-      a.points = r->points;
-      a.tangents = r->tangents;
-    }
-    return requested;
+  if (!target) { // the file's muscles, each at its --pressure or at rest; a fiber named must be among them
+    const auto given = [&](const std::string& name) {
+      return std::find_if(requested.begin(), requested.end(), [&](const Actuation& a) { return a.fiber == name; });
+    };
+    for (const Actuation& a : requested)
+      if (a.pressure > 0) route(a.fiber);
+    std::vector<Actuation> out;
+    for (const Route& r : file.routing.routes)
+      out.push_back({r.name, r.points, r.tangents, given(r.name) != requested.end() ? given(r.name)->pressure : 0.0});
+    return out;
   }
   const auto row = std::find(file.targets.begin(), file.targets.end(), target->name);
   if (row == file.targets.end())
@@ -240,7 +243,8 @@ SimulateResult simulate(const Design& d, const Runner& runner, const fs::path& b
                                                         : std::string("pressures"),
                             request.as_built ? "-as-built" : "");
   result.muscles = actuations.empty() ? std::string("no muscle: the body under ") +
-                                            (load ? "the target's loads" : "its weight and its held regions")
+                                            (load ? "the target's loads, its weight and its held regions"
+                                                  : "its weight and its held regions")
                                       : "muscles: ";
   for (std::size_t k = 0; k < actuations.size(); ++k)
     result.muscles +=

@@ -371,6 +371,8 @@ TEST_F(OptimizeE2E, BadInputsAreNamed)
   EXPECT_EQ(r.exit_code, 2);
   EXPECT_THAT(r.err, ::testing::ContainsRegex(
                          "design\\.toml:[0-9]+:[0-9]+: \\[tracking_curve\\.out\\]: the curve leaves the body at"));
+  // Which of its points to move: the second; the first, on the skin, is in.
+  EXPECT_THAT(r.err, HasSubstr("of its 2 points, point 2 (60.0, 0.0, 12.0) mm lies outside: move it inside the body"));
   // Unnamed, it is found by its default name, at its line all the same.
   design("[[tracking_curve]]\npoints = [[0, 0, 0], [60, 0, 12]]\n");
   r = make();

@@ -97,6 +97,24 @@ TEST(SurfaceRepair, AMissingTriangleIsFilledAndTheVolumeRestored)
   EXPECT_THAT(report.changes(), Contains("filled 1 hole(s) of at most 12 edges with 1 faces"));
 }
 
+TEST(SurfaceRepair, AStrayTriangleIsNotMadeAPillow)
+{
+  // A closed box and, beside it, a lone triangle: its 3-edge border bounds the whole piece. Filled, it
+  // would be a flat two-sided piece; left, the check says the surface is not closed.
+  SurfaceMesh s = test::box(kLo, kHi, 2);
+  const Eigen::Index n = s.num_vertices();
+  s.vertices.conservativeResize(n + 3, 3);
+  s.vertices.row(n) << 0.03, 0, 0;
+  s.vertices.row(n + 1) << 0.04, 0, 0;
+  s.vertices.row(n + 2) << 0.03, 0.01, 0;
+  s.faces.conservativeResize(s.num_faces() + 1, 3);
+  s.faces.row(s.num_faces() - 1) << static_cast<int>(n), static_cast<int>(n + 1), static_cast<int>(n + 2);
+  RepairReport report;
+  const SurfaceCheck c = check_surface(repair_surface(s, {}, report));
+  EXPECT_EQ(report.filled_holes, 0u);
+  EXPECT_FALSE(c.ok());
+}
+
 TEST(SurfaceRepair, AMissingCapIsLeftForItsAuthorAndTheMessageSaysWhy)
 {
   // The cap above z = 0.7 r of a sphere: a hole bounded by more than 12 edges, a missing part.

@@ -80,7 +80,8 @@ TEST(OptimizationEnding, ATargetWithEveryMuscleOffIsSaidToBeTheBodyUnactuatedWit
   const OptimizationEnding off = ending(0.9, 52e-3, 4.1e-3, {{"pose[1]", 45 * kDeg, 46.4 * kDeg}});
   ASSERT_EQ(off.warnings.size(), 1u);
   EXPECT_THAT(off.warnings[0], HasSubstr("target curl: every muscle of it ends at 0 kPa"));
-  EXPECT_THAT(off.warnings[0], HasSubstr("the body unactuated, which its loads and its weight alone bring to a "
+  EXPECT_THAT(off.warnings[0], HasSubstr("(at most 8.5 kPa, the pressure barrier's margin)"));
+  EXPECT_THAT(off.warnings[0], HasSubstr("the body unactuated, which its weight and how it is held alone bring to a "
                                          "tracking-curve RMSE of 4.10 mm"));
   EXPECT_THAT(off.warnings[0], HasSubstr("check [material] gravity and the [[fixed]] regions"));
   EXPECT_THAT(off.warnings[0], Not(HasSubstr("turned it off")));
