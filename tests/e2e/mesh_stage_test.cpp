@@ -161,8 +161,13 @@ TEST_F(MeshStageE2E, EditingMeshOptionsRerunsTheStage)
   write_stl(dir_ / "box.stl", box_);
   design("box.stl");
   ASSERT_EQ(make().exit_code, 0);
-  EXPECT_THAT(test::run_fibermold("status design.toml --build-dir build", dir_.path()).out,
-              ContainsRegex("mesh +fresh"));
+  const std::string fresh = test::run_fibermold("status design.toml --build-dir build", dir_.path()).out;
+  EXPECT_THAT(fresh, ContainsRegex("mesh +fresh"));
+  // Which folder status looked in, whole; and where the default one would be, when there is none.
+  EXPECT_THAT(fresh, HasSubstr("build folder " + (fs::canonical(dir_.path()) / "build").string() + "\n"));
+  EXPECT_THAT(test::run_fibermold("status design.toml", dir_.path()).out,
+              HasSubstr("/out/body: none yet (the default, out/body under the folder you run in; --build-dir names "
+                        "another)"));
   design("box.stl", "edge_length = 4.0");
   EXPECT_THAT(test::run_fibermold("status design.toml --build-dir build", dir_.path()).out,
               HasSubstr("stale ([mesh].edge_length changed (5 → 4))"));
