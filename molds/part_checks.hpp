@@ -18,7 +18,8 @@ struct PartCheck {
   double volume = 0;                              ///< m³
   Eigen::Vector3d size = Eigen::Vector3d::Zero(); ///< bounding box, m
   double min_thickness = 0; ///< m, the thinnest wall found (a cone median where a single ray saw < min_wall)
-  Eigen::Vector3i orientation{0, 1, 2}; ///< part axes along the printer's x, y, z that fit
+  Eigen::Vector3d min_thickness_at = Eigen::Vector3d::Zero(); ///< m, where, in the part's frame as checked
+  Eigen::Vector3i orientation{0, 1, 2};                       ///< part axes along the printer's x, y, z that fit
   bool fits = false;
 
   bool ok() const { return problems.empty(); }

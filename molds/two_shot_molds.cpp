@@ -261,7 +261,8 @@ std::vector<std::string> Recipe::make_shot(const std::string& name, const Surfac
     progress_.checkpoint(-1, "checking " + p.name);
     started = Clock::now();
     PartCheck c = check_part(p.mesh, job_.min_wall, job_.printer_volume);
-    log_.info(fmt::format("{}: {} triangles, checked in {:.2f} s", p.name, p.mesh.num_faces(), since(started)));
+    log_.info(fmt::format("{}: {} triangles, thinnest wall {:.2f} mm near {}, checked in {:.2f} s", p.name,
+                          p.mesh.num_faces(), c.min_thickness / 1e-3, format_mm(c.min_thickness_at), since(started)));
     for (const std::string& problem : c.problems) problems.push_back(fmt::format("part {} {}", p.name, problem));
     if (!c.fits) too_big_.push_back(p.name);
     out_.parts.push_back(CheckedPart{name, p, std::move(c)});

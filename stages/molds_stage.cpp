@@ -169,11 +169,13 @@ Json molds_report(const TwoShotMolds& molds, const Design& d)
                           {"volume_mL", six_places(c.volume / 1e-6)},
                           {"size_mm", vec_mm(c.size)},
                           {"min_wall_mm", c.min_thickness / units::mm},
+                          {"min_wall_at_mm", vec_mm(c.min_thickness_at)},
                           {"fits_printer", c.fits},
                           {"print_axes", {c.orientation.x(), c.orientation.y(), c.orientation.z()}},
                           {"checks_passed", c.ok()},
                           {"labels", labels},
                           {"labels_left_out", p.part.unlabelled}};
+    if (!(c.min_thickness > 0)) parts[p.part.name].erase("min_wall_at_mm"); // not measured: not a solid
   }
   const SiliconeThickness& t = molds.thickness;
   // A thickness nothing measured is "none", and has no place.

@@ -57,8 +57,9 @@ public:
   /// 12: label heights max − k·step (report: 7 mm, not 6.999999999999999), every mesh in a canonical order (the
   /// same parts byte for byte from run to run); 13: each shot's thin deep ribs (report: thin_ribs; warned without
   /// draft); 14: thin ribs found by a disk's closing, a valley's wall not a rib of its own; 15: a silicone
-  /// thickness nothing measured has no place in the report (was (0, 0, 0))
-  int version() const override { return 15; }
+  /// thickness nothing measured has no place in the report (was (0, 0, 0)); 16: each part's thinnest wall's place
+  /// (report: min_wall_at_mm)
+  int version() const override { return 16; }
   void run(StageContext& ctx) const override;
 };
 

@@ -15,6 +15,7 @@
 #include <nlohmann/json.hpp>
 
 #include "fill_checks.hpp"
+#include "mesh/surface_distance.hpp"
 #include "mesh/surface_import.hpp"
 #include "mesh/tet_mesh.hpp"
 #include "test_support.hpp"
@@ -467,6 +468,13 @@ TEST(MoldsExample, HandRoutedTwistMakesCheckedPartsFromTheAdaptiveMesh)
   for (const auto& [name, part] : report["parts"].items()) {
     EXPECT_TRUE(part["checks_passed"].get<bool>()) << name;
     EXPECT_GE(part["min_wall_mm"].get<double>(), 1.0) << name;
+    // Where the thinnest wall is: a face's centre of the part, in its file's frame; the log says so too.
+    const SurfaceMesh m = import_surface(dir / "build" / "molds" / (name + ".stl"), 1e-3);
+    const auto& at = part["min_wall_at_mm"];
+    const Eigen::Vector3d where(at[0].get<double>() * 1e-3, at[1].get<double>() * 1e-3, at[2].get<double>() * 1e-3);
+    EXPECT_LT(SurfaceDistance(m.vertices, m.faces).closest(where).distance, 1e-6) << name;
+    EXPECT_THAT(log, HasSubstr(fmt::format("{}: {} triangles, thinnest wall {:.2f} mm near", name, m.num_faces(),
+                                           part["min_wall_mm"].get<double>())));
   }
 }
 
