@@ -25,6 +25,13 @@ public:
     Eigen::Index face;     ///< the face (row of `faces`) the nearest point lies on
   };
   Closest closest(const Eigen::Vector3d& p) const;
+  /// Inside the enclosed volume or within `tolerance` (m) of the surface: a point on the skin (a
+  /// fiber's or a tracking curve's end) counts as in.
+  bool holds(const Eigen::Vector3d& p, double tolerance) const
+  {
+    const Closest at = closest(p);
+    return at.inside || at.distance <= tolerance;
+  }
   /// Distance along the ray from `origin` in unit `direction` to the first surface point farther
   /// than `skip`; +∞ when it hits nothing.
   double ray_distance(const Eigen::Vector3d& origin, const Eigen::Vector3d& direction, double skip = 0) const;

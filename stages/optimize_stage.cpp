@@ -407,10 +407,8 @@ void require_optimizable(const Design& d, const SurfaceDistance& skin)
     const HermiteSpline s(f.points, f.tangents);
     for (const Eigen::Vector3d& c : split_into_segments(s, segment_count(s, d.muscle.segments_per_length)).centres)
       if (!skin.closest(c).inside)
-        bad(d, fmt::format("[fiber.{}]", f.name), leaves_the_body("fiber", f.points, c, [&](const Eigen::Vector3d& q) {
-              const auto at = skin.closest(q); // a fiber's end on the skin is in
-              return at.inside || at.distance <= 1e-6;
-            }));
+        bad(d, fmt::format("[fiber.{}]", f.name),
+            leaves_the_body("fiber", f.points, c, [&](const Eigen::Vector3d& q) { return skin.holds(q, 1e-6); }));
   }
   const Routing start = starting_routing(d);
   const RoutingSettings settings = routing_settings(d);

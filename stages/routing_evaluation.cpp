@@ -20,13 +20,11 @@ std::vector<TrackingSamples> tracking_samples(const Design& d, const SurfaceDist
   std::vector<TrackingSamples> curves;
   for (const TrackingCurve& c : d.tracking_curves) {
     curves.push_back(sample_tracking_curve(c.points, c.samples, c.weight_position, c.weight_orientation));
+    const auto in_body = [&](const Eigen::Vector3d& p) { return skin.holds(p, 1e-6); };
     for (const Eigen::Vector3d& q : curves.back().points)
-      if (const auto at = skin.closest(q); !at.inside && at.distance > 1e-6)
+      if (!in_body(q))
         throw InputError(design_problem(d, fmt::format("[tracking_curve.{}]", c.name),
-                                        leaves_the_body("curve", c.points, q, [&](const Eigen::Vector3d& p) {
-                                          const auto at = skin.closest(p);
-                                          return at.inside || at.distance <= 1e-6;
-                                        })));
+                                        leaves_the_body("curve", c.points, q, in_body)));
   }
   return curves;
 }

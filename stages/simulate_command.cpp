@@ -129,8 +129,10 @@ std::vector<Actuation> as_built(const Design& d, const fs::path& build_dir, cons
     for (const Actuation& a : requested)
       if (a.pressure > 0) route(a.fiber);
     std::vector<Actuation> out;
-    for (const Route& r : file.routing.routes)
-      out.push_back({r.name, r.points, r.tangents, given(r.name) != requested.end() ? given(r.name)->pressure : 0.0});
+    for (const Route& r : file.routing.routes) {
+      const auto a = given(r.name);
+      out.push_back({r.name, r.points, r.tangents, a != requested.end() ? a->pressure : 0.0});
+    }
     return out;
   }
   const auto row = std::find(file.targets.begin(), file.targets.end(), target->name);

@@ -129,13 +129,10 @@ std::vector<ReachedPose> reached_poses(const Design& d, const Target& t, const S
   }
   // A curve's end outside the body (curves are held to the body only when the optimizer runs) has no pose.
   const SurfaceDistance skin(mesh.nodes, mesh.boundary_faces);
-  const auto in_body = [&](const Eigen::Vector3d& p) {
-    const auto at = skin.closest(p);
-    return at.inside || at.distance <= 1e-6;
-  };
   for (const TrackingCurve& c : d.tracking_curves) {
-    if (in_body(c.points.front())) out.push_back(point_pose(c.name + ", first point", c.points.front(), sim, x));
-    if (in_body(c.points.back())) out.push_back(point_pose(c.name + ", last point", c.points.back(), sim, x));
+    if (skin.holds(c.points.front(), 1e-6))
+      out.push_back(point_pose(c.name + ", first point", c.points.front(), sim, x));
+    if (skin.holds(c.points.back(), 1e-6)) out.push_back(point_pose(c.name + ", last point", c.points.back(), sim, x));
   }
   return out;
 }
