@@ -1,9 +1,11 @@
 #include "optimize/skin_barrier.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <utility>
 
 #include "optimize/barrier.hpp"
+#include "sim/hermite_spline.hpp"
 
 namespace fibermold {
 
@@ -52,6 +54,10 @@ double SkinBarrier::value(const HermiteSpline& spline) const
     if (!c.inside) return HUGE_VAL;
     B += barrier((c.distance - min_) / band_, 1.0);
   }
+  for (const Dip& dip : dips(spline)) {
+    if (!(dip.bottom.d > min_)) return HUGE_VAL;
+    B += dip_barrier(dip.bottom.d) - dip_barrier(dip.end.d);
+  }
   return B;
 }
 
@@ -76,7 +82,31 @@ FiberParameterGradient SkinBarrier::gradient(const HermiteSpline& spline) const
     g.points[k + 1] += w[2] * by_p;
     g.tangents[k + 1] += w[3] * by_p;
   }
+  // Each dip's term at its bottom less at its end sample, each a point at a fixed parameter: the
+  // bottom's parameter moves with the route, but d is stationary along the spline there.
+  const auto add = [&](const DipPoint& q, double sign) {
+    const Eigen::Vector3d by_p = sign * dip_barrier_gradient(q.d) * q.normal;
+    int k;
+    double w[4];
+    spline.weights(q.t, k, w);
+    g.points[k] += w[0] * by_p;
+    g.tangents[k] += w[1] * by_p;
+    g.points[k + 1] += w[2] * by_p;
+    g.tangents[k + 1] += w[3] * by_p;
+  };
+  for (const Dip& dip : dips(spline)) {
+    if (!(dip.bottom.d > min_)) break;
+    add(dip.bottom, 1);
+    add(dip.end, -1);
+  }
   return g;
+}
+
+double SkinBarrier::dip_barrier(double d) const { return barrier((d - min_) / (kDipBand * band_), 1.0); }
+
+double SkinBarrier::dip_barrier_gradient(double d) const
+{
+  return barrier_gradient((d - min_) / (kDipBand * band_), 1.0) / (kDipBand * band_);
 }
 
 namespace {
@@ -171,6 +201,127 @@ double SkinBarrier::closest_approach(const HermiteSpline& spline, Eigen::Vector3
     pieces.push_back({m, b});
   }
   return d;
+}
+
+namespace {
+
+/// An upper bound of the arc length between parameters a < b, the pieces cut at the knots.
+double length_bound(const HermiteSpline& s, double a, double b)
+{
+  double L = 0;
+  for (double from = a; from < b;) {
+    const double to = std::min(b, std::floor(from) + 1);
+    L += arc_bound(s, from, to);
+    from = to;
+  }
+  return L;
+}
+
+/// |p''| on span k at u ∈ [0, 1].
+double second_derivative_norm(const HermiteSpline& s, int k, double u)
+{
+  double d1[4], d2[4];
+  hermite_derivative_weights(u, d1, d2);
+  return (d2[0] * s.points()[k] + d2[1] * s.tangents()[k] + d2[2] * s.points()[k + 1] + d2[3] * s.tangents()[k + 1])
+      .norm();
+}
+
+/// How far below the nearer of d_a, d_b the distance to the skin can come between parameters a < b
+/// where it stays beyond d_min: d is semiconcave, ∇²d ≤ I/d (the distance to a closed set), so
+/// d'' ≤ |p''| + |p'|²/d_min along the spline, and d lies above its chord less C(b − a)²/8 for such a
+/// bound C. p'' is linear on a span: |p''| is largest at the ends of each span's part (both sides of a
+/// knot); |p'| is at most the larger of its ends' plus max|p''| times half the way between them.
+double deepest_dip(const HermiteSpline& s, double a, double b, double d_min)
+{
+  double p2 = 0;
+  for (double from = a; from < b;) {
+    const int k = std::clamp(static_cast<int>(std::floor(from)), 0, s.spans() - 1);
+    const double to = std::min(b, static_cast<double>(k + 1));
+    p2 = std::max({p2, second_derivative_norm(s, k, from - k), second_derivative_norm(s, k, to - k)});
+    from = to;
+  }
+  const double p1 = std::max(s.derivative(a).norm(), s.derivative(b).norm()) + p2 * (b - a) / 2;
+  return (p2 + p1 * p1 / d_min) * (b - a) * (b - a) / 8;
+}
+
+/// The spline at t: its distance to the skin (negative outside), and the distance's gradient and
+/// its derivative along the spline there.
+SkinBarrier::DipPoint dip_point(const SurfaceDistance& skin, const HermiteSpline& spline, double t)
+{
+  const Eigen::Vector3d p = spline.position(t);
+  const auto c = skin.closest(p);
+  SkinBarrier::DipPoint q;
+  q.t = t;
+  q.d = c.inside ? c.distance : -c.distance;
+  // ∇d = (p − c)/|p − c| inside, its opposite outside
+  q.normal =
+      c.distance > 0 ? Eigen::Vector3d((c.inside ? 1.0 : -1.0) * (p - c.point) / c.distance) : Eigen::Vector3d::Zero();
+  q.slope = q.normal.dot(spline.derivative(t));
+  return q;
+}
+
+/// The bottom of d between lo (d falling) and hi (d rising): the root of the slope by regula falsi
+/// (Illinois), halving the bracket where the secant leaves it, until the slope is 0 or the bracket
+/// closes to round-off.
+SkinBarrier::DipPoint dip_bottom(const SurfaceDistance& skin, const HermiteSpline& spline, SkinBarrier::DipPoint lo,
+                                 SkinBarrier::DipPoint hi)
+{
+  SkinBarrier::DipPoint best = lo.d < hi.d ? lo : hi;
+  int side = 0; // which end stayed last time: −1 lo, +1 hi
+  double slope_lo = lo.slope, slope_hi = hi.slope;
+  for (int i = 0; i < 60 && hi.t - lo.t > 1e-14 * std::max(1.0, hi.t); ++i) {
+    double t = (lo.t * slope_hi - hi.t * slope_lo) / (slope_hi - slope_lo);
+    if (!(t > lo.t && t < hi.t)) t = (lo.t + hi.t) / 2;
+    const SkinBarrier::DipPoint q = dip_point(skin, spline, t);
+    if (q.d < best.d) best = q;
+    if (q.slope == 0) break;
+    if (q.slope < 0) {
+      lo = q, slope_lo = q.slope;
+      if (side == -1) slope_hi /= 2;
+      side = -1;
+    } else {
+      hi = q, slope_hi = q.slope;
+      if (side == 1) slope_lo /= 2;
+      side = 1;
+    }
+  }
+  return best;
+}
+
+} // namespace
+
+std::vector<SkinBarrier::Dip> SkinBarrier::dips(const HermiteSpline& spline) const
+{
+  std::vector<Dip> out;
+  const double reach = min_ + kDipBand * band_;
+  for (std::size_t k = 0; k + 1 < t_.size(); ++k) {
+    const double a = t_[k], b = t_[k + 1];
+    // Lower bounds of d at the two samples from their last measurements (value() keeps them fresh).
+    const double da = measured_[k] - (spline.position(a) - measured_at_[k]).norm();
+    const double db = measured_[k + 1] - (spline.position(b) - measured_at_[k + 1]).norm();
+    if ((da + db - length_bound(spline, a, b)) / 2 >= reach) continue; // no point of the piece within reach
+    if (std::min(da, db) - deepest_dip(spline, a, b, min_) >= reach) continue;
+    // d at kDipProbes + 1 points of the piece; a bottom wherever its slope turns from falling to rising.
+    std::vector<DipPoint> q;
+    for (int i = 0; i <= kDipProbes; ++i) q.push_back(dip_point(skin_, spline, a + (b - a) * i / kDipProbes));
+    const DipPoint& end = q.front().d <= q.back().d ? q.front() : q.back();
+    if (end.d <= min_) continue; // a sample within d_min: the sampled barrier is +∞ there already
+    DipPoint bottom = end;
+    for (int i = 0; i < kDipProbes; ++i) {
+      if (q[i].d <= min_ || q[i + 1].d <= min_) { // within d_min between the samples
+        bottom = q[i].d < q[i + 1].d ? q[i] : q[i + 1];
+        break;
+      }
+      if (q[i].slope < 0 && q[i + 1].slope >= 0) {
+        const DipPoint m = q[i + 1].slope == 0 ? q[i + 1] : dip_bottom(skin_, spline, q[i], q[i + 1]);
+        if (m.d < bottom.d) bottom = m;
+      }
+    }
+    if (bottom.d < end.d && bottom.d < reach) out.push_back({bottom, end});
+  }
+  // A dip within d_min first: value() and gradient() stop there.
+  std::stable_partition(out.begin(), out.end(), [&](const Dip& d) { return !(d.bottom.d > min_); });
+  return out;
 }
 
 } // namespace fibermold

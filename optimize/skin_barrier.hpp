@@ -13,6 +13,15 @@
 // polygon. Pieces that bound cannot clear d_min (or, once a point within d_min is found, the
 // closest so far) are halved until they are shorter than a micrometre. A route through a notch, whose bottom
 // lies between two samples, is caught there.
+// So that B rises to +∞ where that test refuses, and not only at the samples, each piece between
+// samples k and k + 1 whose spline comes closer to the skin than either sample adds a dip term
+//   b((d*_k − d_min) / (εw), 1) − b((min(d_k, d_k+1) − d_min) / (εw), 1),   ε = kDipBand,
+// d*_k the piece's smallest distance (its bottom: d's slope along the spline, ∇d·p'(t), turns from
+// falling to rising there, found by regula falsi from kDipProbes probes). The term is 0 where the
+// bottom reaches a sample and beyond εw of d_min, so B stays continuous; by the envelope theorem
+// its gradient is that of the two points at fixed parameters. Without it the optimizer met the
+// wall between samples as a jump to +∞ that no gradient foretold: a finger pressed against its
+// flat underside stopped there, every step of BFGS and Levenberg-Marquardt refused, |∇f| = 92.
 // The same Lipschitz bound spares most distance queries: a sample whose last measured distance, less
 // how far it has moved since, is still beyond d_min + w adds exactly 0 to B and to its gradient (and
 // is inside), so value() and gradient() query the skin only for samples that may be in the band,
@@ -39,6 +48,11 @@ struct HeldStretch {
   bool holds(double t) const { return first <= t && t <= last; }
 };
 
+/// The part of the band, nearest d_min, over which a dip between samples adds to the barrier.
+inline constexpr double kDipBand = 0.05;
+/// Intervals a piece between samples is probed in for a dip's bottom.
+inline constexpr int kDipProbes = 4;
+
 class SkinBarrier {
 public:
   /// `samples` parameters spread by arc length over `initial`, which fixes the excluded ends.
@@ -58,11 +72,30 @@ public:
   /// the skin over the same parameters (FiberClearance), so the two agree on where an end's
   /// stretch leaves the body by design, however the route has moved since.
   HeldStretch held() const { return t_.empty() ? HeldStretch{1, 0} : HeldStretch{t_.front(), t_.back()}; }
+  /// The samples' spline parameters.
+  const std::vector<double>& samples() const { return t_; }
+
+  /// A point of the spline: its parameter, distance to the skin d (negative outside), ∇d there
+  /// and d's derivative along the spline, dd/dt.
+  struct DipPoint {
+    double t = 0, d = 0, slope = 0;
+    Eigen::Vector3d normal = Eigen::Vector3d::Zero();
+  };
+  /// Where the spline comes closer to the skin between two samples than at either: the bottom,
+  /// and the nearer of the two samples.
+  struct Dip {
+    DipPoint bottom, end;
+  };
+  /// The dips whose bottom lies within d_min + kDipBand·w, a dip within d_min first.
+  std::vector<Dip> dips(const HermiteSpline& spline) const;
 
 private:
   /// Whether sample k, now at p, is provably beyond the band (see above); if not, measures it and
   /// returns its skin distance in `c`.
   bool beyond_band(std::size_t k, const Eigen::Vector3d& p, SurfaceDistance::Closest& c) const;
+  /// b((d − d_min) / (kDipBand·w), 1) and its derivative in d.
+  double dip_barrier(double d) const;
+  double dip_barrier_gradient(double d) const;
 
   const SurfaceDistance& skin_;
   double min_, band_;

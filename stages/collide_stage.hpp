@@ -31,8 +31,9 @@ public:
   /// barriers' expansion as its model holds it (a re-optimization's steps); 15: Levenberg-Marquardt's stall rule
   /// over the whole window (a re-optimization's ending); 16: the model's clearance-barrier Hessian from each
   /// fiber's own pairs (a re-optimization's steps); 17: Levenberg-Marquardt forgets its secant term where B + S
-  /// alone claims convergence (a re-optimization's steps)
-  int version() const override { return 17; }
+  /// alone claims convergence (a re-optimization's steps); 18: the skin barrier's dip term between samples (a
+  /// re-optimization's objective)
+  int version() const override { return 18; }
   void run(StageContext& ctx) const override;
 };
 

@@ -42,8 +42,8 @@ public:
   /// 14: Levenberg-Marquardt stalls only where its model predicted too much at every iteration of the window;
   /// 15: the model's clearance-barrier Hessian from each fiber's own pairs; 16: Levenberg-Marquardt forgets its
   /// secant term where B + S alone claims convergence; 17: a stop on rejected steps gives the last step's length, not
-  /// the damping (which doubling had taken to 1e68)
-  int version() const override { return 17; }
+  /// the damping (which doubling had taken to 1e68); 18: the skin barrier's dip term between samples
+  int version() const override { return 18; }
   void run(StageContext& ctx) const override;
 };
 

@@ -1,6 +1,9 @@
 // The skin barrier between its samples: a route that passes under a notch's bottom, whose samples
-// straddle the notch, is caught at the notch (optimize/skin_barrier.hpp).
+// straddle the notch, is caught at the notch, and the barrier rises continuously to +∞ there, its
+// gradient that of its value (optimize/skin_barrier.hpp).
+#include <algorithm>
 #include <cmath>
+#include <random>
 
 #include <Eigen/Geometry>
 #include <gtest/gtest.h>
@@ -52,9 +55,10 @@ TEST(SkinBarrier, ARouteUnderANotchBetweenSamplesIsCaught)
   static const SurfaceDistance skin = notched_bar();
   // A straight route on the axis passes 2 mm under the notch's bottom. Samples every 4 mm sit at
   // x = 28 and 32 mm, 2.83 mm from it: at a skin distance of 2.5 mm they see nothing wrong.
+  // The barrier is +∞ there all the same: between them the route dips under d_min.
   const HermiteSpline route({{0, 0, 0}, {60 * mm, 0, 0}});
   const SkinBarrier barrier(skin, 2.5 * mm, 1.5 * mm, route, 15);
-  EXPECT_LT(barrier.value(route), HUGE_VAL);
+  EXPECT_EQ(barrier.value(route), HUGE_VAL);
   for (double x : {28.0, 32.0}) EXPECT_NEAR(skin.closest({x * mm, 0, 0}).distance / mm, std::sqrt(8.0), 1e-9);
   Eigen::Vector3d where;
   const double closest = barrier.closest_approach(route, where);
@@ -132,6 +136,121 @@ TEST(SkinBarrier, ItsFeasibilityTestIsAFreshBarriersExactOneWhereverTheRouteHasB
   }
   EXPECT_GT(refused, 5);
   EXPECT_GT(cleared, 5);
+}
+
+/// A route along the bar at height z (mm) below the notch, bent a little so that no parameter is
+/// special: its closest approach to the notch's bottom edge lies between two samples 4 mm apart.
+HermiteSpline route_below_notch(double z)
+{
+  return HermiteSpline({{0, 0, z * mm}, {30.7 * mm, 0.3 * mm, (z + 0.05) * mm}, {60 * mm, 0, z * mm}},
+                       {{30 * mm, 0, 0.2 * mm}, {30 * mm, 0.4 * mm, 0.1 * mm}, {30 * mm, 0, -0.2 * mm}});
+}
+
+TEST(SkinBarrier, RisesToInfinityWhereTheTestBetweenSamplesRefusesNotAtAWall)
+{
+  // At d_min = 2.5 mm the route meets the notch's bottom (z = 2 mm) between the samples at z ≈ −0.55
+  // mm, where the samples are still 0.3 mm further off. The barrier must rise without bound as the
+  // route rises there, and be continuous on the way (the dip term starts at 0), not jump to +∞.
+  static const SurfaceDistance skin = notched_bar();
+  const HermiteSpline start = route_below_notch(-2);
+  const SkinBarrier barrier(skin, 2.5 * mm, 1.5 * mm, start, 15);
+  Eigen::Vector3d where;
+  // The height where the route's closest approach reaches d_min, by bisection.
+  double lo = -2, hi = 0;
+  for (int i = 0; i < 60; ++i) {
+    const double mid = (lo + hi) / 2;
+    (barrier.closest_approach(route_below_notch(mid), where) > 2.5 * mm ? lo : hi) = mid;
+  }
+  EXPECT_NEAR(lo, -0.55, 0.1);
+  const double wall = lo;
+  std::vector<double> near;
+  // b ≈ −ln x near 0: 2.3 more a decade closer (closest_approach places the wall to ~1e-7 mm).
+  for (double gap : {1e-2, 1e-3, 1e-4, 1e-5}) near.push_back(barrier.value(route_below_notch(wall - gap)));
+  for (std::size_t i = 1; i < near.size(); ++i) EXPECT_GT(near[i], near[i - 1] + 2) << "gap 1e-" << i + 2 << " mm";
+  EXPECT_TRUE(std::isfinite(near.back()));
+  ASSERT_FALSE(barrier.dips(route_below_notch(wall - 1e-4)).empty());
+  // Continuous from far below to 0.05 mm short of the wall, the dip term's start included.
+  double last = barrier.value(route_below_notch(-2)), largest_jump = 0;
+  for (double z = -2 + 1e-3; z < wall - 0.05; z += 1e-3) {
+    const double v = barrier.value(route_below_notch(z));
+    largest_jump = std::max(largest_jump, std::abs(v - last));
+    last = v;
+  }
+  EXPECT_LT(largest_jump, 0.05);
+}
+
+TEST(SkinBarrier, ItsGradientWithADipMatchesFiniteDifferences)
+{
+  static const SurfaceDistance skin = notched_bar();
+  const HermiteSpline start = route_below_notch(-2);
+  const SkinBarrier barrier(skin, 2.5 * mm, 1.5 * mm, start, 15);
+  const HermiteSpline route = route_below_notch(-0.62);
+  ASSERT_EQ(barrier.dips(route).size(), 1u);
+  const FiberParameterGradient g = barrier.gradient(route);
+  constexpr double h = 1e-6 * mm;
+  double worst = 0;
+  for (int which = 0; which < 2; ++which)
+    for (std::size_t i = 0; i < 3; ++i)
+      for (int c = 0; c < 3; ++c) {
+        std::vector<Eigen::Vector3d> points = route.points(), tangents = route.tangents();
+        std::vector<Eigen::Vector3d>& moved = which == 0 ? points : tangents;
+        moved[i][c] += h;
+        const double up = barrier.value(HermiteSpline(points, tangents));
+        moved[i][c] -= 2 * h;
+        const double down = barrier.value(HermiteSpline(points, tangents));
+        const double fd = (up - down) / (2 * h), analytic = (which == 0 ? g.points : g.tangents)[i][c];
+        EXPECT_NEAR(analytic, fd, 1e-5 * std::max(1.0, std::abs(fd)))
+            << (which == 0 ? "point " : "tangent ") << i << ", coordinate " << c;
+        worst = std::max(worst, std::abs(analytic - fd) / std::max(1.0, std::abs(fd)));
+      }
+  EXPECT_LT(worst, 1e-5);
+}
+
+TEST(SkinBarrier, FindsEveryDipADenseScanFinds)
+{
+  // Routes wandering under the notch and along the flat bottom (z = −8 mm), samples 2 mm apart:
+  // every piece between samples beyond d_min whose densely scanned distance comes within the dip band
+  // and below both samples must be a dip, its bottom that low; no other piece may be.
+  static const SurfaceDistance skin = notched_bar();
+  std::mt19937 rng(11);
+  std::uniform_real_distribution<double> wiggle(-1, 1);
+  constexpr double d_min = 2.5 * mm, reach = d_min + kDipBand * 1.5 * mm;
+  int found = 0;
+  for (int route = 0; route < 40; ++route) {
+    const double z = route % 2 == 0 ? -0.62 : -5.45; // under the notch; over the flat bottom
+    const HermiteSpline s({{0, 0, z * mm},
+                           {20 * mm, wiggle(rng) * mm, (z + 0.04 * wiggle(rng)) * mm},
+                           {30.5 * mm, 0, (z + 0.04 * wiggle(rng)) * mm},
+                           {60 * mm, 0, z * mm}},
+                          {{20 * mm, 0, 0.3 * wiggle(rng) * mm},
+                           {20 * mm, 0, 0.3 * wiggle(rng) * mm},
+                           {20 * mm, 0.5 * wiggle(rng) * mm, 0.3 * wiggle(rng) * mm},
+                           {20 * mm, 0, 0}});
+    const SkinBarrier barrier(skin, d_min, 1.5 * mm, s, 30);
+    (void)barrier.value(s);
+    const std::vector<SkinBarrier::Dip> dips = barrier.dips(s);
+    const std::vector<double>& t = barrier.samples();
+    for (std::size_t k = 0; k + 1 < t.size(); ++k) {
+      const auto d = [&](double u) { return skin.closest(s.position(u)).distance; };
+      double lowest = HUGE_VAL;
+      for (int i = 1; i < 400; ++i) lowest = std::min(lowest, d(t[k] + (t[k + 1] - t[k]) * i / 400));
+      const double end = std::min(d(t[k]), d(t[k + 1]));
+      const auto it = std::find_if(dips.begin(), dips.end(), [&](const SkinBarrier::Dip& dip) {
+        return dip.bottom.t > t[k] && dip.bottom.t < t[k + 1];
+      });
+      if (end <= d_min) continue; // the barrier is +∞ by its samples already
+      // A dip shallower than the scan's spacing resolves (1e-7 mm) is either.
+      if (lowest < end - 1e-10 && lowest < reach - 1e-10) {
+        ASSERT_NE(it, dips.end()) << "route " << route << ", piece " << k << ": " << lowest / mm << " mm";
+        EXPECT_LE(it->bottom.d, lowest + 1e-12);
+        EXPECT_NEAR(it->end.d, end, 1e-12);
+        ++found;
+      } else if (lowest > end + 1e-10 || lowest > reach + 1e-10) {
+        EXPECT_EQ(it, dips.end()) << "route " << route << ", piece " << k;
+      }
+    }
+  }
+  EXPECT_GT(found, 10);
 }
 
 } // namespace
