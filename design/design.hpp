@@ -106,13 +106,16 @@ struct FiberActuation {
 };
 
 /// A region moved by a rigid motion: turned by `angle` about the line through `about` along
-/// `axis`, then moved by `translation`.
+/// `axis`, then moved by `translation`; or, with `curl_from`, turned about its centroid and moved
+/// to where a uniform curl from that point takes it.
 struct Pose {
   Region region;
   Vec3 axis = Vec3::UnitZ();       ///< unit
   double angle = 0;                ///< rad
   std::optional<Vec3> about;       ///< m; absent: the centroid of the region's nodes
   Vec3 translation = Vec3::Zero(); ///< m
+  /// m; the body curls uniformly from here to the region: sets the translation (uniform_curl_translation)
+  std::optional<Vec3> curl_from;
 };
 
 /// What a target gives (docs/targets.md): loads, a deformed surface, actuated fibers, or regions' poses.

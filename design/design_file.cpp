@@ -724,7 +724,13 @@ Pose read_pose(Section s)
   p.angle = s.number("angle_deg", 0.0, closed(-180, 180), kDegree);
   p.about = s.optional_vec3("about", kMm, kMaxCoordinate);
   p.translation = s.vec3("translation", p.translation, kMm, kMaxCoordinate);
-  if (!s.node("angle_deg") && !s.node("translation"))
+  p.curl_from = s.optional_vec3("curl_from", kMm, kMaxCoordinate);
+  if (p.curl_from && (s.node("translation") || s.node("about")))
+    s.context().error(s.where(), s.display(),
+                      "curl_from places the region where a uniform curl takes it: leave out translation and about");
+  else if (p.curl_from && p.angle == 0)
+    s.context().error(s.where(), s.display(), "curl_from needs the curl's angle: give angle_deg (and axis)");
+  else if (!s.node("angle_deg") && !s.node("translation"))
     s.context().error(s.where(), s.display(), "give angle_deg (with axis, about) and/or translation = [x, y, z] (mm)");
   s.finish();
   return p;

@@ -80,6 +80,7 @@ void make_undeclared(Pose& v, std::string_view key)
   make_undeclared(v.angle, key);
   make_undeclared(v.about, key);
   make_undeclared(v.translation, key);
+  make_undeclared(v.curl_from, key);
 }
 
 void make_undeclared(Target& v, std::string_view key)

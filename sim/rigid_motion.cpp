@@ -37,6 +37,16 @@ RigidMotion rotation_about(const Eigen::Vector3d& axis, double angle, const Eige
   return m;
 }
 
+Eigen::Vector3d uniform_curl_translation(const Eigen::Vector3d& base, const Eigen::Vector3d& centroid,
+                                         const Eigen::Vector3d& axis, double angle)
+{
+  const Eigen::Vector3d a = axis.normalized(), along = a * a.dot(centroid - base), v = centroid - base - along;
+  const double L = v.norm();
+  if (angle == 0 || L == 0) return Eigen::Vector3d::Zero();
+  const Eigen::Vector3d u = v / L, n = a.cross(u);
+  return base + along + L / angle * (std::sin(angle) * u + (1 - std::cos(angle)) * n) - centroid;
+}
+
 RigidMotion fitted_rigid_motion(const Eigen::MatrixX3d& rest, const Eigen::MatrixX3d& deformed)
 {
   RigidMotion m;

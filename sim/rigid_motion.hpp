@@ -23,6 +23,15 @@ struct RigidMotion {
 RigidMotion rotation_about(const Eigen::Vector3d& axis, double angle, const Eigen::Vector3d& point,
                            const Eigen::Vector3d& translation);
 
+/// The translation, after a turn by `angle` about unit `axis` through `centroid`, that puts a region's
+/// centroid where a uniform curl from `base` takes it: the body between them bends into a circular
+/// arc of its length, turning by `angle`. With v = c − b less its part along the axis, L = |v|,
+/// û = v/L and n̂ = axis × û (where a positive angle turns û), the centroid goes to
+///   b + (a·(c − b)) a + (L/θ)(sin θ û + (1 − cos θ) n̂),
+/// so the translation is that less c; 0 when θ = 0 or c lies on the axis through b.
+Eigen::Vector3d uniform_curl_translation(const Eigen::Vector3d& base, const Eigen::Vector3d& centroid,
+                                         const Eigen::Vector3d& axis, double angle);
+
 /// The rigid motion that takes `rest` (rows) closest to `deformed` in least squares (Kabsch).
 /// Needs three points not on one line; fewer determine no rotation, and the identity is used.
 RigidMotion fitted_rigid_motion(const Eigen::MatrixX3d& rest, const Eigen::MatrixX3d& deformed);

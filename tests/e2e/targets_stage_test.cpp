@@ -262,6 +262,39 @@ TEST_F(TargetsE2E, AForcesTargetReportsTheTwistItsTorqueCauses)
   EXPECT_NEAR(rep["poses"][2]["rotation_deg"].get<double>(), expected, 0.15 * expected);
 }
 
+/// `curl_from` instead of a translation worked out by hand: the end is asked to where the arc
+/// takes it, (L/θ)(sin θ, 1 − cos θ) − (L, 0) (the test above's), and reaches it.
+TEST_F(TargetsE2E, APoseCurledFromTheBaseGoesWhereTheArcTakesIt)
+{
+  const double L = 60, theta = 30 * M_PI / 180, R = L / theta;
+  design("[[target]]\nname = \"curl\"\nkind = \"pose\"\n"
+         "pose = [{ box = { min = [59, -9, -9], max = [61, 9, 9] }, axis = [0, 0, 1], angle_deg = 30, "
+         "curl_from = [0, 0, 0] }]\n");
+  auto r = make();
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const auto rep = report()["curl"];
+  const auto& pose = rep["poses"][0];
+  // The end face's nodes: their centroid lies on the bar's axis within 0.05 mm.
+  EXPECT_NEAR(pose["asked_translation_mm"][0].get<double>(), R * std::sin(theta) - L, 0.05);
+  EXPECT_NEAR(pose["asked_translation_mm"][1].get<double>(), R * (1 - std::cos(theta)), 0.05);
+  EXPECT_NEAR(pose["asked_translation_mm"][2].get<double>(), 0, 0.05);
+  for (int k = 0; k < 3; ++k)
+    EXPECT_NEAR(pose["translation_mm"][k].get<double>(), pose["asked_translation_mm"][k].get<double>(), 0.1) << k;
+  EXPECT_NEAR(pose["rotation_about_asked_axis_deg"].get<double>(), 30, 1.0);
+
+  design("[[target]]\nname = \"curl\"\nkind = \"pose\"\n"
+         "pose = [{ box = { min = [59, -9, -9], max = [61, 9, 9] }, angle_deg = 30, curl_from = [0, 0, 0], "
+         "translation = [-2.7, 15.35, 0] }]\n");
+  r = make();
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_THAT(r.err, HasSubstr("curl_from places the region where a uniform curl takes it: leave out translation"));
+  design("[[target]]\nname = \"curl\"\nkind = \"pose\"\n"
+         "pose = [{ box = { min = [59, -9, -9], max = [61, 9, 9] }, curl_from = [0, 0, 0] }]\n");
+  r = make();
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_THAT(r.err, HasSubstr("curl_from needs the curl's angle"));
+}
+
 TEST_F(TargetsE2E, APoseRegionThatIsAlsoHeldIsRefused)
 {
   design("[[target]]\nname = \"curl\"\nkind = \"pose\"\n"

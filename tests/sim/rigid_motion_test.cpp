@@ -61,5 +61,33 @@ TEST(RigidMotion, ThePolarRotationOfAStretchedTurnIsTheTurn)
   EXPECT_LT((polar_rotation(R * U) - R).norm(), 1e-12);
 }
 
+/// A finger along +x curling uniformly: its end goes to (L/θ)(sin θ, 1 − cos θ) along the finger
+/// and toward where the angle turns it (docs/targets.md's worked figures), an offset along the axis
+/// is carried along, and no angle moves nothing.
+TEST(RigidMotion, AUniformCurlMovesTheEndAlongTheArc)
+{
+  const Eigen::Vector3d base(0, 0, 0);
+  // 100 mm, 60° about +z: toward +y.
+  Eigen::Vector3d t = uniform_curl_translation(base, {0.1, 0, 0}, {0, 0, 1}, M_PI / 3);
+  EXPECT_NEAR(t.x() * 1e3, -17.30, 0.005);
+  EXPECT_NEAR(t.y() * 1e3, 47.75, 0.005);
+  EXPECT_NEAR(t.z(), 0, 1e-15);
+  // 90 mm, 45° about +y: +x turns toward −z.
+  t = uniform_curl_translation(base, {0.09, 0, 0}, {0, 2, 0}, M_PI / 4);
+  EXPECT_NEAR(t.x() * 1e3, -8.97, 0.005);
+  EXPECT_NEAR(t.y(), 0, 1e-15);
+  EXPECT_NEAR(t.z() * 1e3, -33.56, 0.005);
+  // The base off the finger's line along the axis, and the finger elsewhere: the same curl.
+  const Eigen::Vector3d shift(0.01, -0.02, 0.03);
+  const Eigen::Vector3d u = uniform_curl_translation(shift + Eigen::Vector3d(0, 0, -0.004),
+                                                     shift + Eigen::Vector3d(0.1, 0, 0), {0, 0, 1}, M_PI / 3);
+  EXPECT_NEAR((u - uniform_curl_translation(base, {0.1, 0, 0}, {0, 0, 1}, M_PI / 3)).norm(), 0, 1e-15);
+  // Half a turn: the end comes back over the base, 2L/π to the side, facing back.
+  t = uniform_curl_translation(base, {0.1, 0, 0}, {0, 0, 1}, M_PI);
+  EXPECT_NEAR(t.x(), -0.1, 1e-15);
+  EXPECT_NEAR(t.y(), 0.2 / M_PI, 1e-15);
+  EXPECT_EQ(uniform_curl_translation(base, {0.1, 0, 0}, {0, 0, 1}, 0), Eigen::Vector3d::Zero());
+}
+
 } // namespace
 } // namespace fibermold
