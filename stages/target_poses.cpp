@@ -60,10 +60,8 @@ std::vector<PosedRegion> target_poses(const Design& d, const Target& t, const Te
       for (int n : r.nodes) r.about += mesh.nodes.row(n).transpose();
       r.about /= static_cast<double>(r.nodes.size());
     }
-    Pose resolved = p;
-    if (p.curl_from)
-      resolved.translation = r.translation = uniform_curl_translation(*p.curl_from, r.about, r.axis, r.angle);
-    require_plausible_pose(d, r.key, resolved, mesh.nodes(r.nodes, Eigen::all), mesh.nodes);
+    if (p.curl_from) r.translation = uniform_curl_translation(*p.curl_from, r.about, r.axis, r.angle);
+    require_plausible_pose(d, r.key, p, mesh.nodes(r.nodes, Eigen::all), mesh.nodes);
     out.push_back(std::move(r));
   }
   return out;

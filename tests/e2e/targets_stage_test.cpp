@@ -293,6 +293,14 @@ TEST_F(TargetsE2E, APoseCurledFromTheBaseGoesWhereTheArcTakesIt)
   r = make();
   EXPECT_EQ(r.exit_code, 2);
   EXPECT_THAT(r.err, HasSubstr("curl_from needs the curl's angle"));
+  // A base 9 m away (metres given as mm): the arc sweeps the end 4.7 m; check refuses it as make does.
+  design("[[target]]\nname = \"curl\"\nkind = \"pose\"\n"
+         "pose = [{ box = { min = [59, -9, -9], max = [61, 9, 9] }, angle_deg = 30, curl_from = [-9000, 0, 0] }]\n"
+         "[optimize]\nenabled = false\n");
+  for (const auto& run : {test::run_fibermold("check design.toml", dir_.path()), make()}) {
+    EXPECT_EQ(run.exit_code, 2);
+    EXPECT_THAT(run.err, HasSubstr("no soft body gets there; check `about`, `translation` and `curl_from`"));
+  }
 }
 
 TEST_F(TargetsE2E, APoseRegionThatIsAlsoHeldIsRefused)
