@@ -241,7 +241,10 @@ void simulate_targets(StageContext& ctx, const FiberClearance& measure, const Fi
   // a 0.85–0.9–1 split said "~1 s left" with 10 s to go); optimizing again, when asked, takes 0.2–0.8.
   const double final_at = changed && d.collide.reoptimize ? 0.8 : 0.25, off_at = final_at + (1 - final_at) / 5;
   ctx.progress.update(0.1, "simulating the targets under the optimized routing");
-  const std::vector<TargetErrors> before = errors_under(problem, dr, fibers.routing);
+  // Unchanged (resolve_collisions returns a clear routing bit for bit), the final routing is the optimized one:
+  // its solves from rest are these.
+  std::vector<Eigen::VectorXd> states;
+  const std::vector<TargetErrors> before = errors_under(problem, dr, fibers.routing, changed ? nullptr : &states);
   std::vector<TargetErrors> resolved;
   if (changed && d.collide.reoptimize) {
     resolved = errors_under(problem, dr, final);
@@ -257,9 +260,8 @@ void simulate_targets(StageContext& ctx, const FiberClearance& measure, const Fi
         again.contains("after"))
       smallest["after"] = again["after"];
   }
-  ctx.progress.update(final_at, "simulating the targets under the final routing");
-  std::vector<Eigen::VectorXd> states;
-  const std::vector<TargetErrors> after = errors_under(problem, dr, final, &states);
+  if (changed) ctx.progress.update(final_at, "simulating the targets under the final routing");
+  const std::vector<TargetErrors> after = changed ? errors_under(problem, dr, final, &states) : before;
   std::array<ScaledStiffness, 2> scaled{ScaledStiffness(dr, segments, 1 + kSensitivityChange),
                                         ScaledStiffness(dr, segments, 1 - kSensitivityChange)};
   Json targets = Json::object();
