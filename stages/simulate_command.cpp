@@ -183,6 +183,20 @@ Solved solve(const Design& d, const TetMesh& mesh, const Target* target, const s
   return out;
 }
 
+/// Where the target's regions (its loads' or poses') and the tracking curves' ends went, as README.txt
+/// gives them to compare with the cast robot; without a target (--pressure, or none), the curves' ends.
+std::string compared_poses(const Design& d, const Target* target, const TetMesh& mesh, const Simulation& sim,
+                           const Eigen::VectorXd& x)
+{
+  const Target none; // no region of its own
+  const Target& t = target ? *target : none;
+  const std::vector<PosedRegion> asked =
+      t.kind == TargetKind::pose ? target_poses(d, t, mesh) : std::vector<PosedRegion>{};
+  nlohmann::ordered_json poses = nlohmann::ordered_json::array();
+  for (const ReachedPose& r : reached_poses(d, t, sim, x, asked)) poses.push_back(pose_report(r));
+  return poses.empty() ? std::string() : poses_to_compare(poses);
+}
+
 } // namespace
 
 SimulateResult simulate(const Design& d, const Runner& runner, const fs::path& build_dir,
@@ -255,14 +269,7 @@ SimulateResult simulate(const Design& d, const Runner& runner, const fs::path& b
     result.as_built =
         fmt::format("{}; [material] youngs_modulus {:.0f} Pa, poisson_ratio {:g}, density {:g} kg/m³", as_built_said,
                     d.material.youngs_modulus, d.material.poisson_ratio, d.material.density);
-  if (request.as_built && target) { // the lines README.txt gives to compare with the cast robot
-    const std::vector<PosedRegion> asked =
-        target->kind == TargetKind::pose ? target_poses(d, *target, mesh) : std::vector<PosedRegion>{};
-    nlohmann::ordered_json poses = nlohmann::ordered_json::array();
-    for (const ReachedPose& r : reached_poses(d, *target, *coarse.sim, coarse.x, asked))
-      poses.push_back(pose_report(r));
-    result.poses = poses_to_compare(poses);
-  }
+  result.poses = compared_poses(d, target, mesh, *coarse.sim, coarse.x);
   result.summary = coarse.summary;
   result.max_displacement = (coarse.sim->deformed_nodes(coarse.x) - mesh.nodes).rowwise().norm().maxCoeff();
   if (const auto* mls = dynamic_cast<const MlsBasis*>(&coarse.sim->basis()); mls && mls->conditioning().widened > 0) {

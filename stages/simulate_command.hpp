@@ -32,8 +32,8 @@ struct SimulateResult {
   NewtonSummary summary;
   std::string conditioning;             ///< where the MLS radius had to be widened; empty when nowhere
   std::optional<Refinement> refinement; ///< with --refine
-  /// With --as-built --target: where the target's regions and the tracking curves' ends went, the
-  /// lines README.txt gives to compare with the cast robot (poses_to_compare); empty otherwise.
+  /// Where the target's regions (a target's loads or poses) and the tracking curves' ends went, the
+  /// lines README.txt gives to compare with the cast robot (poses_to_compare); empty with neither.
   std::string poses;
   /// With --as-built: what was simulated (the routes' file, the pressures, the material); empty otherwise.
   std::string as_built;

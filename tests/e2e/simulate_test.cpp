@@ -58,6 +58,32 @@ TEST_F(SimulateE2E, PressurizedMuscleDeformsTheBarAndWritesTheVtu)
   EXPECT_LT(max_mm, 30);
 }
 
+/// Given pressures, simulate says where the tracking curves' ends go, as for a target as built: the
+/// bar's axis's end moves by nearly the largest displacement (a corner's) and turns about z, toward
+/// the muscle's side; its held first point is not listed. (The line wraps.)
+TEST_F(SimulateE2E, APressuredRunSaysWhereTheTrackingCurvesEndsGo)
+{
+  design();
+  test::write_text(dir_ / "design.toml", test::read_text(dir_ / "design.toml") +
+                                             "[[tracking_curve]]\nname = \"axis\"\npoints = [[0, 0, 0], [60, 0, 0]]\n");
+  const auto r = simulate("--pressure m1=300");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const double max_mm = std::stod(r.out.substr(r.out.find("max displacement") + 17));
+  std::smatch m;
+  const std::regex line(
+      R"(axis, last point \(at \(60\.0, 0\.0, 0\.0\) mm at rest\): moves ([0-9.]+) mm \(([-0-9.]+), )"
+      R"(([-0-9.]+), ([-0-9.]+)\) and turns\s+([0-9.]+)° about \(([-0-9.]+), ([-0-9.]+), ([-0-9.]+)\))");
+  ASSERT_TRUE(std::regex_search(r.out, m, line)) << r.out;
+  std::printf("tip moves %s mm, turns %s° about (%s, %s, %s); max displacement %.3f mm\n", m[1].str().c_str(),
+              m[5].str().c_str(), m[6].str().c_str(), m[7].str().c_str(), m[8].str().c_str(), max_mm);
+  EXPECT_GT(std::stod(m[1]), 0.8 * max_mm);
+  EXPECT_LE(std::stod(m[1]), max_mm + 0.05);
+  EXPECT_GT(std::stod(m[3]), 0.5);  // toward +y, the muscle's side
+  EXPECT_GT(std::stod(m[5]), 1.0);  // a turn of degrees
+  EXPECT_GT(std::stod(m[8]), 0.95); // about +z
+  EXPECT_THAT(r.out, Not(HasSubstr("axis, first point")));
+}
+
 /// The cast robot holds every muscle: one not given a pressure is in the body at 0 kPa, and stiffens
 /// it (a new user's finger sagged 66.9 mm with its muscle left out, 57.7 mm with it at rest).
 TEST_F(SimulateE2E, AFiberGivenNoPressureIsInTheBodyAtRest)
