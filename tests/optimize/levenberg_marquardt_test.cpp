@@ -9,6 +9,8 @@
 #include <utility>
 #include <vector>
 
+#include <fmt/format.h>
+#include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
 #include "optimize/levenberg_marquardt.hpp"
@@ -168,6 +170,15 @@ TEST(LevenbergMarquardt, AWallTheModelDoesNotKnowEndsTheRunAtTheBestPointNotConv
   EXPECT_LE(r.x[0], 1);
   EXPECT_GT(r.x[0], 0.99);
   EXPECT_LT(r.value, 2.5); // f at the start
+  // The message gives the last trial's length, which says how close to the wall it stopped (not the
+  // damping, which doubling takes to 1e68 and which says nothing to a user).
+  const std::string said =
+      fmt::format("{} trial steps in a row did not lower f, the last moving no variable more than ", o.max_line_search);
+  ASSERT_EQ(r.message.rfind(said, 0), 0u) << r.message;
+  const double last = std::stod(r.message.substr(said.size()));
+  EXPECT_GT(last, 0);
+  EXPECT_LT(last, 1e-12); // pressed against the wall, the trials shrank to nothing (6.1e-72 here)
+  EXPECT_THAT(r.message, ::testing::HasSubstr("(mm, or 10 kPa)"));
 }
 
 /// f = ½|x − (2, 0)|² − c log(1 − x₁) (+∞ for x₁ ≥ 1), c = 0.01: a minimum held by a log
