@@ -226,12 +226,13 @@ double second_derivative_norm(const HermiteSpline& s, int k, double u)
       .norm();
 }
 
-/// How far below the nearer of d_a, d_b the distance to the skin can come between parameters a < b
-/// where it stays beyond d_min: d is semiconcave, ∇²d ≤ I/d (the distance to a closed set), so
-/// d'' ≤ |p''| + |p'|²/d_min along the spline, and d lies above its chord less C(b − a)²/8 for such a
-/// bound C. p'' is linear on a span: |p''| is largest at the ends of each span's part (both sides of a
-/// knot); |p'| is at most the larger of its ends' plus max|p''| times half the way between them.
-double deepest_dip(const HermiteSpline& s, double a, double b, double d_min)
+/// C, an upper bound of d'' (in the spline's parameter t) between parameters a < b: d is semiconcave,
+/// ∇²d ≤ I/d (the distance to a closed set), so d'' ≤ |p''| + |p'|²/d_min where d ≥ d_min; and on any
+/// [u, v] there, d lies above its chord less C(v − u)²/8. (Where the piece comes within d_min the
+/// bound still holds at its lowest point, which is all a search for it needs: at the bottom p' ⊥ ∇d.)
+/// p'' is linear on a span: |p''| is largest at the ends of each span's part (both sides of a knot);
+/// |p'| is at most the larger of its ends' plus max|p''| times half the way between them.
+double curvature_bound(const HermiteSpline& s, double a, double b, double d_min)
 {
   double p2 = 0;
   for (double from = a; from < b;) {
@@ -241,7 +242,7 @@ double deepest_dip(const HermiteSpline& s, double a, double b, double d_min)
     from = to;
   }
   const double p1 = std::max(s.derivative(a).norm(), s.derivative(b).norm()) + p2 * (b - a) / 2;
-  return (p2 + p1 * p1 / d_min) * (b - a) * (b - a) / 8;
+  return p2 + p1 * p1 / d_min;
 }
 
 /// The spline at t: its distance to the skin (negative outside), and the distance's gradient and
@@ -260,21 +261,20 @@ SkinBarrier::DipPoint dip_point(const SurfaceDistance& skin, const HermiteSpline
   return q;
 }
 
-/// The bottom of d between lo (d falling) and hi (d rising): the root of the slope by regula falsi
-/// (Illinois), halving the bracket where the secant leaves it, until the slope is 0 or the bracket
-/// closes to round-off.
-SkinBarrier::DipPoint dip_bottom(const SurfaceDistance& skin, const HermiteSpline& spline, SkinBarrier::DipPoint lo,
+/// The stationary point of d between lo (d falling) and hi (d rising): the root of the slope by regula
+/// falsi (Illinois), halving where the secant leaves the bracket, until the slope is 0 or the bracket
+/// closes to round-off; the end nearer the root (the smaller |slope|), whose parameter moves smoothly
+/// with the route, so that the envelope theorem gives the gradient.
+SkinBarrier::DipPoint slope_root(const SurfaceDistance& skin, const HermiteSpline& spline, SkinBarrier::DipPoint lo,
                                  SkinBarrier::DipPoint hi)
 {
-  SkinBarrier::DipPoint best = lo.d < hi.d ? lo : hi;
   int side = 0; // which end stayed last time: −1 lo, +1 hi
   double slope_lo = lo.slope, slope_hi = hi.slope;
-  for (int i = 0; i < 60 && hi.t - lo.t > 1e-14 * std::max(1.0, hi.t); ++i) {
+  for (int i = 0; i < 100 && hi.t - lo.t > 1e-15 * std::max(1.0, hi.t); ++i) {
     double t = (lo.t * slope_hi - hi.t * slope_lo) / (slope_hi - slope_lo);
     if (!(t > lo.t && t < hi.t)) t = (lo.t + hi.t) / 2;
     const SkinBarrier::DipPoint q = dip_point(skin, spline, t);
-    if (q.d < best.d) best = q;
-    if (q.slope == 0) break;
+    if (q.slope == 0) return q;
     if (q.slope < 0) {
       lo = q, slope_lo = q.slope;
       if (side == -1) slope_hi /= 2;
@@ -285,6 +285,30 @@ SkinBarrier::DipPoint dip_bottom(const SurfaceDistance& skin, const HermiteSplin
       side = 1;
     }
   }
+  return std::abs(lo.slope) <= std::abs(hi.slope) ? lo : hi;
+}
+
+/// The bottom of the basin of d that `best` lies in, between `left` and `right` (points with d above
+/// best's): downhill from best along its slope to a point where the slope rises through 0, halving
+/// toward best where a point is higher but still falling (a ridge of the distance, where its slope
+/// drops, lies between), then slope_root on that bracket.
+SkinBarrier::DipPoint basin_bottom(const SurfaceDistance& skin, const HermiteSpline& spline, SkinBarrier::DipPoint best,
+                                   SkinBarrier::DipPoint left, SkinBarrier::DipPoint right)
+{
+  for (int i = 0; i < 100 && best.slope != 0; ++i) {
+    const bool rightward = best.slope < 0; // downhill
+    SkinBarrier::DipPoint& far = rightward ? right : left;
+    if (std::abs(far.t - best.t) <= 1e-15 * std::max(1.0, std::abs(best.t))) break;
+    if (rightward ? far.slope > 0 : far.slope < 0)
+      return rightward ? slope_root(skin, spline, best, far) : slope_root(skin, spline, far, best);
+    const SkinBarrier::DipPoint m = dip_point(skin, spline, (best.t + far.t) / 2);
+    if (m.d < best.d) { // lower: the search goes on from there
+      (rightward ? left : right) = best;
+      best = m;
+    } else {
+      far = m;
+    }
+  }
   return best;
 }
 
@@ -292,6 +316,7 @@ SkinBarrier::DipPoint dip_bottom(const SurfaceDistance& skin, const HermiteSplin
 
 std::vector<SkinBarrier::Dip> SkinBarrier::dips(const HermiteSpline& spline) const
 {
+  if (spline.points() == dips_points_ && spline.tangents() == dips_tangents_) return dips_; // value(), then gradient()
   std::vector<Dip> out;
   const double reach = min_ + kDipBand * band_;
   for (std::size_t k = 0; k + 1 < t_.size(); ++k) {
@@ -300,27 +325,35 @@ std::vector<SkinBarrier::Dip> SkinBarrier::dips(const HermiteSpline& spline) con
     const double da = measured_[k] - (spline.position(a) - measured_at_[k]).norm();
     const double db = measured_[k + 1] - (spline.position(b) - measured_at_[k + 1]).norm();
     if ((da + db - length_bound(spline, a, b)) / 2 >= reach) continue; // no point of the piece within reach
-    if (std::min(da, db) - deepest_dip(spline, a, b, min_) >= reach) continue;
-    // d at kDipProbes + 1 points of the piece; a bottom wherever its slope turns from falling to rising.
-    std::vector<DipPoint> q;
-    for (int i = 0; i <= kDipProbes; ++i) q.push_back(dip_point(skin_, spline, a + (b - a) * i / kDipProbes));
-    const DipPoint& end = q.front().d <= q.back().d ? q.front() : q.back();
+    const double C = curvature_bound(spline, a, b, min_);
+    if (std::min(da, db) - C * (b - a) * (b - a) / 8 >= reach) continue;
+    const DipPoint pa = dip_point(skin_, spline, a), pb = dip_point(skin_, spline, b);
+    const DipPoint& end = pa.d <= pb.d ? pa : pb;
     if (end.d <= min_) continue; // a sample within d_min: the sampled barrier is +∞ there already
-    DipPoint bottom = end;
-    for (int i = 0; i < kDipProbes; ++i) {
-      if (q[i].d <= min_ || q[i + 1].d <= min_) { // within d_min between the samples
-        bottom = q[i].d < q[i + 1].d ? q[i] : q[i + 1];
-        break;
-      }
-      if (q[i].slope < 0 && q[i + 1].slope >= 0) {
-        const DipPoint m = q[i + 1].slope == 0 ? q[i + 1] : dip_bottom(skin_, spline, q[i], q[i + 1]);
-        if (m.d < bottom.d) bottom = m;
-      }
+    // Branch and bound for the piece's lowest point: a part whose bound clears the lowest point so far
+    // (or reach), less kDipTolerance of its height over d_min, holds none lower that matters.
+    DipPoint best = end, left = pa, right = pb;
+    std::vector<std::pair<DipPoint, DipPoint>> parts{{pa, pb}};
+    while (!parts.empty() && best.d > min_) {
+      const auto [u, v] = parts.back();
+      parts.pop_back();
+      const double h = v.t - u.t;
+      if (std::min(u.d, v.d) - C * h * h / 8 >= std::min(best.d, reach) - kDipTolerance * (best.d - min_)) continue;
+      if (h <= 1e-12 * (b - a)) continue;
+      const DipPoint m = dip_point(skin_, spline, (u.t + v.t) / 2);
+      if (m.d < best.d) best = m, left = u, right = v;
+      parts.push_back({u, m});
+      parts.push_back({m, v});
     }
+    if (!(best.d < end.d)) continue;
+    const DipPoint bottom = best.d <= min_ ? best : basin_bottom(skin_, spline, best, left, right);
     if (bottom.d < end.d && bottom.d < reach) out.push_back({bottom, end});
   }
   // A dip within d_min first: value() and gradient() stop there.
   std::stable_partition(out.begin(), out.end(), [&](const Dip& d) { return !(d.bottom.d > min_); });
+  dips_points_ = spline.points();
+  dips_tangents_ = spline.tangents();
+  dips_ = out;
   return out;
 }
 

@@ -16,10 +16,12 @@
 // So that B rises to +∞ where that test refuses, and not only at the samples, each piece between
 // samples k and k + 1 whose spline comes closer to the skin than either sample adds a dip term
 //   b((d*_k − d_min) / (εw), 1) − b((min(d_k, d_k+1) − d_min) / (εw), 1),   ε = kDipBand,
-// d*_k the piece's smallest distance (its bottom: d's slope along the spline, ∇d·p'(t), turns from
-// falling to rising there, found by regula falsi from kDipProbes probes). The term is 0 where the
-// bottom reaches a sample and beyond εw of d_min, so B stays continuous; by the envelope theorem
-// its gradient is that of the two points at fixed parameters. Without it the optimizer met the
+// d*_k the piece's smallest distance, its bottom. d is semiconcave (d'' ≤ C, curvature_bound), so on
+// a part [u, v] of the piece d ≥ min(d_u, d_v) − C(v − u)²/8: branch and bound on that finds the
+// lowest point (to kDipTolerance of its height over d_min, exactly at d_min), and regula falsi on d's
+// slope along the spline, ∇d·p'(t), the bottom of its basin, where the slope is 0. The term is 0
+// where the bottom reaches a sample and beyond εw of d_min, so B stays continuous; by the envelope
+// theorem its gradient is that of the two points at fixed parameters. Without it the optimizer met the
 // wall between samples as a jump to +∞ that no gradient foretold: a finger pressed against its
 // flat underside stopped there, every step of BFGS and Levenberg-Marquardt refused, |∇f| = 92.
 // The same Lipschitz bound spares most distance queries: a sample whose last measured distance, less
@@ -50,8 +52,9 @@ struct HeldStretch {
 
 /// The part of the band, nearest d_min, over which a dip between samples adds to the barrier.
 inline constexpr double kDipBand = 0.05;
-/// Intervals a piece between samples is probed in for a dip's bottom.
-inline constexpr int kDipProbes = 4;
+/// The search for a piece's lowest point passes over a part whose bound clears the lowest point so
+/// far less this much of that point's height over d_min: exact at d_min, where the barrier is +∞.
+inline constexpr double kDipTolerance = 1e-3;
 
 class SkinBarrier {
 public:
@@ -103,6 +106,9 @@ private:
   /// Each sample where its distance was last measured, and that distance (−∞: outside).
   mutable std::vector<Eigen::Vector3d> measured_at_;
   mutable std::vector<double> measured_;
+  /// The last spline dips() searched, and what it found.
+  mutable std::vector<Eigen::Vector3d> dips_points_, dips_tangents_;
+  mutable std::vector<Dip> dips_;
 };
 
 } // namespace fibermold

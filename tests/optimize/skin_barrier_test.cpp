@@ -2,6 +2,7 @@
 // straddle the notch, is caught at the notch, and the barrier rises continuously to +∞ there, its
 // gradient that of its value (optimize/skin_barrier.hpp).
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <random>
 
@@ -17,12 +18,10 @@ namespace {
 
 using units::mm;
 
-/// A 60 × 16 × 16 mm bar (x from 0 to 60, y and z from −8 to 8) with a V-notch cut across its top
-/// at x = 30: 2 mm wide at the top, its bottom a sharp edge at z = 2 mm. The cross-section in
-/// (x, z), extruded along y.
-SurfaceDistance notched_bar()
+/// A 60 mm bar (x from 0 to 60), its cross-section in (x, z) the polygon `xz` (triangulated by `ears`),
+/// extruded from y = −8 to 8 mm.
+SurfaceDistance extruded_bar(const std::vector<Eigen::Vector2d>& xz, const std::vector<std::array<int, 3>>& ears)
 {
-  const std::vector<Eigen::Vector2d> xz{{0, -8}, {60, -8}, {60, 8}, {31, 8}, {30, 2}, {29, 8}, {0, 8}};
   const int n = static_cast<int>(xz.size());
   Eigen::MatrixX3d v(2 * n, 3);
   for (int i = 0; i < n; ++i) {
@@ -31,7 +30,7 @@ SurfaceDistance notched_bar()
   }
   std::vector<Eigen::Vector3i> f;
   // The caps, ear by ear (the polygon is not convex), and a quad per polygon edge.
-  for (const auto& [a, b, c] : std::vector<std::array<int, 3>>{{0, 1, 4}, {1, 2, 4}, {2, 3, 4}, {0, 4, 6}, {4, 5, 6}}) {
+  for (const auto& [a, b, c] : ears) {
     f.emplace_back(a, c, b);
     f.emplace_back(n + a, n + b, n + c);
   }
@@ -48,6 +47,23 @@ SurfaceDistance notched_bar()
     volume += v.row(faces(k, 0)).dot(v.row(faces(k, 1)).cross(v.row(faces(k, 2)))) / 6;
   if (volume < 0) faces.col(1).swap(faces.col(2));
   return SurfaceDistance(v, faces);
+}
+
+/// A 60 × 16 × 16 mm bar (y and z from −8 to 8) with a V-notch cut across its top at x = 30: 2 mm wide
+/// at the top, its bottom a sharp edge at z = 2 mm.
+SurfaceDistance notched_bar()
+{
+  return extruded_bar({{0, -8}, {60, -8}, {60, 8}, {31, 8}, {30, 2}, {29, 8}, {0, 8}},
+                      {{0, 1, 4}, {1, 2, 4}, {2, 3, 4}, {0, 4, 6}, {4, 5, 6}});
+}
+
+/// The bar with two sharp notches 0.7 mm apart, their bottoms at (29.8, 2.12) and (30.5, 2.09) mm: two
+/// minima of the distance within one piece between samples, the shallower first.
+SurfaceDistance twice_notched_bar()
+{
+  return extruded_bar(
+      {{0, -8}, {60, -8}, {60, 8}, {30.75, 8}, {30.5, 2.09}, {30.25, 8}, {30.05, 8}, {29.8, 2.12}, {29.55, 8}, {0, 8}},
+      {{0, 1, 4}, {1, 2, 4}, {2, 3, 4}, {0, 4, 7}, {4, 5, 7}, {5, 6, 7}, {0, 7, 9}, {7, 8, 9}});
 }
 
 TEST(SkinBarrier, ARouteUnderANotchBetweenSamplesIsCaught)
@@ -251,6 +267,71 @@ TEST(SkinBarrier, FindsEveryDipADenseScanFinds)
     }
   }
   EXPECT_GT(found, 10);
+}
+
+/// Two minima in one piece (review of session 40: five probes and one bracket found only the
+/// shallower notch, and the barrier was finite where the test between samples refused): straight
+/// routes rising under both notches and sliding along x. Wherever the barrier is finite the route
+/// clears d_min everywhere; it is continuous on the way up; and its gradient is its value's.
+TEST(SkinBarrier, WithTwoMinimaInAPieceItFindsTheLowerAndStaysContinuous)
+{
+  static const SurfaceDistance skin = twice_notched_bar();
+  const auto route = [](double z, double shift) {
+    return HermiteSpline({{0, 0, z * mm}, {60 * mm, 0, (z + 0.01) * mm}}, {{60 * mm, 0, shift}, {60 * mm, 0, -shift}});
+  };
+  const SkinBarrier barrier(skin, 2.5 * mm, 1.5 * mm, route(-2, 0), 15);
+  Eigen::Vector3d where;
+  // The height (mm) where a route's closest approach reaches d_min, by bisection.
+  const auto wall = [&](double shift) {
+    double lo = -2, hi = 0;
+    for (int i = 0; i < 60; ++i)
+      ((barrier.closest_approach(route((lo + hi) / 2, shift), where) > 2.5 * mm) ? lo : hi) = (lo + hi) / 2;
+    return lo;
+  };
+  int finite = 0, refused = 0;
+  for (double z = -0.60; z < -0.30; z += 2e-4) {
+    for (double shift : {0.0, 0.3 * mm}) {
+      const HermiteSpline s = route(z, shift);
+      const double v = barrier.value(s);
+      if (std::isfinite(v)) {
+        EXPECT_GT(barrier.closest_approach(s, where), 2.5 * mm) << "z " << z << " mm, shift " << shift << ": " << v;
+        ++finite;
+      } else {
+        ++refused;
+      }
+    }
+  }
+  EXPECT_GT(finite, 100);
+  EXPECT_GT(refused, 100);
+  // Continuous up to 0.01 mm short of the wall, by steps of 0.2 µm (where b rises about 0.02 a step).
+  const double top = wall(0);
+  double last = barrier.value(route(-0.6, 0)), largest_jump = 0;
+  for (double z = -0.6 + 2e-4; z < top - 0.01; z += 2e-4) {
+    const double v = barrier.value(route(z, 0));
+    largest_jump = std::max(largest_jump, std::abs(v - last));
+    last = v;
+  }
+  EXPECT_LT(largest_jump, 0.05);
+  // The gradient 0.02 mm short of the wall, where the lower notch decides.
+  const HermiteSpline s = route(wall(0.1 * mm) - 0.02, 0.1 * mm);
+  ASSERT_TRUE(std::isfinite(barrier.value(s)));
+  ASSERT_FALSE(barrier.dips(s).empty());
+  EXPECT_NEAR(barrier.dips(s).front().bottom.d, barrier.closest_approach(s, where), 1e-6 * mm);
+  const FiberParameterGradient g = barrier.gradient(s);
+  constexpr double h = 1e-7 * mm;
+  for (int which = 0; which < 2; ++which)
+    for (std::size_t i = 0; i < 2; ++i)
+      for (int c = 0; c < 3; ++c) {
+        std::vector<Eigen::Vector3d> points = s.points(), tangents = s.tangents();
+        std::vector<Eigen::Vector3d>& moved = which == 0 ? points : tangents;
+        moved[i][c] += h;
+        const double up = barrier.value(HermiteSpline(points, tangents));
+        moved[i][c] -= 2 * h;
+        const double down = barrier.value(HermiteSpline(points, tangents));
+        const double fd = (up - down) / (2 * h), analytic = (which == 0 ? g.points : g.tangents)[i][c];
+        EXPECT_NEAR(analytic, fd, 1e-4 * std::max(1.0, std::abs(fd)))
+            << (which == 0 ? "point " : "tangent ") << i << ", coordinate " << c;
+      }
 }
 
 } // namespace
