@@ -217,6 +217,16 @@ double length_bound(const HermiteSpline& s, double a, double b)
   return L;
 }
 
+/// The search for a piece's lowest point leaves a part shorter than this (m of arc), as closest_approach
+/// does: within it d is within C·(1 µm)²/8 of its ends, 5e-11 m at d_min = 2.5 mm.
+constexpr double kDipShortest = 1e-6;
+/// Nor does it pursue a point lower by less than this (m) than the lowest so far: the bound's slack
+/// then grows no finer than 1 nm however near d_min the piece lies (a flat piece on a face within
+/// 1e-8 mm of d_min took 5 million queries without it).
+constexpr double kDipResolution = 1e-9;
+/// A bottom must lie this much (relative) below the nearer sample to be a dip: round-off's are not.
+constexpr double kDipRoundOff = 1e-12;
+
 /// |p''| on span k at u ∈ [0, 1].
 double second_derivative_norm(const HermiteSpline& s, int k, double u)
 {
@@ -332,22 +342,36 @@ std::vector<SkinBarrier::Dip> SkinBarrier::dips(const HermiteSpline& spline) con
     if (end.d <= min_) continue; // a sample within d_min: the sampled barrier is +∞ there already
     // Branch and bound for the piece's lowest point: a part whose bound clears the lowest point so far
     // (or reach), less kDipTolerance of its height over d_min, holds none lower that matters.
-    DipPoint best = end, left = pa, right = pb;
+    DipPoint best = end;
+    std::vector<DipPoint> probed{pa, pb};
     std::vector<std::pair<DipPoint, DipPoint>> parts{{pa, pb}};
     while (!parts.empty() && best.d > min_) {
       const auto [u, v] = parts.back();
       parts.pop_back();
-      const double h = v.t - u.t;
-      if (std::min(u.d, v.d) - C * h * h / 8 >= std::min(best.d, reach) - kDipTolerance * (best.d - min_)) continue;
-      if (h <= 1e-12 * (b - a)) continue;
+      const double h = v.t - u.t, above = std::min(best.d, reach);
+      const double slack = std::max(kDipTolerance * (above - min_), kDipResolution);
+      if (std::min(u.d, v.d) - C * h * h / 8 >= above - slack) continue;
+      if (length_bound(spline, u.t, v.t) < kDipShortest) continue;
       const DipPoint m = dip_point(skin_, spline, (u.t + v.t) / 2);
-      if (m.d < best.d) best = m, left = u, right = v;
+      probed.push_back(m);
+      if (m.d < best.d) best = m;
       parts.push_back({u, m});
       parts.push_back({m, v});
     }
-    if (!(best.d < end.d)) continue;
-    const DipPoint bottom = best.d <= min_ ? best : basin_bottom(skin_, spline, best, left, right);
-    if (bottom.d < end.d && bottom.d < reach) out.push_back({bottom, end});
+    // Deeper than round-off (a straight route along a face finds points 1e-18 m lower anywhere, and a
+    // bottom there would give the gradient a term the value has not).
+    dip_probes_ += probed.size();
+    const double deeper = end.d - kDipRoundOff * end.d;
+    if (!(best.d < deeper)) continue;
+    // Its basin between the nearest points probed on either side (each no lower than it).
+    DipPoint left = pa, right = pb;
+    for (const DipPoint& q : probed) {
+      if (q.t < best.t && q.t > left.t) left = q;
+      if (q.t > best.t && q.t < right.t) right = q;
+    }
+    DipPoint bottom = best.d <= min_ ? best : basin_bottom(skin_, spline, best, left, right);
+    if (bottom.d > best.d) bottom = best; // not found below it: the lowest point probed, at its parameter
+    if (bottom.d < deeper && bottom.d < reach) out.push_back({bottom, end});
   }
   // A dip within d_min first: value() and gradient() stop there.
   std::stable_partition(out.begin(), out.end(), [&](const Dip& d) { return !(d.bottom.d > min_); });

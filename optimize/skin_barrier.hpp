@@ -91,6 +91,8 @@ public:
   };
   /// The dips whose bottom lies within d_min + kDipBand·w, a dip within d_min first.
   std::vector<Dip> dips(const HermiteSpline& spline) const;
+  /// The points dips()'s branch and bound has probed so far (each a distance query): its cost.
+  std::size_t dip_probes() const { return dip_probes_; }
 
 private:
   /// Whether sample k, now at p, is provably beyond the band (see above); if not, measures it and
@@ -109,6 +111,7 @@ private:
   /// The last spline dips() searched, and what it found.
   mutable std::vector<Eigen::Vector3d> dips_points_, dips_tangents_;
   mutable std::vector<Dip> dips_;
+  mutable std::size_t dip_probes_ = 0;
 };
 
 } // namespace fibermold

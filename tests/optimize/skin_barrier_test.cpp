@@ -7,6 +7,7 @@
 #include <random>
 
 #include <Eigen/Geometry>
+#include <fmt/format.h>
 #include <gtest/gtest.h>
 
 #include "core/units.hpp"
@@ -322,6 +323,31 @@ TEST(SkinBarrier, WithTwoMinimaInAPieceItFindsTheLowerAndStaysContinuous)
   ASSERT_FALSE(barrier.dips(s).empty());
   EXPECT_NEAR(barrier.dips(s).front().bottom.d, barrier.closest_approach(s, where), 1e-6 * mm);
   EXPECT_LT(gradient_error(barrier, s, 1e-7 * mm), 1e-4);
+}
+
+/// A straight route along the bar's flat underside (z = −8 mm), at heights from 0.05 mm to 1e-8 mm
+/// above d_min, samples 0.5 mm apart as the optimizer places them (review of session 40: the search
+/// for a dip split every piece until its bound's slack was 1e-3 of that height, 5 million queries
+/// at 1e-8 mm; and it found "dips" 1e-18 m deep anywhere, whose gradient terms the value had not).
+/// No dip, a bounded cost, and the gradient of a tilt its value's.
+TEST(SkinBarrier, AlongAFlatFaceNearDMinItFindsNoDipAtABoundedCost)
+{
+  static const SurfaceDistance skin = notched_bar();
+  for (double gap : {5e-2, 1e-3, 1e-5, 1e-8}) {
+    const double z = -8 + 2.5 + gap; // mm
+    const HermiteSpline level({{0, 0, z * mm}, {25 * mm, 0, z * mm}});
+    const SkinBarrier barrier(skin, 2.5 * mm, 1.5 * mm, level, 50); // 0.5 mm apart
+    ASSERT_TRUE(std::isfinite(barrier.value(level))) << gap;
+    EXPECT_TRUE(barrier.dips(level).empty()) << gap << " mm: " << barrier.dips(level).front().bottom.d / mm;
+    const std::size_t probes = barrier.dip_probes();
+    RecordProperty(fmt::format("probes_at_{}_mm", gap), static_cast<int>(probes));
+    EXPECT_LT(probes, 49u * 100) << gap << " mm"; // 49 pieces: 47 queries each at 1e-3 mm and nearer
+    // Tilted by 1e-4 mm over its length, the far end rising: the gradient its value's (not at 1e-8 mm,
+    // where a difference step under the gap is 1e-14 m, and round-off's).
+    if (gap < 1e-5) continue;
+    const HermiteSpline tilted({{0, 0, z * mm}, {25 * mm, 0, (z + 1e-4) * mm}});
+    EXPECT_LT(gradient_error(barrier, tilted, std::min(gap, 1e-3) * 1e-3 * mm), 1e-5) << gap << " mm";
+  }
 }
 
 } // namespace
