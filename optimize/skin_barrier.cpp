@@ -341,7 +341,8 @@ std::vector<SkinBarrier::Dip> SkinBarrier::dips(const HermiteSpline& spline) con
     const DipPoint& end = pa.d <= pb.d ? pa : pb;
     if (end.d <= min_) continue; // a sample within d_min: the sampled barrier is +∞ there already
     // Branch and bound for the piece's lowest point: a part whose bound clears the lowest point so far
-    // (or reach), less kDipTolerance of its height over d_min, holds none lower that matters.
+    // (or reach), less kDipTolerance of its height over d_min (at least kDipResolution), or that is
+    // shorter than kDipShortest, holds none lower that matters.
     DipPoint best = end;
     std::vector<DipPoint> probed{pa, pb};
     std::vector<std::pair<DipPoint, DipPoint>> parts{{pa, pb}};
@@ -358,9 +359,9 @@ std::vector<SkinBarrier::Dip> SkinBarrier::dips(const HermiteSpline& spline) con
       parts.push_back({u, m});
       parts.push_back({m, v});
     }
+    dip_probes_ += probed.size();
     // Deeper than round-off (a straight route along a face finds points 1e-18 m lower anywhere, and a
     // bottom there would give the gradient a term the value has not).
-    dip_probes_ += probed.size();
     const double deeper = end.d - kDipRoundOff * end.d;
     if (!(best.d < deeper)) continue;
     // Its basin between the nearest points probed on either side (each no lower than it).
