@@ -66,14 +66,8 @@ FiberParameterGradient SkinBarrier::gradient(const HermiteSpline& spline) const
   FiberParameterGradient g;
   g.points.assign(spline.points().size(), Eigen::Vector3d::Zero());
   g.tangents.assign(spline.points().size(), Eigen::Vector3d::Zero());
-  SurfaceDistance::Closest c;
-  for (std::size_t i = 0; i < t_.size(); ++i) {
-    const double t = t_[i];
-    const Eigen::Vector3d p = spline.position(t);
-    if (beyond_band(i, p, c) || !c.inside || c.distance >= min_ + band_) continue;
-    // ∂b/∂p = b'((d − d_min)/w)/w ∇d,  ∇d = (p − c)/|p − c| inside the body
-    const Eigen::Vector3d by_p =
-        barrier_gradient((c.distance - min_) / band_, 1.0) / band_ * (p - c.point) / c.distance;
+  // ∂/∂p of a term at the spline's point at parameter t, into its control points and tangents.
+  const auto add = [&](double t, const Eigen::Vector3d& by_p) {
     int k;
     double w[4];
     spline.weights(t, k, w);
@@ -81,23 +75,20 @@ FiberParameterGradient SkinBarrier::gradient(const HermiteSpline& spline) const
     g.tangents[k] += w[1] * by_p;
     g.points[k + 1] += w[2] * by_p;
     g.tangents[k + 1] += w[3] * by_p;
+  };
+  SurfaceDistance::Closest c;
+  for (std::size_t i = 0; i < t_.size(); ++i) {
+    const Eigen::Vector3d p = spline.position(t_[i]);
+    if (beyond_band(i, p, c) || !c.inside || c.distance >= min_ + band_) continue;
+    // ∂b/∂p = b'((d − d_min)/w)/w ∇d,  ∇d = (p − c)/|p − c| inside the body
+    add(t_[i], barrier_gradient((c.distance - min_) / band_, 1.0) / band_ * (p - c.point) / c.distance);
   }
   // Each dip's term at its bottom less at its end sample, each a point at a fixed parameter: the
   // bottom's parameter moves with the route, but d is stationary along the spline there.
-  const auto add = [&](const DipPoint& q, double sign) {
-    const Eigen::Vector3d by_p = sign * dip_barrier_gradient(q.d) * q.normal;
-    int k;
-    double w[4];
-    spline.weights(q.t, k, w);
-    g.points[k] += w[0] * by_p;
-    g.tangents[k] += w[1] * by_p;
-    g.points[k + 1] += w[2] * by_p;
-    g.tangents[k + 1] += w[3] * by_p;
-  };
   for (const Dip& dip : dips(spline)) {
     if (!(dip.bottom.d > min_)) break;
-    add(dip.bottom, 1);
-    add(dip.end, -1);
+    add(dip.bottom.t, dip_barrier_gradient(dip.bottom.d) * dip.bottom.normal);
+    add(dip.end.t, -dip_barrier_gradient(dip.end.d) * dip.end.normal);
   }
   return g;
 }
@@ -205,15 +196,22 @@ double SkinBarrier::closest_approach(const HermiteSpline& spline, Eigen::Vector3
 
 namespace {
 
+/// f(k, from, to) for each span k's part [from, to] of the parameters a < b, cut at the knots.
+template <class F> void for_each_span_part(const HermiteSpline& s, double a, double b, F f)
+{
+  for (double from = a; from < b;) {
+    const int k = std::clamp(static_cast<int>(std::floor(from)), 0, s.spans() - 1);
+    const double to = std::min(b, static_cast<double>(k + 1));
+    f(k, from, to);
+    from = to;
+  }
+}
+
 /// An upper bound of the arc length between parameters a < b, the pieces cut at the knots.
 double length_bound(const HermiteSpline& s, double a, double b)
 {
   double L = 0;
-  for (double from = a; from < b;) {
-    const double to = std::min(b, std::floor(from) + 1);
-    L += arc_bound(s, from, to);
-    from = to;
-  }
+  for_each_span_part(s, a, b, [&](int, double from, double to) { L += arc_bound(s, from, to); });
   return L;
 }
 
@@ -245,12 +243,9 @@ double second_derivative_norm(const HermiteSpline& s, int k, double u)
 double curvature_bound(const HermiteSpline& s, double a, double b, double d_min)
 {
   double p2 = 0;
-  for (double from = a; from < b;) {
-    const int k = std::clamp(static_cast<int>(std::floor(from)), 0, s.spans() - 1);
-    const double to = std::min(b, static_cast<double>(k + 1));
+  for_each_span_part(s, a, b, [&](int k, double from, double to) {
     p2 = std::max({p2, second_derivative_norm(s, k, from - k), second_derivative_norm(s, k, to - k)});
-    from = to;
-  }
+  });
   const double p1 = std::max(s.derivative(a).norm(), s.derivative(b).norm()) + p2 * (b - a) / 2;
   return p2 + p1 * p1 / d_min;
 }
