@@ -16,6 +16,7 @@
 #include "core/json_file.hpp"
 #include "core/units.hpp"
 #include "optimize/clearance_barrier.hpp"
+#include "optimize/first_guess_comparison.hpp"
 #include "optimize/optimization_ending.hpp"
 #include "optimize/routing_history.hpp"
 #include "optimize/routing_optimizer.hpp"
@@ -151,34 +152,37 @@ Baseline first_guess_at_best_pressures(StageContext& ctx, DesignRouting& dr, con
   return b;
 }
 
-/// Never worse than the first guess at its best pressures: where the optimizer ended higher, the
-/// first guess becomes the result. The warning that says so, or empty. Sets the first guess's
-/// objective in its report to the full one.
+/// Never worse than the first guess at its best pressures, in objective or in the targets' match
+/// (compare_with_first_guess): where the optimizer ended worse, the first guess becomes the
+/// result. The warning that says so, or empty. Sets the first guess's objective and distance in
+/// its report to the full ones.
 std::string keep_the_better(StageContext& ctx, RoutingProblem& problem, Baseline& baseline, RoutingResult& result)
 {
   if (result.interrupted) return {};
-  // The first guess scored as the optimization scores: with its routes' terms (curvature, skin,
-  // bend), which the pressure-only run leaves out as constants; at exactly its routing (the
-  // variables the optimization left unfree taken from it too).
+  // Each scored as the optimization scores: the first guess with its routes' terms (curvature,
+  // skin, bend), which the pressure-only run leaves out as constants, at exactly its routing (the
+  // variables the optimization left unfree taken from it too); the optimized terms are the best
+  // evaluation's where that is the result (one start), else evaluated again.
   const Routing base = problem.base();
-  problem.set_base(baseline.result.routing);
-  double first_guess = HUGE_VAL;
+  RoutingTerms first_guess, optimized = problem.terms_at(result.value);
+  first_guess.total = HUGE_VAL;
   try {
-    first_guess = problem.evaluate(problem.variables(baseline.result.routing));
+    if (optimized.total != result.value) problem.evaluate(problem.variables(result.routing), nullptr, &optimized);
+    problem.set_base(baseline.result.routing);
+    problem.evaluate(problem.variables(baseline.result.routing), nullptr, &first_guess);
   } catch (const Interrupted&) {
     result.interrupted = true; // the caller keeps the best design so far
   }
   problem.set_base(base);
-  if (std::isfinite(first_guess)) baseline.json["objective"] = first_guess;
-  if (!(first_guess < result.value)) return {};
-  const std::string warning = fmt::format("the optimizer ended at an objective of {:.4g}, above the first guess's at "
-                                          "its best pressures ({:.4g}): the first guess is "
-                                          "kept; start the routes elsewhere or raise [optimize] max_iterations",
-                                          result.value, first_guess);
-  ctx.log.warn("{}", warning);
+  if (!std::isfinite(first_guess.total)) return {};
+  baseline.json["objective"] = first_guess.total;
+  baseline.json["distance"] = first_guess.distance;
+  const FirstGuessComparison verdict = compare_with_first_guess(first_guess, optimized);
+  if (!verdict.keep_first_guess) return {};
+  ctx.log.warn("{}", verdict.warning);
   result.routing = baseline.result.routing;
-  result.value = first_guess;
-  return warning;
+  result.value = first_guess.total;
+  return verdict.warning;
 }
 
 /// The Newton solves' counts and times.

@@ -42,8 +42,9 @@ public:
   /// 14: Levenberg-Marquardt stalls only where its model predicted too much at every iteration of the window;
   /// 15: the model's clearance-barrier Hessian from each fiber's own pairs; 16: Levenberg-Marquardt forgets its
   /// secant term where B + S alone claims convergence; 17: a stop on rejected steps gives the last step's length, not
-  /// the damping (which doubling had taken to 1e68); 18: the skin barrier's dip term between samples
-  int version() const override { return 18; }
+  /// the damping (which doubling had taken to 1e68); 18: the skin barrier's dip term between samples; 19: the first
+  /// guess is kept where it matches the targets better (report.json first_guess.distance)
+  int version() const override { return 19; }
   void run(StageContext& ctx) const override;
 };
 
