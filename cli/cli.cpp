@@ -17,6 +17,7 @@
 
 #include "cli/terminal_progress.hpp"
 #include "core/input_error.hpp"
+#include "core/units.hpp"
 #include "design/design_file.hpp"
 #include "make/build_lock.hpp"
 #include "make/runner.hpp"
@@ -185,6 +186,10 @@ int run_check(const Design& design)
   print_design_summary(design);
   fmt::print("  surface: closed, manifold, outward, no self-intersections; {} component(s), {:.6g} mm³\n",
              c.surface.components, c.surface.volume / 1e-9);
+  // Its size in the design's units read as mm: a body 10 times too large shows here ([design] units).
+  const Eigen::Vector3d size = (c.hi - c.lo) / units::mm;
+  fmt::print("  body: {:.4g} × {:.4g} × {:.4g} mm, from {} to {}\n", size.x(), size.y(), size.z(), format_mm(c.lo),
+             format_mm(c.hi));
   fmt::print("  mesh: {:.3g} mm edges{}, the surface's triangles {}: about {:.0f} tets\n", c.edge_length / 1e-3,
              design.mesh.edge_length ? "" : " (by default)",
              c.treatment == SurfaceTriangles::keep    ? "kept"

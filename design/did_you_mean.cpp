@@ -30,7 +30,9 @@ std::optional<std::string> closest_match(std::string_view word, const std::vecto
   for (const std::string& candidate : candidates) {
     const std::size_t d = edit_distance(word, candidate);
     const std::size_t longer = std::max(word.size(), candidate.size());
-    const bool prefix = !word.empty() && (candidate.starts_with(word) || word.starts_with(candidate));
+    // A prefix of one letter says nothing: "millimetres" is not "m" (metres) misspelled.
+    const bool prefix =
+        std::min(word.size(), candidate.size()) >= 2 && (candidate.starts_with(word) || word.starts_with(candidate));
     if (3 * d > longer && !prefix) continue;
     if (!best || d < best_distance) {
       best = candidate;

@@ -12,7 +12,8 @@ namespace fibermold {
 std::size_t edit_distance(std::string_view a, std::string_view b);
 
 /// The candidate closest to `word`, if it is close enough to be a plausible misspelling
-/// (at most a third of the longer word's letters differ, or one is a prefix of the other).
+/// (at most a third of the longer word's letters differ, or one of two letters or more is a prefix
+/// of the other).
 std::optional<std::string> closest_match(std::string_view word, const std::vector<std::string>& candidates);
 
 } // namespace fibermold

@@ -21,6 +21,8 @@ DesignSurfaceCheck check_design_surface(const Design& design)
   nlohmann::json seconds;
   const SurfaceMesh surface = prepared_surface(design, check, repair, seconds);
   c.repairs = repair.changes();
+  c.lo = surface.vertices.colwise().minCoeff();
+  c.hi = surface.vertices.colwise().maxCoeff();
   // What the stages would refuse later for their size, refused now; and a remeshing that the
   // body's features cannot take.
   const double edge = target_edge_length(design, check.volume);

@@ -8,6 +8,8 @@
 #include <string>
 #include <vector>
 
+#include <Eigen/Core>
+
 #include "design/design.hpp"
 #include "mesh/surface_check.hpp"
 
@@ -19,7 +21,8 @@ struct DesignSurfaceCheck {
   std::vector<std::string> repairs; ///< what [mesh] repair = true changes
   double edge_length = 0;           ///< m, asked or by default
   SurfaceTriangles treatment = SurfaceTriangles::keep;
-  double estimated_tets = 0; ///< expected_tets
+  double estimated_tets = 0;                                                  ///< expected_tets
+  Eigen::Vector3d lo = Eigen::Vector3d::Zero(), hi = Eigen::Vector3d::Zero(); ///< m, the body's bounding box
 };
 
 /// Imports and checks the surface (and, with [mesh] repair = true, checks the repaired copy), and

@@ -22,10 +22,15 @@ namespace fibermold {
 namespace fs = std::filesystem;
 
 namespace {
-
 [[noreturn]] void bad(const Design& d, const std::string& key, const std::string& message)
 {
   throw InputError(design_problem(d, key, message));
+}
+
+/// The body's equilibria need it held: the targets' and optimize's solves (and simulate's).
+[[noreturn]] void refuse_held_nowhere(const Design& d)
+{
+  bad(d, "[[fixed]]", "the body is held nowhere: add a [[fixed]] region (a free body under load has no equilibrium)");
 }
 
 /// True when P lies in a tet of the mesh (within 1e-6 in barycentric coordinates).
@@ -53,6 +58,7 @@ std::vector<int> region_nodes(const Region& r, const TetMesh& mesh, const Design
 
 void require_regions_reach_the_body(const Design& d, const SurfaceMesh& surface)
 {
+  if (d.fixed.empty() && !d.targets.empty()) refuse_held_nowhere(d); // every target is solved held
   const Eigen::Vector3d lo = surface.vertices.colwise().minCoeff(), hi = surface.vertices.colwise().maxCoeff();
   const SurfaceDistance skin(surface.vertices, surface.faces);
   const auto require = [&](const Region& r, const std::string& key, const std::string& what) {
@@ -116,8 +122,7 @@ SimulationOptions simulation_options(const Design& d, const TetMesh& mesh, bool 
   o.density = d.material.density;
   o.gravity = d.material.gravity;
   if (!held) return o;
-  if (d.fixed.empty())
-    bad(d, "[[fixed]]", "the body is held nowhere: add a [[fixed]] region (a free body under load has no equilibrium)");
+  if (d.fixed.empty()) refuse_held_nowhere(d);
   for (const FixedRegion& f : d.fixed) {
     const std::string key = fmt::format("[fixed.{}]", f.name);
     std::vector<int> nodes = region_nodes(f.region, mesh, d, key);

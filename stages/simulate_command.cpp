@@ -49,12 +49,15 @@ std::vector<Actuation> requested_actuations(const Design& d, const SimulateReque
     const auto eq = item.find('=');
     const std::string name = item.substr(0, eq);
     double kpa = NAN;
+    std::size_t used = 0;
+    const std::string value = eq == std::string::npos ? std::string() : item.substr(eq + 1);
     try {
-      if (eq != std::string::npos) kpa = std::stod(item.substr(eq + 1));
+      kpa = std::stod(value, &used);
     } catch (const std::exception&) {
     }
-    if (eq == std::string::npos || !std::isfinite(kpa))
-      bad(d, "--pressure", fmt::format("'{}': expected FIBER=kPa", item));
+    // The whole value a number: "300Pa", "0.3MPa" or "2bar" would otherwise read as 300, 0.3 or 2 kPa.
+    if (eq == std::string::npos || !std::isfinite(kpa) || used != value.size())
+      bad(d, "--pressure", fmt::format("'{}': expected FIBER=kPa, the pressure a number in kPa without a unit", item));
     const Fiber* f = fiber(name);
     if (!f) {
       std::vector<std::string> names;

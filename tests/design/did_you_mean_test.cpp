@@ -25,5 +25,14 @@ TEST(ClosestMatch, SuggestsOnlyPlausibleMisspellings)
   EXPECT_FALSE(closest_match("x", {}).has_value());
 }
 
+TEST(ClosestMatch, AOneLetterPrefixIsNoHint)
+{
+  // A new user's units = "millimetres" was asked whether they meant "m" (metres).
+  const std::vector<std::string> units{"mm", "cm", "m", "in"};
+  EXPECT_FALSE(closest_match("millimetres", units).has_value());
+  EXPECT_EQ(closest_match("inches", units), "in");
+  EXPECT_EQ(closest_match("mmm", units), "mm");
+}
+
 } // namespace
 } // namespace fibermold

@@ -464,6 +464,8 @@ TEST_F(MeshStageE2E, CheckReportsTheSurfaceWithoutRunning)
   r = test::run_fibermold("check design.toml", dir_.path());
   EXPECT_EQ(r.exit_code, 0) << r.err;
   EXPECT_THAT(r.out, HasSubstr("1 component(s), 16000 mm³"));
+  // The body's size, where a wrong [design] units shows at once (a new user's cm on a mm file).
+  EXPECT_THAT(r.out, HasSubstr("body: 40 × 20 × 20 mm, from (0.0, 0.0, 0.0) mm to (40.0, 20.0, 20.0) mm"));
   EXPECT_FALSE(fs::exists(dir_ / "out"));
 }
 

@@ -175,6 +175,13 @@ TEST_F(SimulateE2E, PressureOutOfRange)
   EXPECT_EQ(unknown.exit_code, 2);
   EXPECT_THAT(unknown.err, HasSubstr("no [[fiber]] named \"m9\" (the design has m1)"));
   EXPECT_EQ(simulate("--pressure m1").exit_code, 2);
+  // A unit after the number is refused, not dropped: "300Pa" ran at 300 kPa, "0.3MPa" at 0.3 kPa.
+  for (const char* typed : {"m1=300Pa", "m1=0.3MPa", "m1=2bar", "m1=30psi", "m1=100kPa", "m1=1e2x"}) {
+    const auto unit = simulate(std::string("--pressure ") + typed);
+    EXPECT_EQ(unit.exit_code, 2) << typed;
+    EXPECT_THAT(unit.err, HasSubstr(std::string("'") + typed +
+                                    "': expected FIBER=kPa, the pressure a number in kPa without a unit"));
+  }
 }
 
 TEST_F(SimulateE2E, FiberOutsideTheBody)
@@ -249,6 +256,12 @@ TEST_F(SimulateE2E, FreeBodyIsRefused)
   const auto r = simulate("--target pull");
   EXPECT_EQ(r.exit_code, 2);
   EXPECT_THAT(r.err, HasSubstr("the body is held nowhere"));
+  // By check too, before any stage runs (it said "ok ... 0 fixed region(s)" until session 41).
+  test::write_text(dir_ / "design.toml", test::read_text(dir_ / "design.toml") +
+                                             "[[tracking_curve]]\nname = \"axis\"\npoints = [[0, 0, 0], [60, 0, 0]]\n");
+  const auto checked = test::run_fibermold("check design.toml", dir_.path());
+  EXPECT_EQ(checked.exit_code, 2);
+  EXPECT_THAT(checked.err, HasSubstr("[[fixed]]: the body is held nowhere: add a [[fixed]] region"));
 }
 
 /// `--as-built` takes the routes and a target's pressures from collide/fibers.json, the routing the
