@@ -9,6 +9,38 @@
 
 namespace fibermold {
 
+namespace {
+/// Whether target t has a muscle and every one of its muscles is at 0 (within `margin`).
+bool every_muscle_off(const Eigen::MatrixXd& p, const ActuatorMask& actuators, Eigen::Index t, double margin)
+{
+  bool any = false, all_off = true;
+  for (Eigen::Index f = 0; f < p.cols(); ++f)
+    if (actuators(t, f)) {
+      any = true;
+      all_off = all_off && p(t, f) <= margin;
+    }
+  return any && all_off;
+}
+} // namespace
+
+std::vector<std::string> first_guess_warnings(const Eigen::MatrixXd& pressures, const ActuatorMask& actuators,
+                                              const RoutingSettings& settings, const std::vector<double>& rmse,
+                                              const std::vector<std::string>& target_names)
+{
+  std::vector<std::string> out;
+  const double margin = settings.pressure_margin * settings.max_pressure;
+  for (Eigen::Index t = 0; t < pressures.rows(); ++t)
+    if (every_muscle_off(pressures, actuators, t, margin))
+      out.push_back(fmt::format(
+          "target {}: the first guess's muscles do best at 0 kPa (at most {:.1f} kPa): pressurized, the routes as "
+          "drawn take the body further from the target than its weight and how it is held do alone (tracking-curve "
+          "RMSE {:.2f} mm at 0 kPa). Either its weight already moves it as far as the target asks, or further (check "
+          "[material] gravity and the [[fixed]] regions against how it will be used), or its muscles bend it away "
+          "from the target (a muscle bends the body toward the side it runs on)",
+          target_names[t], margin / units::kPa, t < std::ssize(rmse) ? rmse[t] / units::mm : 0.0));
+  return out;
+}
+
 OptimizationEnding optimization_ending(const RoutingResult& result, const ActuatorMask& actuators,
                                        const RoutingSettings& settings, const std::vector<TargetErrors>& before,
                                        const std::vector<TargetErrors>& after,
@@ -28,13 +60,8 @@ OptimizationEnding optimization_ending(const RoutingResult& result, const Actuat
     // and held as the design holds it (a forces target's loads only made its shape). Said once for the target, with
     // what to check: a body that sags where the target asks for it to bend (held the wrong way, or gravity along the
     // wrong axis) is "met" with its muscles off (a 90 mm finger of Ecoflex 00-30 held level sags 54 mm).
-    bool any = false, all_off = true;
-    for (Eigen::Index f = 0; f < p.cols(); ++f)
-      if (actuators(t, f)) {
-        any = true;
-        all_off = all_off && p(t, f) <= margin;
-      }
-    if (any && all_off)
+    const bool all_off = every_muscle_off(p, actuators, t, margin);
+    if (all_off)
       e.warnings.push_back(fmt::format(
           "target {}: every muscle of it ends at 0 kPa (at most {:.1f} kPa, the pressure barrier's margin): the "
           "optimized robot is the body unactuated, which its weight and how it is held alone bring to a "

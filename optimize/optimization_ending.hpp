@@ -67,4 +67,11 @@ OptimizationEnding optimization_ending(const RoutingResult& result, const Actuat
                                        const std::vector<std::string>& target_names,
                                        const std::vector<std::string>& fiber_names);
 
+/// The first guess at its best pressures (`pressures`, targets × fibers; `rmse[t]` its tracking-curve
+/// RMSE, m): a warning for each target whose every muscle does best there at 0 kPa (within the
+/// pressure barrier's margin), where the routes as drawn work against the target.
+std::vector<std::string> first_guess_warnings(const Eigen::MatrixXd& pressures, const ActuatorMask& actuators,
+                                              const RoutingSettings& settings, const std::vector<double>& rmse,
+                                              const std::vector<std::string>& target_names);
+
 } // namespace fibermold

@@ -118,6 +118,7 @@ struct Baseline {
   RoutingResult result;
   nlohmann::ordered_json
       json; ///< {objective, iterations, termination, targets: {name: {rmse_mm, max_error_mm, pressure_kPa}}}
+  std::vector<std::string> warnings; ///< first_guess_warnings: targets its muscles work against
 };
 Baseline first_guess_at_best_pressures(StageContext& ctx, DesignRouting& dr, const MinimizerOptions& o,
                                        const Routing& start)
@@ -129,12 +130,14 @@ Baseline first_guess_at_best_pressures(StageContext& ctx, DesignRouting& dr, con
     ctx.log.info("first guess, pressures only, iteration {}: objective {:.4g} (distance {:.4g})", it.iteration,
                  terms.total, terms.distance);
   };
-  Baseline b{optimize_pressures(problem, pressures_only, log, ctx.progress, actuator_mask(ctx.design)), {}};
+  Baseline b{optimize_pressures(problem, pressures_only, log, ctx.progress, actuator_mask(ctx.design)), {}, {}};
   problem.set_base(start);
   if (b.result.interrupted) return b;
   nlohmann::ordered_json targets = nlohmann::ordered_json::object();
+  std::vector<double> rmse;
   for (int t = 0; t < problem.num_targets(); ++t) {
     const TargetErrors e = target_errors(problem, dr.mesh, t, problem.equilibrium(b.result.routing, t));
+    rmse.push_back(e.rmse);
     nlohmann::ordered_json pressures = nlohmann::ordered_json::object();
     for (int f = 0; f < problem.num_fibers(); ++f)
       pressures[b.result.routing.routes[f].name] = b.result.routing.pressures(t, f) / units::kPa;
@@ -143,6 +146,9 @@ Baseline first_guess_at_best_pressures(StageContext& ctx, DesignRouting& dr, con
     ctx.log.info("target {}: the first guess at its best pressures: RMSE {:.3f} mm, max {:.3f} mm", dr.target_names[t],
                  e.rmse / units::mm, e.max / units::mm);
   }
+  b.warnings = first_guess_warnings(b.result.routing.pressures, actuator_mask(ctx.design), routing_settings(ctx.design),
+                                    rmse, dr.target_names);
+  for (const std::string& w : b.warnings) ctx.log.warn("{}", w);
   // The optimization's solves start from the start's equilibria again, as without this run.
   for (int t = 0; t < problem.num_targets(); ++t) problem.equilibrium(start, t);
   b.json = {{"objective", b.result.value},
@@ -497,6 +503,7 @@ void OptimizeStage::run(StageContext& ctx) const
   nlohmann::ordered_json per_target = nlohmann::ordered_json::object();
   OptimizationEnding ending = report_targets(ctx, dr, result, before, per_target);
   if (!kept_first_guess.empty()) ending.warnings.push_back(kept_first_guess);
+  ending.warnings.insert(ending.warnings.end(), baseline.warnings.begin(), baseline.warnings.end());
   if (d.optimize.refine) report_refinement(ctx, dr, surface, volume, result.routing, per_target, ending.warnings);
   const nlohmann::ordered_json report{
       {"optimized", true},

@@ -103,6 +103,29 @@ TEST(OptimizationEnding, ATargetWithEveryMuscleOffIsSaidToBeTheBodyUnactuatedWit
   EXPECT_THAT(one.warnings[0], HasSubstr("fiber flexor ends at 0.0 kPa: the optimizer turned it off"));
 }
 
+TEST(OptimizationEnding, AFirstGuessWhoseMusclesDoBestOffIsSaidToWorkAgainstTheTarget)
+{
+  // A new user's finger held level (session 41): its weight alone turned the tip 36.4° of the 45°
+  // asked and dropped it past the target, so the straight muscle did best at 0.0016 kPa; the
+  // optimizer then moved the muscle to lift the finger, and nothing said why.
+  RoutingSettings s;
+  s.max_pressure = 425e3;
+  const ActuatorMask both = ActuatorMask::Constant(2, 2, true);
+  const Eigen::MatrixXd p = (Eigen::MatrixXd(2, 2) << 1.6, 8e3, 0.0, 150e3).finished(); // target 2: one muscle on
+  const std::vector<std::string> w = first_guess_warnings(p, both, s, {6.77e-3, 2e-3}, {"curl", "lift"});
+  ASSERT_EQ(w.size(), 1u);
+  EXPECT_THAT(w[0], HasSubstr("target curl: the first guess's muscles do best at 0 kPa (at most 8.5 kPa)"));
+  EXPECT_THAT(w[0], HasSubstr("(tracking-curve RMSE 6.77 mm at 0 kPa)"));
+  EXPECT_THAT(w[0], HasSubstr("check [material] gravity and the [[fixed]] regions"));
+  // A muscle a target does not actuate counts neither way: curl's one muscle is on, lift's two off.
+  ActuatorMask curl_first = both;
+  curl_first(0, 1) = false;
+  const Eigen::MatrixXd q = (Eigen::MatrixXd(2, 2) << 100e3, 0.0, 0.0, 0.0).finished();
+  const std::vector<std::string> lift = first_guess_warnings(q, curl_first, s, {1e-3, 1e-3}, {"curl", "lift"});
+  ASSERT_EQ(lift.size(), 1u);
+  EXPECT_THAT(lift[0], HasSubstr("target lift"));
+}
+
 TEST(OptimizationEnding, ARouteAtItsSmallestBendRadiusIsNamedWithWhereAndWhatToTry)
 {
   // A Hermite quarter turn between points 10 mm off a corner: its tightest bend, 8.6 mm where the
