@@ -716,6 +716,9 @@ Load read_load(Section s)
   return l;
 }
 
+/// An angle_deg given as a number other than 0 that reads as 0: out of its range, and said so.
+bool refused_angle(const toml::node* angle) { return angle && angle->value<double>().value_or(0) != 0; }
+
 Pose read_pose(Section s)
 {
   Pose p;
@@ -728,7 +731,7 @@ Pose read_pose(Section s)
   if (p.curl_from && (s.node("translation") || s.node("about")))
     s.context().error(s.where(), s.display(),
                       "curl_from places the region where a uniform curl takes it: leave out translation and about");
-  else if (p.curl_from && p.angle == 0)
+  else if (p.curl_from && p.angle == 0 && !refused_angle(s.node("angle_deg"))) // a refused one is said where it is
     s.context().error(s.where(), s.display(), "curl_from needs the curl's angle: give angle_deg (and axis)");
   else if (!s.node("angle_deg") && !s.node("translation"))
     s.context().error(s.where(), s.display(), "give angle_deg (with axis, about) and/or translation = [x, y, z] (mm)");

@@ -293,6 +293,13 @@ TEST_F(TargetsE2E, APoseCurledFromTheBaseGoesWhereTheArcTakesIt)
   r = make();
   EXPECT_EQ(r.exit_code, 2);
   EXPECT_THAT(r.err, HasSubstr("curl_from needs the curl's angle"));
+  // An angle out of range is refused once, where it is, not also as missing (a new user's 450).
+  design("[[target]]\nname = \"curl\"\nkind = \"pose\"\n"
+         "pose = [{ box = { min = [59, -9, -9], max = [61, 9, 9] }, angle_deg = 450, curl_from = [0, 0, 0] }]\n");
+  r = make();
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_THAT(r.err, HasSubstr("angle_deg"));
+  EXPECT_THAT(r.err, Not(HasSubstr("curl_from needs the curl's angle")));
   // A base 9 m away (metres given as mm): the arc sweeps the end 4.7 m; check refuses it as make does.
   design("[[target]]\nname = \"curl\"\nkind = \"pose\"\n"
          "pose = [{ box = { min = [59, -9, -9], max = [61, 9, 9] }, angle_deg = 30, curl_from = [-9000, 0, 0] }]\n"
