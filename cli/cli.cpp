@@ -186,7 +186,7 @@ int run_check(const Design& design)
   print_design_summary(design);
   fmt::print("  surface: closed, manifold, outward, no self-intersections; {} component(s), {:.6g} mm³\n",
              c.surface.components, c.surface.volume / 1e-9);
-  // Its size in the design's units read as mm: a body 10 times too large shows here ([design] units).
+  // Its size in mm, [design] units applied: a wrong unit shows as a body 10 or 1000 times off.
   const Eigen::Vector3d size = (c.hi - c.lo) / units::mm;
   fmt::print("  body: {:.4g} × {:.4g} × {:.4g} mm, from {} to {}\n", size.x(), size.y(), size.z(), format_mm(c.lo),
              format_mm(c.hi));

@@ -1,5 +1,6 @@
 #include "optimize/routing_optimizer.hpp"
 
+#include <algorithm>
 #include <stdexcept>
 
 #include <fmt/format.h>
@@ -57,6 +58,18 @@ void absorb(RoutingResult& out, RoutingProblem& problem, const MinimizerResult& 
 
 } // namespace
 
+void free_as_optimized(RoutingProblem& problem, Strategy strategy, ActuatorMask actuators)
+{
+  const int T = problem.num_targets(), F = problem.num_fibers();
+  if (strategy == Strategy::sequential) {
+    actuators = Mask::Constant(T, F, false);
+    for (int k = 0; k < std::min(T, F); ++k) actuators(k, k) = true;
+  } else if (actuators.size() == 0) {
+    actuators = Mask::Constant(T, F, true);
+  }
+  problem.set_free(std::vector<bool>(F, true), actuators, std::vector<bool>(T, true));
+}
+
 RoutingResult optimize_routing(RoutingProblem& problem, Strategy strategy, const MinimizerOptions& options,
                                const RoutingCallback& on_iteration, Progress& progress, ActuatorMask actuators)
 {
@@ -64,8 +77,7 @@ RoutingResult optimize_routing(RoutingProblem& problem, Strategy strategy, const
   RoutingResult out;
   out.routing = problem.base();
   if (strategy == Strategy::simultaneous) {
-    if (actuators.size() == 0) actuators = Mask::Constant(T, F, true);
-    problem.set_free(std::vector<bool>(F, true), actuators, std::vector<bool>(T, true));
+    free_as_optimized(problem, strategy, std::move(actuators));
     absorb(out, problem, run(problem, 0, options, on_iteration, progress));
     return out;
   }

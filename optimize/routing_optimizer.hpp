@@ -42,6 +42,11 @@ inline constexpr std::array<Named<Strategy>, 2> kStrategyNames{
     {{Strategy::simultaneous, "simultaneous"}, {Strategy::sequential, "sequential"}}};
 inline std::string_view choice_name(Strategy s) { return name_in(kStrategyNames, s); }
 
+/// Frees what the last run of optimize_routing frees, so that evaluate scores its objective: every
+/// route, every target, and the pressures `actuators` gives (simultaneous; empty: all) or fiber k's
+/// for target k (sequential). Resets the problem's best evaluation (RoutingProblem::set_free).
+void free_as_optimized(RoutingProblem& problem, Strategy strategy, ActuatorMask actuators = {});
+
 /// `actuators` applies to simultaneous (empty: every fiber for every target). Throws
 /// std::invalid_argument for sequential with a number of fibers different from the number of
 /// targets.

@@ -58,7 +58,12 @@ std::vector<int> region_nodes(const Region& r, const TetMesh& mesh, const Design
 
 void require_regions_reach_the_body(const Design& d, const SurfaceMesh& surface)
 {
-  if (d.fixed.empty() && !d.targets.empty()) refuse_held_nowhere(d); // every target is solved held
+  // Held: optimize's solves, and the targets stage's but for a surface target (the whole surface
+  // prescribed).
+  const bool solved_held =
+      (d.optimize.enabled && !d.targets.empty()) ||
+      std::any_of(d.targets.begin(), d.targets.end(), [](const Target& t) { return t.kind != TargetKind::surface; });
+  if (d.fixed.empty() && solved_held) refuse_held_nowhere(d);
   const Eigen::Vector3d lo = surface.vertices.colwise().minCoeff(), hi = surface.vertices.colwise().maxCoeff();
   const SurfaceDistance skin(surface.vertices, surface.faces);
   const auto require = [&](const Region& r, const std::string& key, const std::string& what) {

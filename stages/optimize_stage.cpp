@@ -165,15 +165,19 @@ Baseline first_guess_at_best_pressures(StageContext& ctx, DesignRouting& dr, con
 std::string keep_the_better(StageContext& ctx, RoutingProblem& problem, Baseline& baseline, RoutingResult& result)
 {
   if (result.interrupted) return {};
-  // Each scored as the optimization scores: the first guess with its routes' terms (curvature,
-  // skin, bend), which the pressure-only run leaves out as constants, at exactly its routing (the
-  // variables the optimization left unfree taken from it too); the optimized terms are the best
-  // evaluation's where that is the result (one start), else evaluated again.
+  // Both scored as the optimization's last run scores (free_as_optimized: a left-out perturbed start
+  // can leave another mask set): the optimized routing first, its solve warm-started from the
+  // optimization's last (the same equilibrium branch); then the first guess with its routes' terms
+  // (curvature, skin, bend), which the pressure-only run leaves out as constants, at exactly its
+  // routing (the variables the optimization left unfree taken from it too). Where the optimized
+  // routing scores other than the result (another equilibrium found), its objective is compared
+  // alone.
   const Routing base = problem.base();
-  RoutingTerms first_guess, optimized = problem.terms_at(result.value);
-  first_guess.total = HUGE_VAL;
+  free_as_optimized(problem, ctx.design.optimize.strategy, actuator_mask(ctx.design));
+  RoutingTerms first_guess, optimized;
+  first_guess.total = optimized.total = HUGE_VAL;
   try {
-    if (optimized.total != result.value) problem.evaluate(problem.variables(result.routing), nullptr, &optimized);
+    problem.evaluate(problem.variables(result.routing), nullptr, &optimized);
     problem.set_base(baseline.result.routing);
     problem.evaluate(problem.variables(baseline.result.routing), nullptr, &first_guess);
   } catch (const Interrupted&) {
@@ -183,6 +187,11 @@ std::string keep_the_better(StageContext& ctx, RoutingProblem& problem, Baseline
   if (!std::isfinite(first_guess.total)) return {};
   baseline.json["objective"] = first_guess.total;
   baseline.json["distance"] = first_guess.distance;
+  constexpr double kSameScore = 1e-6; // relative: a re-solve from a nearby state, to Newton's tolerance
+  if (!(std::abs(optimized.total - result.value) <= kSameScore * std::abs(result.value))) {
+    optimized = RoutingTerms{};
+    optimized.total = result.value; // its distance unknown: 0 claims no worse match
+  }
   const FirstGuessComparison verdict = compare_with_first_guess(first_guess, optimized);
   if (!verdict.keep_first_guess) return {};
   ctx.log.warn("{}", verdict.warning);
