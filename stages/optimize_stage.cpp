@@ -118,7 +118,7 @@ struct Baseline {
   RoutingResult result;
   nlohmann::ordered_json
       json; ///< {objective, iterations, termination, targets: {name: {rmse_mm, max_error_mm, pressure_kPa}}}
-  std::vector<std::string> warnings; ///< first_guess_warnings: targets its muscles work against
+  std::vector<std::string> warnings; ///< first_guess_warnings (targets its muscles work against), and why it is kept
 };
 Baseline first_guess_at_best_pressures(StageContext& ctx, DesignRouting& dr, const MinimizerOptions& o,
                                        const Routing& start)
@@ -160,11 +160,11 @@ Baseline first_guess_at_best_pressures(StageContext& ctx, DesignRouting& dr, con
 
 /// Never worse than the first guess at its best pressures, in objective or in the targets' match
 /// (compare_with_first_guess): where the optimizer ended worse, the first guess becomes the
-/// result. The warning that says so, or empty. Sets the first guess's objective and distance in
-/// its report to the full ones.
-std::string keep_the_better(StageContext& ctx, RoutingProblem& problem, Baseline& baseline, RoutingResult& result)
+/// result, and the warning that says so joins the baseline's. Whether it is kept. Sets the first
+/// guess's objective and distance in its report to the full ones.
+bool keep_the_better(StageContext& ctx, RoutingProblem& problem, Baseline& baseline, RoutingResult& result)
 {
-  if (result.interrupted) return {};
+  if (result.interrupted) return false;
   // Both scored as the optimization's last run scores (free_as_optimized: a left-out perturbed start
   // can leave another mask set): the optimized routing first, its solve warm-started from the
   // optimization's last (the same equilibrium branch); then the first guess with its routes' terms
@@ -184,7 +184,7 @@ std::string keep_the_better(StageContext& ctx, RoutingProblem& problem, Baseline
     result.interrupted = true; // the caller keeps the best design so far
   }
   problem.set_base(base);
-  if (!std::isfinite(first_guess.total)) return {};
+  if (!std::isfinite(first_guess.total)) return false;
   baseline.json["objective"] = first_guess.total;
   baseline.json["distance"] = first_guess.distance;
   constexpr double kSameScore = 1e-6; // relative: a re-solve from a nearby state, to Newton's tolerance
@@ -193,11 +193,12 @@ std::string keep_the_better(StageContext& ctx, RoutingProblem& problem, Baseline
     optimized.total = result.value; // its distance unknown: 0 claims no worse match
   }
   const FirstGuessComparison verdict = compare_with_first_guess(first_guess, optimized);
-  if (!verdict.keep_first_guess) return {};
+  if (!verdict.keep_first_guess) return false;
   ctx.log.warn("{}", verdict.warning);
   result.routing = baseline.result.routing;
   result.value = first_guess.total;
-  return verdict.warning;
+  baseline.warnings.push_back(verdict.warning);
+  return true;
 }
 
 /// The Newton solves' counts and times.
@@ -502,7 +503,7 @@ void OptimizeStage::run(StageContext& ctx) const
   RoutingResult result = baseline.result.interrupted
                              ? baseline.result
                              : optimize_from_starts(ctx, problem, start, o, on_iteration, current_start, runs);
-  const std::string kept_first_guess = keep_the_better(ctx, problem, baseline, result);
+  const bool kept_first_guess = keep_the_better(ctx, problem, baseline, result);
   const FibersFile fibers{result.routing, names, true};
 
   if (result.interrupted) keep_interrupted(ctx, fibers, history, baseline.result.iterations + iterations, result.value);
@@ -511,7 +512,6 @@ void OptimizeStage::run(StageContext& ctx) const
 
   nlohmann::ordered_json per_target = nlohmann::ordered_json::object();
   OptimizationEnding ending = report_targets(ctx, dr, result, before, per_target);
-  if (!kept_first_guess.empty()) ending.warnings.push_back(kept_first_guess);
   ending.warnings.insert(ending.warnings.end(), baseline.warnings.begin(), baseline.warnings.end());
   if (d.optimize.refine) report_refinement(ctx, dr, surface, volume, result.routing, per_target, ending.warnings);
   const nlohmann::ordered_json report{
@@ -524,7 +524,7 @@ void OptimizeStage::run(StageContext& ctx) const
       {"warnings", ending.warnings},
       {"fibers_kept_apart", kept_apart},
       {"first_guess", baseline.json},
-      {"kept", kept_first_guess.empty() ? "optimized" : "first guess"},
+      {"kept", kept_first_guess ? "first guess" : "optimized"},
       {"starts", runs},
       {"min_bend_radius_mm", d.muscle.min_bend_radius / units::mm},
       {"bends", {{"start", bends_json(start.routes)}, {"end", bends_json(result.routing.routes)}}},
