@@ -35,9 +35,8 @@ std::vector<std::string> first_guess_warnings(const Eigen::MatrixXd& pressures, 
           "target {}: the first guess's muscles do best at 0 kPa (at most {:.1f} kPa): pressurized, the routes as "
           "drawn take the body further from the target than its weight and how it is held do alone (tracking-curve "
           "RMSE {:.2f} mm at those pressures). Either its weight already moves it as far as the target asks, or "
-          "further (check "
-          "[material] gravity and the [[fixed]] regions against how it will be used), or its muscles bend it away "
-          "from the target (a muscle bends the body toward the side it runs on)",
+          "further (check [material] gravity and the [[fixed]] regions against how it will be used), or its muscles "
+          "bend it away from the target (a muscle bends the body toward the side it runs on)",
           target_names[t], margin / units::kPa, t < std::ssize(rmse) ? rmse[t] / units::mm : 0.0));
   return out;
 }
