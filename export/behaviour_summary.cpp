@@ -87,13 +87,24 @@ std::vector<ReportTable> behaviour_tables(const Json& collide_report)
                         {"target", "RMSE before collide", "RMSE after", "change", "max before", "max after",
                          "surface RMSE after", "surface max after"},
                         {}};
+    // The turn's error where a tracking curve's orientation is tracked (a twist shows there, not in mm).
+    bool turns = false;
     for (const auto& [name, t] : report["targets"].items())
+      turns = turns || (t["after"].is_object() && t["after"].contains("orientation_rms_deg"));
+    if (turns)
+      targets.header.insert(targets.header.end(), {"turn's error before (° RMS)", "turn's error after (° RMS)"});
+    const auto degrees = [](const Json& v) { return v.is_number() ? fixed(v.get<double>(), 1) : std::string("–"); };
+    for (const auto& [name, t] : report["targets"].items()) {
       targets.rows.push_back({name, mm(t["before"]["rmse_mm"]), mm(t["after"]["rmse_mm"]),
                               t["rmse_change_percent"].is_number()
                                   ? fmt::format("{:+.1f} %", t["rmse_change_percent"].get<double>())
                                   : "–",
                               mm(t["before"]["max_error_mm"]), mm(t["after"]["max_error_mm"]),
                               mm(t["after"]["surface_rmse_mm"]), mm(t["after"]["surface_max_error_mm"])});
+      if (turns)
+        targets.rows.back().insert(targets.rows.back().end(), {degrees(t["before"]["orientation_rms_deg"]),
+                                                               degrees(t["after"]["orientation_rms_deg"])});
+    }
     out.push_back(std::move(targets));
     // README.txt's figure to measure on the cast robot, per target, and what it hinges on.
     ReportTable check{

@@ -62,21 +62,38 @@ ReportTable optimization_table(const Json& report)
   };
   ReportTable t{fmt::format("Optimization: {} after {} iterations ({})", report.value("termination", std::string("?")),
                             report.value("iterations", 0), report.value("message", std::string())),
-                {"target", "RMSE at the start (mm)", "RMSE at the end (mm)", "reached: 1 − end / start RMSE"},
+                {"target", "RMSE at the start (mm)", "RMSE of the first guess at its best pressures (mm)",
+                 "RMSE at the end (mm)"},
                 {}};
+  const Json& targets = report["targets"];
+  const Json guesses = report.contains("first_guess") && report["first_guess"].is_object()
+                           ? report["first_guess"].value("targets", Json::object())
+                           : Json::object();
+  bool any_turn = false, any_orientation = false;
+  for (const auto& [name, target] : targets.items()) {
+    any_turn = any_turn || !turns(target).empty();
+    any_orientation = any_orientation || target.contains("orientation_rms_deg");
+  }
+  if (any_orientation)
+    for (const char* when : {"at the start", "of the first guess", "at the end"})
+      t.header.push_back(fmt::format("turn's error {} (° RMS)", when));
+  t.header.push_back("reached: 1 − end / start RMSE");
+  if (any_turn) t.header.push_back("turn reached");
   std::vector<std::string> fibers; // every target's report names every fiber's pressure
-  const Json& first = report["targets"].begin().value();
+  const Json& first = targets.begin().value();
   if (first.contains("pressure_kPa") && first["pressure_kPa"].is_object())
     for (const auto& [fiber, p] : first["pressure_kPa"].items()) {
       fibers.push_back(fiber);
       t.header.push_back(fiber + " (kPa)");
     }
-  bool any_turn = false;
-  for (const auto& [name, target] : report["targets"].items()) any_turn = any_turn || !turns(target).empty();
-  if (any_turn) t.header.insert(t.header.begin() + 4, "turn reached");
-  for (const auto& [name, target] : report["targets"].items()) {
-    std::vector<std::string> row{name, number(target.value("start", Json::object()), "rmse_mm", 3),
-                                 number(target, "rmse_mm", 3), number(target, "reached_percent", 0, " %")};
+  for (const auto& [name, target] : targets.items()) {
+    const Json start = target.value("start", Json::object());
+    const Json guess = guesses.is_object() ? guesses.value(name, Json::object()) : Json::object();
+    std::vector<std::string> row{name, number(start, "rmse_mm", 3), number(guess, "rmse_mm", 3),
+                                 number(target, "rmse_mm", 3)};
+    if (any_orientation)
+      for (const Json* j : {&start, &guess, &target}) row.push_back(number(*j, "orientation_rms_deg", 1));
+    row.push_back(number(target, "reached_percent", 0, " %"));
     if (any_turn) row.push_back(turns(target).empty() ? "–" : turns(target));
     for (const std::string& f : fibers)
       row.push_back(number(target.value("pressure_kPa", Json::object()), f.c_str(), 1));

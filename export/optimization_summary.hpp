@@ -23,8 +23,11 @@ std::vector<std::string> optimization_warnings(const nlohmann::ordered_json& rep
 /// README.txt's paragraph with the warnings, wrapped at 100 columns; empty without any.
 std::string optimization_warnings_text(const nlohmann::ordered_json& report);
 
-/// How the optimization ended: per target the RMSE at the start and at the end, how much of it was
-/// reached, the turns of its poses ("54.1° of 60.0° (pose[1])") and each fiber's pressure.
+/// How the optimization ended: per target the RMSE at the start, of the first guess at its best
+/// pressures (report.json's first_guess: what the optimized routes must beat) and at the end; where a
+/// tracking curve's orientation is tracked, the turn's RMS error (°) at the same three; how much of
+/// the start's RMSE was reached, the turns of its poses ("54.1° of 60.0° (pose[1])") and each fiber's
+/// pressure.
 ReportTable optimization_table(const nlohmann::ordered_json& report);
 
 /// The objective and its distance term per iteration (optimize/history.csv's text); none when the

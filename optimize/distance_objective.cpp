@@ -1,8 +1,10 @@
 #include "optimize/distance_objective.hpp"
 
+#include <algorithm>
 #include <cmath>
 
 #include "core/units.hpp"
+#include "sim/rigid_motion.hpp"
 
 namespace fibermold {
 
@@ -11,7 +13,7 @@ DistanceObjective::DistanceObjective(const Basis& basis, std::vector<TrackingSam
 {
   for (const TrackingSamples& c : curves)
     for (const Eigen::Vector3d& q : c.points) {
-      Sample s{basis.at(q, 1), {}, {}, c.weight_position, c.weight_orientation};
+      Sample s{basis.at(q, 1), {}, {}, c.weight_position, c.weight_orientation, c.weight_orientation > 0};
       s.target_position = s.at.position(target);
       s.target_gradient = s.at.deformation_gradient(target);
       samples_.push_back(std::move(s));
@@ -75,6 +77,38 @@ double DistanceObjective::max_error(const Eigen::VectorXd& x) const
 {
   double worst = 0;
   for (const Sample& s : samples_) worst = std::max(worst, (s.at.position(x) - s.target_position).norm());
+  return worst;
+}
+
+bool DistanceObjective::tracks_orientation() const
+{
+  return std::any_of(samples_.begin(), samples_.end(), [](const Sample& s) { return s.orientation_tracked; });
+}
+
+double DistanceObjective::orientation_error(const Sample& s, const Eigen::VectorXd& x)
+{
+  const Eigen::Matrix3d turned = polar_rotation(s.at.deformation_gradient(x));
+  const Eigen::Matrix3d asked = polar_rotation(s.target_gradient);
+  return RigidMotion{turned * asked.transpose(), Eigen::Vector3d::Zero()}.angle();
+}
+
+double DistanceObjective::orientation_rms(const Eigen::VectorXd& x) const
+{
+  double sum = 0;
+  int count = 0;
+  for (const Sample& s : samples_)
+    if (s.orientation_tracked) {
+      sum += std::pow(orientation_error(s, x), 2);
+      ++count;
+    }
+  return count == 0 ? 0 : std::sqrt(sum / count);
+}
+
+double DistanceObjective::orientation_max(const Eigen::VectorXd& x) const
+{
+  double worst = 0;
+  for (const Sample& s : samples_)
+    if (s.orientation_tracked) worst = std::max(worst, orientation_error(s, x));
   return worst;
 }
 

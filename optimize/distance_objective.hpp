@@ -33,13 +33,26 @@ public:
   double rmse(const Eigen::VectorXd& x) const;
   double max_error(const Eigen::VectorXd& x) const;
 
+  /// Whether any sample's orientation is tracked (its curve's weight_orientation > 0).
+  bool tracks_orientation() const;
+  /// Root-mean-square and largest angle (rad) between how the material turned and how the target's
+  /// turned, over the samples whose orientation is tracked: the angle of R R̂ᵀ, R and R̂ the rotations
+  /// of F = R U and F̂ = R̂ Û. A twist moves a bar's centreline little and turns it much; these say
+  /// how far the turn is from the one asked, which the position errors above leave out. 0 when no
+  /// sample's orientation is tracked.
+  double orientation_rms(const Eigen::VectorXd& x) const;
+  double orientation_max(const Eigen::VectorXd& x) const;
+
 private:
   struct Sample {
     ShapeEval at;
     Eigen::Vector3d target_position;
     Eigen::Matrix3d target_gradient;
     double w_pos, w_ori;
+    bool orientation_tracked;
   };
+  /// The angle of sample s's turn from its target's (rad).
+  static double orientation_error(const Sample& s, const Eigen::VectorXd& x);
   std::vector<Sample> samples_;
 };
 

@@ -10,6 +10,11 @@ TargetErrors target_errors(RoutingProblem& problem, const TetMesh& mesh, int t, 
   TargetErrors e;
   e.rmse = problem.distance(t).rmse(x);
   e.max = problem.distance(t).max_error(x);
+  e.orientation_tracked = problem.distance(t).tracks_orientation();
+  if (e.orientation_tracked) {
+    e.orientation_rms = problem.distance(t).orientation_rms(x);
+    e.orientation_max = problem.distance(t).orientation_max(x);
+  }
   const Eigen::MatrixX3d reached = problem.simulation().deformed_nodes(x);
   const Eigen::MatrixX3d wanted = problem.simulation().deformed_nodes(problem.target(t));
   double sum = 0;

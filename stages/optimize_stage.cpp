@@ -67,6 +67,14 @@ bool keep_fibers_apart(StageContext& ctx, RoutingProblem& problem, const Surface
   return true;
 }
 
+/// ", turn off by 3.2° RMS, 7.1° at most" where the target's orientation is tracked, else "".
+std::string turn_error(const TargetErrors& e)
+{
+  if (!e.orientation_tracked) return "";
+  return fmt::format(", turn off by {:.1f}° RMS, {:.1f}° at most", e.orientation_rms / units::degree,
+                     e.orientation_max / units::degree);
+}
+
 /// The progress and log line of an iteration: which start and fiber stage it is in, and its figures.
 std::string iteration_line(int starts, int start, int stages, int stage, const MinimizerIteration& it,
                            const RoutingTerms& terms)
@@ -141,10 +149,10 @@ Baseline first_guess_at_best_pressures(StageContext& ctx, DesignRouting& dr, con
     nlohmann::ordered_json pressures = nlohmann::ordered_json::object();
     for (int f = 0; f < problem.num_fibers(); ++f)
       pressures[b.result.routing.routes[f].name] = b.result.routing.pressures(t, f) / units::kPa;
-    targets[dr.target_names[t]] = {
-        {"rmse_mm", e.rmse / units::mm}, {"max_error_mm", e.max / units::mm}, {"pressure_kPa", pressures}};
-    ctx.log.info("target {}: the first guess at its best pressures: RMSE {:.3f} mm, max {:.3f} mm", dr.target_names[t],
-                 e.rmse / units::mm, e.max / units::mm);
+    targets[dr.target_names[t]] = errors_json(e);
+    targets[dr.target_names[t]]["pressure_kPa"] = pressures;
+    ctx.log.info("target {}: the first guess at its best pressures: RMSE {:.3f} mm, max {:.3f} mm{}",
+                 dr.target_names[t], e.rmse / units::mm, e.max / units::mm, turn_error(e));
   }
   b.warnings = first_guess_warnings(b.result.routing.pressures, actuator_mask(ctx.design), routing_settings(ctx.design),
                                     rmse, dr.target_names);
@@ -248,10 +256,10 @@ nlohmann::ordered_json target_report(StageContext& ctx, DesignRouting& dr, const
   nlohmann::ordered_json poses = nlohmann::ordered_json::array();
   for (const ReachedPose& p : reached) poses.push_back(pose_report(p));
   entry["poses"] = std::move(poses);
-  ctx.log.info("target {}: RMSE {:.3f} mm (from {:.3f}), max {:.3f} mm (from {:.3f}) on the tracking curves; surface "
+  ctx.log.info("target {}: RMSE {:.3f} mm (from {:.3f}), max {:.3f} mm (from {:.3f}) on the tracking curves{}; surface "
                "RMSE {:.3f} mm, max {:.3f} mm",
                name, after.rmse / units::mm, before.rmse / units::mm, after.max / units::mm, before.max / units::mm,
-               after.surface_rmse / units::mm, after.surface_max / units::mm);
+               turn_error(after), after.surface_rmse / units::mm, after.surface_max / units::mm);
   return entry;
 }
 
@@ -475,8 +483,8 @@ void OptimizeStage::run(StageContext& ctx) const
   for (int t = 0; t < problem.num_targets(); ++t)
     before.push_back(target_errors(problem, dr.mesh, t, problem.equilibrium(start, t)));
   for (int t = 0; t < problem.num_targets(); ++t)
-    ctx.log.info("target {}: at the start, RMSE {:.3f} mm, max {:.3f} mm on the tracking curves", names[t],
-                 before[t].rmse / units::mm, before[t].max / units::mm);
+    ctx.log.info("target {}: at the start, RMSE {:.3f} mm, max {:.3f} mm on the tracking curves{}", names[t],
+                 before[t].rmse / units::mm, before[t].max / units::mm, turn_error(before[t]));
 
   const MinimizerOptions o = minimizer_options(d);
   Baseline baseline = first_guess_at_best_pressures(ctx, dr, o, start);

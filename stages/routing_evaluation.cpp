@@ -183,10 +183,15 @@ MinimizerOptions minimizer_options(const Design& d)
 
 nlohmann::ordered_json errors_json(const TargetErrors& e)
 {
-  return {{"rmse_mm", e.rmse / units::mm},
-          {"max_error_mm", e.max / units::mm},
-          {"surface_rmse_mm", e.surface_rmse / units::mm},
-          {"surface_max_error_mm", e.surface_max / units::mm}};
+  nlohmann::ordered_json j = {{"rmse_mm", e.rmse / units::mm},
+                              {"max_error_mm", e.max / units::mm},
+                              {"surface_rmse_mm", e.surface_rmse / units::mm},
+                              {"surface_max_error_mm", e.surface_max / units::mm}};
+  if (e.orientation_tracked) {
+    j["orientation_rms_deg"] = e.orientation_rms / units::degree;
+    j["orientation_max_deg"] = e.orientation_max / units::degree;
+  }
+  return j;
 }
 
 void write_deformed_target(const std::filesystem::path& path, DesignRouting& dr, const Routing& r, int t,

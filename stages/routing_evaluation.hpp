@@ -96,7 +96,8 @@ nlohmann::ordered_json bends_json(const std::vector<Route>& routes);
 /// The [optimize] stopping rules.
 MinimizerOptions minimizer_options(const Design& d);
 
-/// {rmse_mm, max_error_mm, surface_rmse_mm, surface_max_error_mm}
+/// {rmse_mm, max_error_mm, surface_rmse_mm, surface_max_error_mm}, and {orientation_rms_deg,
+/// orientation_max_deg} where a tracking curve's orientation is tracked.
 nlohmann::ordered_json errors_json(const TargetErrors& e);
 
 /// Target t's deformed state for the report: every node's position and each fiber's centre line (mm).

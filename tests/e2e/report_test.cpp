@@ -86,15 +86,23 @@ TEST(ReportE2E, ShowsTheDeformedBodyTheErrorsAndTheOptimizationHistory)
                                           bend["min_bend_radius_mm"].get<double>(), bend["along_mm"].get<double>())
                             : std::string("  m1: straight")));
 
-  // The optimization: start and end errors, how much was reached, the pressure; its warnings (3
-  // iterations: stopped at the limit) as the banner.
+  // The optimization: start, first guess and end errors (RMSE and the turn's, the tracking curve
+  // tracking orientation), how much was reached, the pressure; its warnings (3 iterations: stopped
+  // at the limit) as the banner.
   const auto optimize = nlohmann::json::parse(test::read_text(build / "optimize" / "report.json"));
   const auto& o = optimize["targets"]["s"];
+  const auto& guess = optimize["first_guess"]["targets"]["s"];
   EXPECT_THAT(html, HasSubstr("Optimization: iteration limit after 3 iterations"));
   EXPECT_THAT(html,
-              HasSubstr(fmt::format("<tr><td>s</td><td>{:.3f}</td><td>{:.3f}</td><td>{:.0f} %</td><td>{:.1f}</td></tr>",
-                                    o["start"]["rmse_mm"].get<double>(), o["rmse_mm"].get<double>(),
+              HasSubstr(fmt::format("<tr><td>s</td><td>{:.3f}</td><td>{:.3f}</td><td>{:.3f}</td><td>{:.1f}</td>"
+                                    "<td>{:.1f}</td><td>{:.1f}</td><td>{:.0f} %</td><td>{:.1f}</td></tr>",
+                                    o["start"]["rmse_mm"].get<double>(), guess["rmse_mm"].get<double>(),
+                                    o["rmse_mm"].get<double>(), o["start"]["orientation_rms_deg"].get<double>(),
+                                    guess["orientation_rms_deg"].get<double>(), o["orientation_rms_deg"].get<double>(),
                                     o["reached_percent"].get<double>(), o["pressure_kPa"]["m1"].get<double>())));
+  // The turn's error is the angle between the turns reached and asked: under the largest turn anywhere.
+  EXPECT_GT(o["orientation_rms_deg"].get<double>(), 0);
+  EXPECT_LE(o["orientation_rms_deg"].get<double>(), o["orientation_max_deg"].get<double>());
   EXPECT_THAT(html, HasSubstr("<div id=\"warnings\"><strong>Warnings</strong>"));
   EXPECT_THAT(html,
               HasSubstr("<li>the optimizer stopped before converging (iteration limit: 3 iterations, the limit)"));
