@@ -169,7 +169,8 @@ Eigen::VectorXd target_forces(const Design& d, const Target& t, const Simulation
 }
 
 std::string leaves_the_body(const std::string& what, const std::vector<Eigen::Vector3d>& points,
-                            const Eigen::Vector3d& where, const std::function<bool(const Eigen::Vector3d&)>& inside)
+                            const Eigen::Vector3d& where, const std::function<bool(const Eigen::Vector3d&)>& inside,
+                            const std::function<double(const Eigen::Vector3d&)>& depth, const SkinDistance* need)
 {
   std::vector<std::string> outside;
   for (std::size_t k = 0; k < points.size(); ++k)
@@ -178,6 +179,17 @@ std::string leaves_the_body(const std::string& what, const std::vector<Eigen::Ve
     return fmt::format("the {} leaves the body at {}; of its {} points, {} {} outside: move {} inside the body", what,
                        format_mm(where), points.size(), fmt::join(outside, ", "), outside.size() == 1 ? "lies" : "lie",
                        outside.size() == 1 ? "it" : "them");
+  std::vector<std::string> near; // the ends may lie on the skin: a muscle leaves the body there
+  if (depth && need)
+    for (std::size_t k = 1; k + 1 < points.size(); ++k)
+      if (const double d = depth(points[k]); d < need->distance)
+        near.push_back(fmt::format("point {} {} is {:.3f} mm from it", k + 1, format_mm(points[k]), d / units::mm));
+  if (!near.empty())
+    return fmt::format("the {} leaves the body at {}, between its points, which lie inside but too near the skin: {}; "
+                       "a curve through points on or near the skin runs out of the body between them, and a fiber's "
+                       "centre line must stay more than {:.3f} mm inside ({}): move {} inward",
+                       what, format_mm(where), fmt::join(near, ", "), need->distance / units::mm, need->terms,
+                       near.size() == 1 ? "it" : "them");
   return fmt::format("the {} leaves the body at {}, between its points, which all lie inside: the curve through them "
                      "bulges out there; add a point near it, inside, or move its neighbours inward",
                      what, format_mm(where));
@@ -185,15 +197,21 @@ std::string leaves_the_body(const std::string& what, const std::vector<Eigen::Ve
 
 namespace {
 
-/// Refuses a fiber that leaves the body: every segment end must lie in a tet (within 1e-6 of it).
-void require_inside(const Design& d, const Actuation& fiber, const FemBasis& locator, const HermiteSpline& spline,
-                    const FiberSegments& segments)
+/// Refuses a fiber that leaves the body: every segment end must lie in a tet (within 1e-6 of it); where
+/// one does not, the message measures the fiber's points from `mesh`'s skin.
+void require_inside(const Design& d, const Actuation& fiber, const TetMesh& mesh, const FemBasis& locator,
+                    const HermiteSpline& spline, const FiberSegments& segments)
 {
   for (double t : segments.t) {
     const Eigen::Vector3d p = spline.position(t);
-    if (!inside_body(locator, p))
-      bad(d, fmt::format("[fiber.{}]", fiber.fiber),
-          leaves_the_body("fiber", fiber.points, p, [&](const Eigen::Vector3d& q) { return inside_body(locator, q); }));
+    if (inside_body(locator, p)) continue;
+    const SurfaceMesh skin = boundary_surface(mesh, mesh.nodes);
+    const SurfaceDistance distance(skin.vertices, skin.faces);
+    const SkinDistance need = skin_distance(d);
+    bad(d, fmt::format("[fiber.{}]", fiber.fiber),
+        leaves_the_body(
+            "fiber", fiber.points, p, [&](const Eigen::Vector3d& q) { return inside_body(locator, q); },
+            [&](const Eigen::Vector3d& q) { return distance.closest(q).distance; }, &need));
   }
 }
 
@@ -228,7 +246,7 @@ std::vector<const MuscleEnergy*> add_muscles(Simulation& sim, const Design& d, c
       if (!(segments.vectors[j].norm() > 1e-9))
         bad(d, fmt::format("[fiber.{}]", a.fiber),
             fmt::format("the fiber has no length near {} (repeated points?)", format_mm(segments.centres[j])));
-    require_inside(d, a, locator, spline, segments);
+    require_inside(d, a, sim.mesh(), locator, spline, segments);
     auto muscle = std::make_unique<MuscleEnergy>(sim.basis(), model, std::move(spline), std::move(t), a.pressure);
     muscles.push_back(muscle.get());
     sim.add_energy(std::move(muscle));

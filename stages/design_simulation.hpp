@@ -13,6 +13,7 @@
 #include "sim/muscle_energy.hpp"
 #include "sim/neo_hookean.hpp"
 #include "sim/simulation.hpp"
+#include "stages/skin_distance.hpp"
 
 namespace fibermold {
 
@@ -41,9 +42,14 @@ Eigen::VectorXd target_forces(const Design& d, const Target& t, const Simulation
 
 /// "the fiber leaves the body at P", for a fiber's or a tracking curve's `points`, with which of the
 /// given points lie outside (`inside` says; counted from 1, as a user counts a TOML array's entries)
-/// or, where all lie inside, that the curve bulges out between them; and what to do.
+/// or, where all lie inside, that the curve bulges out between them; and what to do. For a fiber,
+/// `depth` (a point's distance to the skin, m) and `need` (skin_distance) name the points between its
+/// ends that lie inside but nearer the skin than a fiber may (a route drawn along the skin, on a
+/// notch's floor, leaves the body between its points for that reason, not for a bulge).
 std::string leaves_the_body(const std::string& what, const std::vector<Eigen::Vector3d>& points,
-                            const Eigen::Vector3d& where, const std::function<bool(const Eigen::Vector3d&)>& inside);
+                            const Eigen::Vector3d& where, const std::function<bool(const Eigen::Vector3d&)>& inside,
+                            const std::function<double(const Eigen::Vector3d&)>& depth = {},
+                            const SkinDistance* need = nullptr);
 
 /// The fibers and pressures of a `kind = "fibers"` target.
 std::vector<Actuation> target_actuations(const Design& d, const Target& t);

@@ -431,12 +431,15 @@ void require_optimizable(const Design& d, const SurfaceDistance& skin)
     bad(d, "[optimize].strategy",
         fmt::format("sequential drives one fiber per target, in order: {} fiber(s) for {} target(s)", d.fibers.size(),
                     d.targets.size()));
+  const SkinDistance need = skin_distance(d);
   for (const Fiber& f : d.fibers) {
     const HermiteSpline s(f.points, f.tangents);
     for (const Eigen::Vector3d& c : split_into_segments(s, segment_count(s, d.muscle.segments_per_length)).centres)
       if (!skin.closest(c).inside)
         bad(d, fmt::format("[fiber.{}]", f.name),
-            leaves_the_body("fiber", f.points, c, [&](const Eigen::Vector3d& q) { return skin.holds(q, 1e-6); }));
+            leaves_the_body(
+                "fiber", f.points, c, [&](const Eigen::Vector3d& q) { return skin.holds(q, 1e-6); },
+                [&](const Eigen::Vector3d& q) { return skin.closest(q).distance; }, &need));
   }
   const Routing start = starting_routing(d);
   const RoutingSettings settings = routing_settings(d);

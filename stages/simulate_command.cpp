@@ -82,6 +82,19 @@ std::vector<Actuation> requested_actuations(const Design& d, const SimulateReque
   return all;
 }
 
+/// "pressures-flexor-300kPa": the pressures given on the command line, in their order, so that runs at
+/// other pressures write files of their own (until session 42 each overwrote deformed-pressures.vtu).
+std::string pressures_name(const std::vector<std::string>& given, const std::vector<Actuation>& actuations)
+{
+  std::string name = "pressures";
+  for (const std::string& item : given) {
+    const std::string fiber = item.substr(0, item.find('='));
+    for (const Actuation& a : actuations)
+      if (a.fiber == fiber) name += fmt::format("-{}-{:g}kPa", fiber, a.pressure / units::kPa);
+  }
+  return name;
+}
+
 /// --as-built: the routes of collide/fibers.json in place of the design's, and with a target its
 /// pressures there. InputError when the build folder was made from another body, when the file is
 /// missing or unreadable, or does not hold a fiber or the target the request names.
@@ -259,7 +272,7 @@ SimulateResult simulate(const Design& d, const Runner& runner, const fs::path& b
   result.name = fmt::format("{}{}",
                             target                      ? target->name
                             : request.pressures.empty() ? std::string("unactuated")
-                                                        : std::string("pressures"),
+                                                        : pressures_name(request.pressures, actuations),
                             request.as_built ? "-as-built" : "");
   result.muscles = actuations.empty() ? std::string("no muscle: the body under ") +
                                             (load ? "the target's loads, its weight and its held regions"

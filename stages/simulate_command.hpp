@@ -26,7 +26,7 @@ struct SimulateRequest {
 };
 
 struct SimulateResult {
-  std::string name; ///< the target's ("twist"), or "pressures" (--pressure), or "unactuated" (neither)
+  std::string name; ///< the target's ("twist"), or "pressures-flexor-300kPa" (--pressure), or "unactuated"
   std::filesystem::path vtu;
   double max_displacement = 0; ///< m
   NewtonSummary summary;

@@ -48,9 +48,9 @@ TEST_F(SimulateE2E, PressurizedMuscleDeformsTheBarAndWritesTheVtu)
   design();
   const auto r = simulate("--pressure m1=300");
   ASSERT_EQ(r.exit_code, 0) << r.err;
-  EXPECT_THAT(r.out, HasSubstr("simulate pressures: max displacement"));
+  EXPECT_THAT(r.out, HasSubstr("simulate pressures-m1-300kPa: max displacement"));
   EXPECT_THAT(r.out, HasSubstr("Newton"));
-  const std::string vtu = test::read_text(dir_ / "build" / "simulate" / "deformed-pressures.vtu");
+  const std::string vtu = test::read_text(dir_ / "build" / "simulate" / "deformed-pressures-m1-300kPa.vtu");
   EXPECT_THAT(vtu, HasSubstr("Name=\"displacement_mm\""));
   EXPECT_THAT(vtu, HasSubstr("Name=\"von_mises_kPa\""));
   const double max_mm = std::stod(r.out.substr(r.out.find("max displacement") + 17));
@@ -98,10 +98,11 @@ TEST_F(SimulateE2E, AFiberGivenNoPressureIsInTheBodyAtRest)
   const auto one = simulate("--pressure m1=300");
   ASSERT_EQ(one.exit_code, 0) << one.err;
   EXPECT_THAT(one.out, HasSubstr("muscles: m1 300 kPa, m2 0 kPa"));
-  const std::string vtu = test::read_text(dir_ / "build" / "simulate" / "deformed-pressures.vtu");
+  const std::string vtu = test::read_text(dir_ / "build" / "simulate" / "deformed-pressures-m1-300kPa.vtu");
   const auto both = simulate("--pressure m1=300 --pressure m2=0");
   ASSERT_EQ(both.exit_code, 0) << both.err;
-  EXPECT_EQ(test::read_text(dir_ / "build" / "simulate" / "deformed-pressures.vtu"), vtu);
+  // Each run at other pressures writes a file of its own, named by the pressures given.
+  EXPECT_EQ(test::read_text(dir_ / "build" / "simulate" / "deformed-pressures-m1-300kPa-m2-0kPa.vtu"), vtu);
 
   // Neither flag: the robot unactuated, both muscles at rest, under its weight.
   const auto rest = simulate("");
@@ -192,13 +193,24 @@ TEST_F(SimulateE2E, FiberOutsideTheBody)
   EXPECT_THAT(r.err, HasSubstr("[fiber.m1]: the fiber leaves the body at ("));
   // Which of the points the user gave to move, counted as they count them.
   EXPECT_THAT(r.err, HasSubstr("of its 3 points, point 2 (30.0, 20.0, 0.0) mm lies outside: move it inside the body"));
-  // All points inside (the bar is ±8 mm in z), the curve through them bulging out: its first span
-  // rises to z = 7 + 30 · 4/27 = 11.4 mm.
+  // All points inside (the bar is ±8 mm in z), the middle one 3 mm from the skin (more than the 2.5
+  // mm a fiber keeps), the curve through them bulging out: its first span rises to z = 5 + 30 · 4/27
+  // = 9.4 mm.
   design("[[fixed]]\nbox = { min = [-1, -9, -9], max = [0.5, 9, 9] }\n",
-         "[[0, 0, 7], [30, 0, 7], [60, 0, 7]]\ntangents = [[30, 0, 30], [30, 0, 0], [30, 0, -30]]");
+         "[[0, 0, 5], [30, 0, 5], [60, 0, 5]]\ntangents = [[30, 0, 30], [30, 0, 0], [30, 0, -30]]");
   const auto bulge = simulate("--pressure m1=100");
   EXPECT_EQ(bulge.exit_code, 2);
   EXPECT_THAT(bulge.err, HasSubstr("between its points, which all lie inside: the curve through them bulges out"));
+  // A route drawn along the skin (points 2 and 3 on the top face, z = 8 mm): the curve leaves the
+  // body between them because they lie on the skin, which the message says, not a bulge. Its ends
+  // (on the end faces, where a muscle leaves the body) are not named.
+  design("[[fixed]]\nbox = { min = [-1, -9, -9], max = [0.5, 9, 9] }\n", "[[0, 0, 4], [30, 0, 8], [60, 0, 8]]");
+  const auto skin = simulate("--pressure m1=100");
+  EXPECT_EQ(skin.exit_code, 2);
+  EXPECT_THAT(skin.err, HasSubstr("between its points, which lie inside but too near the skin: point 2 (30.0, 0.0, "
+                                  "8.0) mm is 0.000 mm from it; a curve through points on or near the skin"));
+  EXPECT_THAT(skin.err, HasSubstr("a fiber's centre line must stay more than"));
+  EXPECT_THAT(skin.err, Not(HasSubstr("bulges out")));
 }
 
 TEST_F(SimulateE2E, FixedRegionThatCatchesNoNode)
@@ -294,7 +306,7 @@ TEST_F(SimulateE2E, AsBuiltSimulatesTheRoutesAndPressuresTheMoldsWereMadeFor)
   const std::string vtu = test::read_text(dir_ / "build" / "simulate" / "deformed-pull-as-built.vtu");
   const auto with_pressure = simulate("--as-built --pressure m1=150");
   ASSERT_EQ(with_pressure.exit_code, 0) << with_pressure.err;
-  EXPECT_EQ(test::read_text(dir_ / "build" / "simulate" / "deformed-pressures-as-built.vtu"), vtu);
+  EXPECT_EQ(test::read_text(dir_ / "build" / "simulate" / "deformed-pressures-m1-150kPa-as-built.vtu"), vtu);
 
   // The design given that route, simulated as a design is.
   std::string text = test::read_text(dir_ / "design.toml");
@@ -303,7 +315,7 @@ TEST_F(SimulateE2E, AsBuiltSimulatesTheRoutesAndPressuresTheMoldsWereMadeFor)
                    text.replace(text.find(guess), guess.size(), "points = " + route + "\ntangents = " + tangents));
   const auto designed = simulate("--pressure m1=150");
   ASSERT_EQ(designed.exit_code, 0) << designed.err;
-  EXPECT_EQ(test::read_text(dir_ / "build" / "simulate" / "deformed-pressures.vtu"), vtu);
+  EXPECT_EQ(test::read_text(dir_ / "build" / "simulate" / "deformed-pressures-m1-150kPa.vtu"), vtu);
   const auto max_mm = [](const std::string& out) { return std::stod(out.substr(out.find("max displacement") + 17)); };
   EXPECT_EQ(max_mm(designed.out), max_mm(as_built.out));
   // …and not the first guess's.
