@@ -128,6 +128,9 @@ Row case_row(const SweepPlan& plan, const fs::path& dir, Summary& s)
         if (t["after"]["rmse_mm"].is_number()) row.numbers[name + " RMSE mm"] = t["after"]["rmse_mm"].get<double>();
         if (t["after"]["max_error_mm"].is_number())
           row.numbers[name + " max mm"] = t["after"]["max_error_mm"].get<double>();
+        // The turn's error, where a tracking curve's orientation is tracked: a twist shows there.
+        if (t["after"].contains("orientation_rms_deg") && t["after"]["orientation_rms_deg"].is_number())
+          row.numbers[name + " turn RMS deg"] = t["after"]["orientation_rms_deg"].get<double>();
       }
     if (const auto fibers = json_file(dir / "collide" / "fibers.json"); built("collide") && fibers)
       for (const Json& f : (*fibers)["fibers"])
@@ -155,7 +158,8 @@ Summary summarize(const SweepPlan& plan, const fs::path& build_dir)
 {
   Summary s;
   for (const SweepCase& c : plan.cases) s.rows.push_back(case_row(plan, plan.case_dir(build_dir, c.id), s));
-  for (const std::string& t : s.targets) s.columns.insert(s.columns.end(), {t + " RMSE mm", t + " max mm"});
+  for (const std::string& t : s.targets)
+    s.columns.insert(s.columns.end(), {t + " RMSE mm", t + " max mm", t + " turn RMS deg"});
   s.columns.insert(s.columns.end(), s.pressure_columns.begin(), s.pressure_columns.end());
   s.columns.insert(s.columns.end(), {"silicone mL", "mold parts"});
   for (const std::string& stage : plan.stages) s.columns.push_back(stage + " s");
