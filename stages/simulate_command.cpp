@@ -4,6 +4,7 @@
 #include "stages/design_simulation.hpp"
 
 #include <algorithm>
+#include <charconv>
 #include <cmath>
 
 #include <fmt/format.h>
@@ -49,14 +50,11 @@ std::vector<Actuation> requested_actuations(const Design& d, const SimulateReque
     const auto eq = item.find('=');
     const std::string name = item.substr(0, eq);
     double kpa = NAN;
-    std::size_t used = 0;
     const std::string value = eq == std::string::npos ? std::string() : item.substr(eq + 1);
-    try {
-      kpa = std::stod(value, &used);
-    } catch (const std::exception&) {
-    }
-    // The whole value a number: "300Pa", "0.3MPa" or "2bar" would otherwise read as 300, 0.3 or 2 kPa.
-    if (eq == std::string::npos || !std::isfinite(kpa) || used != value.size())
+    // The whole value a decimal number: "300Pa", "0.3MPa" or "2bar" would otherwise read as 300, 0.3
+    // or 2 kPa; from_chars takes no hexadecimal ("0x12c"), leading space or sign.
+    const auto [end, error] = std::from_chars(value.data(), value.data() + value.size(), kpa);
+    if (eq == std::string::npos || error != std::errc() || end != value.data() + value.size() || !std::isfinite(kpa))
       bad(d, "--pressure", fmt::format("'{}': expected FIBER=kPa, the pressure a number in kPa without a unit", item));
     const Fiber* f = fiber(name);
     if (!f) {

@@ -177,7 +177,9 @@ TEST_F(SimulateE2E, PressureOutOfRange)
   EXPECT_THAT(unknown.err, HasSubstr("no [[fiber]] named \"m9\" (the design has m1)"));
   EXPECT_EQ(simulate("--pressure m1").exit_code, 2);
   // A unit after the number is refused, not dropped: "300Pa" ran at 300 kPa, "0.3MPa" at 0.3 kPa.
-  for (const char* typed : {"m1=300Pa", "m1=0.3MPa", "m1=2bar", "m1=30psi", "m1=100kPa", "m1=1e2x"}) {
+  // Nor is a hexadecimal number, or infinity.
+  for (const char* typed :
+       {"m1=300Pa", "m1=0.3MPa", "m1=2bar", "m1=30psi", "m1=100kPa", "m1=1e2x", "m1=0x12c", "m1=0x1p8", "m1=inf"}) {
     const auto unit = simulate(std::string("--pressure ") + typed);
     EXPECT_EQ(unit.exit_code, 2) << typed;
     EXPECT_THAT(unit.err, HasSubstr(std::string("'") + typed +
