@@ -111,6 +111,16 @@ int RoutingProblem::skin_violation(const Routing& r, double& distance, Eigen::Ve
   return -1;
 }
 
+int RoutingProblem::exit_violation(const Routing& r, ExitShortfall& shortfall) const
+{
+  for (int f = 0; f < num_fibers(); ++f)
+    if (const auto s = skin_barriers_[f].exit_shortfall(HermiteSpline(r.routes[f].points, r.routes[f].tangents))) {
+      shortfall = *s;
+      return f;
+    }
+  return -1;
+}
+
 double RoutingProblem::skin_weight() const
 {
   return settings_.weight_skin / kSkinSamplesPerSegment; // weight_skin per segment, as with one sample each

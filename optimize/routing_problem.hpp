@@ -83,6 +83,9 @@ public:
   /// The first fiber that comes closer to the skin than skin_distance anywhere between its first
   /// and last barrier sample (−1: none), its closest approach (m) and where.
   int skin_violation(const Routing& r, double& distance, Eigen::Vector3d& where) const;
+  /// The first fiber that leaves the body closer to the skin than its exit ramp (skin_barrier.hpp)
+  /// allows (−1: none), and where.
+  int exit_violation(const Routing& r, ExitShortfall& shortfall) const;
 
   Eigen::Index size() const { return static_cast<Eigen::Index>(entries_.size()); }
   Eigen::VectorXd variables(const Routing& r) const;

@@ -9,30 +9,72 @@
 
 namespace fibermold {
 
-std::vector<double> parameters_off_exits(const SurfaceDistance& skin, const HermiteSpline& spline,
-                                         const std::vector<double>& t, double reach)
+namespace {
+
+/// Each parameter's share of an exit's stretch, s / (2·reach) from the nearer end on the skin (1 or
+/// more: outside every exit's stretch). Arc lengths from the chords (fine enough to place it).
+std::vector<double> exit_shares(const SurfaceDistance& skin, const HermiteSpline& spline, const std::vector<double>& t,
+                                double reach)
 {
   const double length = spline.length();
   const bool first_on_skin = skin.closest(spline.points().front()).distance < reach;
   const bool last_on_skin = skin.closest(spline.points().back()).distance < reach;
-  std::vector<double> kept;
-  // Arc length at each parameter, from the chords (fine enough to place the cut-off).
+  std::vector<double> shares;
   double s = 0;
   for (std::size_t k = 0; k < t.size(); ++k) {
     if (k > 0) s += (spline.position(t[k]) - spline.position(t[k - 1])).norm();
-    if (first_on_skin && s < 2 * reach) continue;
-    if (last_on_skin && length - s < 2 * reach) continue;
-    kept.push_back(t[k]);
+    double share = HUGE_VAL;
+    if (first_on_skin) share = std::min(share, s / (2 * reach));
+    if (last_on_skin) share = std::min(share, (length - s) / (2 * reach));
+    shares.push_back(share);
   }
+  return shares;
+}
+
+} // namespace
+
+std::vector<double> parameters_off_exits(const SurfaceDistance& skin, const HermiteSpline& spline,
+                                         const std::vector<double>& t, double reach)
+{
+  const std::vector<double> shares = exit_shares(skin, spline, t, reach);
+  std::vector<double> kept;
+  for (std::size_t k = 0; k < t.size(); ++k)
+    if (shares[k] >= 1) kept.push_back(t[k]);
   return kept;
+}
+
+std::vector<ExitSample> exit_samples(const SurfaceDistance& skin, const HermiteSpline& spline,
+                                     const std::vector<double>& t, double reach)
+{
+  const std::vector<double> shares = exit_shares(skin, spline, t, reach);
+  std::vector<ExitSample> exits;
+  for (std::size_t k = 0; k < t.size(); ++k)
+    if (shares[k] >= kExitFree && shares[k] < 1) exits.push_back({t[k], shares[k]});
+  return exits;
 }
 
 SkinBarrier::SkinBarrier(const SurfaceDistance& skin, double min_distance, double band, const HermiteSpline& initial,
                          int samples)
     : skin_(skin), min_(min_distance), band_(band),
       t_(parameters_off_exits(skin, initial, segment_parameters(initial, samples), min_distance + band)),
+      exits_(exit_samples(skin, initial, segment_parameters(initial, samples), min_distance + band)),
       measured_at_(t_.size(), Eigen::Vector3d::Zero()), measured_(t_.size(), -HUGE_VAL)
 {
+}
+
+double SkinBarrier::exit_distance(const ExitSample& e) const { return min_ * e.share; }
+double SkinBarrier::exit_band(const ExitSample& e) const { return band_ * e.share; }
+
+std::optional<ExitShortfall> SkinBarrier::exit_shortfall(const HermiteSpline& spline) const
+{
+  const double reach = min_ + band_;
+  for (const ExitSample& e : exits_) {
+    const Eigen::Vector3d p = spline.position(e.t);
+    const SurfaceDistance::Closest c = skin_.closest(p);
+    const double d = c.inside ? c.distance : -c.distance;
+    if (d <= exit_distance(e)) return ExitShortfall{p, d, exit_distance(e), 2 * reach * e.share};
+  }
+  return std::nullopt;
 }
 
 bool SkinBarrier::beyond_band(std::size_t k, const Eigen::Vector3d& p, SurfaceDistance::Closest& c) const
@@ -53,6 +95,12 @@ double SkinBarrier::value(const HermiteSpline& spline) const
     if (beyond_band(k, spline.position(t_[k]), c)) continue; // b = 0 there
     if (!c.inside) return HUGE_VAL;
     B += barrier((c.distance - min_) / band_, 1.0);
+  }
+  // The exits' ramp r(s), its band shrunk with it.
+  for (const ExitSample& e : exits_) {
+    const SurfaceDistance::Closest at = skin_.closest(spline.position(e.t));
+    if (!at.inside || at.distance <= exit_distance(e)) return HUGE_VAL;
+    B += barrier((at.distance - exit_distance(e)) / exit_band(e), 1.0);
   }
   for (const Dip& dip : dips(spline)) {
     if (!(dip.bottom.d > min_)) return HUGE_VAL;
@@ -82,6 +130,13 @@ FiberParameterGradient SkinBarrier::gradient(const HermiteSpline& spline) const
     if (beyond_band(i, p, c) || !c.inside || c.distance >= min_ + band_) continue;
     // ∂b/∂p = b'((d − d_min)/w)/w ∇d,  ∇d = (p − c)/|p − c| inside the body
     add(t_[i], barrier_gradient((c.distance - min_) / band_, 1.0) / band_ * (p - c.point) / c.distance);
+  }
+  for (const ExitSample& e : exits_) {
+    const Eigen::Vector3d p = spline.position(e.t);
+    const SurfaceDistance::Closest at = skin_.closest(p);
+    const double r = exit_distance(e), w = exit_band(e);
+    if (!at.inside || at.distance <= r || at.distance >= r + w) continue;
+    add(e.t, barrier_gradient((at.distance - r) / w, 1.0) / w * (p - at.point) / at.distance);
   }
   // Each dip's term at its bottom less at its end sample, each a point at a fixed parameter: the
   // bottom's parameter moves with the route, but d is stationary along the spline there.

@@ -5,8 +5,16 @@
 // with b the IPC log barrier (barrier.hpp), d_k the distance of sample p_k to the skin (AABB
 // tree), w the band over which the barrier acts; B = +∞ once a sample comes closer than d_min.
 // Samples sit at fixed spline parameters, so p_k is linear in the control points and tangents.
-// Samples near an end point that lies within d_min + w of the skin are left out: the fiber leaves
-// the body there by design.
+// Samples near an end point that lies within d_min + w of the skin (within 2(d_min + w) of arc from
+// it) are not held at d_min: the fiber leaves the body there by design. They are held instead at a
+// distance that grows with their arc length s from that end, the exit ramp
+//   r(s) = d_min · s / (2(d_min + w)),   with the band w · s / (2(d_min + w)),
+// which a route leaving a flat face within acos(d_min / (2(d_min + w))) of its normal (72° at the
+// defaults) clears: a route at distance s cos θ meets it at cos θ = d_min / (2(d_min + w)); the
+// band's share makes the term 0 for a route within 60° of the normal. Until session 42 they were
+// left out, and a new user's optimized muscle left its base face 92° off the normal, running along
+// the face half outside the body for 5 mm with nothing said. The samples within a tenth of that
+// stretch of the end (r under d_min / 10) stay free: the exit itself.
 // Between samples the spline is held to d_min exactly (closest_approach): the distance to the skin
 // is 1-Lipschitz, so on a piece of arc length ≤ L between points at distances d_a and d_b every
 // point is at least (d_a + d_b − L)/2 from the skin; L is bounded by the piece's Bézier control
@@ -31,6 +39,7 @@
 // measuring only where it does not clear d_min (the tentacle tip's optimize: 40.0–42.4 s → 36.7–37.5 s
 // in two interleaved runs each, the same routes).
 
+#include <optional>
 #include <vector>
 
 #include "mesh/surface_distance.hpp"
@@ -43,6 +52,25 @@ namespace fibermold {
 /// length of an end that lies within `reach` of the skin, where the fiber leaves the body by design.
 std::vector<double> parameters_off_exits(const SurfaceDistance& skin, const HermiteSpline& spline,
                                          const std::vector<double>& t, double reach);
+
+/// A sample of an exit's stretch: its parameter and its share of the stretch, s / (2·reach), from
+/// the end it is nearer (in (0, 1)).
+struct ExitSample {
+  double t = 0, share = 0;
+};
+/// The samples among `t` within 2·reach of arc of an end that lies within `reach` of the skin, at
+/// least kExitFree of that from it.
+std::vector<ExitSample> exit_samples(const SurfaceDistance& skin, const HermiteSpline& spline,
+                                     const std::vector<double>& t, double reach);
+/// The share of an exit's stretch next to the end where a sample is left free (the exit itself).
+inline constexpr double kExitFree = 0.1;
+
+/// Where an exit sample comes closer to the skin than its ramp: the point, its distance to the skin
+/// (negative outside), the ramp's distance there r(s), and its arc length s from the end.
+struct ExitShortfall {
+  Eigen::Vector3d where = Eigen::Vector3d::Zero();
+  double distance = 0, required = 0, from_end = 0;
+};
 
 /// The spline parameters [first, last] a skin barrier holds off the skin; first > last: none.
 struct HeldStretch {
@@ -71,6 +99,10 @@ public:
   /// value is then only a bound (samples whose last distance clears d_min are not measured again,
   /// and it may be +∞ with `where` unset).
   double closest_approach(const HermiteSpline& spline, Eigen::Vector3d& where, bool first_only = false) const;
+  /// The first exit sample closer to the skin than its ramp r(s) allows (or outside), if any.
+  std::optional<ExitShortfall> exit_shortfall(const HermiteSpline& spline) const;
+  /// The exit samples (exit_samples).
+  const std::vector<ExitSample>& exits() const { return exits_; }
   /// Where along the spline the barrier holds: from its first sample to its last. Collide tests
   /// the skin over the same parameters (FiberClearance), so the two agree on where an end's
   /// stretch leaves the body by design, however the route has moved since.
@@ -101,10 +133,14 @@ private:
   /// b((d − d_min) / (kDipBand·w), 1) and its derivative in d.
   double dip_barrier(double d) const;
   double dip_barrier_gradient(double d) const;
+  /// An exit sample's ramp r(s) and band.
+  double exit_distance(const ExitSample& e) const;
+  double exit_band(const ExitSample& e) const;
 
   const SurfaceDistance& skin_;
   double min_, band_;
   std::vector<double> t_;
+  std::vector<ExitSample> exits_;
   /// Each sample where its distance was last measured, and that distance (−∞: outside).
   mutable std::vector<Eigen::Vector3d> measured_at_;
   mutable std::vector<double> measured_;

@@ -124,6 +124,13 @@ void require_optimizable(const Design& d, const RoutingProblem& problem, const R
                                          "the skin at {}, under the skin distance the optimizer keeps{}",
                                          moved.routes[f].name, distance / units::mm, format_mm(where),
                                          kSmoothnessAdvice));
+  ExitShortfall e;
+  if (const int g = problem.exit_violation(moved, e); g >= 0)
+    throw std::runtime_error(fmt::format("[fiber.{}]: the route as collide moved it apart leaves the body along the "
+                                         "skin at {}, {:.2f} mm from it {:.1f} mm from its end, under the {:.2f} mm "
+                                         "the optimizer keeps there{}",
+                                         moved.routes[g].name, format_mm(e.where), e.distance / units::mm,
+                                         e.from_end / units::mm, e.required / units::mm, kSmoothnessAdvice));
 }
 
 /// Optimizes again from the resolved routing with the clearance between fibers as a barrier

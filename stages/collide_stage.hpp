@@ -32,8 +32,9 @@ public:
   /// over the whole window (a re-optimization's ending); 16: the model's clearance-barrier Hessian from each
   /// fiber's own pairs (a re-optimization's steps); 17: Levenberg-Marquardt forgets its secant term where B + S
   /// alone claims convergence (a re-optimization's steps); 18: the skin barrier's dip term between samples (a
-  /// re-optimization's objective); 19: the turn's error where a curve's orientation is tracked
-  int version() const override { return 19; }
+  /// re-optimization's objective); 19: the turn's error where a curve's orientation is tracked;
+  /// 20: the exit ramp (a re-optimization's objective)
+  int version() const override { return 20; }
   void run(StageContext& ctx) const override;
 };
 

@@ -394,6 +394,21 @@ std::string too_near_the_skin(const Design& d, double closest, const Eigen::Vect
       need.groove_margin > 0 ? "a smaller [mold] groove_clearance or min_silicone" : "a smaller clearance");
 }
 
+/// A starting route that leaves the body along the skin rather than into it: where, and what to do.
+std::string leaves_along_the_skin(const Design& d, const ExitShortfall& e)
+{
+  const SkinDistance need = skin_distance(d);
+  const double stretch = 2 * (need.distance + routing_settings(d).skin_band);
+  return fmt::format(
+      "the starting route leaves the body along the skin, not into it: at {}, {:.1f} mm along it from its end on "
+      "the skin, it is {:.3f} mm from the skin, where a route is kept more than {:.3f} mm inside (rising to {:.3f} mm "
+      "at {:.1f} mm from the end: a route leaving a flat face within {:.0f}° of its normal clears it): point the end's "
+      "tangent into the body, or move the point next to the end inward",
+      format_mm(e.where), e.from_end / units::mm, e.distance / units::mm, e.required / units::mm,
+      need.distance / units::mm, stretch / units::mm,
+      std::acos(std::min(1.0, need.distance / stretch)) / units::degree);
+}
+
 /// A starting route the skin barrier refuses (InputError at the fiber).
 void require_start_inside(const Design& d, RoutingProblem& problem, const Routing& start)
 {
@@ -401,6 +416,9 @@ void require_start_inside(const Design& d, RoutingProblem& problem, const Routin
   Eigen::Vector3d where;
   if (const int f = problem.skin_violation(start, closest, where); f >= 0)
     bad(d, fmt::format("[fiber.{}]", d.fibers[f].name), too_near_the_skin(d, closest, where));
+  ExitShortfall exit;
+  if (const int f = problem.exit_violation(start, exit); f >= 0)
+    bad(d, fmt::format("[fiber.{}]", d.fibers[f].name), leaves_along_the_skin(d, exit));
   // The start may differ from the [[fiber]] routes: fibers closer than the clearance are moved apart.
   require_bend_radius(d, start.routes, "the starting route, as moved apart from the other fibers,");
 }
@@ -450,6 +468,9 @@ void require_optimizable(const Design& d, const SurfaceDistance& skin)
             .closest_approach(HermiteSpline(start.routes[f].points, start.routes[f].tangents), where);
     if (closest <= settings.skin_distance)
       bad(d, fmt::format("[fiber.{}]", d.fibers[f].name), too_near_the_skin(d, closest, where));
+    if (const auto e = route_skin_barrier(skin, settings, start.routes[f])
+                           .exit_shortfall(HermiteSpline(start.routes[f].points, start.routes[f].tangents)))
+      bad(d, fmt::format("[fiber.{}]", d.fibers[f].name), leaves_along_the_skin(d, *e));
   }
   tracking_samples(d, skin);
 }

@@ -356,6 +356,29 @@ TEST_F(OptimizeE2E, AFiberTooNearTheSkinIsRefusedByCheckWithTheFix)
   EXPECT_FALSE(fs::exists(dir_ / "build"));
 }
 
+/// A route leaving the bar's held end face 80° off its normal, along the face: check refuses it where it
+/// runs along the skin, with the ramp it must clear; leaving square to the face it passes.
+TEST_F(OptimizeE2E, AFiberLeavingTheBodyAlongTheSkinIsRefusedByCheck)
+{
+  std::string text = kDesign;
+  const std::string route = "points = [[0, 0, 0], [20, 3, -3], [40, -3, 2], [60, 0, 0]]";
+  text.replace(text.find(route), route.size(),
+               "points = [[0, -4, 0], [20, 0, 0], [40, 0, 0], [60, 0, 0]]\n"
+               "tangents = [[3.5, 20, 0], [20, 0, 0], [20, 0, 0], [20, 0, 0]]");
+  test::write_text(dir_ / "design.toml", text);
+  const auto along = test::run_fibermold("check design.toml", dir_.path());
+  EXPECT_EQ(along.exit_code, 2) << along.err;
+  EXPECT_THAT(along.err, ContainsRegex("\\[fiber.m1\\]: the starting route leaves the body along the skin, not into "
+                                       "it: at \\(0\\.[0-9], -3\\.[0-9], 0\\.0\\) mm, 0\\.[0-9] mm along it from its "
+                                       "end on the skin, it is 0\\.[0-9]{3} mm from the skin, where a route is kept "
+                                       "more than 0\\.[0-9]{3} mm inside \\(rising to 2\\.500 mm at 8\\.0 mm from the "
+                                       "end: a route leaving a flat face within 72° of its normal clears it\\)"));
+  text.replace(text.find("[[3.5, 20, 0]"), 13, "[[20, 3.5, 0]");
+  test::write_text(dir_ / "design.toml", text);
+  const auto square = test::run_fibermold("check design.toml", dir_.path());
+  EXPECT_EQ(square.exit_code, 0) << square.err;
+}
+
 /// A route with a 4 mm bump over 10 mm bends with a 0.49 mm radius: check refuses it against the
 /// default [muscle] min_bend_radius (2 diameters, 6 mm), naming the fiber, the radius and where;
 /// so does the optimize stage with the optimizer off (the molds would cast it); a muscle declared

@@ -227,6 +227,51 @@ TEST(SkinBarrier, ItsGradientWithADipMatchesFiniteDifferences)
   EXPECT_LT(gradient_error(barrier, route, 1e-6 * mm), 1e-5);
 }
 
+/// A route leaving a 60 × 16 × 16 mm bar's end face x = 0 at (0, −4, 0) mm at `degrees` from the
+/// face's normal (turning toward +y), then curving along the bar to (55, 0, 0) mm, inside.
+HermiteSpline route_leaving_at(double degrees)
+{
+  const double a = degrees * M_PI / 180;
+  return HermiteSpline({{0, -4 * mm, 0}, {30 * mm, 0, 0}, {55 * mm, 0, 0}},
+                       {{20 * mm * std::cos(a), 20 * mm * std::sin(a), 0}, {30 * mm, 0, 0}, {25 * mm, 0, 0}});
+}
+
+// Where a fiber leaves the body, its samples within 2(d_min + w) = 8 mm of arc are held at the exit
+// ramp r(s) = d_min s / 8 mm: a route leaving square to the face clears it and adds nothing; one
+// leaving 80° off the normal, along the face, is refused there (until session 42 the barrier left
+// those 8 mm out, and an optimized muscle ran along a base face half outside the body); between
+// them the barrier is finite and its gradient that of its value.
+TEST(SkinBarrier, AnExitAlongTheSkinIsRefusedOneSquareToItIsFree)
+{
+  static const SurfaceDistance skin = extruded_bar({{0, -8}, {60, -8}, {60, 8}, {0, 8}}, {{0, 1, 2}, {0, 2, 3}});
+  const auto barrier = [&](double degrees) {
+    return SkinBarrier(skin, 2.5 * mm, 1.5 * mm, route_leaving_at(degrees), 80);
+  };
+  const SkinBarrier square = barrier(0);
+  ASSERT_FALSE(square.exits().empty());
+  for (const ExitSample& e : square.exits()) {
+    EXPECT_GE(e.share, kExitFree);
+    EXPECT_LT(e.share, 1.0);
+  }
+  EXPECT_FALSE(square.exit_shortfall(route_leaving_at(0)));
+  EXPECT_EQ(square.value(route_leaving_at(0)), 0.0); // every sample beyond its band
+
+  const SkinBarrier along = barrier(80);
+  const auto shortfall = along.exit_shortfall(route_leaving_at(80));
+  ASSERT_TRUE(shortfall);
+  EXPECT_LT(shortfall->from_end, 8 * mm);
+  EXPECT_NEAR(shortfall->required, 2.5 * mm * shortfall->from_end / (8 * mm), 1e-9);
+  EXPECT_LE(shortfall->distance, shortfall->required);
+  EXPECT_EQ(along.value(route_leaving_at(80)), HUGE_VAL);
+
+  const SkinBarrier between = barrier(74);
+  EXPECT_FALSE(between.exit_shortfall(route_leaving_at(74)));
+  const double value = between.value(route_leaving_at(74));
+  EXPECT_GT(value, 0);
+  EXPECT_TRUE(std::isfinite(value));
+  EXPECT_LT(gradient_error(between, route_leaving_at(74), 1e-6 * mm), 1e-5);
+}
+
 TEST(SkinBarrier, FindsEveryDipADenseScanFinds)
 {
   // Routes wandering under the notch and along the flat bottom (z = −8 mm), samples 2 mm apart:
