@@ -86,7 +86,8 @@ OptimizationEnding optimization_ending(const RoutingResult& result, const Actuat
                     target, fiber, p(t, f) / units::kPa, max_pressure / units::kPa, 100 * settings.pressure_margin)
               : fmt::format(
                     "target {}: fiber {} ends at {:.1f} kPa: the optimizer turned it off, it does not help this target "
-                    "from where its route ended",
+                    "from where its route ended (if it is not meant to, list the fibers that are in the target's "
+                    "actuators, and this is not said)",
                     target, fiber, p(t, f) / units::kPa));
     }
   }

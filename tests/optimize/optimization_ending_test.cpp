@@ -101,6 +101,11 @@ TEST(OptimizationEnding, ATargetWithEveryMuscleOffIsSaidToBeTheBodyUnactuatedWit
                                                      {"curl"}, {"flexor", "extensor"});
   ASSERT_EQ(one.warnings.size(), 1u);
   EXPECT_THAT(one.warnings[0], HasSubstr("fiber flexor ends at 0.0 kPa: the optimizer turned it off"));
+  // A muscle meant for another target: the warning says how to say so, and then it is not said.
+  EXPECT_THAT(one.warnings[0], HasSubstr("if it is not meant to, list the fibers that are in the target's actuators"));
+  const ActuatorMask extensor_only = (ActuatorMask(1, 2) << false, true).finished();
+  EXPECT_TRUE(optimization_ending(r, extensor_only, s, {before}, {after}, {{}}, {"curl"}, {"flexor", "extensor"})
+                  .warnings.empty());
 }
 
 TEST(OptimizationEnding, AFirstGuessWhoseMusclesDoBestOffIsSaidToWorkAgainstTheTarget)
