@@ -51,6 +51,19 @@ double distance_to_segment(const Eigen::Vector2d& s, const Eigen::Vector2d& a, c
   return (s - a - t * ab).norm();
 }
 
+/// Distance in the parting plane between segments ab and cd: 0 where they cross, else the least
+/// of their ends' distances to the other.
+double distance_between_segments(const Eigen::Vector2d& a, const Eigen::Vector2d& b, const Eigen::Vector2d& c,
+                                 const Eigen::Vector2d& d)
+{
+  const auto cross = [](const Eigen::Vector2d& u, const Eigen::Vector2d& v) { return u.x() * v.y() - u.y() * v.x(); };
+  const double c_side = cross(b - a, c - a), d_side = cross(b - a, d - a);
+  const double a_side = cross(d - c, a - c), b_side = cross(d - c, b - c);
+  if (c_side * d_side < 0 && a_side * b_side < 0) return 0;
+  return std::min({distance_to_segment(a, c, d), distance_to_segment(b, c, d), distance_to_segment(c, a, b),
+                   distance_to_segment(d, a, b)});
+}
+
 /// Appends b's vertices and faces to a (no boolean: for shells that do not touch).
 void append(SurfaceMesh& a, const SurfaceMesh& b)
 {
@@ -256,6 +269,7 @@ Mold make_mold(const SurfaceMesh& cavity_world, const Parting& parting, const st
   cut_ports(block, R, holes, box_lo, box_hi, o, mold);
   const double reach = (box_hi - box_lo).norm();
   std::vector<Passage> passages;
+  std::vector<double> heights; // each channel's height when laid parallel to the plane, else NaN
   // Channels run parallel to the parting plane (one crossing it at an angle would leave a wedge of
   // mold thinner than any wall); one that starts within its radius + min_wall of the plane is moved
   // onto it, so that each half holds half the tube and lets go of it when pulled.
@@ -275,7 +289,18 @@ Mold make_mold(const SurfaceMesh& cavity_world, const Parting& parting, const st
       block = mesh_difference(
           block, cylinder_solid(a + (c.socket - c.diameter / 4) * d, a + reach * d, c.through_diameter / 2, 20));
     passages.push_back({a.head<2>(), (a + reach * d).head<2>(), c.diameter / 2});
+    heights.push_back(d.z() == 0 ? a.z() : NAN);
   }
+  // Two channels laid parallel to the plane, at heights z and z': their axes are sqrt(Δz² + (their
+  // distance in the plane)²) apart (each at its socket's width all along, as the keys see them).
+  for (std::size_t i = 0; i < passages.size(); ++i)
+    for (std::size_t j = i + 1; j < passages.size(); ++j) {
+      if (std::isnan(heights[i]) || std::isnan(heights[j])) continue;
+      const Passage &p = passages[i], &q = passages[j];
+      const double wall =
+          std::hypot(heights[i] - heights[j], distance_between_segments(p.a, p.b, q.a, q.b)) - p.radius - q.radius;
+      if (wall < o.min_wall) mold.close_channels.push_back({static_cast<int>(i), static_cast<int>(j), wall});
+    }
 
   const double radius = o.key_diameter / 2, sink = 0.5e-3, screw = o.screw_diameter / 2;
   const auto [keys, screws] = key_and_screw_sites(rim_sites(box_lo, box_hi, side / 2), passages, o);

@@ -50,11 +50,19 @@ struct PartLabels {
 /// "S1L".
 std::vector<std::string> part_label_texts(const std::string& design, const std::string& shot, bool lower);
 
+/// Two channels (indices into make_mold's `channels`), as laid parallel to the parting plane, whose
+/// walls come closer than min_wall: the mold between them (m; negative where they overlap).
+struct CloseChannels {
+  int a = 0, b = 0;
+  double wall = 0;
+};
+
 struct Mold {
   std::vector<MoldPart> parts;
-  std::vector<Eigen::Vector3d> sprues; ///< where each sprue meets the cavity
-  std::vector<Eigen::Vector3d> vents;  ///< where each vent meets the cavity
-  std::vector<Eigen::Vector3d> keys;   ///< key centres on the parting plane; sites on a channel's way are left out
+  std::vector<CloseChannels> close_channels; ///< pairs of channels closer than min_wall, as laid
+  std::vector<Eigen::Vector3d> sprues;       ///< where each sprue meets the cavity
+  std::vector<Eigen::Vector3d> vents;        ///< where each vent meets the cavity
+  std::vector<Eigen::Vector3d> keys; ///< key centres on the parting plane; sites on a channel's way are left out
   std::vector<Eigen::Vector3d>
       screws; ///< screw hole axes' points on the parting plane (fewer than asked when channels and keys leave no room)
   double label_seconds = 0; ///< s, placing and cutting the parts' labels

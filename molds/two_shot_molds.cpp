@@ -97,8 +97,11 @@ public:
       muscle_volume_ += f.length * M_PI * std::pow(job.muscle_diameter / 2, 2);
       for (const auto& [end, along] :
            {std::pair{f.start, Eigen::Vector3d(-f.start_tangent)}, std::pair{f.end, f.end_tangent}})
-        if (auto c = end_channel(end, along, skin_, out_.groove_radius, m, job.muscle_diameter))
+        if (auto c = end_channel(end, along, skin_, out_.groove_radius, m, job.muscle_diameter)) {
           channels_.push_back(*c);
+          channel_ends_.push_back(
+              fmt::format("{} leaves the body at {}", f.name.empty() ? "a fiber" : f.name, format_mm(end)));
+        }
     }
     out_.pull = pull_;
     // Shrink compensation: cavities (and channel starts) scaled up about the body's centre.
@@ -172,6 +175,7 @@ private:
   MoldBlockOptions block_;
   std::vector<std::vector<Eigen::Vector3d>> lines_;
   std::vector<Channel> channels_;
+  std::vector<std::string> channel_ends_; ///< per channel: "up leaves the body at (0.0, -3.0, 3.0) mm"
   double muscle_volume_ = 0, g3_ = 1;
   std::optional<Draft> draft_;
   FillRegions regions_; ///< what each shot fills, sampled once: both shots' from the body, drafted or not
@@ -267,6 +271,18 @@ std::vector<std::string> Recipe::make_shot(const std::string& name, const Surfac
     if (!c.fits) too_big_.push_back(p.name);
     out_.parts.push_back(CheckedPart{name, p, std::move(c)});
   }
+  // A thin wall between two fibers' end channels: the ends are too near each other for the channels
+  // (a new user's two muscles left the tip 5.6 mm apart, and both 4 mm channels were laid onto the
+  // parting plane, 2.5 mm apart: "a wall of 0.02 mm", and no word of why).
+  // Said after the part's own problem, which it explains.
+  if (!problems.empty() && shot_channels.size() == channel_ends_.size())
+    for (const CloseChannels& close : mold.close_channels)
+      problems.back() += fmt::format(
+          "; the end channels where {} and where {} leave {:.2f} mm of mold between them, under [export] min_wall = "
+          "{:.2f} mm (each {:.1f} mm wide, laid parallel to the parting plane, and onto it within their radius + "
+          "min_wall of it): move those ends further apart, or give a smaller [mold] end_channel_diameter",
+          channel_ends_[static_cast<std::size_t>(close.a)], channel_ends_[static_cast<std::size_t>(close.b)],
+          std::max(0.0, close.wall) / 1e-3, job_.min_wall / 1e-3, m_.end_channel_diameter / 1e-3);
   std::erase_if(out_.shots, [&](const ShotMold& s) { return s.name == name; });
   out_.shots.push_back(std::move(shot));
   return problems;

@@ -32,6 +32,7 @@ namespace fibermold {
 
 /// A fiber as the molds see it.
 struct MoldFiber {
+  std::string name;                  ///< the [[fiber]]'s, for messages
   std::vector<Eigen::Vector3d> line; ///< the centre line, sampled along the spline
   Eigen::Vector3d start, end;        ///< the spline's end points
   Eigen::Vector3d start_tangent;     ///< along the fiber at its first point

@@ -63,6 +63,7 @@ MoldFiber mold_fiber(const Route& r, double step)
   const HermiteSpline s(r.points, r.tangents);
   const int n = std::max(2, static_cast<int>(std::ceil(s.length() / step)));
   MoldFiber f;
+  f.name = r.name;
   f.start = r.points.front();
   f.end = r.points.back();
   f.start_tangent = r.tangents.front();

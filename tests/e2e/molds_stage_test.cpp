@@ -419,6 +419,21 @@ TEST_F(MoldsE2E, WithoutLabelsThePartsArePlainAndTheSheetSaysHowToTellThemApart)
   EXPECT_EQ(test::read_text(out("report.html")).find("“IN”"), std::string::npos);
 }
 
+/// Two muscles leaving the bar's end face 6.1 mm apart, 2.5 mm above and 2 mm below the middle: both
+/// 4 mm end channels are laid onto shot 2's parting plane, 4.2 mm apart, leaving a 0.2 mm web. The
+/// part's check fails, and the failure says why, naming both ends and what to change (a new user's
+/// jaw failed with "a wall of 0.02 mm" alone).
+TEST_F(MoldsE2E, EndChannelsTooNearEachOtherAreNamedWithTheFix)
+{
+  design("", "[[fiber]]\nname = \"up\"\npoints = [[0, -3, 3], [30, -3, 3], [60, -2.1, 2.5]]\n"
+             "[[fiber]]\nname = \"side\"\npoints = [[0, 3, -2], [30, 3, -2], [60, 2.1, -2]]\n");
+  const auto r = test::run_fibermold("make design.toml molds --build-dir build", dir_.path());
+  EXPECT_EQ(r.exit_code, 1);
+  EXPECT_THAT(r.err, HasSubstr("; the end channels where up leaves the body at (60.0, -2.1, 2.5) mm and where side "
+                               "leaves the body at (60.0, 2.1, -2.0) mm leave 0.20 mm of mold between them"));
+  EXPECT_THAT(r.err, HasSubstr("move those ends further apart, or give a smaller [mold] end_channel_diameter"));
+}
+
 TEST_F(MoldsE2E, BadInputsStopWithoutWritingParts)
 {
   design("[export]\nprinter_volume = [50, 50, 50]\n");

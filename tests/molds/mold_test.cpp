@@ -230,6 +230,26 @@ TEST(Molds, EndChannelIsASocketThenAHoleForTheTube)
   EXPECT_NEAR(plain - stepped, expected, 0.002 * expected);
 }
 
+TEST(Molds, EndChannelsTooNearEachOtherAreNamedAsLaid)
+{
+  // Two 4 mm channels leaving the box's end face 4.5 mm above and below the parting plane's height
+  // (z = 2.5 and −2 mm), 2.6 mm apart across: both start within their radius + min_wall of the plane
+  // and are laid onto it, where they overlap (2.6 − 4 = −1.4 mm of mold between them). Moved 7.3 mm
+  // apart across, 3.3 mm of mold is left.
+  const BoxBody b;
+  const Parting parting = choose_parting(b.body, {0, 0, 1});
+  MoldBlockOptions o;
+  o.keys = 0;
+  const auto channel = [](double y, double z) { return Channel{{1 * mm, y * mm, z * mm}, {-1, 0, 0}, 4 * mm, 3 * mm}; };
+  const Mold near = make_mold(b.body, parting, {channel(-1.3, 2.5), channel(1.3, -2)}, o, "shot2");
+  ASSERT_EQ(near.close_channels.size(), 1u);
+  EXPECT_EQ(near.close_channels[0].a, 0);
+  EXPECT_EQ(near.close_channels[0].b, 1);
+  EXPECT_NEAR(near.close_channels[0].wall, -1.4 * mm, 1e-6 * mm);
+  const Mold apart = make_mold(b.body, parting, {channel(-1.3, 2.5), channel(6, -2)}, o, "shot2");
+  EXPECT_TRUE(apart.close_channels.empty());
+}
+
 TEST(Molds, SprueFindsTheFlatOfABottomWhoseLowestVerticesAreOnItsRim)
 {
   // A 40 × 10 × 10 mm block whose bottom rises 2 mm from x = 0 to x = 40: within the 0.5 mm band
