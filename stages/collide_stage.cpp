@@ -127,7 +127,7 @@ void require_optimizable(const Design& d, const RoutingProblem& problem, const R
   ExitShortfall e;
   if (const int g = problem.exit_violation(moved, e); g >= 0)
     throw std::runtime_error(fmt::format("[fiber.{}]: the route as collide moved it apart leaves the body along the "
-                                         "skin at {}, {:.2f} mm from it {:.1f} mm from its end, under the {:.2f} mm "
+                                         "skin at {}, {:.2f} mm from it, {:.1f} mm from its end, under the {:.2f} mm "
                                          "the optimizer keeps there{}",
                                          moved.routes[g].name, format_mm(e.where), e.distance / units::mm,
                                          e.from_end / units::mm, e.required / units::mm, kSmoothnessAdvice));
