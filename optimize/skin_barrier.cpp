@@ -12,23 +12,47 @@ namespace fibermold {
 namespace {
 
 /// Each parameter's share of an exit's stretch, s / (2·reach) from the nearer end on the skin (1 or
-/// more: outside every exit's stretch). Arc lengths from the chords (fine enough to place it).
-std::vector<double> exit_shares(const SurfaceDistance& skin, const HermiteSpline& spline, const std::vector<double>& t,
-                                double reach)
+/// more: outside every exit's stretch), and whether that end is the last. Arc lengths from the
+/// chords (fine enough to place it).
+struct ExitShare {
+  double share = HUGE_VAL;
+  bool last = false;
+};
+std::vector<ExitShare> exit_shares(const SurfaceDistance& skin, const HermiteSpline& spline,
+                                   const std::vector<double>& t, double reach)
 {
   const double length = spline.length();
   const bool first_on_skin = skin.closest(spline.points().front()).distance < reach;
   const bool last_on_skin = skin.closest(spline.points().back()).distance < reach;
-  std::vector<double> shares;
+  std::vector<ExitShare> shares;
   double s = 0;
   for (std::size_t k = 0; k < t.size(); ++k) {
     if (k > 0) s += (spline.position(t[k]) - spline.position(t[k - 1])).norm();
-    double share = HUGE_VAL;
-    if (first_on_skin) share = std::min(share, s / (2 * reach));
-    if (last_on_skin) share = std::min(share, (length - s) / (2 * reach));
-    shares.push_back(share);
+    ExitShare e;
+    if (first_on_skin) e.share = s / (2 * reach);
+    if (last_on_skin && (length - s) / (2 * reach) < e.share) e = {(length - s) / (2 * reach), true};
+    shares.push_back(e);
   }
   return shares;
+}
+
+/// The parameters among `t` held at d_min, and the exit samples (see exit_samples).
+struct ExitSplit {
+  std::vector<double> held;
+  std::vector<ExitSample> exits;
+};
+ExitSplit split_at_exits(const SurfaceDistance& skin, const HermiteSpline& spline, const std::vector<double>& t,
+                         double reach)
+{
+  const std::vector<ExitShare> shares = exit_shares(skin, spline, t, reach);
+  ExitSplit split;
+  for (std::size_t k = 0; k < t.size(); ++k) {
+    if (shares[k].share >= 1)
+      split.held.push_back(t[k]);
+    else if (shares[k].share >= kExitFree)
+      split.exits.push_back({t[k], shares[k].share, shares[k].last});
+  }
+  return split;
 }
 
 } // namespace
@@ -36,43 +60,46 @@ std::vector<double> exit_shares(const SurfaceDistance& skin, const HermiteSpline
 std::vector<double> parameters_off_exits(const SurfaceDistance& skin, const HermiteSpline& spline,
                                          const std::vector<double>& t, double reach)
 {
-  const std::vector<double> shares = exit_shares(skin, spline, t, reach);
-  std::vector<double> kept;
-  for (std::size_t k = 0; k < t.size(); ++k)
-    if (shares[k] >= 1) kept.push_back(t[k]);
-  return kept;
+  return split_at_exits(skin, spline, t, reach).held;
 }
 
 std::vector<ExitSample> exit_samples(const SurfaceDistance& skin, const HermiteSpline& spline,
                                      const std::vector<double>& t, double reach)
 {
-  const std::vector<double> shares = exit_shares(skin, spline, t, reach);
-  std::vector<ExitSample> exits;
-  for (std::size_t k = 0; k < t.size(); ++k)
-    if (shares[k] >= kExitFree && shares[k] < 1) exits.push_back({t[k], shares[k]});
-  return exits;
+  return split_at_exits(skin, spline, t, reach).exits;
 }
 
 SkinBarrier::SkinBarrier(const SurfaceDistance& skin, double min_distance, double band, const HermiteSpline& initial,
                          int samples)
-    : skin_(skin), min_(min_distance), band_(band),
-      t_(parameters_off_exits(skin, initial, segment_parameters(initial, samples), min_distance + band)),
-      exits_(exit_samples(skin, initial, segment_parameters(initial, samples), min_distance + band)),
-      measured_at_(t_.size(), Eigen::Vector3d::Zero()), measured_(t_.size(), -HUGE_VAL)
+    : skin_(skin), min_(min_distance), band_(band)
 {
+  ExitSplit split = split_at_exits(skin, initial, segment_parameters(initial, samples), min_distance + band);
+  t_ = std::move(split.held);
+  exits_ = std::move(split.exits);
+  measured_at_.assign(t_.size(), Eigen::Vector3d::Zero());
+  measured_.assign(t_.size(), -HUGE_VAL);
 }
 
-double SkinBarrier::exit_distance(const ExitSample& e) const { return min_ * e.share; }
-double SkinBarrier::exit_band(const ExitSample& e) const { return band_ * e.share; }
+SkinBarrier::ExitPoint SkinBarrier::exit_point(const ExitSample& e, const HermiteSpline& spline) const
+{
+  ExitPoint x;
+  x.p = spline.position(e.t);
+  x.end = e.last ? spline.points().back() : spline.points().front();
+  x.from_end = (x.p - x.end).norm();
+  // σ = min(1, ρ / (2(d_min + w))), kept off 0, where the ramp and its band would vanish
+  x.share = std::clamp(x.from_end / (2 * (min_ + band_)), kShareFloor, 1.0);
+  x.ramp = min_ * x.share;
+  x.band = band_ * x.share;
+  return x;
+}
 
 std::optional<ExitShortfall> SkinBarrier::exit_shortfall(const HermiteSpline& spline) const
 {
-  const double reach = min_ + band_;
   for (const ExitSample& e : exits_) {
-    const Eigen::Vector3d p = spline.position(e.t);
-    const SurfaceDistance::Closest c = skin_.closest(p);
+    const ExitPoint x = exit_point(e, spline);
+    const SurfaceDistance::Closest c = skin_.closest(x.p);
     const double d = c.inside ? c.distance : -c.distance;
-    if (d <= exit_distance(e)) return ExitShortfall{p, d, exit_distance(e), 2 * reach * e.share};
+    if (d <= x.ramp) return ExitShortfall{x.p, d, x.ramp, x.from_end};
   }
   return std::nullopt;
 }
@@ -98,9 +125,10 @@ double SkinBarrier::value(const HermiteSpline& spline) const
   }
   // The exits' ramp r(s), its band shrunk with it.
   for (const ExitSample& e : exits_) {
-    const SurfaceDistance::Closest at = skin_.closest(spline.position(e.t));
-    if (!at.inside || at.distance <= exit_distance(e)) return HUGE_VAL;
-    B += barrier((at.distance - exit_distance(e)) / exit_band(e), 1.0);
+    const ExitPoint x = exit_point(e, spline);
+    const SurfaceDistance::Closest at = skin_.closest(x.p);
+    if (!at.inside || at.distance <= x.ramp) return HUGE_VAL;
+    B += barrier((at.distance - x.ramp) / x.band, 1.0);
   }
   for (const Dip& dip : dips(spline)) {
     if (!(dip.bottom.d > min_)) return HUGE_VAL;
@@ -131,12 +159,19 @@ FiberParameterGradient SkinBarrier::gradient(const HermiteSpline& spline) const
     // ∂b/∂p = b'((d − d_min)/w)/w ∇d,  ∇d = (p − c)/|p − c| inside the body
     add(t_[i], barrier_gradient((c.distance - min_) / band_, 1.0) / band_ * (p - c.point) / c.distance);
   }
+  const double stretch = 2 * (min_ + band_);
   for (const ExitSample& e : exits_) {
-    const Eigen::Vector3d p = spline.position(e.t);
-    const SurfaceDistance::Closest at = skin_.closest(p);
-    const double r = exit_distance(e), w = exit_band(e);
-    if (!at.inside || at.distance <= r || at.distance >= r + w) continue;
-    add(e.t, barrier_gradient((at.distance - r) / w, 1.0) / w * (p - at.point) / at.distance);
+    const ExitPoint x = exit_point(e, spline);
+    const SurfaceDistance::Closest at = skin_.closest(x.p);
+    if (!at.inside || at.distance <= x.ramp || at.distance >= x.ramp + x.band) continue;
+    // b((d − d_min σ) / (w σ), 1) = b(d / (w σ) − d_min / w, 1): ∂/∂d = 1/(w σ), ∂/∂σ = −d/(w σ²),
+    // σ = ρ / (2(d_min + w)) below 1 and its floor, ρ = |p − p_end|, ∂ρ/∂p = −∂ρ/∂p_end = (p − p_end)/ρ
+    const double db = barrier_gradient((at.distance - x.ramp) / x.band, 1.0);
+    add(e.t, db / x.band * (x.p - at.point) / at.distance);
+    if (x.share <= kShareFloor || x.share >= 1) continue;
+    const Eigen::Vector3d by_rho = db * -at.distance / (x.band * x.share) / stretch * (x.p - x.end) / x.from_end;
+    add(e.t, by_rho);
+    (e.last ? g.points.back() : g.points.front()) -= by_rho;
   }
   // Each dip's term at its bottom less at its end sample, each a point at a fixed parameter: the
   // bottom's parameter moves with the route, but d is stationary along the spline there.

@@ -6,15 +6,19 @@
 // tree), w the band over which the barrier acts; B = +∞ once a sample comes closer than d_min.
 // Samples sit at fixed spline parameters, so p_k is linear in the control points and tangents.
 // Samples near an end point that lies within d_min + w of the skin (within 2(d_min + w) of arc from
-// it) are not held at d_min: the fiber leaves the body there by design. They are held instead at a
-// distance that grows with their arc length s from that end, the exit ramp
-//   r(s) = d_min · s / (2(d_min + w)),   with the band w · s / (2(d_min + w)),
+// it on the starting route) are not held at d_min: the fiber leaves the body there by design. They
+// are held instead at a distance that grows with their distance ρ from that end on the route as it
+// is now, the exit ramp
+//   r(ρ) = d_min · σ,   with the band w · σ,   σ = min(1, ρ / (2(d_min + w))),
 // which a route leaving a flat face within acos(d_min / (2(d_min + w))) of its normal (72° at the
-// defaults) clears: a route at distance s cos θ meets it at cos θ = d_min / (2(d_min + w)); the
-// band's share makes the term 0 for a route within 60° of the normal. Until session 42 they were
+// defaults) clears: a point at ρ from the exit along a line θ off the normal lies ρ cos θ deep, and
+// meets the ramp at cos θ = d_min / (2(d_min + w)), however far along the line the sample has moved;
+// the band's share makes the term 0 for a route within 60° of the normal. Until session 42 they were
 // left out, and a new user's optimized muscle left its base face 92° off the normal, running along
-// the face half outside the body for 5 mm with nothing said. The samples within a tenth of that
-// stretch of the end (r under d_min / 10) stay free: the exit itself.
+// the face half outside the body for 5 mm with nothing said. Until session 43 σ was each sample's
+// share of the starting route's arc, fixed: a lengthened end tangent carried a sample further out
+// than its share said, and three times the tangent let 84° pass. The samples within a tenth of the
+// stretch of the end on the starting route (r under d_min / 10) stay free: the exit itself.
 // Between samples the spline is held to d_min exactly (closest_approach): the distance to the skin
 // is 1-Lipschitz, so on a piece of arc length ≤ L between points at distances d_a and d_b every
 // point is at least (d_a + d_b − L)/2 from the skin; L is bounded by the piece's Bézier control
@@ -53,10 +57,12 @@ namespace fibermold {
 std::vector<double> parameters_off_exits(const SurfaceDistance& skin, const HermiteSpline& spline,
                                          const std::vector<double>& t, double reach);
 
-/// A sample of an exit's stretch: its parameter and its share of the stretch, s / (2·reach), from
-/// the end it is nearer (in (0, 1)).
+/// A sample of an exit's stretch: its parameter, its share of the stretch on the route it was
+/// chosen on, s / (2·reach) of arc from the end it is nearer (in [kExitFree, 1)), and whether that
+/// end is the last.
 struct ExitSample {
   double t = 0, share = 0;
+  bool last = false;
 };
 /// The samples among `t` within 2·reach of arc of an end that lies within `reach` of the skin, at
 /// least kExitFree of that from it.
@@ -66,7 +72,7 @@ std::vector<ExitSample> exit_samples(const SurfaceDistance& skin, const HermiteS
 inline constexpr double kExitFree = 0.1;
 
 /// Where an exit sample comes closer to the skin than its ramp: the point, its distance to the skin
-/// (negative outside), the ramp's distance there r(s), and its arc length s from the end.
+/// (negative outside), the ramp's distance there r(ρ), and its distance ρ from the end.
 struct ExitShortfall {
   Eigen::Vector3d where = Eigen::Vector3d::Zero();
   double distance = 0, required = 0, from_end = 0;
@@ -133,9 +139,15 @@ private:
   /// b((d − d_min) / (kDipBand·w), 1) and its derivative in d.
   double dip_barrier(double d) const;
   double dip_barrier_gradient(double d) const;
-  /// An exit sample's ramp r(s) and band.
-  double exit_distance(const ExitSample& e) const;
-  double exit_band(const ExitSample& e) const;
+  /// An exit sample on a spline: its point, its end's, its distance from that end ρ, its share of
+  /// the stretch σ (see above) and the ramp r = d_min·σ and band w·σ there.
+  struct ExitPoint {
+    Eigen::Vector3d p, end;
+    double from_end = 0, share = 0, ramp = 0, band = 0;
+  };
+  ExitPoint exit_point(const ExitSample& e, const HermiteSpline& spline) const;
+  /// The least share σ: a sample on its end would have neither ramp nor band.
+  static constexpr double kShareFloor = 1e-6;
 
   const SurfaceDistance& skin_;
   double min_, band_;

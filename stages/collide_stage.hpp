@@ -33,8 +33,8 @@ public:
   /// fiber's own pairs (a re-optimization's steps); 17: Levenberg-Marquardt forgets its secant term where B + S
   /// alone claims convergence (a re-optimization's steps); 18: the skin barrier's dip term between samples (a
   /// re-optimization's objective); 19: the turn's error where a curve's orientation is tracked;
-  /// 20: the exit ramp (a re-optimization's objective)
-  int version() const override { return 20; }
+  /// 20: the exit ramp (a re-optimization's objective); 21: the ramp measured on the route as it is
+  int version() const override { return 21; }
   void run(StageContext& ctx) const override;
 };
 

@@ -400,7 +400,7 @@ std::string leaves_along_the_skin(const Design& d, const ExitShortfall& e)
   const SkinDistance need = skin_distance(d);
   const double stretch = 2 * (need.distance + routing_settings(d).skin_band);
   return fmt::format(
-      "the starting route leaves the body along the skin, not into it: at {}, {:.1f} mm along it from its end on "
+      "the starting route leaves the body along the skin, not into it: at {}, {:.1f} mm from its end on "
       "the skin, it is {:.3f} mm from the skin, where a route is kept more than {:.3f} mm inside (rising to {:.3f} mm "
       "at {:.1f} mm from the end: a route leaving a flat face within {:.0f}° of its normal clears it): point the end's "
       "tangent into the body, or move the point next to the end inward",
@@ -462,14 +462,12 @@ void require_optimizable(const Design& d, const SurfaceDistance& skin)
   const Routing start = starting_routing(d);
   const RoutingSettings settings = routing_settings(d);
   for (std::size_t f = 0; f < start.routes.size(); ++f) {
+    const SkinBarrier barrier = route_skin_barrier(skin, settings, start.routes[f]);
+    const HermiteSpline route(start.routes[f].points, start.routes[f].tangents);
     Eigen::Vector3d where;
-    const double closest =
-        route_skin_barrier(skin, settings, start.routes[f])
-            .closest_approach(HermiteSpline(start.routes[f].points, start.routes[f].tangents), where);
-    if (closest <= settings.skin_distance)
+    if (const double closest = barrier.closest_approach(route, where); closest <= settings.skin_distance)
       bad(d, fmt::format("[fiber.{}]", d.fibers[f].name), too_near_the_skin(d, closest, where));
-    if (const auto e = route_skin_barrier(skin, settings, start.routes[f])
-                           .exit_shortfall(HermiteSpline(start.routes[f].points, start.routes[f].tangents)))
+    if (const auto e = barrier.exit_shortfall(route))
       bad(d, fmt::format("[fiber.{}]", d.fibers[f].name), leaves_along_the_skin(d, *e));
   }
   tracking_samples(d, skin);

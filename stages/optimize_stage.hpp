@@ -45,8 +45,9 @@ public:
   /// the damping (which doubling had taken to 1e68); 18: the skin barrier's dip term between samples; 19: the first
   /// guess is kept where it matches the targets better (report.json first_guess.distance); 20: the turn's error where
   /// a curve's orientation is tracked (orientation_rms_deg, orientation_max_deg), first_guess's surface errors;
-  /// 21: the exit ramp (a fiber's exit stretch held at d_min · s / (2(d_min + w)), skin_barrier.hpp)
-  int version() const override { return 21; }
+  /// 21: the exit ramp (a fiber's exit stretch held at d_min · s / (2(d_min + w)), skin_barrier.hpp); 22: the ramp
+  /// measured on the route as it is (ρ, the distance from the end, not the starting arc)
+  int version() const override { return 22; }
   void run(StageContext& ctx) const override;
 };
 

@@ -344,7 +344,8 @@ TEST(Demonstrators, WalkingRobotMusclesAreOptimizedMovedApartAndMolded)
                 c["after"]["rmse_mm"].get<double>());
     // Measured (session 38): bend 0.59 and twist 0.46 mm under Haswell's kernels, 0.58 and 0.46 mm
     // under Sandybridge's, 0.60 and 0.48 mm under SkylakeX's (docs/optimize.md, "The walking
-    // robot's twist").
+    // robot's twist"); session 43, with the exit ramp measured on the route as it is: 0.63 and
+    // 0.51 mm under Haswell's.
     EXPECT_EQ(c["after"]["rmse_mm"].get<double>(), c["before"]["rmse_mm"].get<double>()) << target;
   }
   EXPECT_LT(collide["targets"]["bend"]["before"]["rmse_mm"].get<double>(),

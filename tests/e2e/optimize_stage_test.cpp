@@ -369,7 +369,7 @@ TEST_F(OptimizeE2E, AFiberLeavingTheBodyAlongTheSkinIsRefusedByCheck)
   const auto along = test::run_fibermold("check design.toml", dir_.path());
   EXPECT_EQ(along.exit_code, 2) << along.err;
   EXPECT_THAT(along.err, ContainsRegex("\\[fiber.m1\\]: the starting route leaves the body along the skin, not into "
-                                       "it: at \\(0\\.[0-9], -3\\.[0-9], 0\\.0\\) mm, 0\\.[0-9] mm along it from its "
+                                       "it: at \\(0\\.[0-9], -3\\.[0-9], 0\\.0\\) mm, 0\\.[0-9] mm from its "
                                        "end on the skin, it is 0\\.[0-9]{3} mm from the skin, where a route is kept "
                                        "more than 0\\.[0-9]{3} mm inside \\(rising to 2\\.500 mm at 8\\.0 mm from the "
                                        "end: a route leaving a flat face within 72° of its normal clears it\\)"));

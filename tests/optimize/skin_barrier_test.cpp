@@ -228,12 +228,13 @@ TEST(SkinBarrier, ItsGradientWithADipMatchesFiniteDifferences)
 }
 
 /// A route leaving a 60 × 16 × 16 mm bar's end face x = 0 at (0, −4, 0) mm at `degrees` from the
-/// face's normal (turning toward +y), then curving along the bar to (55, 0, 0) mm, inside.
-HermiteSpline route_leaving_at(double degrees)
+/// face's normal (turning toward +y), its end tangent `reach` mm long, then curving along the bar to
+/// (55, 0, 0) mm, inside.
+HermiteSpline route_leaving_at(double degrees, double reach = 20)
 {
   const double a = degrees * M_PI / 180;
   return HermiteSpline({{0, -4 * mm, 0}, {30 * mm, 0, 0}, {55 * mm, 0, 0}},
-                       {{20 * mm * std::cos(a), 20 * mm * std::sin(a), 0}, {30 * mm, 0, 0}, {25 * mm, 0, 0}});
+                       {{reach * mm * std::cos(a), reach * mm * std::sin(a), 0}, {30 * mm, 0, 0}, {25 * mm, 0, 0}});
 }
 
 // Where a fiber leaves the body, its samples within 2(d_min + w) = 8 mm of arc are held at the exit
@@ -270,6 +271,33 @@ TEST(SkinBarrier, AnExitAlongTheSkinIsRefusedOneSquareToItIsFree)
   EXPECT_GT(value, 0);
   EXPECT_TRUE(std::isfinite(value));
   EXPECT_LT(gradient_error(between, route_leaving_at(74), 1e-6 * mm), 1e-5);
+}
+
+// The ramp is measured on the route as it is: an optimizer that lengthens the end's tangent carries
+// the samples (at fixed spline parameters) further from the exit, and until session 43, when each
+// sample kept its share of the starting route's arc, three times the tangent let 84° pass. Now the
+// same 80° exit is refused however long its tangent, one at 0° still adds nothing, and at 74° the
+// gradient, which now moves the ramp with the sample's distance from the end, is that of the value.
+TEST(SkinBarrier, TheExitRampHoldsWhereALongerTangentCarriesItsSamples)
+{
+  static const SurfaceDistance skin = extruded_bar({{0, -8}, {60, -8}, {60, 8}, {0, 8}}, {{0, 1, 2}, {0, 2, 3}});
+  const SkinBarrier barrier(skin, 2.5 * mm, 1.5 * mm, route_leaving_at(0), 80);
+  for (const double reach : {20.0, 40.0, 60.0}) {
+    SCOPED_TRACE(reach);
+    const auto shortfall = barrier.exit_shortfall(route_leaving_at(80, reach));
+    ASSERT_TRUE(shortfall);
+    EXPECT_NEAR(shortfall->from_end, (shortfall->where - Eigen::Vector3d(0, -4 * mm, 0)).norm(), 1e-12);
+    EXPECT_NEAR(shortfall->required, 2.5 * mm * std::min(1.0, shortfall->from_end / (8 * mm)), 1e-12);
+    EXPECT_EQ(barrier.value(route_leaving_at(80, reach)), HUGE_VAL);
+    EXPECT_FALSE(barrier.exit_shortfall(route_leaving_at(0, reach)));
+    EXPECT_EQ(barrier.value(route_leaving_at(0, reach)), 0.0);
+  }
+  // From 20 mm to 60 mm the first exit sample moves from about 0.8 mm to 2.4 mm from the end, and the
+  // gradient carries the ramp's share of that.
+  const double value = barrier.value(route_leaving_at(65, 60));
+  EXPECT_GT(value, 0);
+  EXPECT_TRUE(std::isfinite(value));
+  EXPECT_LT(gradient_error(barrier, route_leaving_at(65, 60), 1e-6 * mm), 1e-5);
 }
 
 TEST(SkinBarrier, FindsEveryDipADenseScanFinds)
