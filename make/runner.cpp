@@ -203,7 +203,7 @@ std::map<std::string, std::string> Runner::fingerprints(const Design& design) co
   std::map<std::string, std::string> out;
   for (const auto& stage : stages_) {
     // The design values it reads and the files they name: those of its view (design_view.hpp).
-    const Design view = design_view(design, stage->design_keys());
+    const Design view = design_view(design, stage->design_keys_used(design));
     std::string text = fmt::format("{} {} v{}\n", program_, stage->name(), stage->version());
     for (const auto& [key, value] : view.values) text += key + " = " + value + "\n";
     for (const fs::path& file : stage->input_files(view)) text += file.string() + " " + hash_file(file) + "\n";
@@ -219,7 +219,7 @@ Stamp Runner::current_inputs(const Stage& stage, const Design& design, const fs:
   s.program = program_;
   s.stage_version = stage.version();
   // The design values it reads and the files they name: those of its view (design_view.hpp).
-  const Design view = design_view(design, stage.design_keys());
+  const Design view = design_view(design, stage.design_keys_used(design));
   s.design = view.values;
   for (const fs::path& file : stage.input_files(view)) s.files[file.string()] = hash_file(file);
   for (const std::string& up : stage.upstream())
@@ -345,7 +345,7 @@ StageRun Runner::run_stage(const Stage& stage, const Design& design, const fs::p
   record.info("{} stage v{} in {}", program_, stage.version(), build_dir.string());
   try {
     // The stage sees the keys it declares and undeclared values for the rest (design_view.hpp).
-    const Design view = design_view(design, stage.design_keys());
+    const Design view = design_view(design, stage.design_keys_used(design));
     StageContext ctx{view, build_dir, staging, p, log};
     stage.run(ctx);
     p.update(1.0, "done");

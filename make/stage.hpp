@@ -41,6 +41,14 @@ public:
   virtual std::vector<std::string> upstream() const { return {}; }
   /// Design values this stage reads, as prefixes: "mold", "sim.basis", "fiber".
   virtual std::vector<std::string> design_keys() const = 0;
+  /// Those it reads for `design`: design_keys(), less the keys it has no use for in this design
+  /// (the targets stage reads the fibers for a kind = "fibers" target only). The runner hashes
+  /// these and the stage sees these, so editing the others leaves it fresh.
+  virtual std::vector<std::string> design_keys_used(const Design& design) const
+  {
+    (void)design;
+    return design_keys();
+  }
   /// Files outside the build folder this stage reads (the surface, target surfaces), named by the
   /// design as the stage sees it (its view: design_view.hpp).
   virtual std::vector<std::filesystem::path> input_files(const Design&) const { return {}; }

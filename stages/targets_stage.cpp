@@ -161,6 +161,14 @@ SurfaceMesh read_target_surface(const Design& d, const Target& t, Eigen::Index v
   return s;
 }
 
+std::vector<std::string> TargetsStage::design_keys_used(const Design& d) const
+{
+  std::vector<std::string> keys = design_keys();
+  if (std::none_of(d.targets.begin(), d.targets.end(), [](const Target& t) { return t.kind == TargetKind::fibers; }))
+    std::erase_if(keys, [](const std::string& k) { return k == "fiber" || k == "muscle"; });
+  return keys;
+}
+
 std::vector<std::filesystem::path> TargetsStage::input_files(const Design& d) const
 {
   std::vector<std::filesystem::path> files;

@@ -31,6 +31,9 @@ public:
   {
     return {"design.units", "material", "sim", "fixed", "muscle", "fiber", "tracking_curve", "target"};
   }
+  /// Without a kind = "fibers" target, neither `fiber` nor `muscle`: a route's edit leaves the
+  /// targets fresh (a new user's jaw re-ran its two pose targets, 8 s, at every route edit).
+  std::vector<std::string> design_keys_used(const Design& d) const override;
   std::vector<std::filesystem::path> input_files(const Design& d) const override;
   void run(StageContext& ctx) const override;
 };

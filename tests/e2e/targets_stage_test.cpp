@@ -404,6 +404,18 @@ TEST_F(TargetsE2E, EditsRerunExactlyTheStagesThatReadThem)
   const auto r = make();
   EXPECT_THAT(r.out, HasSubstr("targets: done"));
   EXPECT_THAT(r.out, HasSubstr("1 stage(s) ran, 1 fresh"));
+  // A route's edit: the forces target does not read the fibers (until session 43 it re-ran, and a
+  // new user's jaw re-ran its two pose targets, 8 s, at every route edit); a fibers target does.
+  const std::string moved = std::string(kDesign).replace(std::string(kDesign).find("[30, 3, 0]"), 10, "[30, 4, 0]");
+  const std::string load = std::string(target).replace(target.find("-0.05"), 5, "-0.08");
+  test::write_text(dir_ / "design.toml", moved + load);
+  EXPECT_THAT(status(), HasSubstr("mesh      fresh\ntargets   fresh"));
+  const std::string known = "[[target]]\nname = \"known\"\nkind = \"fibers\"\nfibers = [{ name = \"m1\", "
+                            "pressure = 100 }]\n";
+  design(load + known);
+  ASSERT_EQ(make().exit_code, 0);
+  test::write_text(dir_ / "design.toml", moved + load + known);
+  EXPECT_THAT(status(), HasSubstr("mesh      fresh\ntargets   stale ([fiber.m1].points"));
 }
 
 } // namespace
