@@ -6,6 +6,29 @@
 
 namespace fibermold {
 
+namespace {
+
+/// `text` with each number (a run of digits, signs, points and exponents holding a digit) made '#'.
+std::string digits_blanked(std::string_view text)
+{
+  const auto numeric = [](char c) { return (c >= '0' && c <= '9') || c == '.' || c == '+' || c == '-' || c == 'e'; };
+  std::string out;
+  for (std::size_t i = 0; i < text.size();) {
+    std::size_t j = i;
+    while (j < text.size() && numeric(text[j])) ++j;
+    if (j == i) {
+      out += text[i++];
+      continue;
+    }
+    const std::string_view run = text.substr(i, j - i);
+    out += run.find_first_of("0123456789") == std::string_view::npos ? std::string(run) : std::string("#");
+    i = j;
+  }
+  return out;
+}
+
+} // namespace
+
 TerminalProgress::TerminalProgress(std::string stage, std::FILE* out, bool tty)
     : stage_(std::move(stage)), out_(out), tty_(tty)
 {
@@ -34,6 +57,13 @@ void TerminalProgress::update(double fraction, std::string_view what)
   const int tenth = fraction >= 0 ? static_cast<int>(std::floor(10 * fraction)) : last_tenth_;
   if (what == last_what_ && tenth == last_tenth_) return;
   if (what == "done") return;
+  // A line that differs from the last only in its numbers (a solver's next iteration) waits
+  // kHeartbeat since the last line, unless another tenth of the work is done: a log gets a
+  // heartbeat, not every Newton iteration of every target (a new user's jaw printed hundreds).
+  const auto now = std::chrono::steady_clock::now();
+  if (tenth == last_tenth_ && digits_blanked(what) == digits_blanked(last_what_) && now - last_draw_ < kHeartbeat)
+    return;
+  last_draw_ = now;
   last_what_ = what;
   last_tenth_ = tenth;
   fmt::print(out_, "[{}]{} {}\n", stage_, percent, what);

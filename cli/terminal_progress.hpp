@@ -1,7 +1,7 @@
 #pragma once
-// Progress of a stage on the terminal: one redrawn line on a TTY, plain lines otherwise
-// (when the message changes or another tenth of the work is done), with the time left once it
-// can be estimated (core/time_left.hpp).
+// Progress of a stage on the terminal: one redrawn line on a TTY, plain lines otherwise (when
+// another tenth of the work is done, or the message changes: every kHeartbeat at most where only
+// its numbers change), with the time left once it can be estimated (core/time_left.hpp).
 
 #include <chrono>
 #include <cstdio>
@@ -14,6 +14,9 @@ namespace fibermold {
 
 class TerminalProgress final : public Progress {
 public:
+  /// Off a TTY, the least time between two lines that differ only in their numbers.
+  static constexpr std::chrono::seconds kHeartbeat{5};
+
   TerminalProgress(std::string stage, std::FILE* out, bool tty);
   ~TerminalProgress() override;
   void update(double fraction, std::string_view what) override;
