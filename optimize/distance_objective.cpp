@@ -92,24 +92,20 @@ double DistanceObjective::orientation_error(const Sample& s, const Eigen::Vector
   return RigidMotion{turned * asked.transpose(), Eigen::Vector3d::Zero()}.angle();
 }
 
-double DistanceObjective::orientation_rms(const Eigen::VectorXd& x) const
+DistanceObjective::OrientationErrors DistanceObjective::orientation_errors(const Eigen::VectorXd& x) const
 {
+  OrientationErrors e;
   double sum = 0;
   int count = 0;
   for (const Sample& s : samples_)
     if (s.orientation_tracked) {
-      sum += std::pow(orientation_error(s, x), 2);
+      const double angle = orientation_error(s, x);
+      sum += angle * angle;
+      e.max = std::max(e.max, angle);
       ++count;
     }
-  return count == 0 ? 0 : std::sqrt(sum / count);
-}
-
-double DistanceObjective::orientation_max(const Eigen::VectorXd& x) const
-{
-  double worst = 0;
-  for (const Sample& s : samples_)
-    if (s.orientation_tracked) worst = std::max(worst, orientation_error(s, x));
-  return worst;
+  e.rms = count == 0 ? 0 : std::sqrt(sum / count);
+  return e;
 }
 
 } // namespace fibermold

@@ -40,8 +40,10 @@ public:
   /// of F = R U and F̂ = R̂ Û. A twist moves a bar's centreline little and turns it much; these say
   /// how far the turn is from the one asked, which the position errors above leave out. 0 when no
   /// sample's orientation is tracked.
-  double orientation_rms(const Eigen::VectorXd& x) const;
-  double orientation_max(const Eigen::VectorXd& x) const;
+  struct OrientationErrors {
+    double rms = 0, max = 0;
+  };
+  OrientationErrors orientation_errors(const Eigen::VectorXd& x) const;
 
 private:
   struct Sample {

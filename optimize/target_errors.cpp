@@ -12,8 +12,9 @@ TargetErrors target_errors(RoutingProblem& problem, const TetMesh& mesh, int t, 
   e.max = problem.distance(t).max_error(x);
   e.orientation_tracked = problem.distance(t).tracks_orientation();
   if (e.orientation_tracked) {
-    e.orientation_rms = problem.distance(t).orientation_rms(x);
-    e.orientation_max = problem.distance(t).orientation_max(x);
+    const DistanceObjective::OrientationErrors turn = problem.distance(t).orientation_errors(x);
+    e.orientation_rms = turn.rms;
+    e.orientation_max = turn.max;
   }
   const Eigen::MatrixX3d reached = problem.simulation().deformed_nodes(x);
   const Eigen::MatrixX3d wanted = problem.simulation().deformed_nodes(problem.target(t));

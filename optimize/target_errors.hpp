@@ -12,7 +12,7 @@ namespace fibermold {
 struct TargetErrors {
   double rmse = 0, max = 0;                 ///< m, at the tracking curves' samples
   double surface_rmse = 0, surface_max = 0; ///< m, at the surface's vertices
-  /// rad, the turn's error at the samples whose orientation is tracked (DistanceObjective::orientation_rms)
+  /// rad, the turn's error at the samples whose orientation is tracked (DistanceObjective::orientation_errors)
   double orientation_rms = 0, orientation_max = 0;
   bool orientation_tracked = false; ///< whether any sample's orientation is tracked
 };

@@ -154,13 +154,13 @@ TEST(DistanceObjective, TheTurnsErrorIsTheAngleBetweenTheTurnReachedAndTheTurnAs
   const Eigen::VectorXd target = turned(30), x = turned(10);
   const DistanceObjective f(sim.basis(), pr.curves, target);
   ASSERT_TRUE(f.tracks_orientation());
-  EXPECT_NEAR(f.orientation_rms(x) * 180 / M_PI, 20, 1e-6);
-  EXPECT_NEAR(f.orientation_max(x) * 180 / M_PI, 20, 1e-6);
-  EXPECT_NEAR(f.orientation_rms(rest) * 180 / M_PI, 30, 1e-6);
-  EXPECT_NEAR(f.orientation_rms(target), 0, 1e-6);
+  EXPECT_NEAR(f.orientation_errors(x).rms * 180 / M_PI, 20, 1e-6);
+  EXPECT_NEAR(f.orientation_errors(x).max * 180 / M_PI, 20, 1e-6);
+  EXPECT_NEAR(f.orientation_errors(rest).rms * 180 / M_PI, 30, 1e-6);
+  EXPECT_NEAR(f.orientation_errors(target).rms, 0, 1e-6);
   const DistanceObjective untracked(sim.basis(), {sample_tracking_curve({{0, 0, 0}, {kL, 0, 0}}, 12, 1.0, 0)}, target);
   EXPECT_FALSE(untracked.tracks_orientation());
-  EXPECT_EQ(untracked.orientation_rms(x), 0);
+  EXPECT_EQ(untracked.orientation_errors(x).rms, 0);
 }
 
 } // namespace
