@@ -57,12 +57,14 @@ void TerminalProgress::update(double fraction, std::string_view what)
   const int tenth = fraction >= 0 ? static_cast<int>(std::floor(10 * fraction)) : last_tenth_;
   if (what == last_what_ && tenth == last_tenth_) return;
   if (what == "done") return;
-  // A line that differs from the last only in its numbers (a solver's next iteration) waits
-  // kHeartbeat since the last line, unless another tenth of the work is done: a log gets a
-  // heartbeat, not every Newton iteration of every target (a new user's jaw printed hundreds).
+  // A line of no stated fraction (a solver's iteration) that differs from the last such line only in
+  // its numbers before any ':' waits kHeartbeat since the last line: a log gets a heartbeat, not
+  // every Newton iteration of every target (a new user's jaw printed hundreds). Lines with a
+  // fraction (a stage's steps: "writing target pose1", "pose2") all print.
   const auto now = std::chrono::steady_clock::now();
-  if (tenth == last_tenth_ && digits_blanked(what) == digits_blanked(last_what_) && now - last_draw_ < kHeartbeat)
-    return;
+  const std::string stem = digits_blanked(what.substr(0, what.find(':')));
+  if (fraction < 0 && stem == last_stem_ && now - last_draw_ < kHeartbeat) return;
+  last_stem_ = fraction < 0 ? stem : std::string();
   last_draw_ = now;
   last_what_ = what;
   last_tenth_ = tenth;

@@ -1,7 +1,8 @@
 #pragma once
 // Progress of a stage on the terminal: one redrawn line on a TTY, plain lines otherwise (when
-// another tenth of the work is done, or the message changes: every kHeartbeat at most where only
-// its numbers change), with the time left once it can be estimated (core/time_left.hpp).
+// another tenth of the work is done, or the message changes: for a line of no stated fraction,
+// every kHeartbeat at most where only its numbers change), with the time left once it can be
+// estimated (core/time_left.hpp).
 
 #include <chrono>
 #include <cstdio>
@@ -27,6 +28,7 @@ private:
   bool tty_;
   bool line_open_ = false;
   std::string last_what_;
+  std::string last_stem_; ///< the last line's, when it stated no fraction: its text before ':', numbers blanked
   int last_tenth_ = -1;
   std::chrono::steady_clock::time_point last_draw_{};
   TimeLeft time_left_;

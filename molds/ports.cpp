@@ -127,14 +127,6 @@ Ports cavity_ports(const SurfaceMesh& cavity, const Eigen::Vector3d& pull, doubl
 
 namespace {
 
-/// A vent's site is sought farther out where the nearer ones lie more than this (m) under the top
-/// of the pocket it is for: they open onto other air, the top's stays. The walking robot's shot 1
-/// (session 43) had its biggest pocket's top in a slit 0.2 mm wide on the body's top face, where no
-/// hole fits; the highest site within 3 mm was 5 mm lower, at the top of the same slit where a third
-/// groove crosses over it, and the vent there cut both ribs beside the slit, leaving a wall of
-/// 0.09 mm. A lower site is still taken where none farther out comes within this of the top.
-constexpr double kVentBelowTop = 1e-3;
-
 /// Where holes can meet the cavity from outside along ±pull.
 class HoleSites {
 public:
@@ -156,16 +148,10 @@ public:
                            const Ports& placed) const
   {
     // Within 3 mm first; farther out where nothing nearer takes the hole (the holes already placed
-    // crowd it on a flat top, or the skin is too steep), or, for a vent, where what is nearer lies
-    // more than kVentBelowTop under the top; failing that, the nearest found.
-    const double top = near.dot(region_.axes.col(2));
-    std::optional<Port> lower;
+    // crowd it on a flat top, or the skin is too steep).
     for (const double search : {3e-3, 6e-3, 12e-3})
-      if (auto site = within(near, diameter, upward, highest, placed, search)) {
-        if (!highest || site->mouth.dot(region_.axes.col(2)) >= top - kVentBelowTop) return site;
-        if (!lower) lower = site;
-      }
-    return lower;
+      if (auto site = within(near, diameter, upward, highest, placed, search)) return site;
+    return std::nullopt;
   }
 
 private:
@@ -184,6 +170,12 @@ private:
         if (crowded(c, diameter, placed)) continue;
         const auto h = skin(c, upward);
         if (!h || !opens_on_fill(c, upward)) continue;
+        // A vent as high as it goes (by the voxel) but not above the top it is for (higher skin is
+        // other air's), then as near; a sprue as near.
+        const double height = upward ? *h : -*h; // the mouth's height along pull
+        if (highest && height > near.dot(up) + step) continue;
+        const double score = (highest ? std::round(height / step) * 1e6 : 0.0) - std::hypot(a, b);
+        if (best && score <= best_score) continue;
         // Each point of the rim: on a skin within 35° of level, or over a drop of 2 mm or more
         // (a groove's rib, the body's side) where the hole's bottom stands on thick mold.
         double deepest = *h; // of the level skin under the rim, in the hole's "along"
@@ -196,13 +188,7 @@ private:
           ok = level || drop >= 2e-3;
           if (level) deepest = std::min(deepest, *hk);
         }
-        if (!ok || rises_beside(c, r, *h, upward)) continue;
-        // A vent as high as it goes (by the voxel) but not above the top it is for (higher skin is
-        // other air's), then as near; a sprue as near.
-        const double height = upward ? *h : -*h; // the mouth's height along pull
-        if (highest && height > near.dot(up) + step) continue;
-        const double score = (highest ? std::round(height / step) * 1e6 : 0.0) - std::hypot(a, b);
-        if (best && score <= best_score) continue;
+        if (!ok || rises_beside(c, r, *h, upward) || knife_edge_beside(c, r, deepest - 0.5e-3, upward)) continue;
         const Eigen::Vector3d at = c - (c.dot(up)) * up + (upward ? *h : -*h) * up;
         // The cut reaches 0.5 mm past the deepest level skin under the rim.
         best = Port{at, diameter, upward, *h - deepest + 0.5e-3};
@@ -224,6 +210,32 @@ private:
       const double t = 2 * M_PI * k / 16;
       const auto hk = skin(c + ring * (std::cos(t) * u + std::sin(t) * v), upward);
       if (hk && h - *hk < -std::tan(35 * M_PI / 180) * ring) return true;
+    }
+    return false;
+  }
+
+  /// Beside the cut, the cavity comes back within min_wall of its wall, above the cut's bottom
+  /// (`bottom`, in the hole's "along"): along each of 48 directions out from the axis, at radii r to
+  /// r + min_wall by quarters of min_wall, the skin rises from the lowest it has been on the way out
+  /// by more than a 35° slope. The mold left between the cut and that cavity is a knife edge or a
+  /// fin thinner than the printer holds: the rim's 12 points and the ring of rises_beside pass over
+  /// a slit between two ribs narrower than the hole, whose roof rises past the rim (the walking
+  /// robot's shot 1, session 43: a vent over a 0.2 mm slit under a crossing groove left 0.09 mm).
+  bool knife_edge_beside(const Eigen::Vector3d& c, double r, double bottom, bool upward) const
+  {
+    const Eigen::Vector3d u = region_.axes.col(0), v = region_.axes.col(1);
+    const double slope = std::tan(35 * M_PI / 180);
+    for (int k = 0; k < 48; ++k) {
+      const double t = 2 * M_PI * k / 48;
+      const Eigen::Vector3d out = std::cos(t) * u + std::sin(t) * v;
+      double lowest = HUGE_VAL, lowest_at = r;
+      for (int q = 0; q <= 4; ++q) {
+        const double rho = r + min_wall_ * q / 4;
+        const auto hk = skin(c + rho * out, upward);
+        if (!hk) break; // outside the body: the mold beyond is the block's
+        if (*hk > bottom && *hk - lowest > slope * (rho - lowest_at)) return true;
+        if (*hk < lowest) lowest = *hk, lowest_at = rho;
+      }
     }
     return false;
   }

@@ -123,7 +123,7 @@ double SkinBarrier::value(const HermiteSpline& spline) const
     if (!c.inside) return HUGE_VAL;
     B += barrier((c.distance - min_) / band_, 1.0);
   }
-  // The exits' ramp r(s), its band shrunk with it.
+  // The exits' ramp r(ρ), its band shrunk with it.
   for (const ExitSample& e : exits_) {
     const ExitPoint x = exit_point(e, spline);
     const SurfaceDistance::Closest at = skin_.closest(x.p);

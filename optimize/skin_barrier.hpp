@@ -12,13 +12,18 @@
 //   r(ρ) = d_min · σ,   with the band w · σ,   σ = min(1, ρ / (2(d_min + w))),
 // which a route leaving a flat face within acos(d_min / (2(d_min + w))) of its normal (72° at the
 // defaults) clears: a point at ρ from the exit along a line θ off the normal lies ρ cos θ deep, and
-// meets the ramp at cos θ = d_min / (2(d_min + w)), however far along the line the sample has moved;
-// the band's share makes the term 0 for a route within 60° of the normal. Until session 42 they were
+// meets the ramp at cos θ = d_min / (2(d_min + w)), however far along the line an exit sample has
+// moved; the band's share makes the term 0 for a route within 60° of the normal. Until session 42 they were
 // left out, and a new user's optimized muscle left its base face 92° off the normal, running along
 // the face half outside the body for 5 mm with nothing said. Until session 43 σ was each sample's
 // share of the starting route's arc, fixed: a lengthened end tangent carried a sample further out
 // than its share said, and three times the tangent let 84° pass. The samples within a tenth of the
-// stretch of the end on the starting route (r under d_min / 10) stay free: the exit itself.
+// stretch of the end on the starting route (r under d_min / 10 there) stay free: the exit itself.
+// Which samples are the exit's is still chosen on the starting route: the free ones stay free where
+// a lengthened tangent carries them (three times it: to about 0.3 of the stretch), and the held ones
+// stay at d_min where a shortened one brings them within the stretch (at 70° off the normal, one
+// brought to 7 mm of the end is refused: it is 2.4 mm deep). σ has a corner at 1 (the term is C⁰ in
+// ρ there, where a steep exit's sample may be in its band).
 // Between samples the spline is held to d_min exactly (closest_approach): the distance to the skin
 // is 1-Lipschitz, so on a piece of arc length ≤ L between points at distances d_a and d_b every
 // point is at least (d_a + d_b − L)/2 from the skin; L is bounded by the piece's Bézier control
@@ -105,7 +110,7 @@ public:
   /// value is then only a bound (samples whose last distance clears d_min are not measured again,
   /// and it may be +∞ with `where` unset).
   double closest_approach(const HermiteSpline& spline, Eigen::Vector3d& where, bool first_only = false) const;
-  /// The first exit sample closer to the skin than its ramp r(s) allows (or outside), if any.
+  /// The first exit sample closer to the skin than its ramp r(ρ) allows (or outside), if any.
   std::optional<ExitShortfall> exit_shortfall(const HermiteSpline& spline) const;
   /// The exit samples (exit_samples).
   const std::vector<ExitSample>& exits() const { return exits_; }

@@ -30,7 +30,8 @@ TEST(TerminalProgress, OffATtyASolversIterationsPrintOneLineNotOneEach)
 {
   const std::string text = printed([](Progress& p) {
     p.update(0, "target bend");
-    for (int k = 0; k < 20; ++k) p.update(-1, fmt::format("Newton iteration {}: |∇E| = {:.3e} N", k, 1.0 / (k + 1)));
+    for (int k = 0; k < 20; ++k)
+      p.update(-1, fmt::format("Newton iteration {}: |∇E| = {:.3e} N{}", k, 1.0 / (k + 1), k % 2 ? ", reused" : ""));
     p.update(0.5, "target twist");
     p.update(-1, "checking shot1-lower");
     p.update(-1, "checking shot1-upper");
@@ -42,14 +43,16 @@ TEST(TerminalProgress, OffATtyASolversIterationsPrintOneLineNotOneEach)
                   "[targets] checking shot1-upper\n");
 }
 
-TEST(TerminalProgress, OffATtyEveryTenthOfTheWorkPrints)
+TEST(TerminalProgress, OffATtyEveryLineWithAFractionPrints)
 {
   const std::string text = printed([](Progress& p) {
     for (int k = 0; k <= 20; ++k) p.update(k / 20.0, fmt::format("iteration {}", k));
+    p.update(1, "writing target pose1");
+    p.update(1, "writing target pose2");
   });
   int lines = 0;
   for (char c : text) lines += c == '\n';
-  EXPECT_EQ(lines, 11) << text; // 0 %, 10 %, …, 100 %
+  EXPECT_EQ(lines, 23) << text;
 }
 
 } // namespace

@@ -276,8 +276,9 @@ TEST(SkinBarrier, AnExitAlongTheSkinIsRefusedOneSquareToItIsFree)
 // The ramp is measured on the route as it is: an optimizer that lengthens the end's tangent carries
 // the samples (at fixed spline parameters) further from the exit, and until session 43, when each
 // sample kept its share of the starting route's arc, three times the tangent let 84° pass. Now the
-// same 80° exit is refused however long its tangent, one at 0° still adds nothing, and at 74° the
-// gradient, which now moves the ramp with the sample's distance from the end, is that of the value.
+// same 80° exit is refused however long its tangent, one at 0° still adds nothing, and at 65° with
+// three times the tangent the gradient, which now moves the ramp with the sample's distance from the
+// end, is that of the value.
 TEST(SkinBarrier, TheExitRampHoldsWhereALongerTangentCarriesItsSamples)
 {
   static const SurfaceDistance skin = extruded_bar({{0, -8}, {60, -8}, {60, 8}, {0, 8}}, {{0, 1, 2}, {0, 2, 3}});
