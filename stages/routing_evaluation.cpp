@@ -77,6 +77,8 @@ nlohmann::ordered_json bends_json(const std::vector<Route>& routes)
       e["min_bend_radius_mm"] = b.radius / units::mm;
       e["at_mm"] = {b.where.x() / units::mm, b.where.y() / units::mm, b.where.z() / units::mm};
       e["along_mm"] = b.arc_length / units::mm;
+    } else {
+      e["straight"] = true; // no bend: no radius, place or arc to give
     }
     out[r.name] = e;
   }

@@ -90,7 +90,7 @@ OptimizationStart optimization_start(const Design& d, const SurfaceDistance& ski
 /// it (bend_radius.hpp): where, by how much, and what to do. `whose`: "the starting route", ….
 void require_bend_radius(const Design& d, const std::vector<Route>& routes, std::string_view whose);
 /// Each route's smallest bend radius and where, for the reports: {fiber: {min_bend_radius_mm,
-/// at_mm, along_mm}}; a straight route's radius is omitted (infinite).
+/// at_mm, along_mm}}; a straight route's is {straight: true} (its radius infinite).
 nlohmann::ordered_json bends_json(const std::vector<Route>& routes);
 
 /// The [optimize] stopping rules.

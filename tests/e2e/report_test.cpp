@@ -72,6 +72,7 @@ TEST(ReportE2E, ShowsTheDeformedBodyTheErrorsAndTheOptimizationHistory)
     EXPECT_THAT(html,
                 HasSubstr(fmt::format("<tr><td>m1</td><td>{:.3f}</td>", bend["min_bend_radius_mm"].get<double>())));
   } else {
+    EXPECT_EQ(bend["straight"], true);
     EXPECT_THAT(html, HasSubstr("<tr><td>m1</td><td>straight</td>"));
   }
   // The casting guide says it too, where the muscles are laid into their grooves.

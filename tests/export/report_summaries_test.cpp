@@ -119,7 +119,7 @@ const Json kCollide = Json::parse(R"({
                        "rmse_change_percent": 10}},
   "collisions": [{"between": ["m1", "m2"], "clearance_mm": 0.1, "at_mm": [1, 2.25, 3]}],
   "moves_mm": {"m1": {"points": [0, 0.25], "tangents": [0.5]}},
-  "bends": {"m1": {"min_bend_radius_mm": 20.5, "along_mm": 31.25, "at_mm": [1, 2, 3]}, "m2": {}}
+  "bends": {"m1": {"min_bend_radius_mm": 20.5, "along_mm": 31.25, "at_mm": [1, 2, 3]}, "m2": {"straight": true}}
 })");
 
 TEST(BehaviourSummary, TheTablesGiveErrorsCollisionsMovesAndBends)
