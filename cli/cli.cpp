@@ -123,10 +123,7 @@ void print_status(const std::vector<StageStatus>& statuses)
       fmt::print("{:<{}}  fresh\n", s.stage, width);
       continue;
     }
-    std::vector<std::string> shown(s.reasons.begin(),
-                                   s.reasons.begin() + std::min<std::ptrdiff_t>(3, std::ssize(s.reasons)));
-    std::string more = s.reasons.size() > 3 ? fmt::format("; and {} more", s.reasons.size() - 3) : "";
-    fmt::print("{:<{}}  stale ({}{})\n", s.stage, width, fmt::join(shown, "; "), more);
+    fmt::print("{:<{}}  stale ({})\n", s.stage, width, s.summary());
   }
 }
 

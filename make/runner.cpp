@@ -116,6 +116,14 @@ std::string describe_design(const std::string& key, const std::string* was, cons
 
 } // namespace
 
+std::string StageStatus::summary(std::size_t shown) const
+{
+  if (reasons.size() <= shown) return fmt::format("{}", fmt::join(reasons, "; "));
+  return fmt::format("{}; and {} more",
+                     fmt::join(reasons.begin(), reasons.begin() + static_cast<std::ptrdiff_t>(shown), "; "),
+                     reasons.size() - shown);
+}
+
 StageFailed::StageFailed(std::string stage, const std::string& why, fs::path log)
     : std::runtime_error(why), stage_(std::move(stage)), log_(std::move(log))
 {
@@ -301,9 +309,10 @@ std::vector<StageRun> Runner::make(const Design& design, const MakeOptions& opti
       append_make_log(options.build_dir, name + " fresh");
       runs.push_back({name, false, 0});
     } else {
-      if (!st.fresh)
-        spdlog::info("{}: running ({})", name, fmt::join(st.reasons, "; "));
-      else
+      if (!st.fresh) {
+        append_make_log(options.build_dir, fmt::format("{} stale: {}", name, fmt::join(st.reasons, "; ")));
+        spdlog::info("{}: running ({})", name, st.summary());
+      } else
         spdlog::info("{}: running (--force)", name);
       runs.push_back(run_stage(s, design, options.build_dir, progress));
       st.fresh = true;

@@ -34,6 +34,10 @@ struct StageStatus {
   std::string stage;
   bool fresh = false;
   std::vector<std::string> reasons; ///< why it is stale, most telling first
+
+  /// The first `shown` reasons and how many more, for a line on the terminal ("a; b; c; and 40
+  /// more"); logs/make.log has them all.
+  std::string summary(std::size_t shown = 3) const;
 };
 
 struct MakeOptions {

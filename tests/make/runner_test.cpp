@@ -1,10 +1,13 @@
 // The Make-style runner with test-only stages in a temporary build folder (docs/architecture.md, "Tests").
 #include "make/runner.hpp"
 
+#include <algorithm>
 #include <csignal>
 #include <functional>
 #include <map>
 
+#include <fmt/format.h>
+#include <fmt/ranges.h>
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 #include <sys/wait.h>
@@ -217,6 +220,26 @@ TEST_F(RunnerTest, EachKindOfInputChangeMakesExactlyTheRightStagesStale)
   EXPECT_EQ(stale(r).at("optimize"), "[fiber.m1].name removed");
   EXPECT_THAT(make(r), ElementsAre("optimize", "collide", "molds", "export"));
   EXPECT_THAT(stale(r), IsEmpty());
+}
+
+// A stage stale for many reasons says the first three and how many more on the terminal (a line,
+// not a screenful); logs/make.log keeps them all.
+TEST_F(RunnerTest, AStaleStageSaysItsFirstReasonsAndHowManyMoreAndTheLogKeepsAll)
+{
+  const Runner r = runner();
+  make(r);
+  edit("max_iterations = 10",
+       "max_iterations = 20\nstarts = 2\nmethod = \"bfgs\"\nroute_only_iterations = 3\nrefine = true");
+  const std::vector<StageStatus> statuses = r.status(design(), build_);
+  const auto optimize = std::find_if(statuses.begin(), statuses.end(), [](auto& s) { return s.stage == "optimize"; });
+  ASSERT_NE(optimize, statuses.end());
+  ASSERT_EQ(optimize->reasons.size(), 5u);
+  EXPECT_EQ(optimize->summary(),
+            fmt::format("{}; {}; {}; and 2 more", optimize->reasons[0], optimize->reasons[1], optimize->reasons[2]));
+  EXPECT_EQ(optimize->summary(5), fmt::format("{}", fmt::join(optimize->reasons, "; ")));
+  make(r);
+  const std::string log = test::read_text(Runner::make_log_path(build_));
+  EXPECT_THAT(log, HasSubstr(fmt::format("optimize stale: {}", fmt::join(optimize->reasons, "; "))));
 }
 
 TEST_F(RunnerTest, ProgramAndStageVersionsAreInputs)
