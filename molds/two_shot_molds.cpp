@@ -273,16 +273,17 @@ std::vector<std::string> Recipe::make_shot(const std::string& name, const Surfac
   }
   // A thin wall between two fibers' end channels: the ends are too near each other for the channels
   // (a new user's two muscles left the tip 5.6 mm apart, and both 4 mm channels were laid onto the
-  // parting plane, 2.5 mm apart: "a wall of 0.02 mm", and no word of why).
-  // Said after the part's own problem, which it explains.
+  // parting plane, 2.5 mm apart: "a wall of 0.02 mm", and no word of why). Said as a line of its own
+  // after the parts' problems, which it explains (appended to the last of them, it could land on
+  // another part's, or on a problem of another kind).
   if (!problems.empty() && shot_channels.size() == channel_ends_.size())
     for (const CloseChannels& close : mold.close_channels)
-      problems.back() += fmt::format(
-          "; the end channels where {} and where {} leave {:.2f} mm of mold between them, under [export] min_wall = "
+      problems.push_back(fmt::format(
+          "{}: the end channels where {} and where {} leave {:.2f} mm of mold between them, under [export] min_wall = "
           "{:.2f} mm (each {:.1f} mm wide, laid parallel to the parting plane, and onto it within their radius + "
           "min_wall of it): move those ends further apart, or give a smaller [mold] end_channel_diameter",
-          channel_ends_[static_cast<std::size_t>(close.a)], channel_ends_[static_cast<std::size_t>(close.b)],
-          std::max(0.0, close.wall) / 1e-3, job_.min_wall / 1e-3, m_.end_channel_diameter / 1e-3);
+          name, channel_ends_[static_cast<std::size_t>(close.a)], channel_ends_[static_cast<std::size_t>(close.b)],
+          std::max(0.0, close.wall) / units::mm, job_.min_wall / units::mm, m_.end_channel_diameter / units::mm));
   std::erase_if(out_.shots, [&](const ShotMold& s) { return s.name == name; });
   out_.shots.push_back(std::move(shot));
   return problems;

@@ -429,8 +429,11 @@ TEST_F(MoldsE2E, EndChannelsTooNearEachOtherAreNamedWithTheFix)
              "[[fiber]]\nname = \"side\"\npoints = [[0, 3, -2], [30, 3, -2], [60, 2.1, -2]]\n");
   const auto r = test::run_fibermold("make design.toml molds --build-dir build", dir_.path());
   EXPECT_EQ(r.exit_code, 1);
-  EXPECT_THAT(r.err, HasSubstr("; the end channels where up leaves the body at (60.0, -2.1, 2.5) mm and where side "
-                               "leaves the body at (60.0, 2.1, -2.0) mm leave 0.20 mm of mold between them"));
+  EXPECT_THAT(r.err, HasSubstr("\n  shot2: the end channels where up leaves the body at (60.0, -2.1, 2.5) mm and where "
+                               "side leaves the body at (60.0, 2.1, -2.0) mm leave 0.20 mm of mold between them"));
+  // Its own line, after the part whose thin wall it explains.
+  EXPECT_THAT(r.err, ::testing::ContainsRegex(
+                         "part shot2-[a-z]+ has a wall of 0\\.[0-9]+ mm[^\n]*\n  shot2: the end channels"));
   EXPECT_THAT(r.err, HasSubstr("move those ends further apart, or give a smaller [mold] end_channel_diameter"));
 }
 
