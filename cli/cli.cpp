@@ -153,7 +153,7 @@ int run_simulate(const Design& design, const Runner& runner, const fs::path& bui
   const SimulateResult r = fibermold::simulate(design, runner, build_dir, request, terminal_progress());
   fmt::print("simulate {}: max displacement {:.3f} mm; Newton {} iterations, |∇E| {:.2e} N, {:.2f} s "
              "(assembly {:.2f} s, factorization {:.2f} s, solve {:.2f} s)\n  {}\n",
-             r.name, r.max_displacement / 1e-3, r.summary.iterations, r.summary.residual, r.summary.seconds_total,
+             r.name, r.max_displacement / units::mm, r.summary.iterations, r.summary.residual, r.summary.seconds_total,
              r.summary.seconds_assembly, r.summary.seconds_factorization, r.summary.seconds_solve, r.vtu.string());
   if (!r.conditioning.empty()) fmt::print("  warning: {}\n", r.conditioning);
   fmt::print("  {}\n", r.muscles);
@@ -162,11 +162,11 @@ int run_simulate(const Design& design, const Runner& runner, const fs::path& bui
   if (const auto& f = r.refinement) {
     fmt::print("refined: {} nodes, {} tets, mean edge {:.2f} mm; max displacement {:.3f} mm\n"
                "  difference: surface max {:.3f} mm, RMS {:.3f} mm",
-               f->nodes, f->tets, f->edge_length / 1e-3, f->max_displacement / 1e-3, f->surface_max / 1e-3,
-               f->surface_rms / 1e-3);
+               f->nodes, f->tets, f->edge_length / units::mm, f->max_displacement / units::mm,
+               f->surface_max / units::mm, f->surface_rms / units::mm);
     if (f->curve_samples > 0)
-      fmt::print("; tracking curves max {:.3f} mm, RMS {:.3f} mm ({} samples)", f->curves_max / 1e-3,
-                 f->curves_rms / 1e-3, f->curve_samples);
+      fmt::print("; tracking curves max {:.3f} mm, RMS {:.3f} mm ({} samples)", f->curves_max / units::mm,
+                 f->curves_rms / units::mm, f->curve_samples);
     fmt::print("\n");
     if (f->surface_max > kCoarseMeshShare * r.max_displacement)
       fmt::print("  warning: the surface moves {:.1f} % of the largest displacement between the two meshes (more than "
@@ -182,12 +182,12 @@ int run_check(const Design& design)
   const DesignSurfaceCheck c = check_design_surface(design);
   print_design_summary(design);
   fmt::print("  surface: closed, manifold, outward, no self-intersections; {} component(s), {:.6g} mm³\n",
-             c.surface.components, c.surface.volume / 1e-9);
+             c.surface.components, c.surface.volume / units::mm3);
   // Its size in mm, [design] units applied: a wrong unit shows as a body 10 or 1000 times off.
   const Eigen::Vector3d size = (c.hi - c.lo) / units::mm;
   fmt::print("  body: {:.4g} × {:.4g} × {:.4g} mm, from {} to {}\n", size.x(), size.y(), size.z(), format_mm(c.lo),
              format_mm(c.hi));
-  fmt::print("  mesh: {:.3g} mm edges{}, the surface's triangles {}: about {:.0f} tets\n", c.edge_length / 1e-3,
+  fmt::print("  mesh: {:.3g} mm edges{}, the surface's triangles {}: about {:.0f} tets\n", c.edge_length / units::mm,
              design.mesh.edge_length ? "" : " (by default)",
              c.treatment == SurfaceTriangles::keep    ? "kept"
              : c.treatment == SurfaceTriangles::split ? "split"

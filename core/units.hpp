@@ -10,6 +10,7 @@ namespace fibermold::units {
 inline constexpr double mm = 1e-3; ///< metres per millimetre
 inline constexpr double kPa = 1e3; ///< pascals per kilopascal
 inline constexpr double mm3_per_mL = 1e3;
+inline constexpr double mm2 = 1e-6;                            ///< square metres per square millimetre
 inline constexpr double mm3 = 1e-9;                            ///< cubic metres per cubic millimetre
 inline constexpr double mL = 1e-6;                             ///< cubic metres per millilitre
 inline constexpr double gram = 1e-3;                           ///< kilograms per gram

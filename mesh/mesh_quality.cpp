@@ -8,6 +8,8 @@
 
 #include <Eigen/Geometry>
 
+#include "core/units.hpp"
+
 namespace fibermold {
 
 namespace {
@@ -27,7 +29,7 @@ std::array<double, 6> dihedral_angles(const std::array<Eigen::Vector3d, 4>& p)
     Eigen::Vector3d u = p[k] - p[i], v = p[l] - p[i];
     u -= u.dot(axis) * axis;
     v -= v.dot(axis) * axis;
-    angles[e] = std::acos(std::clamp(u.normalized().dot(v.normalized()), -1.0, 1.0)) * 180.0 / M_PI;
+    angles[e] = std::acos(std::clamp(u.normalized().dot(v.normalized()), -1.0, 1.0)) / units::degree;
   }
   return angles;
 }

@@ -235,11 +235,11 @@ SurfaceCheck check_surface(const SurfaceMesh& s)
     if (std::abs(check.volume) <= 1e-9 * size * size * size) {
       check.problems.push_back({"encloses no volume: it is flat", centre, false, {}});
     } else if (check.volume < 0) {
-      check.problems.push_back(
-          {fmt::format("is oriented inward: its faces enclose a negative volume ({:.4g} mm³)", check.volume / 1e-9),
-           centre,
-           true,
-           {}});
+      check.problems.push_back({fmt::format("is oriented inward: its faces enclose a negative volume ({:.4g} mm³)",
+                                            check.volume / units::mm3),
+                                centre,
+                                true,
+                                {}});
     }
   }
   const double size = (check.max - check.min).maxCoeff();

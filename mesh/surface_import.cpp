@@ -17,6 +17,7 @@
 
 #include "core/atomic_file.hpp"
 #include "core/input_error.hpp"
+#include "core/units.hpp"
 
 namespace fibermold {
 
@@ -204,7 +205,7 @@ SurfaceMesh import_surface(const fs::path& file, double metres_per_unit)
          fmt::format(
              "the surface spans {:.3g} mm corner to corner ({:.3g} to {:.3g} in the file's units): a body is between "
              "{} mm and {} m across; check [design].units",
-             span / 1e-3, lo.minCoeff(), hi.maxCoeff(), kMinBodySize / 1e-3, kMaxBodySize));
+             span / units::mm, lo.minCoeff(), hi.maxCoeff(), kMinBodySize / units::mm, kMaxBodySize));
 
   SurfaceMesh surface;
   surface.source = file;

@@ -5,6 +5,7 @@
 #include <Eigen/Geometry>
 #include <fmt/format.h>
 
+#include "core/units.hpp"
 #include "molds/groove.hpp"
 
 namespace fibermold {
@@ -34,8 +35,8 @@ std::optional<std::string> grid_budget_problem(const GridEstimate& e, double vox
                        "than the {:.0f} million "
                        "that carve in minutes; raise [mold].voxel to {:.2g} mm or more (or check the muscle's diameter "
                        "and [design].units)",
-                       voxel / 1e-3, e.band_voxels / 1e6, kMaxBandVoxels / 1e6,
-                       voxel * std::sqrt(e.band_voxels / kMaxBandVoxels) / 1e-3);
+                       voxel / units::mm, e.band_voxels / 1e6, kMaxBandVoxels / 1e6,
+                       voxel * std::sqrt(e.band_voxels / kMaxBandVoxels) / units::mm);
   if (e.fill_voxels > kMaxFillVoxels)
     return fmt::format(
         "the fill simulation would sample the body on about {:.3g} million voxels, more than {:.0f} million; raise "

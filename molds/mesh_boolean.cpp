@@ -9,6 +9,7 @@
 #include <CGAL/Polygon_mesh_processing/repair.h>
 #include <CGAL/Polygon_mesh_processing/triangulate_faces.h>
 
+#include "core/units.hpp"
 #include "mesh/detail/cgal_surface.hpp"
 
 namespace fibermold {
@@ -25,7 +26,7 @@ Mesh to_cgal(const SurfaceMesh& s)
   Eigen::Index f;
   Mesh m = cgal_surface::to_cgal(s, f);
   if (f >= 0) {
-    const Eigen::Vector3d at = s.vertices.row(s.faces(f, 0)).transpose() * 1e3;
+    const Eigen::Vector3d at = s.vertices.row(s.faces(f, 0)).transpose() / units::mm;
     throw std::runtime_error("mesh boolean: the input is not a manifold surface (face " + std::to_string(f) +
                              " near (" + std::to_string(at.x()) + ", " + std::to_string(at.y()) + ", " +
                              std::to_string(at.z()) + ") mm)");

@@ -9,6 +9,7 @@
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_reduce.h>
 
+#include "core/units.hpp"
 #include "mesh/surface_check.hpp"
 #include "mesh/surface_distance.hpp"
 #include "molds/mesh_boolean.hpp"
@@ -19,7 +20,7 @@ namespace {
 
 std::string mm3(const Eigen::Vector3d& v)
 {
-  return fmt::format("{:.1f} × {:.1f} × {:.1f} mm", v.x() * 1e3, v.y() * 1e3, v.z() * 1e3);
+  return fmt::format("{:.1f} × {:.1f} × {:.1f} mm", v.x() / units::mm, v.y() / units::mm, v.z() / units::mm);
 }
 
 /// How far a ray from inside a part goes to the opposite side of the wall: the first surface it
@@ -100,7 +101,7 @@ double thinnest_wall(const SurfaceMesh& m, double min_wall, Eigen::Vector3d& whe
 /// so that the same design gives the same report, and they are the printed part's.
 SurfaceMesh as_written(SurfaceMesh m)
 {
-  m.vertices = (m.vertices * 1e3).cast<float>().cast<double>() / 1e3;
+  m.vertices = (m.vertices / units::mm).cast<float>().cast<double>() * units::mm;
   return m;
 }
 
@@ -111,8 +112,8 @@ PartCheck check_part(const SurfaceMesh& part, double min_wall, const Eigen::Vect
   PartCheck out;
   const SurfaceCheck surface = check_surface(part);
   for (const SurfaceProblem& p : surface.problems)
-    out.problems.push_back(fmt::format("{}, e.g. near ({:.1f}, {:.1f}, {:.1f}) mm", p.message, p.where.x() * 1e3,
-                                       p.where.y() * 1e3, p.where.z() * 1e3));
+    out.problems.push_back(fmt::format("{}, e.g. near ({:.1f}, {:.1f}, {:.1f}) mm", p.message, p.where.x() / units::mm,
+                                       p.where.y() / units::mm, p.where.z() / units::mm));
   const SurfaceMesh written = as_written(part);
   out.volume = signed_volume(written);
   out.size = written.vertices.colwise().maxCoeff() - written.vertices.colwise().minCoeff();
@@ -140,7 +141,8 @@ PartCheck check_part(const SurfaceMesh& part, double min_wall, const Eigen::Vect
   if (out.min_thickness < min_wall * (1 - 1e-6))
     out.problems.push_back(fmt::format(
         "has a wall of {:.2f} mm near ({:.1f}, {:.1f}, {:.1f}) mm, thinner than [export] min_wall = {:.2f} mm",
-        out.min_thickness * 1e3, where.x() * 1e3, where.y() * 1e3, where.z() * 1e3, min_wall * 1e3));
+        out.min_thickness / units::mm, where.x() / units::mm, where.y() / units::mm, where.z() / units::mm,
+        min_wall / units::mm));
   return out;
 }
 

@@ -21,6 +21,7 @@ extern "C" {
 #include <hersheyfont.h>
 }
 
+#include "core/units.hpp"
 #include "molds/mesh_boolean.hpp"
 #include "molds/part_checks.hpp"
 #include "molds/solids.hpp"
@@ -373,7 +374,7 @@ std::vector<Eigen::Vector2d> candidate_centres(const Eigen::Vector2d& size, cons
   const Eigen::Vector2d room = (size - extent) / 2 - Eigen::Vector2d::Constant(clear);
   if ((room.array() < 0).any()) return {};
   std::vector<Eigen::Vector2d> out;
-  const auto steps = [](double r) { return std::min(10, static_cast<int>(std::floor(r / 1e-3))); };
+  const auto steps = [](double r) { return std::min(10, static_cast<int>(std::floor(r / units::mm))); };
   const int nx = steps(room.x()), ny = steps(room.y());
   for (int j = -ny; j <= ny; ++j)
     for (int i = -nx; i <= nx; ++i) out.emplace_back(nx ? room.x() * i / nx : 0.0, ny ? room.y() * j / ny : 0.0);
@@ -497,7 +498,7 @@ std::optional<PlacedLabel> place_label(const SurfaceMesh& part, const std::vecto
         for (const Eigen::Vector2d& at : candidate_centres(face.size, extent, clear, near)) {
           if (!fits_at(s, at, extent, clear, below)) continue;
           // Whether its lands print: checked once per text and height, where it first fits.
-          const auto key = std::make_pair(text, static_cast<long>(std::lround(h / 1e-6)));
+          const auto key = std::make_pair(text, static_cast<long>(std::lround(1000 * h / units::mm)));
           if (!prints.count(key)) prints[key] = lands_print(text, h, style, min_wall);
           if (!prints[key]) break;
           return PlacedLabel{text,   face.name,  frame.world({at.x(), at.y(), 0}), frame.normal, frame.up, h,

@@ -6,11 +6,13 @@
 
 #include <Eigen/Geometry>
 
+#include "core/units.hpp"
+
 namespace fibermold {
 
 namespace {
 
-const double kFlat = std::sin(5 * M_PI / 180); // |n·pull| below this: a wall parallel to pull
+const double kFlat = std::sin(5 * units::degree); // |n·pull| below this: a wall parallel to pull
 
 struct Facing {
   double height, area; ///< centroid along pull; area projected on the parting plane, m²
@@ -49,7 +51,7 @@ double upright_share(const SurfaceMesh& cavity, const Eigen::Vector3d& point, co
                      double degrees)
 {
   const Eigen::Vector3d pull = pull_in.normalized();
-  const double h = point.dot(pull), sin_tol = std::sin(degrees * M_PI / 180);
+  const double h = point.dot(pull), sin_tol = std::sin(degrees * units::degree);
   double above = 0, upright = 0;
   for (Eigen::Index f = 0; f < cavity.num_faces(); ++f) {
     const Eigen::Vector3d a = cavity.vertices.row(cavity.faces(f, 0)), b = cavity.vertices.row(cavity.faces(f, 1)),

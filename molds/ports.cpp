@@ -10,6 +10,7 @@
 #include <Eigen/Geometry>
 #include <fmt/format.h>
 
+#include "core/units.hpp"
 #include "mesh/surface_distance.hpp"
 
 namespace fibermold {
@@ -115,7 +116,7 @@ Ports cavity_ports(const SurfaceMesh& cavity, const Eigen::Vector3d& pull, doubl
         "{}: no flat spot at the cavity's bottom (within {:.1f} mm of its lowest point, seen along the pull direction) "
         "takes the sprue: it needs a circle of {:.1f} mm across ([mold] sprue_diameter + 2 × [export] min_wall); make "
         "sprue_diameter smaller or give the body a wider flat bottom",
-        shot, band / 1e-3, (sprue_diameter + 2 * margin) / 1e-3));
+        shot, band / units::mm, (sprue_diameter + 2 * margin) / units::mm));
   Ports out;
   const Eigen::Vector3d& s = lowest.front();
   out.sprues.push_back({R.transpose() * Eigen::Vector3d(s.x(), s.y(), -s.z()), sprue_diameter, false});
@@ -184,7 +185,7 @@ private:
           const double t = 2 * M_PI * k / 12;
           const auto hk = skin(c + r * (std::cos(t) * u + std::sin(t) * v), upward);
           const double drop = hk ? *h - *hk : HUGE_VAL; // away from outside
-          const bool level = std::abs(drop) <= std::tan(35 * M_PI / 180) * r;
+          const bool level = std::abs(drop) <= std::tan(35 * units::degree) * r;
           ok = level || drop >= 2e-3;
           if (level) deepest = std::min(deepest, *hk);
         }
@@ -209,7 +210,7 @@ private:
     for (int k = 0; k < 16; ++k) {
       const double t = 2 * M_PI * k / 16;
       const auto hk = skin(c + ring * (std::cos(t) * u + std::sin(t) * v), upward);
-      if (hk && h - *hk < -std::tan(35 * M_PI / 180) * ring) return true;
+      if (hk && h - *hk < -std::tan(35 * units::degree) * ring) return true;
     }
     return false;
   }
@@ -224,7 +225,7 @@ private:
   bool knife_edge_beside(const Eigen::Vector3d& c, double r, double bottom, bool upward) const
   {
     const Eigen::Vector3d u = region_.axes.col(0), v = region_.axes.col(1);
-    const double slope = std::tan(35 * M_PI / 180);
+    const double slope = std::tan(35 * units::degree);
     for (int k = 0; k < 48; ++k) {
       const double t = 2 * M_PI * k / 48;
       const Eigen::Vector3d out = std::cos(t) * u + std::sin(t) * v;

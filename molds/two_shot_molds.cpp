@@ -122,7 +122,7 @@ private:
     const GrooveBody& g = out_.groove;
     log_.info(fmt::format(
         "groove body: {} triangles (adaptivity {}), {:.2f} mL (meshed {:.2f} mL), voxel {:.2f} mm, in {:.2f} s",
-        g.mesh.num_faces(), g.adaptivity, g.volume / 1e-6, signed_volume(g.mesh) / 1e-6, m_.voxel / 1e-3,
+        g.mesh.num_faces(), g.adaptivity, g.volume / units::mL, signed_volume(g.mesh) / units::mL, m_.voxel / units::mm,
         since(started)));
   }
 
@@ -134,8 +134,8 @@ private:
         log_.info(fmt::format("{}: \"{}\" engraved on its {} face (out of the part along ({:.3g}, {:.3g}, {:.3g})) "
                               "at {}, {:.1f} mm capitals, {:.1f} × {:.1f} mm, {:.1f} mm deep",
                               p.name, l.text, l.face, l.normal.x() + 0.0, l.normal.y() + 0.0, l.normal.z() + 0.0,
-                              format_mm(l.centre), l.height / 1e-3, l.extent.x() / 1e-3, l.extent.y() / 1e-3,
-                              l.depth / 1e-3));
+                              format_mm(l.centre), l.height / units::mm, l.extent.x() / units::mm,
+                              l.extent.y() / units::mm, l.depth / units::mm));
       for (const std::string& why : p.unlabelled) log_.warn(fmt::format("{}: {}", p.name, why));
     }
   }
@@ -155,7 +155,7 @@ private:
                             "{} (the mold's side of a narrow slot or gap of the body): printed without draft it may "
                             "break, or tear the cast, as the half comes off; set [mold] draft_deg (1–3°), or print "
                             "that half solid",
-                            shot.name, r.upper ? "upper" : "lower", r.thickness / 1e-3, r.depth / 1e-3,
+                            shot.name, r.upper ? "upper" : "lower", r.thickness / units::mm, r.depth / units::mm,
                             format_mm(r.at)));
     }
     if (shot.thin_ribs.size() > 5)
@@ -163,6 +163,8 @@ private:
           fmt::format("{}: and {} more thin deep ribs (molds/report.json)", shot.name, shot.thin_ribs.size() - 5));
   }
 
+  void explain_close_channels(const std::string& name, const Mold& mold, const std::vector<Channel>& shot_channels,
+                              std::vector<std::string>& problems) const;
   std::vector<std::string> make_shot(const std::string& name, const SurfaceMesh& shot_cavity, Parting parting,
                                      double silicone, const std::vector<Channel>& shot_channels);
 
@@ -183,6 +185,24 @@ private:
   std::vector<std::string> too_big_;       ///< parts too big for the printer: meshing again cannot help them either
   TwoShotMolds out_;
 };
+
+/// A thin wall between two fibers' end channels: the ends are too near each other for the channels
+/// (a new user's two muscles left the tip 5.6 mm apart, and both 4 mm channels were laid onto the
+/// parting plane, 2.5 mm apart: "a wall of 0.02 mm", and no word of why). Said as a line of its own
+/// after the parts' problems, which it explains (appended to the last of them, it could land on
+/// another part's, or on a problem of another kind).
+void Recipe::explain_close_channels(const std::string& name, const Mold& mold,
+                                    const std::vector<Channel>& shot_channels, std::vector<std::string>& problems) const
+{
+  if (!problems.empty() && shot_channels.size() == channel_ends_.size())
+    for (const CloseChannels& close : mold.close_channels)
+      problems.push_back(fmt::format(
+          "{}: the end channels where {} and where {} leave {:.2f} mm of mold between them, under [export] min_wall = "
+          "{:.2f} mm (each {:.1f} mm wide, laid parallel to the parting plane, and onto it within their radius + "
+          "min_wall of it): move those ends further apart, or give a smaller [mold] end_channel_diameter",
+          name, channel_ends_[static_cast<std::size_t>(close.a)], channel_ends_[static_cast<std::size_t>(close.b)],
+          std::max(0.0, close.wall) / units::mm, job_.min_wall / units::mm, m_.end_channel_diameter / units::mm));
+}
 
 /// One shot's mold: its fill plan, its parts checked; the parts' problems found, one line each.
 /// Shot 1 fills the grooved body from below; shot 2 the grooves around the laid muscles, over
@@ -210,21 +230,22 @@ std::vector<std::string> Recipe::make_shot(const std::string& name, const Surfac
   fill_problems(plan, out_, g3_, name, fill_failures_);
   for (std::size_t k = 0; k < plan.fill.pockets.size() && k < 5; ++k)
     log_.info(fmt::format("{}: air pocket of {:.2f} mm³ topping out at {}{}", name,
-                          g3_ * plan.fill.pockets[k].volume / 1e-9, format_mm(out_.scaled(plan.fill.pockets[k].at)),
+                          g3_ * plan.fill.pockets[k].volume / units::mm3,
+                          format_mm(out_.scaled(plan.fill.pockets[k].at)),
                           plan.fill.pockets[k].ventable ? "" : " (under solid: no vent reaches it)"));
   log_.info(fmt::format("{}: sprues and vents placed in {:.2f} s, of which {} fill simulation(s) on {} voxels of "
                         "{:.2f} mm {:.2f} s: {} sprue(s), "
                         "{} vent(s), {:.1f} % reached, {:.2f} mm³ of air trapped",
-                        name, fill_seconds, plan.simulations, region.count(), region.voxel / 1e-3,
+                        name, fill_seconds, plan.simulations, region.count(), region.voxel / units::mm,
                         plan.simulation_seconds, plan.ports.sprues.size(), plan.ports.vents.size(),
                         plan.fill.fill_volume > 0 ? 100 * plan.fill.reachable_volume / plan.fill.fill_volume : 0.0,
-                        g3_ * plan.fill.trapped_volume / 1e-9));
+                        g3_ * plan.fill.trapped_volume / units::mm3));
   for (const Port& p : plan.ports.sprues)
     log_.info(fmt::format("{}: sprue {} at {}, {:.1f} mm across", name, p.upward ? "from above" : "from below",
-                          format_mm(out_.scaled(p.mouth)), p.diameter / 1e-3));
+                          format_mm(out_.scaled(p.mouth)), p.diameter / units::mm));
   for (const Port& p : plan.ports.vents)
     log_.info(fmt::format("{}: vent at {}, {:.1f} mm across, cut {:.2f} mm into the cavity", name,
-                          format_mm(out_.scaled(p.mouth)), p.diameter / 1e-3, p.dip() / 1e-3));
+                          format_mm(out_.scaled(p.mouth)), p.diameter / units::mm, p.dip() / units::mm));
   Ports scaled_ports = plan.ports;
   for (Port& p : scaled_ports.sprues) p.mouth = out_.scaled(p.mouth);
   for (Port& p : scaled_ports.vents) p.mouth = out_.scaled(p.mouth);
@@ -233,11 +254,11 @@ std::vector<std::string> Recipe::make_shot(const std::string& name, const Surfac
   parting.point = out_.scaled(parting.point);
   parting.undercut_area = undercut_area(cavity, parting.point, parting.normal);
   log_.info(fmt::format("{}: parting plane through {} normal to pull, {:.1f} mm² of undercut", name,
-                        format_mm(parting.point), parting.undercut_area / 1e-6));
+                        format_mm(parting.point), parting.undercut_area / units::mm2));
   if (parting.undercut_area > kUndercutWarning)
     log_.warn(fmt::format(
         "{}: {:.1f} mm² of the cavity is an undercut for the parting plane: demolding relies on the silicone bending",
-        name, parting.undercut_area / 1e-6));
+        name, parting.undercut_area / units::mm2));
   started = Clock::now();
   const PartLabels labels{job_.name, {}};
   const Mold mold =
@@ -266,24 +287,13 @@ std::vector<std::string> Recipe::make_shot(const std::string& name, const Surfac
     started = Clock::now();
     PartCheck c = check_part(p.mesh, job_.min_wall, job_.printer_volume);
     log_.info(fmt::format("{}: {} triangles, thinnest wall {:.2f} mm near {}, checked in {:.2f} s", p.name,
-                          p.mesh.num_faces(), c.min_thickness / 1e-3, format_mm(c.min_thickness_at), since(started)));
+                          p.mesh.num_faces(), c.min_thickness / units::mm, format_mm(c.min_thickness_at),
+                          since(started)));
     for (const std::string& problem : c.problems) problems.push_back(fmt::format("part {} {}", p.name, problem));
     if (!c.fits) too_big_.push_back(p.name);
     out_.parts.push_back(CheckedPart{name, p, std::move(c)});
   }
-  // A thin wall between two fibers' end channels: the ends are too near each other for the channels
-  // (a new user's two muscles left the tip 5.6 mm apart, and both 4 mm channels were laid onto the
-  // parting plane, 2.5 mm apart: "a wall of 0.02 mm", and no word of why). Said as a line of its own
-  // after the parts' problems, which it explains (appended to the last of them, it could land on
-  // another part's, or on a problem of another kind).
-  if (!problems.empty() && shot_channels.size() == channel_ends_.size())
-    for (const CloseChannels& close : mold.close_channels)
-      problems.push_back(fmt::format(
-          "{}: the end channels where {} and where {} leave {:.2f} mm of mold between them, under [export] min_wall = "
-          "{:.2f} mm (each {:.1f} mm wide, laid parallel to the parting plane, and onto it within their radius + "
-          "min_wall of it): move those ends further apart, or give a smaller [mold] end_channel_diameter",
-          name, channel_ends_[static_cast<std::size_t>(close.a)], channel_ends_[static_cast<std::size_t>(close.b)],
-          std::max(0.0, close.wall) / units::mm, job_.min_wall / units::mm, m_.end_channel_diameter / units::mm));
+  explain_close_channels(name, mold, shot_channels, problems);
   std::erase_if(out_.shots, [&](const ShotMold& s) { return s.name == name; });
   out_.shots.push_back(std::move(shot));
   return problems;
@@ -312,7 +322,7 @@ TwoShotMolds Recipe::make()
   double shot2_volume = body_volume;
   bool shot2_adaptive = false;
   if (m_.draft_deg > 0) {
-    draft_ = draft_for(body, pull_, parting1.point, m_.draft_deg * M_PI / 180, m_.voxel);
+    draft_ = draft_for(body, pull_, parting1.point, m_.draft_deg * units::degree, m_.voxel);
     parting2 = parting1;
     GrooveBody drafted;
     carve(kGrooveAdaptivity, &drafted);
@@ -324,14 +334,15 @@ TwoShotMolds Recipe::make()
     out_.draft_offset = draft_->most();
     log_.info(fmt::format(
         "draft {}°: cavities grown by up to {:.2f} mm at the parting plane; the body takes {:.2f} mL more silicone",
-        m_.draft_deg, draft_->most() / 1e-3, (shot2_volume - body_volume) / 1e-6));
+        m_.draft_deg, draft_->most() / units::mm, (shot2_volume - body_volume) / units::mL));
   }
   progress_.checkpoint(0.2, "sampling what each shot fills");
   auto started = Clock::now();
   regions_ = fill_regions(shot2_cavity, lines_, out_.groove_radius, job_.muscle_diameter / 2, pull_,
                           fill_voxel(m_.voxel, out_.groove_radius), draft_ ? draft_->slope : 0);
   log_.info(fmt::format("fill regions: {} and {} voxels of {:.2f} mm (shots 1 and 2) in {:.2f} s",
-                        regions_.shot1.count(), regions_.shot2.count(), regions_.shot1.voxel / 1e-3, since(started)));
+                        regions_.shot1.count(), regions_.shot2.count(), regions_.shot1.voxel / units::mm,
+                        since(started)));
   std::vector<std::string> failures = make_shot("shot1", out_.groove.mesh, parting1, g3_ * out_.groove.volume, {});
   if (!failures.empty() && out_.groove.adaptivity > 0 && too_big_.empty()) {
     log_.info(fmt::format(
@@ -367,23 +378,24 @@ TwoShotMolds Recipe::make()
   // A thickness is +∞ where none was measured: no web thinner than the scan's depth, no muscle
   // outside its exit stretches. It then has no place.
   const auto thinnest = [&](double thickness, const Eigen::Vector3d& at, const std::string& otherwise) {
-    return std::isfinite(thickness) ? fmt::format("{:.2f} mm near {}", thickness / 1e-3, format_mm(out_.scaled(at)))
-                                    : otherwise;
+    return std::isfinite(thickness)
+               ? fmt::format("{:.2f} mm near {}", thickness / units::mm, format_mm(out_.scaled(at)))
+               : otherwise;
   };
-  log_.info(
-      fmt::format("silicone: {} at the thinnest groove wall, {} over the muscles at the thinnest; in {:.2f} s",
-                  thinnest(t.groove_web, t.groove_web_at, fmt::format("over {:.0f} mm", kThickestMeasuredWeb / 1e-3)),
-                  thinnest(t.overmold, t.overmold_at, "nothing measured"), since(started)));
+  log_.info(fmt::format(
+      "silicone: {} at the thinnest groove wall, {} over the muscles at the thinnest; in {:.2f} s",
+      thinnest(t.groove_web, t.groove_web_at, fmt::format("over {:.0f} mm", kThickestMeasuredWeb / units::mm)),
+      thinnest(t.overmold, t.overmold_at, "nothing measured"), since(started)));
   if (t.groove_web < m_.min_silicone - kPlacementTolerance)
     failures.push_back(
         fmt::format("shot1: the cast's silicone is {:.3f} mm thin between a groove and the skin near {}, below [mold] "
                     "min_silicone = {:.3f} mm: move the fiber away from the skin there",
-                    t.groove_web / 1e-3, format_mm(out_.scaled(t.groove_web_at)), m_.min_silicone / 1e-3));
+                    t.groove_web / units::mm, format_mm(out_.scaled(t.groove_web_at)), m_.min_silicone / units::mm));
   if (t.overmold < m_.min_silicone)
     failures.push_back(fmt::format(
         "shot2: the overmold is {:.2f} mm thin over a muscle near {}, below [mold] min_silicone = {:.2f} mm: "
         "move the fiber deeper there",
-        t.overmold / 1e-3, format_mm(out_.scaled(t.overmold_at)), m_.min_silicone / 1e-3));
+        t.overmold / units::mm, format_mm(out_.scaled(t.overmold_at)), m_.min_silicone / units::mm));
   out_.failures = std::move(failures);
   return std::move(out_);
 }
@@ -413,7 +425,7 @@ std::optional<std::string> groove_problem(const std::vector<Eigen::Vector3d>& li
     if (at.distance < need - kPlacementTolerance && to_skin.dot(pull.normalized()) < 0.7 * at.distance)
       return fmt::format(
           "the fiber (as routed in fibers.json) passes {:.3f} mm from the skin at {}: its groove needs {:.3f} mm ({})",
-          at.distance / 1e-3, format_mm(p), need / 1e-3, terms);
+          at.distance / units::mm, format_mm(p), need / units::mm, terms);
   }
   return std::nullopt;
 }

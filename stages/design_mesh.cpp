@@ -27,7 +27,7 @@ void require_castable(const SurfaceCheck& check, const SurfaceMesh& surface)
          fmt::format("surface {} has a closed internal cavity of {:.4g} mm³ around ({:.1f}, {:.1f}, {:.1f}) mm: a "
                      "two-part mold cannot cast it (the void would need a core to hold it, which fibermold does "
                      "not make); fill it, or open it to the outside through the skin",
-                     surface.source.filename().string(), c.volume / 1e-9, c.centre.x() / units::mm,
+                     surface.source.filename().string(), c.volume / units::mm3, c.centre.x() / units::mm,
                      c.centre.y() / units::mm, c.centre.z() / units::mm)});
   if (!diagnostics.empty()) throw InputError(std::move(diagnostics));
 }
@@ -44,7 +44,7 @@ double require_mesh_size(const Design& d, const SurfaceMesh& surface, double vol
         d, refined ? "[optimize].refine" : "[mesh].edge_length",
         fmt::format("{}{:.4g} mm for a body of {:.4g} mm³ would make about {:.3g} tets, more than "
                     "[mesh].max_tets = {}; {}",
-                    refined ? "the refined mesh's edge length, " : "", edge / units::mm, volume / 1e-9, tets,
+                    refined ? "the refined mesh's edge length, " : "", edge / units::mm, volume / units::mm3, tets,
                     d.mesh.max_tets,
                     refined ? "raise max_tets or turn refine off" : "raise edge_length, or check [design].units")));
   return tets;

@@ -222,7 +222,8 @@ std::string overlay_shapes(const StageContext& ctx, const TetMesh& body, const F
     write_stl(ctx.output_dir / file, *deformed,
               fmt::format("fibermold {} deformed, target {} (mm)", d.design.name, name));
     const SurfaceCheck check = check_surface(*deformed);
-    Json entry{{"target", name}, {"file", file}, {"volume_mL", check.volume / 1e-6}, {"checks_passed", check.ok()}};
+    Json entry{
+        {"target", name}, {"file", file}, {"volume_mL", check.volume / units::mL}, {"checks_passed", check.ok()}};
     std::string pressures;
     bool beyond = false; // the higher pressure of collide's sensitivity above max_pressure for a muscle
     const auto row = std::find(fibers.targets.begin(), fibers.targets.end(), name) - fibers.targets.begin();
@@ -338,7 +339,7 @@ void ExportStage::run(StageContext& ctx) const
          {"file", files[0]},
          {"files", files},
          {"size_mm", {placed.size.x() / units::mm, placed.size.y() / units::mm, placed.size.z() / units::mm}},
-         {"lies_on_mm2", placed.flat_area / 1e-6},
+         {"lies_on_mm2", placed.flat_area / units::mm2},
          {"fits_printer_as_placed", placed.fits},
          {"volume_mL", info["volume_mL"]},
          {"triangles", placed.part.num_faces()},

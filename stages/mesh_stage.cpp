@@ -177,11 +177,11 @@ void require_sound_mesh(const Design& d, StageContext& ctx, const TetMesh& mesh,
                      "mm³, more than round-off{} allows ({:.3g} mm³); TetGen lost part of the body. Try another [mesh] "
                      "edge_length, "
                      "or surface_triangles = \"{}\"",
-                     q.volume / 1e-9, expected / 1e-9, std::abs(q.volume - expected) / 1e-9,
-                     split ? " and the added points' distance from the surface" : "", tolerance / 1e-9,
+                     q.volume / units::mm3, expected / units::mm3, std::abs(q.volume - expected) / units::mm3,
+                     split ? " and the added points' distance from the surface" : "", tolerance / units::mm3,
                      meshed.treatment == SurfaceTriangles::remesh ? "split" : "remesh")}});
-  ctx.log.info("mesh: volume {:.9g} mm³, the surface's to {:.2g} mm³ (round-off allows {:.2g})", q.volume / 1e-9,
-               std::abs(q.volume - expected) / 1e-9, tolerance / 1e-9);
+  ctx.log.info("mesh: volume {:.9g} mm³, the surface's to {:.2g} mm³ (round-off allows {:.2g})", q.volume / units::mm3,
+               std::abs(q.volume - expected) / units::mm3, tolerance / units::mm3);
 }
 
 /// The tets for ParaView, with each one's radius-edge ratio and volume.
@@ -193,7 +193,7 @@ void write_mesh_vtu(const std::filesystem::path& path, const TetMesh& mesh)
   for (Eigen::Index i = 0; i < mesh.num_tets(); ++i) {
     const auto corner = [&](int k) { return Eigen::Vector3d(mesh.nodes.row(mesh.tets(i, k))); };
     ratio(i, 0) = radius_edge_ratio(corner(0), corner(1), corner(2), corner(3));
-    volume(i, 0) = mesh.tet_volume(i) / 1e-9;
+    volume(i, 0) = mesh.tet_volume(i) / units::mm3;
   }
   grid.add_cell_field("radius_edge_ratio", ratio);
   grid.add_cell_field("volume_mm3", volume);
@@ -223,7 +223,7 @@ void MeshStage::run(StageContext& ctx) const
   const double edge = target_edge_length(d, check.volume);
   const double estimate = require_mesh_size(d, surface, check.volume, edge, d.mesh.surface_triangles);
   ctx.log.info("surface: {} vertices, {} faces, volume {:.6g} mm³; target edge {:.4g} mm: about {:.3g} tets",
-               surface.num_vertices(), surface.num_faces(), check.volume / 1e-9, edge / units::mm, estimate);
+               surface.num_vertices(), surface.num_faces(), check.volume / units::mm3, edge / units::mm, estimate);
   const auto t = Clock::now();
   ctx.progress.checkpoint(0.1, "tetrahedralizing");
   const BodyMesh body = mesh_body(surface, d.mesh.surface_triangles, tet_options(d, edge), ctx.progress);
@@ -248,7 +248,7 @@ void MeshStage::run(StageContext& ctx) const
                        {"vertices", surface.num_vertices()},
                        {"faces", surface.num_faces()},
                        {"components", check.components},
-                       {"volume_mm3", check.volume / 1e-9},
+                       {"volume_mm3", check.volume / units::mm3},
                        {"bounds_mm", {{"min", point_mm(check.min)}, {"max", point_mm(check.max)}}},
                        {"warnings", check.warnings},
                        {"repaired", repair.changes()}};
@@ -257,8 +257,8 @@ void MeshStage::run(StageContext& ctx) const
       {"tets", mesh.num_tets()},
       {"nodes_per_tet", mesh.nodes_per_tet()},
       {"boundary_faces", mesh.boundary_faces.rows()},
-      {"volume_mm3", q.volume / 1e-9},
-      {"volume_mL", q.volume / 1e-6},
+      {"volume_mm3", q.volume / units::mm3},
+      {"volume_mL", q.volume / units::mL},
       {"target_edge_length_mm", edge / units::mm},
       {"mean_edge_length_mm", q.mean_edge_length / units::mm},
       {"edge_length_mm",
@@ -286,7 +286,7 @@ void MeshStage::run(StageContext& ctx) const
   ctx.log.info("seconds: {}", seconds.dump());
   write_json_atomic(ctx.output_dir / "report.json", report);
   ctx.log.info("mesh: {} nodes, {} tets, volume {:.6g} mL, dihedral angles {:.1f}°–{:.1f}°, in {:.2f} s",
-               mesh.nodes.rows(), mesh.num_tets(), q.volume / 1e-6, q.min_dihedral_deg, q.max_dihedral_deg,
+               mesh.nodes.rows(), mesh.num_tets(), q.volume / units::mL, q.min_dihedral_deg, q.max_dihedral_deg,
                since(start));
 }
 

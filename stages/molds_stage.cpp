@@ -115,7 +115,7 @@ Json fill_report(const FillPlan& plan, double voxel, const TwoShotMolds& molds)
     vents.push_back({{"mouth_mm", vec_mm(molds.scaled(plan.ports.vents[k].mouth))},
                      {"opens_on_fill_region", static_cast<bool>(f.vent_open[k])}});
   return {{"voxel_mm", voxel / units::mm},
-          {"fill_volume_mL", six_places(g3 * f.fill_volume / 1e-6)},
+          {"fill_volume_mL", six_places(g3 * f.fill_volume / units::mL)},
           {"reachable_percent", f.fill_volume > 0 ? six_places(100 * f.reachable_volume / f.fill_volume) : 0.0},
           {"crevices_unfilled_mm3", six_places(g3 * f.crevice_volume / mm3)},
           {"crevices_air_mm3", six_places(g3 * f.crevice_air_volume / mm3)},
@@ -136,15 +136,15 @@ Json molds_report(const TwoShotMolds& molds, const Design& d)
     for (const ThinRib& r : s.thin_ribs)
       ribs.push_back({{"half", r.upper ? "upper" : "lower"},
                       {"tip_mm", vec_mm(r.at)},
-                      {"thickness_mm", six_places(r.thickness / 1e-3)},
-                      {"depth_mm", six_places(r.depth / 1e-3)}});
-    shots[s.name] = {{"cavity_volume_mL", six_places(s.cavity_volume / 1e-6)},
+                      {"thickness_mm", six_places(r.thickness / units::mm)},
+                      {"depth_mm", six_places(r.depth / units::mm)}});
+    shots[s.name] = {{"cavity_volume_mL", six_places(s.cavity_volume / units::mL)},
                      {"upper_contact_within_3deg_of_pull_percent", six_places(100 * s.upright_share)},
-                     {"silicone_volume_mL", six_places(s.silicone_volume / 1e-6)},
-                     {"silicone_mass_g", six_places(s.silicone_volume * d.material.density * 1e3)},
+                     {"silicone_volume_mL", six_places(s.silicone_volume / units::mL)},
+                     {"silicone_mass_g", six_places(s.silicone_volume * d.material.density / units::gram)},
                      {"parting_point_mm", vec_mm(s.parting.point)},
                      {"parting_normal", {s.parting.normal.x(), s.parting.normal.y(), s.parting.normal.z()}},
-                     {"undercut_area_mm2", s.parting.undercut_area / 1e-6},
+                     {"undercut_area_mm2", s.parting.undercut_area / units::mm2},
                      {"sprues", s.sprues},
                      {"vents", s.vents},
                      {"keys", s.keys},
@@ -167,7 +167,7 @@ Json molds_report(const TwoShotMolds& molds, const Design& d)
     parts[p.part.name] = {{"shot", p.shot},
                           {"file", p.part.name + ".stl"},
                           {"triangles", p.part.mesh.num_faces()},
-                          {"volume_mL", six_places(c.volume / 1e-6)},
+                          {"volume_mL", six_places(c.volume / units::mL)},
                           {"size_mm", vec_mm(c.size)},
                           {"min_wall_mm", c.min_thickness / units::mm},
                           {"min_wall_at_mm", vec_mm(c.min_thickness_at)},
@@ -242,11 +242,11 @@ Eigen::Vector3d pull_sense(const StageContext& ctx, const MoldJob& job,
     ctx.log.info("shot 1 with pull ({:.3g}, {:.3g}, {:.3g}): the plane under the grooves through {}; the shallower "
                  "half {:.2f} mm of the cavity, {:.1f} mm² of undercut",
                  p.pull.x() + 0.0, p.pull.y() + 0.0, p.pull.z() + 0.0, format_mm(p.parting.point),
-                 p.thinner_half / units::mm, std::max(0.0, p.parting.undercut_area / 1e-6));
+                 p.thinner_half / units::mm, std::max(0.0, p.parting.undercut_area / units::mm2));
     senses.push_back({{"pull", {p.pull.x() + 0.0, p.pull.y() + 0.0, p.pull.z() + 0.0}},
                       {"parting_point_mm", vec_mm(p.parting.point)},
                       {"shallower_half_mm", p.thinner_half / units::mm},
-                      {"undercut_area_mm2", std::max(0.0, p.parting.undercut_area / 1e-6)}});
+                      {"undercut_area_mm2", std::max(0.0, p.parting.undercut_area / units::mm2)}});
   }
   const PullSense& chosen = both.front();
   if (chosen.pull.dot(given) > 0) return given;

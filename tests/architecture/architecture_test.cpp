@@ -1,7 +1,7 @@
 // The rules of the house that the source tree itself must keep (docs/architecture.md): the module
 // order, no folder holding the bulk of the code, short functions, third-party headers out of the
 // public ones, nothing cited from outside the repository, every file formatted and no line over 120
-// columns.
+// columns, units converted through core/units.hpp.
 
 #include <algorithm>
 #include <cstdio>
@@ -269,6 +269,28 @@ TEST(Architecture, NoLineIsLongerThan120Columns)
     }
   }
   EXPECT_TRUE(over.empty()) << over;
+}
+
+/// SI inside; a figure goes to mm, mm², mm³, mL, g or degrees at the edges through core/units.hpp's
+/// names (`length / units::mm`), never a bare factor: `/ 1e-3` reads as millimetres only to whoever
+/// wrote it, and `* 1e3` is as likely kilopascals or grams (session 44 found 70 such, the STL check
+/// and the STL writer scaling by different factors).
+TEST(Architecture, UnitsAreConvertedThroughCoreUnits)
+{
+  const std::regex bare(R"((/\s*1e-(3|6|9)\b)|(\*\s*1e3\b)|(M_PI\s*/\s*180)|(180(\.0)?\s*/\s*M_PI))");
+  std::string found;
+  for (const fs::path& p : module_sources()) {
+    if (fs::relative(p, kSource) == fs::path("core/units.hpp")) continue;
+    std::istringstream in(text_of(p));
+    int number = 0;
+    for (std::string line; std::getline(in, line);) {
+      ++number;
+      if (std::regex_search(line, bare))
+        found += fmt::format("{}:{}: {}\n", fs::relative(p, kSource).string(), number, line);
+    }
+  }
+  EXPECT_TRUE(found.empty()) << "convert with core/units.hpp's names (units::mm, mm2, mm3, mL, gram, kPa, degree):\n"
+                             << found;
 }
 
 } // namespace
