@@ -2,6 +2,7 @@
 // muscle near the palm) parted with the grooves opening toward the back leaves the lower half a plate
 // under the grooves; opening them toward the palm, the plane sits between the grooves and the slots'
 // floors, and both halves are deep. A body where both senses part alike keeps the given one.
+#include <Eigen/Geometry>
 #include <gtest/gtest.h>
 
 #include "molds/parting.hpp"
@@ -58,6 +59,46 @@ TEST(PullSense, ABarWithItsMuscleOnTheAxisKeepsThePullAsGiven)
   const std::vector<PullSense> chosen = choose_pull_sense(bar, fibers, 1.8 * mm, {0, 0, 1}, kUndercutWarning);
   EXPECT_NEAR(chosen.front().pull.z(), 1, 1e-12);
   EXPECT_NEAR(chosen.front().thinner_half, 3.1 * mm, 0.01 * mm); // the middle of [−8, −1.8] mm
+}
+
+/// `m` with a lone triangle of about 0.001 mm² (projected) tilted 45° at height z, facing up or
+/// down: what a meshed level set's facets leave along a wall.
+void add_facet(SurfaceMesh& m, double z, bool up)
+{
+  const Eigen::Vector3d a(50 * mm, -0.5 * mm, z), b = a + Eigen::Vector3d(0.05 * mm, 0, 0),
+                                                  c = a + Eigen::Vector3d(0, 0.04 * mm, 0.04 * mm);
+  const bool faces_up = (b - a).cross(c - a).z() > 0;
+  const Eigen::Index n = m.num_vertices();
+  m.vertices.conservativeResize(n + 3, 3);
+  m.vertices.row(n) = a, m.vertices.row(n + 1) = faces_up == up ? b : c, m.vertices.row(n + 2) = faces_up == up ? c : b;
+  m.faces.conservativeResize(m.num_faces() + 1, 3);
+  m.faces.row(m.num_faces() - 1) = Eigen::RowVector3i(int(n), int(n + 1), int(n + 2));
+}
+
+// A plate 12 mm thick whose walls carry two facets: one facing down at 0.5 mm and one up at 0.6 mm.
+// Between them nothing is an undercut; elsewhere a thousandth of a mm². The plane goes through the
+// middle of the plate, not between the facets (it went to 0.55 mm: a starfish's lower half was a
+// 0.4 mm plate), and says the undercut it has there.
+TEST(ChooseParting, UndercutsThatDifferByFacetsAlonePartInTheMiddleOfTheirRange)
+{
+  SurfaceMesh plate = test::box({0, 0, 0}, {100 * mm, 100 * mm, 12 * mm});
+  add_facet(plate, 0.5 * mm, false);
+  add_facet(plate, 0.6 * mm, true);
+  const Parting p = choose_parting(plate, {0, 0, 1});
+  EXPECT_NEAR(p.point.z(), 6 * mm, 0.01 * mm);
+  EXPECT_GT(p.undercut_area, 0.5e-3 * 1e-6); // the up-facing facet's, below the plane
+  EXPECT_LT(p.undercut_area, 2e-3 * 1e-6);
+  EXPECT_NEAR(p.undercut_area, undercut_area(plate, p.point, {0, 0, 1}), 1e-15);
+  // An undercut a mold holds on to (1 mm² and more) still decides: a down-facing ledge of 4 mm² at
+  // 8 mm moves the plane above it, into the middle of [8, 12] mm.
+  const Eigen::Index n = plate.num_vertices();
+  plate.vertices.conservativeResize(n + 3, 3);
+  plate.vertices.row(n) = Eigen::RowVector3d(10, 10, 8) * mm;
+  plate.vertices.row(n + 1) = Eigen::RowVector3d(10, 12, 8) * mm;
+  plate.vertices.row(n + 2) = Eigen::RowVector3d(14, 10, 8) * mm;
+  plate.faces.conservativeResize(plate.num_faces() + 1, 3);
+  plate.faces.row(plate.num_faces() - 1) = Eigen::RowVector3i(int(n), int(n + 1), int(n + 2)); // normal −z
+  EXPECT_NEAR(choose_parting(plate, {0, 0, 1}).point.z(), 10 * mm, 0.01 * mm);
 }
 
 } // namespace
