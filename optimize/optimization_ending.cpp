@@ -21,6 +21,35 @@ bool every_muscle_off(const Eigen::MatrixXd& p, const ActuatorMask& actuators, E
     }
   return any && all_off;
 }
+/// Target t's regions that turned between 1 − kFarFromReached and kShortOfTurn of their angles: one
+/// warning naming them and the muscles' pressures, with what holds the turn back.
+void short_of_turns(Eigen::Index t, const std::vector<AngleReach>& turns, const Eigen::MatrixXd& p,
+                    const ActuatorMask& actuators, double max_pressure, double margin, const std::string& target,
+                    std::vector<std::string>& warnings)
+{
+  std::string regions;
+  for (const AngleReach& a : turns)
+    if (a.asked != 0 && a.reached / a.asked >= 1 - kFarFromReached && a.reached / a.asked < kShortOfTurn)
+      regions += fmt::format("{}{} turned {:.1f}° of the {:.1f}° asked ({:.0f} %)", regions.empty() ? "" : ", ",
+                             a.place, a.reached / units::degree, a.asked / units::degree, 100 * a.reached / a.asked);
+  if (regions.empty()) return;
+  std::string pressures;
+  bool at_max = false;
+  for (Eigen::Index f = 0; f < p.cols(); ++f)
+    if (actuators(t, f)) {
+      pressures += fmt::format("{}{:.0f}", pressures.empty() ? "" : ", ", p(t, f) / units::kPa);
+      at_max = at_max || p(t, f) >= max_pressure - margin;
+    }
+  warnings.push_back(fmt::format(
+      "target {} is short of its turn: {}, its muscles at {} kPa of [muscle] max_pressure = {:.0f} kPa; {}", target,
+      regions, pressures, max_pressure / units::kPa,
+      at_max ? "a muscle is at max_pressure: raise it if the muscle takes it, add a muscle, or use a softer material"
+             : "with pressure to spare, the optimizer weighed the turn against the tracking curves' positions (a "
+               "muscle that turns the region further moves the curves away from where the target puts them, e.g. by "
+               "shortening the body): raise the tracking curves' weight_orientation to favour the turn, or ask for "
+               "the translation that the turn brings"));
+}
+
 } // namespace
 
 std::vector<std::string> first_guess_warnings(const Eigen::MatrixXd& pressures, const ActuatorMask& actuators,
@@ -114,6 +143,8 @@ OptimizationEnding optimization_ending(const RoutingResult& result, const Actuat
                                a.reached / a.asked < 0
                                    ? ": the other way; check the sign of the pose's axis against its translation"
                                    : "");
+    short_of_turns(static_cast<Eigen::Index>(t), turns, p, actuators, max_pressure, margin, target_names[t],
+                   e.warnings);
     const bool asks_turns = std::any_of(turns.begin(), turns.end(), [](const AngleReach& a) { return a.asked != 0; });
     if (!asks_turns && before[t].rmse > 0 && after[t].rmse > kFarFromReached * before[t].rmse)
       how_far = fmt::format("{:.0f} % of the way (tracking-curve RMSE {:.2f} → {:.2f} mm)", 100 * r.reached,

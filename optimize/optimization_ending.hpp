@@ -17,6 +17,10 @@ namespace fibermold {
 /// A target whose tracking-curve RMSE kept more than this share of its starting value is far from
 /// reached.
 inline constexpr double kFarFromReached = 1.0 / 3;
+/// A pose's region that turned less than this share of its angle (but at least 1 − kFarFromReached)
+/// is short of its turn: said with its muscles' pressures, as a lab would cast a robot that bends
+/// 11° short of a 40° grasp with no word (a new user's starfish, at 273 and 282 of 425 kPa).
+inline constexpr double kShortOfTurn = 0.9;
 
 struct TargetReach {
   double start_rmse = 0, end_rmse = 0; ///< m, on the tracking curves
@@ -59,7 +63,8 @@ struct OptimizationEnding {
 /// max_pressure is at that limit: there the pressure barrier, not the target, holds it.
 /// A route bent within kBendAtLimit of settings.min_bend_radius is at that limit, named with where.
 /// `angles[t]`: target t's turns (empty for a target that asks none); such a target is far from
-/// reached when a region turned less than 2/3 of its angle, whatever the tracking curves say.
+/// reached when a region turned less than 2/3 of its angle, whatever the tracking curves say, and
+/// short of its turn under kShortOfTurn of it.
 OptimizationEnding optimization_ending(const RoutingResult& result, const ActuatorMask& actuators,
                                        const RoutingSettings& settings, const std::vector<TargetErrors>& before,
                                        const std::vector<TargetErrors>& after,

@@ -46,8 +46,9 @@ public:
   /// guess is kept where it matches the targets better (report.json first_guess.distance); 20: the turn's error where
   /// a curve's orientation is tracked (orientation_rms_deg, orientation_max_deg), first_guess's surface errors;
   /// 21: the exit ramp (a fiber's exit stretch held at d_min · s / (2(d_min + w)), skin_barrier.hpp); 22: the ramp
-  /// measured on the route as it is (ρ, the distance from the end, not the starting arc)
-  int version() const override { return 22; }
+  /// measured on the route as it is (ρ, the distance from the end, not the starting arc); 23: a pose's region
+  /// short of its turn (under 90 % of its angle) warned, with the muscles' pressures
+  int version() const override { return 23; }
   void run(StageContext& ctx) const override;
 };
 

@@ -35,6 +35,28 @@ OptimizationEnding ending(double pressure, double start, double end, const std::
                              {"flexor"});
 }
 
+// A region that turned 71 % of its angle is not far from reached, but short of its turn: said with
+// the muscles' pressures and, with pressure to spare, what holds it back (a new user's starfish
+// curled 28.5° of a 40° grasp at 280 of 425 kPa, and nothing said so).
+TEST(OptimizationEnding, ATurnShortOfItsAngleIsSaidWithThePressuresAndWhatHoldsItBack)
+{
+  const OptimizationEnding spare = ending(280e3, 4.9e-3, 1e-3, {{"pose[1]", 40 * kDeg, 28.5 * kDeg}});
+  ASSERT_EQ(spare.warnings.size(), 1u);
+  EXPECT_THAT(spare.warnings[0], HasSubstr("target curl is short of its turn: pose[1] turned 28.5° of the 40.0° "
+                                           "asked (71 %), its muscles at 280 kPa of [muscle] max_pressure = 425 kPa"));
+  EXPECT_THAT(spare.warnings[0], HasSubstr("raise the tracking curves' weight_orientation"));
+  // At max_pressure the muscle is what holds it back.
+  const OptimizationEnding limited = ending(425e3, 4.9e-3, 1e-3, {{"pose[1]", 40 * kDeg, 28.5 * kDeg}});
+  ASSERT_EQ(limited.warnings.size(), 2u); // the fiber at its limit, and the turn
+  EXPECT_THAT(limited.warnings[1], HasSubstr("short of its turn"));
+  EXPECT_THAT(limited.warnings[1], HasSubstr("a muscle is at max_pressure"));
+  // 90 % and more is reached; under 2/3 is far from reached, said once as such.
+  EXPECT_TRUE(ending(280e3, 4.9e-3, 1e-3, {{"pose[1]", 40 * kDeg, 36 * kDeg}}).warnings.empty());
+  const OptimizationEnding far = ending(280e3, 4.9e-3, 1e-3, {{"pose[1]", 40 * kDeg, 20 * kDeg}});
+  ASSERT_EQ(far.warnings.size(), 1u);
+  EXPECT_THAT(far.warnings[0], HasSubstr("far from reached"));
+}
+
 TEST(OptimizationEnding, APoseTargetIsJudgedByItsTurnNotItsTrackingCurves)
 {
   // The curves kept most of their error, but the tip turned 54° of 60°: not far from reached.
