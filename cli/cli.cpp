@@ -19,6 +19,7 @@
 #include "core/input_error.hpp"
 #include "core/units.hpp"
 #include "design/design_file.hpp"
+#include "design/unlikely_values.hpp"
 #include "make/build_lock.hpp"
 #include "make/runner.hpp"
 #include "stages/check.hpp"
@@ -177,8 +178,19 @@ int run_simulate(const Design& design, const Runner& runner, const fs::path& bui
   return kExitDone;
 }
 
+/// The design's values that read as written in another unit (unlikely_values.hpp), as warnings.
+void warn_unlikely_values(const Design& design, bool to_log)
+{
+  for (const Diagnostic& w : unlikely_values(design))
+    if (to_log)
+      spdlog::warn("{}", w.to_string());
+    else
+      fmt::print("warning: {}\n", w.to_string());
+}
+
 int run_check(const Design& design)
 {
+  warn_unlikely_values(design, false); // before the checks that may stop on what such a value causes
   const DesignSurfaceCheck c = check_design_surface(design);
   print_design_summary(design);
   fmt::print("  surface: closed, manifold, outward, no self-intersections; {} component(s), {:.6g} mm³\n",
@@ -300,10 +312,9 @@ int fibermold_main(int argc, char** argv)
   simulate->add_option("DESIGN", words, "DESIGN")->expected(0, 1);
   simulate->add_option("--target", target, "Simulate this target's loads");
   simulate->add_option("--pressure", pressures, "FIBER=kPa, repeatable");
-  bool refine = false;
+  bool refine = false, as_built = false;
   simulate->add_flag("--refine", refine,
                      "Solve again at half the edge length and report the difference (the discretization error)");
-  bool as_built = false;
   simulate->add_flag("--as-built", as_built,
                      "The routes the molds were made for (collide/fibers.json) and, with --target, its pressures "
                      "there: the cast robot with today's [material]");
@@ -333,6 +344,7 @@ int fibermold_main(int argc, char** argv)
         split_arguments(words, FIBERMOLD_DEFAULT_DESIGN,
                         check->parsed() || simulate->parsed() ? std::vector<std::string>{} : runner.stage_names());
     const Design design = load_design(args.design);
+    if (simulate->parsed() || make->parsed()) warn_unlikely_values(design, true);
     if (simulate->parsed())
       return run_simulate(design, runner, build_dir_for(design, build_dir_option),
                           {target, pressures, refine, as_built});
