@@ -179,8 +179,9 @@ std::string casting_guide(const CastingSheet& sheet)
   text += silicone_text(sheet) + muscles_text(sheet);
   text += fmt::format("\nShot 1, the grooved body: shot1-lower{} and shot1-upper{}.\n", ext, ext);
   text += step(1, clamp_text(one) + ". Stand the mold upright: lower half down, the sprue hole underneath, the vents "
-                                    "on top. A sprue is the countersunk hole (its seat takes the dispenser's nozzle); "
-                                    "the vents are plain.");
+                                    "on top, the mold raised on two spacers (blocks or books) clear of the sprue so "
+                                    "that the dispenser's nozzle reaches it. A sprue is the countersunk hole (its seat "
+                                    "takes the dispenser's nozzle); the vents are plain.");
   text += step(2, fmt::format("Inject about {:.1f} mL ({:.1f} g) of silicone through {} from below, slowly, until "
                               "silicone comes out of {}; then plug the sprue.",
                               one.volume / units::mL, one.mass / units::gram, sprue_holes(one.sprues),
@@ -195,7 +196,8 @@ std::string casting_guide(const CastingSheet& sheet)
                   "", "");
   text += fmt::format("\nShot 2, the overmold: shot2-lower{} and shot2-upper{}.\n", ext, ext);
   text += step(5, "Put the grooved body with its muscles into the lower half, grooves up, and route the supply tubes "
-                  "out through the channels at the fibers' ends. " +
+                  "out through the channels at the fibers' ends (where a channel runs up through the upper half rather "
+                  "than along the parting plane, thread its tube through it as you lower the half on). " +
                       clamp_text(two) + ".");
   text += step(6, fmt::format("Stand the mold upright as in shot 1. In this shot the sprue comes in from the TOP of "
                               "the upper half, straight over the lowest point of the grooves: the cured body lies "

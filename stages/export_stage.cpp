@@ -204,6 +204,27 @@ std::string as_built_command(const Design& d, const fs::path& build_dir, const s
                      shell_word((inside ? relative : build).string()));
 }
 
+/// Where the design holds the body, for whoever mounts the cast robot: each [[fixed]] region by its
+/// name, its held nodes' centre and extent ("centre: 25 nodes around (0.0, 0.0, 0.4) mm, from
+/// (-8.0, -8.0, 0.0) to (8.0, 8.0, 2.0) mm"). A body with no end (a starfish held at its
+/// underside's centre) left "its fixed end" to a guess.
+std::string held_regions(const Design& d, const TetMesh& body)
+{
+  std::string out;
+  for (std::size_t i = 0; i < d.fixed.size(); ++i) {
+    const std::vector<int> nodes = region_nodes(d.fixed[i].region, body, d, fmt::format("fixed[{}]", i + 1));
+    if (nodes.empty()) continue;
+    Eigen::Vector3d lo = body.nodes.row(nodes.front()).transpose(), hi = lo, centre = Eigen::Vector3d::Zero();
+    for (int n : nodes) {
+      const Eigen::Vector3d p = body.nodes.row(n).transpose();
+      lo = lo.cwiseMin(p), hi = hi.cwiseMax(p), centre += p / static_cast<double>(nodes.size());
+    }
+    out += fmt::format("{}{}: {} nodes around {}, from {} to {}", out.empty() ? "" : "; ", d.fixed[i].name,
+                       nodes.size(), format_mm(centre), format_mm(lo), format_mm(hi));
+  }
+  return out.empty() ? "its [[fixed]] regions" : out;
+}
+
 /// Per target, the body as simulated under the final routing (collide/deformed-<target>.json), as a
 /// printable STL in the body's frame, which is the frame of the robot as mounted (its [[fixed]]
 /// regions stay where they are at rest); README.txt's section on checking the cast robot with it,
@@ -213,6 +234,7 @@ std::string overlay_shapes(const StageContext& ctx, const TetMesh& body, const F
 {
   const Design& d = ctx.design;
   const std::optional<Json>& collide = simulated.collide;
+  const std::string held = held_regions(d, body);
   std::string text;
   for (std::size_t t = 0; t < d.targets.size(); ++t) {
     const std::string& name = d.targets[t].name;
@@ -233,11 +255,17 @@ std::string overlay_shapes(const StageContext& ctx, const TetMesh& body, const F
           fmt::format("{}{} {:.0f} kPa", pressures.empty() ? "" : ", ", fibers.routing.routes[f].name, p / units::kPa);
       beyond = beyond || (1 + kSensitivityChange) * p > d.muscle.max_pressure;
     }
-    text += fmt::format("\nTarget \"{}\": drive the muscles at {} gauge (at most {:.0f} kPa, [muscle] max_pressure).\n"
-                        "  {} is the body as simulated at these pressures, in the frame of the robot as\n"
-                        "  mounted (its fixed faces where they are at rest). Print it, hold its fixed end against\n"
-                        "  the robot's mount beside the pressurized robot, and compare:\n",
-                        name, pressures.empty() ? "no pressure" : pressures, d.muscle.max_pressure / units::kPa, file);
+    text += '\n'; // (not "\n" + wrapped(…): GCC 12 warns a false -Wrestrict on it)
+    text +=
+        wrapped(fmt::format("Target \"{}\": drive the muscles at {} gauge (at most {:.0f} kPa, [muscle] "
+                            "max_pressure).",
+                            name, pressures.empty() ? "no pressure" : pressures, d.muscle.max_pressure / units::kPa),
+                "", "  ");
+    text += wrapped(fmt::format("{} is the body as simulated at these pressures, in the frame of the robot as mounted "
+                                "(its fixed faces where they are at rest). Print it, hold it where the design holds "
+                                "the robot ({}) against the robot's mount beside the pressurized robot, and compare:",
+                                file, held),
+                    "  ", "  ");
     if (collide && (*collide)["targets"].contains(name))
       text += poses_to_compare((*collide)["targets"][name].value("poses", Json::array())) +
               what_to_measure((*collide)["targets"][name].value("poses", Json::array()), d.material.youngs_modulus,

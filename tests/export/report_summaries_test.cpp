@@ -33,7 +33,7 @@ TEST(OptimizationSummary, TheTableGivesEachTargetsErrorsTurnsAndPressures)
   const ReportTable t = optimization_table(kOptimized);
   EXPECT_EQ(t.title, "Optimization: converged after 42 iterations (gradient small)");
   EXPECT_EQ(t.header,
-            (std::vector<std::string>{"target", "RMSE at the start (mm)",
+            (std::vector<std::string>{"target", "RMSE at the start: the first guess at half max_pressure (mm)",
                                       "RMSE of the first guess at its best pressures (mm)", "RMSE at the end (mm)",
                                       "reached: 1 − end / start RMSE", "turn reached", "m1 (kPa)", "m2 (kPa)"}));
   ASSERT_EQ(t.rows.size(), 2u);
@@ -58,7 +58,7 @@ TEST(OptimizationSummary, TheFirstGuessAndTheTurnsErrorStandBesideTheRmse)
     }})");
   const ReportTable t = optimization_table(report);
   EXPECT_EQ(t.header,
-            (std::vector<std::string>{"target", "RMSE at the start (mm)",
+            (std::vector<std::string>{"target", "RMSE at the start: the first guess at half max_pressure (mm)",
                                       "RMSE of the first guess at its best pressures (mm)", "RMSE at the end (mm)",
                                       "turn's error at the start (° RMS)", "turn's error of the first guess (° RMS)",
                                       "turn's error at the end (° RMS)", "reached: 1 − end / start RMSE", "m1 (kPa)"}));
@@ -66,6 +66,18 @@ TEST(OptimizationSummary, TheFirstGuessAndTheTurnsErrorStandBesideTheRmse)
   EXPECT_EQ(t.rows[0],
             (std::vector<std::string>{"twist", "6.190", "0.708", "0.819", "45.5", "31.0", "3.0", "87 %", "133.5"}));
   EXPECT_EQ(t.rows[1], (std::vector<std::string>{"still", "0.110", "–", "0.100", "–", "–", "–", "10 %", "0.0"}));
+}
+
+// Where the first guess is kept, the title says so: the end is the first guess, not the optimizer's.
+TEST(OptimizationSummary, AKeptFirstGuessIsSaidInTheTitle)
+{
+  Json report = kOptimized;
+  report["kept"] = "first guess";
+  EXPECT_EQ(optimization_table(report).title,
+            "Optimization: converged after 42 iterations (gradient small); its routes matched the targets less well "
+            "than the first guess, which is kept: the end is the first guess at its best pressures");
+  report["kept"] = "optimized";
+  EXPECT_EQ(optimization_table(report).title, "Optimization: converged after 42 iterations (gradient small)");
 }
 
 TEST(OptimizationSummary, OnlyAReportThatOptimizedTargetsCounts)
