@@ -94,13 +94,16 @@ Parting choose_parting(const SurfaceMesh& cavity, const Eigen::Vector3d& pull_in
     (faces[k].up ? up_below : down_above) += faces[k].up ? faces[k].area : -faces[k].area;
     start = end;
   }
-  // The best range: the widest run of intervals within kUndercutWarning of the least U. Heights
-  // whose undercuts differ by less differ by the meshed level set's facets, and the least of them
-  // alone was a sliver: a 12 mm starfish's groove body has 0.0205 mm² from 0.6 to 6.6 mm and a hair
-  // less about 0.4 mm, where its plane went, its lower half a 0.4 mm plate.
+  // The best range: the widest run of intervals within kFacetUndercut of the least U. Heights whose
+  // undercuts differ by less differ by a facet of the meshed level set, and the least of them alone
+  // was a sliver: a 12 mm starfish's groove body has 0.0205 mm² from 0.6 to 6.6 mm and a hair less
+  // about 0.4 mm, where its plane went, its lower half a 0.4 mm plate. (A slack of kUndercutWarning,
+  // 1 mm², widened the coarse continuum robot's range of 0.57 mm² up its round flank to 0.94 mm²,
+  // and the plane, 0.1 mm higher, met its end in a wedge of 0.00 mm.)
+  constexpr double kFacetUndercut = 0.05e-6;
   double best_lo = lo, best_hi = hi, widest = -1;
   for (std::size_t i = 0, j = 0; i < intervals.size(); i = std::max(j, i + 1)) {
-    for (j = i; j < intervals.size() && intervals[j].undercut <= best + kUndercutWarning;) ++j;
+    for (j = i; j < intervals.size() && intervals[j].undercut <= best + kFacetUndercut;) ++j;
     if (j > i && intervals[j - 1].hi - intervals[i].lo > widest)
       best_lo = intervals[i].lo, best_hi = intervals[j - 1].hi, widest = best_hi - best_lo;
   }

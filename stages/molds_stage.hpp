@@ -59,7 +59,7 @@ public:
   /// draft); 14: thin ribs found by a disk's closing, a valley's wall not a rib of its own; 15: a silicone
   /// thickness nothing measured has no place in the report (was (0, 0, 0)); 16: each part's thinnest wall's place
   /// (report: min_wall_at_mm); 17: no vent or sprue whose cut leaves a wall under min_wall to the cavity beside it;
-  /// 18: an "auto" plane in the middle of the widest range of heights within kUndercutWarning of the least undercut
+  /// 18: an "auto" plane in the middle of the widest range of heights within 0.05 mm² of the least undercut
   int version() const override { return 18; }
   void run(StageContext& ctx) const override;
 };
