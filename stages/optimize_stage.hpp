@@ -47,7 +47,8 @@ public:
   /// a curve's orientation is tracked (orientation_rms_deg, orientation_max_deg), first_guess's surface errors;
   /// 21: the exit ramp (a fiber's exit stretch held at d_min · s / (2(d_min + w)), skin_barrier.hpp); 22: the ramp
   /// measured on the route as it is (ρ, the distance from the end, not the starting arc); 23: a pose's region
-  /// short of its turn (under 90 % of its angle) warned, with the muscles' pressures
+  /// short of its turn (under 90 % of its angle) warned, with the muscles' pressures; the skin barrier's weight 0.1
+  /// by default (was 1)
   int version() const override { return 23; }
   void run(StageContext& ctx) const override;
 };

@@ -154,7 +154,7 @@ TEST(FuzzE2E, MutantsOfEveryExampleThatCheckPassesMakeDoesNotRefuse)
       {"walking-robot",
        "design.toml",
        {{"edge_length = 5.0", "edge_length = 6.0"},
-        {"max_iterations = 300", "max_iterations = 2"},
+        {"max_iterations = 100", "max_iterations = 2"},
         {"voxel = 0.2 ", "voxel = 0.5 "}}},
       {"notched-finger",
        "design.toml",

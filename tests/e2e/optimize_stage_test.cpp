@@ -226,11 +226,12 @@ TEST_F(OptimizeE2E, AFirstGuessThatMatchesTheTargetBetterIsKeptWhateverTheBarrie
   // The optimizer moves the muscle inward, where the barrier costs less (0.99 -> 0.005), and pays
   // in the match (distance 0 -> 0.025): a lower objective and a robot further from the target,
   // which the stage kept until session 41 (a new user's hanging finger: RMSE 3.38 against 3.07 mm).
+  // The barrier's weight 1 (its default until session 44) makes it pay.
   test::write_text(dir_ / "design.toml",
                    std::string(test::kBarDesign) + test::kBarTrackingCurve +
                        "[[fiber]]\nname = \"m1\"\npoints = [[0, 0, 4.5], [20, 0, 4.5], [40, 0, 4.5], [60, 0, 4.5]]\n"
                        "[[target]]\nname = \"made\"\nkind = \"fibers\"\nfibers = [{ name = \"m1\", pressure = 300 }]\n"
-                       "[optimize]\nmax_iterations = 40\n");
+                       "[optimize]\nmax_iterations = 40\nweight_skin_barrier = 1\n");
   const auto r = make();
   ASSERT_EQ(r.exit_code, 0) << r.err;
   const auto report = json("report.json");
