@@ -49,7 +49,7 @@ std::vector<Diagnostic> unlikely_values(const Design& d)
   if (given(d, "[material].youngs_modulus") && modulus < kLeastLikelyModulusPa)
     out.push_back(design_problem(
         d, "[material].youngs_modulus",
-        fmt::format("{:g} Pa is softer than any casting silicone (Ecoflex 00-10 is about 55,000 Pa): the design "
+        fmt::format("{:g} Pa is softer than any casting silicone (Ecoflex 00-10 is about 22,000 Pa): the design "
                     "file's modulus is in Pa (if this is kPa, write {:g})",
                     modulus, modulus * 1000)));
   const double density = d.material.density;

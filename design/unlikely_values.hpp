@@ -14,7 +14,8 @@ namespace fibermold {
 
 /// A pneumatic muscle works at tens to hundreds of kPa: under this (kPa) max_pressure reads as MPa.
 inline constexpr double kLeastLikelyPressureKPa = 10;
-/// Casting silicones start near 50 kPa (Ecoflex 00-10): under this (Pa) youngs_modulus reads as kPa.
+/// Casting silicones start near 22 kPa (Ecoflex 00-10, silicone_presets.cpp): under this (Pa) youngs_modulus
+/// reads as kPa (under 100 Pa the range refuses it).
 inline constexpr double kLeastLikelyModulusPa = 1e3;
 /// Silicones weigh about 1,000–1,500 kg/m³: under this (kg/m³) density reads as g/cm³.
 inline constexpr double kLeastLikelyDensity = 100;

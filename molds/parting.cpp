@@ -100,7 +100,7 @@ Parting choose_parting(const SurfaceMesh& cavity, const Eigen::Vector3d& pull_in
   // about 0.4 mm, where its plane went, its lower half a 0.4 mm plate. (A slack of kUndercutWarning,
   // 1 mm², widened the coarse continuum robot's range of 0.57 mm² up its round flank to 0.94 mm²,
   // and the plane, 0.1 mm higher, met its end in a wedge of 0.00 mm.)
-  constexpr double kFacetUndercut = 0.05e-6;
+  constexpr double kFacetUndercut = 0.05 * units::mm2;
   double best_lo = lo, best_hi = hi, widest = -1;
   for (std::size_t i = 0, j = 0; i < intervals.size(); i = std::max(j, i + 1)) {
     for (j = i; j < intervals.size() && intervals[j].undercut <= best + kFacetUndercut;) ++j;
@@ -119,9 +119,9 @@ Parting choose_parting(const SurfaceMesh& cavity, const Eigen::Vector3d& pull_in
   double h = middle;
   for (int k = 1; k <= 8 && nudge > 0 && on_vertices(h); ++k) h = middle + ((k + 1) / 2) * (k % 2 ? nudge : -nudge);
   const Eigen::Vector3d centre = cavity.vertices.colwise().mean().transpose();
-  double undercut = intervals.empty() ? 0.0 : intervals.front().undercut; // the plane's own U
-  for (const Interval& i : intervals)
-    if (i.lo <= h && h < i.hi) undercut = i.undercut;
+  double undercut = intervals.back().undercut; // the plane's own U (a nudge may leave it on the run's top)
+  for (auto i = intervals.rbegin(); i != intervals.rend(); ++i)
+    if (i->lo <= h && h <= i->hi) undercut = i->undercut;
   return {centre + (h - centre.dot(pull)) * pull, pull, undercut};
 }
 

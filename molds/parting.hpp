@@ -31,8 +31,9 @@ double undercut_area(const SurfaceMesh& cavity, const Eigen::Vector3d& point, co
 double upright_share(const SurfaceMesh& cavity, const Eigen::Vector3d& point, const Eigen::Vector3d& pull,
                      double degrees);
 
-/// The plane normal to `pull` with the least undercut area, at a height along pull of at most
-/// `ceiling` (m; shot 1's grooves open along pull, so its plane passes below their bottoms).
+/// The plane normal to `pull` with the least undercut area (within a facet's, 0.05 mm²: in the middle
+/// of the widest run of heights that near the least), at a height along pull of at most `ceiling`
+/// (m; shot 1's grooves open along pull, so its plane passes below their bottoms).
 Parting choose_parting(const SurfaceMesh& cavity, const Eigen::Vector3d& pull, double ceiling = HUGE_VAL);
 
 /// Shot 1's plane for one sense of the pull: below every groove's bottom (each fiber's lowest point

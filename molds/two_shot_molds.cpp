@@ -58,7 +58,7 @@ void fill_problems(const FillPlan& plan, const TwoShotMolds& molds, double g3, c
                    std::vector<std::string>& problems)
 {
   const FillResult& f = plan.fill;
-  const double mm3 = 1e-9;
+  const double mm3 = units::mm3;
   const double unreached = f.fill_volume - f.reachable_volume - f.crevice_volume;
   if (g3 * unreached > kTrappedAirTolerance && !f.unreachable.empty())
     problems.push_back(
@@ -194,7 +194,9 @@ private:
 void Recipe::explain_close_channels(const std::string& name, const Mold& mold,
                                     const std::vector<Channel>& shot_channels, std::vector<std::string>& problems) const
 {
-  if (!problems.empty() && shot_channels.size() == channel_ends_.size())
+  const bool thin = std::any_of(problems.begin(), problems.end(),
+                                [](const std::string& p) { return p.find("has a wall of") != std::string::npos; });
+  if (thin && shot_channels.size() == channel_ends_.size())
     for (const CloseChannels& close : mold.close_channels)
       problems.push_back(fmt::format(
           "{}: the end channels where {} and where {} leave {:.2f} mm of mold between them, under [export] min_wall = "

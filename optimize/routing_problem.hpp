@@ -39,8 +39,9 @@ struct RoutingSettings {
   double weight_curvature = 1e-4;
   double min_bend_radius = 0; ///< m: the muscle bends no tighter (bend_radius.hpp); 0: no limit
   double weight_bend = 1;
-  /// The skin barrier's weight per muscle segment: 0.1 matched the targets better than 1 on all seven optimized
-  /// examples, in as many iterations (docs/optimize.md, "The barriers' weights"; session 44)
+  /// The skin barrier's weight per muscle segment: 0.1 matched the targets better than 1 on six of the seven
+  /// optimized examples (the seventh ties), ending alike in about the same time (docs/optimize.md, "The barriers'
+  /// weights"; session 44)
   double weight_skin = 0.1;
   double weight_pressure = 1;
   double pressure_margin = 0.02;      ///< of max_pressure

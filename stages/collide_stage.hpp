@@ -34,7 +34,7 @@ public:
   /// alone claims convergence (a re-optimization's steps); 18: the skin barrier's dip term between samples (a
   /// re-optimization's objective); 19: the turn's error where a curve's orientation is tracked;
   /// 20: the exit ramp (a re-optimization's objective); 21: the ramp measured on the route as it is
-  int version() const override { return 21; }
+  int version() const override { return 22; }
   void run(StageContext& ctx) const override;
 };
 

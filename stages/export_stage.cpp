@@ -51,6 +51,15 @@ Eigen::Vector3d molds_pull(const Json& molds)
                                 : Eigen::Vector3d::UnitZ();
 }
 
+/// Each [[fixed]] region's nodes.
+std::vector<std::vector<int>> held_nodes(const Design& d, const TetMesh& body)
+{
+  std::vector<std::vector<int>> out;
+  for (std::size_t i = 0; i < d.fixed.size(); ++i)
+    out.push_back(region_nodes(d.fixed[i].region, body, d, fmt::format("fixed[{}]", i + 1)));
+  return out;
+}
+
 /// Each fiber's cut: along its centre line as collide left it (10 points per mm), against the body's skin;
 /// an end leaves the body within the groove's radius of the skin (molds/report.json), and the supply end
 /// is the one nearest the [[fixed]] regions' centroid.
@@ -61,8 +70,7 @@ std::vector<MuscleCut> muscle_cuts(const StageContext& ctx, const TetMesh& body,
   const SurfaceDistance skin(body.nodes, body.boundary_faces);
   std::optional<Eigen::Vector3d> mount;
   std::vector<int> held;
-  for (std::size_t i = 0; i < d.fixed.size(); ++i)
-    for (int n : region_nodes(d.fixed[i].region, body, d, fmt::format("fixed[{}]", i + 1))) held.push_back(n);
+  for (const std::vector<int>& nodes : held_nodes(d, body)) held.insert(held.end(), nodes.begin(), nodes.end());
   if (!held.empty()) {
     mount = Eigen::Vector3d::Zero();
     for (int n : held) *mount += body.nodes.row(n).transpose() / static_cast<double>(held.size());
@@ -211,8 +219,9 @@ std::string as_built_command(const Design& d, const fs::path& build_dir, const s
 std::string held_regions(const Design& d, const TetMesh& body)
 {
   std::string out;
-  for (std::size_t i = 0; i < d.fixed.size(); ++i) {
-    const std::vector<int> nodes = region_nodes(d.fixed[i].region, body, d, fmt::format("fixed[{}]", i + 1));
+  const std::vector<std::vector<int>> held = held_nodes(d, body);
+  for (std::size_t i = 0; i < held.size(); ++i) {
+    const std::vector<int>& nodes = held[i];
     if (nodes.empty()) continue;
     Eigen::Vector3d lo = body.nodes.row(nodes.front()).transpose(), hi = lo, centre = Eigen::Vector3d::Zero();
     for (int n : nodes) {

@@ -101,7 +101,7 @@ Json vec_mm(const Eigen::Vector3d& v) { return {v.x() / units::mm, v.y() / units
 Json fill_report(const FillPlan& plan, double voxel, const TwoShotMolds& molds)
 {
   const FillResult& f = plan.fill;
-  const double mm3 = 1e-9, g3 = std::pow(molds.grow, 3);
+  const double mm3 = units::mm3, g3 = std::pow(molds.grow, 3);
   Json pockets = Json::array(), sprues = Json::array(), vents = Json::array();
   for (std::size_t k = 0; k < f.pockets.size() && k < 10; ++k)
     pockets.push_back({{"volume_mm3", six_places(g3 * f.pockets[k].volume / mm3)},
@@ -305,8 +305,7 @@ void MoldsStage::run(StageContext& ctx) const
   if (!molds.failures.empty()) {
     std::string list;
     for (const auto& f : molds.failures) list += "\n  " + f;
-    throw std::runtime_error(
-        fmt::format("{} mold part check(s) failed; no part written:{}", molds.failures.size(), list));
+    throw std::runtime_error(fmt::format("the mold parts failed their checks; no part written:{}", list));
   }
   for (const CheckedPart& p : molds.parts)
     write_stl(ctx.output_dir / (p.part.name + ".stl"), p.part.mesh, "fibermold " + p.part.name + " (mm)");

@@ -330,7 +330,7 @@ TEST(Demonstrators, WalkingRobotMusclesAreOptimizedMovedApartAndMolded)
   // pass their checks.
   test::TempDir dir;
   nlohmann::json report;
-  // The example's own mesh and iterations (it stalls after 120-154 of its 300): cut to 30
+  // The example's own mesh and iterations (its limit of 100 since session 44): cut to 30
   // iterations on a 6 mm mesh, as this test once was, the twist ended at 0.55 mm under Haswell's
   // kernels and at 0.99 and 1.42 mm under Sandybridge's and SkylakeX's, far from done.
   ASSERT_NO_FATAL_FAILURE(make_example("walking-robot", dir.path(), {{"voxel = 0.2 ", "voxel = 0.3 "}}, report));

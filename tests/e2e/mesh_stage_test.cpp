@@ -70,6 +70,25 @@ TEST_F(MeshStageE2E, MeshesABoxAndReportsIt)
 /// every other mesh option at its default, clamped at x = 0 and hanging under gravity. An
 /// independent solver (CalculiX, converged) puts its tip 58.9 mm down. With the input's triangles
 /// kept exactly the mesh stage made 8 nodes and 6 tets, and the tip sagged 3.0 mm.
+// A number likely written in another unit is warned at its line by check (before its checks) and by
+// make, and stops neither: a density of 1.07 (g/cm³) where kg/m³ are read.
+TEST_F(MeshStageE2E, ANumberInAnotherUnitIsWarnedByCheckAndMake)
+{
+  write_stl(dir_ / "box.stl", box_);
+  design("box.stl");
+  test::write_text(dir_ / "design.toml",
+                   test::read_text(dir_ / "design.toml") + "[material]\ndensity = 1.07\n[optimize]\nenabled = false\n");
+  const std::string warning = "design.toml:7:11: [material].density: 1.07 kg/m³ is lighter than any silicone";
+  const auto checked = test::run_fibermold("check design.toml", dir_.path());
+  EXPECT_EQ(checked.exit_code, 0) << checked.err;
+  EXPECT_THAT(checked.out, HasSubstr("warning: "));
+  EXPECT_THAT(checked.out, HasSubstr(warning));
+  EXPECT_THAT(checked.out, HasSubstr("(if this is g/cm³, write 1070)"));
+  const auto made = make();
+  EXPECT_EQ(made.exit_code, 0) << made.err;
+  EXPECT_THAT(made.out + made.err, HasSubstr(warning));
+}
+
 TEST_F(MeshStageE2E, ACadBoxOfTwelveTrianglesSagsAsAConvergedSolverSays)
 {
   constexpr double kConverged = 58.9e-3;

@@ -89,6 +89,22 @@ TEST(ChooseParting, UndercutsThatDifferByFacetsAlonePartInTheMiddleOfTheirRange)
   EXPECT_GT(p.undercut_area, 0.5e-3 * 1e-6); // the up-facing facet's, below the plane
   EXPECT_LT(p.undercut_area, 2e-3 * 1e-6);
   EXPECT_NEAR(p.undercut_area, undercut_area(plate, p.point, {0, 0, 1}), 1e-15);
+  // Half a mm² is not a facet: a narrow range of none between a down-facing and an up-facing ledge
+  // of 0.5 mm² each (at 4 and 5 mm) holds the plane, where a slack of 1 mm² took it to the middle of
+  // the plate (as on the continuum robot's round flank, into a 0.00 mm wedge).
+  SurfaceMesh ledges = test::box({0, 0, 0}, {100 * mm, 100 * mm, 12 * mm});
+  for (const auto& [z, up] : {std::pair{4.0, false}, std::pair{5.0, true}}) {
+    const Eigen::Index n = ledges.num_vertices();
+    ledges.vertices.conservativeResize(n + 3, 3);
+    ledges.vertices.row(n) = Eigen::RowVector3d(10, 10, z) * mm;
+    ledges.vertices.row(n + 1) = Eigen::RowVector3d(up ? 11 : 10, up ? 10 : 11, z) * mm;
+    ledges.vertices.row(n + 2) = Eigen::RowVector3d(up ? 10 : 11, up ? 11 : 10, z) * mm;
+    ledges.faces.conservativeResize(ledges.num_faces() + 1, 3);
+    ledges.faces.row(ledges.num_faces() - 1) = Eigen::RowVector3i(int(n), int(n + 1), int(n + 2));
+  }
+  const Parting held = choose_parting(ledges, {0, 0, 1});
+  EXPECT_NEAR(held.point.z(), 4.5 * mm, 0.01 * mm);
+  EXPECT_NEAR(held.undercut_area, 0, 1e-15);
   // An undercut a mold holds on to (1 mm² and more) still decides: a down-facing ledge of 4 mm² at
   // 8 mm moves the plane above it, into the middle of [8, 12] mm.
   const Eigen::Index n = plate.num_vertices();
