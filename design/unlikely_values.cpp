@@ -33,31 +33,32 @@ void tiny_span(const Design& d, const std::string& key, const char* what, const 
                     "coordinates are in mm (if these are metres, they span {:.3g} mm)",
                     what, s / units::mm, s / units::mm * 1000)));
 }
+
+/// A key the design file gives, with a value (in the file's unit) under `least`: likely written in the
+/// unit a thousand times larger. `what` formats the value and the value × 1000.
+void thousandfold(const Design& d, const std::string& key, double value, double least, const char* what,
+                  std::vector<Diagnostic>& out)
+{
+  if (given(d, key) && value > 0 && value < least)
+    out.push_back(design_problem(d, key, fmt::format(fmt::runtime(what), value, value * 1000)));
+}
 } // namespace
 
 std::vector<Diagnostic> unlikely_values(const Design& d)
 {
   std::vector<Diagnostic> out;
-  const double pressure = d.muscle.max_pressure / units::kPa;
-  if (given(d, "[muscle].max_pressure") && pressure < kLeastLikelyPressureKPa)
-    out.push_back(design_problem(
-        d, "[muscle].max_pressure",
-        fmt::format("{:g} kPa is less than a pneumatic muscle works at (tens to hundreds of kPa): the design file's "
-                    "pressures are in kPa (if this is MPa, write {:g})",
-                    pressure, pressure * 1000)));
-  const double modulus = d.material.youngs_modulus;
-  if (given(d, "[material].youngs_modulus") && modulus < kLeastLikelyModulusPa)
-    out.push_back(design_problem(
-        d, "[material].youngs_modulus",
-        fmt::format("{:g} Pa is softer than any casting silicone (Ecoflex 00-10 is about 22,000 Pa): the design "
-                    "file's modulus is in Pa (if this is kPa, write {:g})",
-                    modulus, modulus * 1000)));
-  const double density = d.material.density;
-  if (given(d, "[material].density") && density > 0 && density < kLeastLikelyDensity)
-    out.push_back(design_problem(d, "[material].density",
-                                 fmt::format("{:g} kg/m³ is lighter than any silicone (about 1,000–1,500 kg/m³): the "
-                                             "design file's density is in kg/m³ (if this is g/cm³, write {:g})",
-                                             density, density * 1000)));
+  thousandfold(d, "[muscle].max_pressure", d.muscle.max_pressure / units::kPa, kLeastLikelyPressureKPa,
+               "{:g} kPa is less than a pneumatic muscle works at (tens to hundreds of kPa): the design file's "
+               "pressures are in kPa (if this is MPa, write {:g})",
+               out);
+  thousandfold(d, "[material].youngs_modulus", d.material.youngs_modulus, kLeastLikelyModulusPa,
+               "{:g} Pa is softer than any casting silicone (Ecoflex 00-10 is about 22,000 Pa): the design file's "
+               "modulus is in Pa (if this is kPa, write {:g})",
+               out);
+  thousandfold(d, "[material].density", d.material.density, kLeastLikelyDensity,
+               "{:g} kg/m³ is lighter than any silicone (about 1,000–1,500 kg/m³): the design file's density is in "
+               "kg/m³ (if this is g/cm³, write {:g})",
+               out);
   for (const Fiber& f : d.fibers) tiny_span(d, fmt::format("[fiber.{}].points", f.name), "route", f.points, out);
   for (const TrackingCurve& c : d.tracking_curves)
     tiny_span(d, fmt::format("[tracking_curve.{}].points", c.name), "tracking curve", c.points, out);

@@ -138,7 +138,8 @@ PartCheck check_part(const SurfaceMesh& part, double min_wall, const Eigen::Vect
   Eigen::Vector3d where = Eigen::Vector3d::Zero();
   out.min_thickness = thinnest_wall(written, min_wall, where);
   out.min_thickness_at = where;
-  if (out.min_thickness < min_wall * (1 - 1e-6))
+  out.thin_wall = out.min_thickness < min_wall * (1 - 1e-6);
+  if (out.thin_wall)
     out.problems.push_back(fmt::format(
         "has a wall of {:.2f} mm near ({:.1f}, {:.1f}, {:.1f}) mm, thinner than [export] min_wall = {:.2f} mm",
         out.min_thickness / units::mm, where.x() / units::mm, where.y() / units::mm, where.z() / units::mm,

@@ -19,6 +19,7 @@ struct PartCheck {
   Eigen::Vector3d size = Eigen::Vector3d::Zero(); ///< bounding box, m
   double min_thickness = 0; ///< m, the thinnest wall found (a cone median where a single ray saw < min_wall)
   Eigen::Vector3d min_thickness_at = Eigen::Vector3d::Zero(); ///< m, where, in the part's frame as checked
+  bool thin_wall = false;                                     ///< min_thickness is under min_wall: one of the problems
   Eigen::Vector3i orientation{0, 1, 2};                       ///< part axes along the printer's x, y, z that fit
   bool fits = false;
 

@@ -164,7 +164,7 @@ private:
   }
 
   void explain_close_channels(const std::string& name, const Mold& mold, const std::vector<Channel>& shot_channels,
-                              std::vector<std::string>& problems) const;
+                              bool thin_wall, std::vector<std::string>& problems) const;
   std::vector<std::string> make_shot(const std::string& name, const SurfaceMesh& shot_cavity, Parting parting,
                                      double silicone, const std::vector<Channel>& shot_channels);
 
@@ -190,13 +190,12 @@ private:
 /// (a new user's two muscles left the tip 5.6 mm apart, and both 4 mm channels were laid onto the
 /// parting plane, 2.5 mm apart: "a wall of 0.02 mm", and no word of why). Said as a line of its own
 /// after the parts' problems, which it explains (appended to the last of them, it could land on
-/// another part's, or on a problem of another kind).
+/// another part's, or on a problem of another kind), where one of the shot's parts has a thin wall.
 void Recipe::explain_close_channels(const std::string& name, const Mold& mold,
-                                    const std::vector<Channel>& shot_channels, std::vector<std::string>& problems) const
+                                    const std::vector<Channel>& shot_channels, bool thin_wall,
+                                    std::vector<std::string>& problems) const
 {
-  const bool thin = std::any_of(problems.begin(), problems.end(),
-                                [](const std::string& p) { return p.find("has a wall of") != std::string::npos; });
-  if (thin && shot_channels.size() == channel_ends_.size())
+  if (thin_wall && shot_channels.size() == channel_ends_.size())
     for (const CloseChannels& close : mold.close_channels)
       problems.push_back(fmt::format(
           "{}: the end channels where {} and where {} leave {:.2f} mm of mold between them, under [export] min_wall = "
@@ -284,6 +283,7 @@ std::vector<std::string> Recipe::make_shot(const std::string& name, const Surfac
     log_.warn(fmt::format(
         "{}: room for {} of the {} screw holes asked for (channels and keys take the other sites in the rim)", name,
         mold.screws.size(), block_.screw_holes));
+  bool thin_wall = false;
   for (const MoldPart& p : mold.parts) {
     progress_.checkpoint(-1, "checking " + p.name);
     started = Clock::now();
@@ -293,9 +293,10 @@ std::vector<std::string> Recipe::make_shot(const std::string& name, const Surfac
                           since(started)));
     for (const std::string& problem : c.problems) problems.push_back(fmt::format("part {} {}", p.name, problem));
     if (!c.fits) too_big_.push_back(p.name);
+    thin_wall = thin_wall || c.thin_wall;
     out_.parts.push_back(CheckedPart{name, p, std::move(c)});
   }
-  explain_close_channels(name, mold, shot_channels, problems);
+  explain_close_channels(name, mold, shot_channels, thin_wall, problems);
   std::erase_if(out_.shots, [&](const ShotMold& s) { return s.name == name; });
   out_.shots.push_back(std::move(shot));
   return problems;

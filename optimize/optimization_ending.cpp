@@ -1,6 +1,7 @@
 #include "optimize/optimization_ending.hpp"
 
 #include <algorithm>
+#include <string_view>
 
 #include <fmt/format.h>
 
@@ -21,6 +22,14 @@ bool every_muscle_off(const Eigen::MatrixXd& p, const ActuatorMask& actuators, E
     }
   return any && all_off;
 }
+/// "tip turned 28.0° of the 40.0° asked (70 %)" (with `note` inside the brackets), after a comma
+/// where `list` has one already.
+void append_turn(std::string& list, const AngleReach& a, std::string_view note = "")
+{
+  list += fmt::format("{}{} turned {:.1f}° of the {:.1f}° asked ({:.0f} %{})", list.empty() ? "" : ", ", a.place,
+                      a.reached / units::degree, a.asked / units::degree, 100 * a.reached / a.asked, note);
+}
+
 /// Target t's regions that turned between 1 − kFarFromReached and kShortOfTurn of their angles: one
 /// warning naming them and the muscles' pressures, with what holds the turn back.
 void short_of_turns(Eigen::Index t, const std::vector<AngleReach>& turns, const Eigen::MatrixXd& p,
@@ -30,8 +39,7 @@ void short_of_turns(Eigen::Index t, const std::vector<AngleReach>& turns, const 
   std::string regions;
   for (const AngleReach& a : turns)
     if (a.asked != 0 && a.reached / a.asked >= 1 - kFarFromReached && a.reached / a.asked < kShortOfTurn)
-      regions += fmt::format("{}{} turned {:.1f}° of the {:.1f}° asked ({:.0f} %)", regions.empty() ? "" : ", ",
-                             a.place, a.reached / units::degree, a.asked / units::degree, 100 * a.reached / a.asked);
+      append_turn(regions, a);
   if (regions.empty()) return;
   std::string pressures;
   bool at_max = false;
@@ -138,11 +146,10 @@ OptimizationEnding optimization_ending(const RoutingResult& result, const Actuat
     const std::vector<AngleReach> turns = t < angles.size() ? angles[t] : std::vector<AngleReach>{};
     for (const AngleReach& a : turns)
       if (a.asked != 0 && a.reached / a.asked < 1 - kFarFromReached)
-        how_far += fmt::format("{}{} turned {:.1f}° of the {:.1f}° asked ({:.0f} %{})", how_far.empty() ? "" : ", ",
-                               a.place, a.reached / units::degree, a.asked / units::degree, 100 * a.reached / a.asked,
-                               a.reached / a.asked < 0
-                                   ? ": the other way; check the sign of the pose's axis against its translation"
-                                   : "");
+        append_turn(how_far, a,
+                    a.reached / a.asked < 0
+                        ? ": the other way; check the sign of the pose's axis against its translation"
+                        : "");
     short_of_turns(static_cast<Eigen::Index>(t), turns, p, actuators, max_pressure, margin, target_names[t],
                    e.warnings);
     const bool asks_turns = std::any_of(turns.begin(), turns.end(), [](const AngleReach& a) { return a.asked != 0; });

@@ -62,15 +62,14 @@ std::vector<std::vector<int>> held_nodes(const Design& d, const TetMesh& body)
 
 /// Each fiber's cut: along its centre line as collide left it (10 points per mm), against the body's skin;
 /// an end leaves the body within the groove's radius of the skin (molds/report.json), and the supply end
-/// is the one nearest the [[fixed]] regions' centroid.
-std::vector<MuscleCut> muscle_cuts(const StageContext& ctx, const TetMesh& body, const FibersFile& fibers,
-                                   const Json& molds)
+/// is the one nearest the [[fixed]] regions' centroid (`regions`: held_nodes).
+std::vector<MuscleCut> muscle_cuts(const TetMesh& body, const std::vector<std::vector<int>>& regions,
+                                   const FibersFile& fibers, const Json& molds)
 {
-  const Design& d = ctx.design;
   const SurfaceDistance skin(body.nodes, body.boundary_faces);
   std::optional<Eigen::Vector3d> mount;
   std::vector<int> held;
-  for (const std::vector<int>& nodes : held_nodes(d, body)) held.insert(held.end(), nodes.begin(), nodes.end());
+  for (const std::vector<int>& nodes : regions) held.insert(held.end(), nodes.begin(), nodes.end());
   if (!held.empty()) {
     mount = Eigen::Vector3d::Zero();
     for (int n : held) *mount += body.nodes.row(n).transpose() / static_cast<double>(held.size());
@@ -215,11 +214,10 @@ std::string as_built_command(const Design& d, const fs::path& build_dir, const s
 /// Where the design holds the body, for whoever mounts the cast robot: each [[fixed]] region by its
 /// name, its held nodes' centre and extent ("centre: 25 nodes around (0.0, 0.0, 0.4) mm, from
 /// (-8.0, -8.0, 0.0) to (8.0, 8.0, 2.0) mm"). A body with no end (a starfish held at its
-/// underside's centre) left "its fixed end" to a guess.
-std::string held_regions(const Design& d, const TetMesh& body)
+/// underside's centre) left "its fixed end" to a guess. `held`: held_nodes.
+std::string held_regions(const Design& d, const TetMesh& body, const std::vector<std::vector<int>>& held)
 {
   std::string out;
-  const std::vector<std::vector<int>> held = held_nodes(d, body);
   for (std::size_t i = 0; i < held.size(); ++i) {
     const std::vector<int>& nodes = held[i];
     if (nodes.empty()) continue;
@@ -237,13 +235,12 @@ std::string held_regions(const Design& d, const TetMesh& body)
 /// Per target, the body as simulated under the final routing (collide/deformed-<target>.json), as a
 /// printable STL in the body's frame, which is the frame of the robot as mounted (its [[fixed]]
 /// regions stay where they are at rest); README.txt's section on checking the cast robot with it,
-/// and the files for the manifest.
-std::string overlay_shapes(const StageContext& ctx, const TetMesh& body, const FibersFile& fibers,
-                           const Simulated& simulated, Json& files)
+/// and the files for the manifest. `held`: held_regions, where the robot is mounted.
+std::string overlay_shapes(const StageContext& ctx, const TetMesh& body, const std::string& held,
+                           const FibersFile& fibers, const Simulated& simulated, Json& files)
 {
   const Design& d = ctx.design;
   const std::optional<Json>& collide = simulated.collide;
-  const std::string held = held_regions(d, body);
   std::string text;
   for (std::size_t t = 0; t < d.targets.size(); ++t) {
     const std::string& name = d.targets[t].name;
@@ -398,11 +395,12 @@ void ExportStage::run(StageContext& ctx) const
   const TetMesh body = load_tet_mesh(ctx.upstream("mesh", "body.tetmesh"));
   const FibersFile fibers = read_fibers_json(ctx.upstream("collide", "fibers.json"));
   const Simulated simulated = read_simulated(ctx);
-  const std::string checking = overlay_shapes(ctx, body, fibers, simulated, deformed);
+  const std::vector<std::vector<int>> held = held_nodes(d, body);
+  const std::string checking = overlay_shapes(ctx, body, held_regions(d, body, held), fibers, simulated, deformed);
   const Json manifest{{"design", d.design.name}, {"units", "mm"},  {"voxel_mm", molds["voxel_mm"]},
                       {"parts", parts},          {"shots", shots}, {"deformed", deformed}};
   write_json_atomic(ctx.output_dir / "manifest.json", manifest);
-  const CastingSheet sheet = casting_sheet(d, molds, muscle_cuts(ctx, body, fibers, molds));
+  const CastingSheet sheet = casting_sheet(d, molds, muscle_cuts(body, held, fibers, molds));
   write_file_atomic(ctx.output_dir / "README.txt",
                     casting_guide(sheet) + (simulated.collide ? muscle_bends_text(*simulated.collide) : std::string()) +
                         (simulated.optimized ? optimization_warnings_text(*simulated.optimized) : "") + checking);

@@ -409,7 +409,8 @@ std::string leaves_along_the_skin(const Design& d, const ExitShortfall& e)
       std::acos(std::min(1.0, need.distance / stretch)) / units::degree);
 }
 
-/// A starting route the skin barrier refuses (InputError at the fiber).
+/// A starting route, as moved apart from the other fibers, that the skin barrier or the bend radius
+/// refuses (InputError at the fiber): require_optimizable checked the [[fiber]] routes.
 void require_start_inside(const Design& d, RoutingProblem& problem, const Routing& start)
 {
   double closest = 0;
@@ -495,7 +496,7 @@ void OptimizeStage::run(StageContext& ctx) const
   if (!begun.warning.empty()) ctx.log.warn("{}", begun.warning);
   const Routing& start = begun.routing;
   RoutingProblem& problem = dr.start(start);
-  require_start_inside(d, problem, start);
+  if (begun.moved) require_start_inside(d, problem, start);
 
   std::unique_ptr<FiberClearance> measure;
   std::unique_ptr<ClearanceBarrier> barrier;

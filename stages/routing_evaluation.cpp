@@ -143,7 +143,7 @@ FiberClearance design_clearance(const Design& d, const SurfaceDistance& skin, co
 
 OptimizationStart optimization_start(const Design& d, const SurfaceDistance& skin)
 {
-  OptimizationStart out{starting_routing(d), {}, {}};
+  OptimizationStart out{starting_routing(d), {}, {}, false};
   std::vector<Route>& routes = out.routing.routes;
   if (routes.size() < 2) return out;
   const FiberClearance measure = design_clearance(d, skin, routes, routes);
@@ -163,6 +163,7 @@ OptimizationStart optimization_start(const Design& d, const SurfaceDistance& ski
         "moved apart before optimizing, in {} rounds: the smallest clearance went from {:.3f} mm to {:.3f} mm",
         r.iterations, r.before / units::mm, r.after / units::mm));
     routes = r.routes;
+    out.moved = true;
   } catch (const CollisionError& e) {
     out.warning =
         fmt::format("the starting fibers cannot be moved apart ({}); the optimizer lets them cross, and collide parts "

@@ -83,6 +83,7 @@ struct OptimizationStart {
   Routing routing;
   std::vector<std::string> log;
   std::string warning;
+  bool moved = false; ///< the routes were moved apart: not the [[fiber]] routes that require_optimizable checked
 };
 OptimizationStart optimization_start(const Design& d, const SurfaceDistance& skin);
 
