@@ -75,6 +75,28 @@ std::optional<std::pair<std::array<double, 4>, double>> variations(const Measure
   return std::pair{out, p["sensitivity"]["change_percent"].get<double>()};
 }
 
+/// What a pose region that turned short of its angle would take to turn it all (collide's "full_turn"):
+/// the pressures, and the turn the simulation reaches there; empty without it.
+std::string full_turn_text(const Json& p)
+{
+  if (!p.contains("full_turn") || !p["full_turn"].is_object()) return {};
+  const Json& f = p["full_turn"];
+  std::string pressures;
+  for (const auto& [fiber, kpa] : f["pressures_kPa"].items())
+    pressures += fmt::format("{}{} {:.0f} kPa", pressures.empty() ? "" : ", ", fiber, kpa.get<double>());
+  const double turn = f["rotation_about_asked_axis_deg"].get<double>(), asked = p["asked_rotation_deg"].get<double>();
+  const bool at_max = f["at_max_pressure"].get<bool>();
+  std::string text = fmt::format(
+      " It is asked to turn {:.1f}°: the optimizer chose these pressures as the best balance of that turn and the "
+      "tracking curves' positions. At {:.2f} × these pressures ({}{}) the simulation turns it {:.1f}°",
+      asked, f["pressure_scale"].get<double>(), pressures, at_max ? ": [muscle] max_pressure for the highest" : "",
+      turn);
+  return text + (at_max && std::abs(turn) < std::abs(asked)
+                     ? ": the muscles do not turn it all the way at the pressure they are rated for (add a muscle, or "
+                       "use a softer silicone)."
+                     : ", at the cost of the tracking curves' positions.");
+}
+
 } // namespace
 
 std::vector<ReportTable> behaviour_tables(const Json& collide_report)
@@ -238,6 +260,7 @@ std::string what_to_measure(const Json& poses, double youngs_modulus, bool beyon
                                                                      : " about the axis asked";
   std::string text = fmt::format("Measure {}'s {}{}{}: {:.1f}{} in the simulation.", p["place"].get<std::string>(),
                                  asked ? "turn" : m.what, at, about, m.value, m.unit);
+  if (asked) text += full_turn_text(p);
   if (m.unit == std::string("°") && p.contains("nodes") && p["nodes"].is_number())
     text += fmt::format(" That is the best rigid fit of its {} nodes (the whole face); a point of it, such as a "
                         "tracking curve's end, may turn a few degrees more or less.",

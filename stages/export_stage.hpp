@@ -36,8 +36,9 @@ public:
   /// nodes' fit, the higher pressure said to be above max_pressure where it is; 23: the modulus to the pascal, as the
   /// simulation used it; 24: report.html: the first guess's RMSE and the turn's error beside the optimized figures;
   /// 25: README.txt: where the robot is held, the spacers under shot 1, tubes threaded through the upper half;
-  /// report.html: a kept first guess said in the optimization table's title
-  int version() const override { return 25; }
+  /// report.html: a kept first guess said in the optimization table's title; 26: README.txt: what pressures turn a
+  /// pose region short of its turn all the way (collide's full_turn)
+  int version() const override { return 26; }
   void run(StageContext& ctx) const override;
 };
 

@@ -259,6 +259,37 @@ TEST(BehaviourSummary, WhatToMeasureIsTheTurnAskedElseTheLargestTurnElseTheLarge
             "  Measure a's move: 3.0 mm in the simulation.\n");
 }
 
+TEST(BehaviourSummary, APoseShortOfItsTurnSaysWhatPressuresTurnItAll)
+{
+  // collide's "full_turn" of a new user's starfish (session 45): an arm turned 28.0° of the 40° asked
+  // at 286 and 288 kPa; 1.42 × those pressures turn it 40.0°.
+  Json arm = pose("pose[1]", 1, 28);
+  arm["asked_rotation_deg"] = 40;
+  arm["rotation_about_asked_axis_deg"] = 28.0;
+  arm["full_turn"] = Json::parse(R"({"pressure_scale": 1.4227, "pressures_kPa": {"lift_px": 406.83, "lift_mx": 409.96},
+                                    "at_max_pressure": false, "max_pressure_kPa": 425,
+                                    "rotation_about_asked_axis_deg": 39.977})");
+  const auto flat = [](const Json& p) {
+    return std::regex_replace(what_to_measure(Json::array({p}), 86.4e3, true, kAsBuilt), std::regex("\n  "), " ");
+  };
+  EXPECT_THAT(
+      flat(arm),
+      testing::HasSubstr("Measure pose[1]'s turn about the axis asked: 28.0° in the simulation. It is asked to "
+                         "turn 40.0°: the optimizer chose these pressures as the best balance of that turn and the "
+                         "tracking curves' positions. At 1.42 × these pressures (lift_px 407 kPa, lift_mx 410 kPa) the "
+                         "simulation turns it 40.0°, at the cost of the tracking curves' positions."));
+  // At max_pressure and still short: said, with what to do.
+  arm["full_turn"]["at_max_pressure"] = true;
+  arm["full_turn"]["rotation_about_asked_axis_deg"] = 36.5;
+  EXPECT_THAT(flat(arm),
+              testing::HasSubstr("(lift_px 407 kPa, lift_mx 410 kPa: [muscle] max_pressure for the highest) "
+                                 "the simulation turns it 36.5°: the muscles do not turn it all the way at "
+                                 "the pressure they are rated for (add a muscle, or use a softer silicone)."));
+  // Without it (a turn reached, or an older report), nothing of it.
+  arm.erase("full_turn");
+  EXPECT_THAT(flat(arm), testing::Not(testing::HasSubstr("asked to turn")));
+}
+
 TEST(MoldPartsSummary, TheSprueOfShotOneRunsDownThroughTheLowerHalfAndTheVentsUp)
 {
   const Json fill = Json::parse(R"({"sprues": [{"mouth_mm": [10, 0, 0], "from": "below"}],
