@@ -36,11 +36,11 @@ void tiny_span(const Design& d, const std::string& key, const char* what, const 
 
 /// A key the design file gives, with a value (in the file's unit) under `least`: likely written in the
 /// unit a thousand times larger. `what` formats the value and the value × 1000.
-void thousandfold(const Design& d, const std::string& key, double value, double least, const char* what,
-                  std::vector<Diagnostic>& out)
+void thousandfold(const Design& d, const std::string& key, double value, double least,
+                  fmt::format_string<double, double> what, std::vector<Diagnostic>& out)
 {
   if (given(d, key) && value > 0 && value < least)
-    out.push_back(design_problem(d, key, fmt::format(fmt::runtime(what), value, value * 1000)));
+    out.push_back(design_problem(d, key, fmt::format(what, double{value}, value * 1000)));
 }
 } // namespace
 

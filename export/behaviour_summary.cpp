@@ -76,25 +76,42 @@ std::optional<std::pair<std::array<double, 4>, double>> variations(const Measure
 }
 
 /// What a pose region that turned short of its angle would take to turn it all (collide's "full_turn"):
-/// the pressures, and the turn the simulation reaches there; empty without it.
+/// the pressures, and the turn the simulation reaches there; empty without it (or in a report that
+/// lacks a figure of it).
 std::string full_turn_text(const Json& p)
 {
-  if (!p.contains("full_turn") || !p["full_turn"].is_object()) return {};
+  if (!p.contains("full_turn") || !p["full_turn"].is_object() || !p.contains("asked_rotation_deg") ||
+      !p["asked_rotation_deg"].is_number() || !p.contains("rotation_about_asked_axis_deg") ||
+      !p["rotation_about_asked_axis_deg"].is_number())
+    return {};
   const Json& f = p["full_turn"];
-  std::string pressures;
+  const auto number = [&](const char* key) { return f.contains(key) && f[key].is_number(); };
+  const auto flag = [&](const char* key) { return f.contains(key) && f[key].is_boolean() && f[key].get<bool>(); };
+  if (!number("pressure_scale") || !number("rotation_about_asked_axis_deg") || !f.contains("pressures_kPa") ||
+      !f["pressures_kPa"].is_object())
+    return {};
+  std::string pressures, off;
   for (const auto& [fiber, kpa] : f["pressures_kPa"].items())
-    pressures += fmt::format("{}{} {:.0f} kPa", pressures.empty() ? "" : ", ", fiber, kpa.get<double>());
+    if (kpa.is_number())
+      pressures += fmt::format("{}{} {:.0f} kPa", pressures.empty() ? "" : ", ", fiber, kpa.get<double>());
+  if (f.contains("off") && f["off"].is_array())
+    for (const Json& fiber : f["off"])
+      if (fiber.is_string()) off += (off.empty() ? "" : ", ") + fiber.get<std::string>();
   const double turn = f["rotation_about_asked_axis_deg"].get<double>(), asked = p["asked_rotation_deg"].get<double>();
-  const bool at_max = f["at_max_pressure"].get<bool>();
+  const double nominal = p["rotation_about_asked_axis_deg"].get<double>();
+  const bool at_max = flag("at_max_pressure"), reached = flag("reached");
   std::string text = fmt::format(
       " It is asked to turn {:.1f}°: the optimizer chose these pressures as the best balance of that turn and the "
-      "tracking curves' positions. At {:.2f} × these pressures ({}{}) the simulation turns it {:.1f}°",
-      asked, f["pressure_scale"].get<double>(), pressures, at_max ? ": [muscle] max_pressure for the highest" : "",
-      turn);
-  return text + (at_max && std::abs(turn) < std::abs(asked)
-                     ? ": the muscles do not turn it all the way at the pressure they are rated for (add a muscle, or "
-                       "use a softer silicone)."
-                     : ", at the cost of the tracking curves' positions.");
+      "tracking curves' positions{}. At {:.2f} × these pressures ({}{}{}) the simulation turns it {:.1f}°",
+      asked, nominal / asked < 0 ? ", and they turn it the other way (check the sign of the pose's axis first)" : "",
+      f["pressure_scale"].get<double>(), pressures, off.empty() ? "" : "; " + off + " still off",
+      at_max ? ": [muscle] max_pressure for the highest" : "", turn);
+  if (reached) return text + ", at the cost of the tracking curves' positions.";
+  if (at_max)
+    return text + fmt::format(": the muscles do not turn it all the way at the pressure they are rated for ({}add a "
+                              "muscle, or use a softer silicone).",
+                              off.empty() ? "" : "drive " + off + " too, ");
+  return text + ", the nearest to the angle of the pressures tried.";
 }
 
 } // namespace
@@ -260,11 +277,11 @@ std::string what_to_measure(const Json& poses, double youngs_modulus, bool beyon
                                                                      : " about the axis asked";
   std::string text = fmt::format("Measure {}'s {}{}{}: {:.1f}{} in the simulation.", p["place"].get<std::string>(),
                                  asked ? "turn" : m.what, at, about, m.value, m.unit);
-  if (asked) text += full_turn_text(p);
   if (m.unit == std::string("°") && p.contains("nodes") && p["nodes"].is_number())
     text += fmt::format(" That is the best rigid fit of its {} nodes (the whole face); a point of it, such as a "
                         "tracking curve's end, may turn a few degrees more or less.",
                         p["nodes"].get<int>());
+  if (asked) text += full_turn_text(p);
   if (const auto varied = variations(m)) {
     const auto& [v, percent] = *varied;
     const auto value = [&](std::size_t k) { return fmt::format("{:.1f}{}", v[k], m.unit); };

@@ -16,6 +16,7 @@
 #include "core/units.hpp"
 #include "optimize/clearance_barrier.hpp"
 #include "optimize/collision_resolution.hpp"
+#include "optimize/full_turn_search.hpp"
 #include "optimize/optimization_ending.hpp"
 #include "stages/design_simulation.hpp"
 #include "stages/fibers_file.hpp"
@@ -200,67 +201,62 @@ struct ScaledStiffness {
   }
 };
 
-/// The full turn's search: at most this many solves, stopping within this share of the angle asked.
-constexpr int kFullTurnSolves = 4;
-constexpr double kFullTurnTolerance = 0.02;
-
 /// For pose region `reached` (the i-th of target t's poses) turned short of its angle (under
 /// kShortOfTurn of it) under `final`: the pressures that turn it the whole angle, every pressure of the
-/// target scaled alike, at most [muscle] max_pressure, and the turn the simulation reaches there, each
-/// solved from rest. The secant method on the scale, from the turns with every pressure
-/// kSensitivityChange lower and higher (`lower`, `higher`): on the test bar one secant step from those
-/// turned 20° of the 25° asked, as the turn grows faster than the pressure. The optimizer weighed the
-/// turn against the tracking curves' positions: this says what the turn alone would take (a new user's
-/// starfish turned 28.0° of 40° at 286 and 288 kPa of 425; 1.42 × turns it 40.0°). None where the turn does not grow
-/// with the pressure, or an equilibrium is not found.
+/// target scaled alike, at most [muscle] max_pressure (full_turn_search.hpp, from its turns with every
+/// pressure kSensitivityChange lower and higher, `lower` and `higher`), each solved from rest. The
+/// optimizer weighed the turn against the tracking curves' positions: this says what the turn alone
+/// would take (a new user's starfish turned 28.0° of 40° at 286 and 288 kPa of 425; 1.42 × turns it
+/// 40.0°). None where the turn does not grow with the pressure, or no equilibrium is found.
 std::optional<Json> full_turn(StageContext& ctx, DesignRouting& dr, const Routing& final, int t,
                               const std::vector<PosedRegion>& asked, std::size_t i, const ReachedPose& reached,
                               const ReachedPose& lower, const ReachedPose& higher)
 {
   if (!reached.asked || reached.asked->angle == 0) return std::nullopt;
   const Eigen::Vector3d axis = reached.asked->axis;
-  const double angle = reached.asked->angle;
-  if (!(reached.motion.angle_about(axis) / angle < kShortOfTurn)) return std::nullopt;
+  const double angle = reached.asked->angle, turned = reached.motion.angle_about(axis);
+  const Eigen::RowVectorXd p = final.pressures.row(t);
+  const double highest = p.maxCoeff();
+  if (!(turned / angle < kShortOfTurn) || !(highest > 0)) return std::nullopt;
   const Design& d = ctx.design;
   const Target& target = d.targets[static_cast<std::size_t>(t)];
-  const Eigen::RowVectorXd p = final.pressures.row(t);
-  const double highest = p.maxCoeff(), most = d.muscle.max_pressure / highest; // the largest scale
-  if (!(highest > 0)) return std::nullopt;
-  // Two points (scale, turn) of the secant, the last one the newest.
-  double s0 = 1 - kSensitivityChange, a0 = lower.motion.angle_about(axis);
-  double s1 = 1 + kSensitivityChange, a1 = higher.motion.angle_about(axis);
-  std::optional<std::pair<double, double>> best; // the solved (scale, turn) nearest the angle
-  for (int k = 0; k < kFullTurnSolves; ++k) {
-    if (!((a1 - a0) / angle > 0)) break; // the turn does not grow with the pressure there
-    const double s = std::min(most, s1 + (angle - a1) * (s1 - s0) / (a1 - a0));
-    if (!(s > 0) || (best && s == best->first)) break;
+  ctx.progress.checkpoint(-1,
+                          fmt::format("target {}: the pressures that turn {} all the way", target.name, reached.place));
+  const auto turn_at = [&](double s) {
+    if (s == 1) return turned; // the nominal, solved already (the highest pressure at max_pressure)
     Routing pressed = final;
     pressed.pressures.row(t) *= s;
-    double a = 0;
+    dr.problem->forget_states(); // from rest, as the nominal solve
     try {
-      dr.problem->forget_states(); // from rest, as the nominal solve
-      a = reached_poses(d, target, *dr.sim, dr.problem->equilibrium(pressed, t), asked)[i].motion.angle_about(axis);
+      return reached_poses(d, target, *dr.sim, dr.problem->equilibrium(pressed, t), asked)[i].motion.angle_about(axis);
     } catch (const Interrupted&) {
       throw;
     } catch (const std::runtime_error& e) {
       ctx.log.warn("target {}: {} at {:.2f} × its pressures, to turn its whole angle: {}", target.name, reached.place,
                    s, e.what());
-      break;
+      throw;
     }
-    if (!best || std::abs(a - angle) < std::abs(best->second - angle)) best = std::pair{s, a};
-    if (std::abs(a - angle) <= kFullTurnTolerance * std::abs(angle) || (s == most && a / angle < 1)) break;
-    s0 = s1, a0 = a1, s1 = s, a1 = a;
+  };
+  const std::optional<FullTurn> found =
+      full_turn_search(angle, 1 - kSensitivityChange, lower.motion.angle_about(axis), 1 + kSensitivityChange,
+                       higher.motion.angle_about(axis), d.muscle.max_pressure / highest, turn_at);
+  if (!found) return std::nullopt;
+  Json pressures = Json::object(), off = Json::array();
+  const ActuatorMask muscles = actuator_mask(d);
+  for (Eigen::Index f = 0; f < p.size(); ++f) {
+    const std::string& fiber = final.routes[static_cast<std::size_t>(f)].name;
+    if (p(f) > 0)
+      pressures[fiber] = found->scale * p(f) / units::kPa;
+    else if (muscles(t, f))
+      off.push_back(fiber);
   }
-  if (!best) return std::nullopt;
-  const auto [scale, turn] = *best;
-  Json pressures = Json::object();
-  for (Eigen::Index f = 0; f < p.size(); ++f)
-    if (p(f) > 0) pressures[final.routes[static_cast<std::size_t>(f)].name] = scale * p(f) / units::kPa;
-  return Json{{"pressure_scale", scale},
+  return Json{{"pressure_scale", found->scale},
               {"pressures_kPa", std::move(pressures)},
-              {"at_max_pressure", scale == most},
+              {"off", std::move(off)},
+              {"at_max_pressure", found->at_most},
               {"max_pressure_kPa", d.muscle.max_pressure / units::kPa},
-              {"rotation_about_asked_axis_deg", turn / units::degree}};
+              {"rotation_about_asked_axis_deg", found->turn / units::degree},
+              {"reached", found->reached}};
 }
 
 /// Target t's poses under `final` in deformation x, each with where it goes under kPoseVariations: the

@@ -249,6 +249,8 @@ TEST_F(CollideE2E, APoseShortOfItsTurnSaysWhatPressureTurnsItAll)
               full["pressure_scale"].get<double>(), full["pressures_kPa"]["m1"].get<double>());
   EXPECT_GT(pose["rotation_about_asked_axis_deg"].get<double>(), -0.9 * 25);
   EXPECT_FALSE(full["at_max_pressure"].get<bool>());
+  EXPECT_TRUE(full["reached"].get<bool>());
+  EXPECT_TRUE(full["off"].empty());
   EXPECT_NEAR(full["rotation_about_asked_axis_deg"].get<double>(), -25, 0.5); // kFullTurnTolerance: 2 %
   EXPECT_LT(full["pressures_kPa"]["m1"].get<double>(), 425);
   const auto optimized = json("optimize", "report.json")["targets"]["turn"]["pressure_kPa"]["m1"].get<double>();
@@ -258,6 +260,7 @@ TEST_F(CollideE2E, APoseShortOfItsTurnSaysWhatPressureTurnsItAll)
   ASSERT_TRUE(pose.contains("full_turn")) << pose.dump();
   std::printf("asked -60°: at max_pressure %.2f°\n", pose["full_turn"]["rotation_about_asked_axis_deg"].get<double>());
   EXPECT_TRUE(pose["full_turn"]["at_max_pressure"].get<bool>());
+  EXPECT_FALSE(pose["full_turn"]["reached"].get<bool>());
   EXPECT_DOUBLE_EQ(pose["full_turn"]["pressures_kPa"]["m1"].get<double>(), 425);
   EXPECT_GT(pose["full_turn"]["rotation_about_asked_axis_deg"].get<double>(), -60);
 }

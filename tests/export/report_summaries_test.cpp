@@ -266,26 +266,43 @@ TEST(BehaviourSummary, APoseShortOfItsTurnSaysWhatPressuresTurnItAll)
   Json arm = pose("pose[1]", 1, 28);
   arm["asked_rotation_deg"] = 40;
   arm["rotation_about_asked_axis_deg"] = 28.0;
+  arm["nodes"] = 25;
   arm["full_turn"] = Json::parse(R"({"pressure_scale": 1.4227, "pressures_kPa": {"lift_px": 406.83, "lift_mx": 409.96},
-                                    "at_max_pressure": false, "max_pressure_kPa": 425,
-                                    "rotation_about_asked_axis_deg": 39.977})");
+                                    "off": [], "at_max_pressure": false, "max_pressure_kPa": 425,
+                                    "rotation_about_asked_axis_deg": 39.977, "reached": true})");
   const auto flat = [](const Json& p) {
     return std::regex_replace(what_to_measure(Json::array({p}), 86.4e3, true, kAsBuilt), std::regex("\n  "), " ");
   };
+  // After the sentence on the region's fit, which is about the figure measured.
   EXPECT_THAT(
       flat(arm),
-      testing::HasSubstr("Measure pose[1]'s turn about the axis asked: 28.0° in the simulation. It is asked to "
-                         "turn 40.0°: the optimizer chose these pressures as the best balance of that turn and the "
-                         "tracking curves' positions. At 1.42 × these pressures (lift_px 407 kPa, lift_mx 410 kPa) the "
-                         "simulation turns it 40.0°, at the cost of the tracking curves' positions."));
-  // At max_pressure and still short: said, with what to do.
+      testing::HasSubstr("may turn a few degrees more or less. It is asked to turn 40.0°: the optimizer chose these "
+                         "pressures as the best balance of that turn and the tracking curves' positions. At 1.42 × "
+                         "these pressures (lift_px 407 kPa, lift_mx 410 kPa) the simulation turns it 40.0°, at the "
+                         "cost of the tracking curves' positions."));
+  // At max_pressure and still short: said, with what to do; a muscle of the target left off is named.
+  Json full = arm["full_turn"];
   arm["full_turn"]["at_max_pressure"] = true;
+  arm["full_turn"]["reached"] = false;
   arm["full_turn"]["rotation_about_asked_axis_deg"] = 36.5;
-  EXPECT_THAT(flat(arm),
-              testing::HasSubstr("(lift_px 407 kPa, lift_mx 410 kPa: [muscle] max_pressure for the highest) "
-                                 "the simulation turns it 36.5°: the muscles do not turn it all the way at "
-                                 "the pressure they are rated for (add a muscle, or use a softer silicone)."));
-  // Without it (a turn reached, or an older report), nothing of it.
+  arm["full_turn"]["off"] = {"lift_y"};
+  EXPECT_THAT(flat(arm), testing::HasSubstr("(lift_px 407 kPa, lift_mx 410 kPa; lift_y still off: [muscle] "
+                                            "max_pressure for the highest) the simulation turns it 36.5°: the muscles "
+                                            "do not turn it all the way at the pressure they are rated for (drive "
+                                            "lift_y too, add a muscle, or use a softer silicone)."));
+  // A search that ended short of the angle under max_pressure does not read as reached.
+  arm["full_turn"] = full;
+  arm["full_turn"]["reached"] = false;
+  arm["full_turn"]["rotation_about_asked_axis_deg"] = 33.0;
+  EXPECT_THAT(flat(arm), testing::HasSubstr("turns it 33.0°, the nearest to the angle of the pressures tried."));
+  // Turned the other way by the optimizer's pressures: the axis's sign comes first.
+  arm["full_turn"] = full;
+  arm["rotation_about_asked_axis_deg"] = -2.5;
+  EXPECT_THAT(flat(arm), testing::HasSubstr("positions, and they turn it the other way (check the sign of the pose's "
+                                            "axis first). At 1.42 ×"));
+  // Without it (a turn reached, or an older report), or with a figure of it missing, nothing of it.
+  arm["full_turn"].erase("pressure_scale");
+  EXPECT_THAT(flat(arm), testing::Not(testing::HasSubstr("asked to turn")));
   arm.erase("full_turn");
   EXPECT_THAT(flat(arm), testing::Not(testing::HasSubstr("asked to turn")));
 }
