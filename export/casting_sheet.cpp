@@ -104,12 +104,17 @@ std::string silicone_text(const CastingSheet& sheet)
 std::string muscles_text(const CastingSheet& sheet)
 {
   std::string text = "\n";
-  text += wrapped(fmt::format("Muscles ({:.1f} mm in diameter): cut each to its length inside the "
+  // The channel as molds cuts it (two_shot_molds.cpp's end_channel): until session 45 the sheet gave the
+  // socket's width as the tube's, which a new user found does not pass the hole through the wall.
+  text += wrapped(fmt::format("Muscles ({0:.1f} mm in diameter): cut each to its length inside the "
                               "body, and before you lay it into its groove fit its supply tube and "
-                              "seal its other end (shot 2 buries both). A supply tube leaves the mold "
-                              "through a channel {:.1f} mm wide: one of that outside diameter closes "
-                              "it while shot 2 is poured (wrap a thinner one with tape to that width).",
-                              sheet.muscle_diameter / units::mm, sheet.end_channel_diameter / units::mm),
+                              "seal its other end (shot 2 buries both). A supply tube leaves shot 2's mold "
+                              "through a hole {0:.1f} mm wide, past a socket {1:.1f} mm wide reaching {2:.1f} mm "
+                              "beyond the skin, where the silicone closes around the muscle's end and the "
+                              "tube's fitting: a tube of {0:.1f} mm outside diameter plugs the hole while shot 2 "
+                              "is poured (wrap a thinner one with tape to that width).",
+                              sheet.muscle_diameter / units::mm, sheet.end_channel_diameter / units::mm,
+                              sheet.end_channel_length / units::mm),
                   "", "");
   for (const MuscleCut& c : sheet.cuts) {
     if (!c.supply) {

@@ -34,9 +34,11 @@ struct CastingSheet {
   SiliconePreset silicone;    ///< whose handling the sheet gives
   std::string preset;         ///< `[material] preset` as named; empty: the paper's default material
   double youngs_modulus = 0, poisson_ratio = 0, density = 0; ///< Pa, –, kg/m³: what the simulation took
-  bool paper_material = false;     ///< no preset and those three at the paper's EcoFlex 00-30 figures
-  double muscle_diameter = 0;      ///< m
-  double end_channel_diameter = 0; ///< m: the channel a supply tube leaves the molds by (its width)
+  bool paper_material = false; ///< no preset and those three at the paper's EcoFlex 00-30 figures
+  double muscle_diameter = 0;  ///< m
+  /// m: shot 2's channel where a supply tube leaves the body, a socket end_channel_diameter wide reaching
+  /// end_channel_length beyond the skin, then a hole muscle_diameter wide out through the wall
+  double end_channel_diameter = 0, end_channel_length = 0;
   std::vector<MuscleCut> cuts;
   Eigen::Vector3d pull = Eigen::Vector3d::UnitZ(); ///< the molds open along it
   CastShot shot1, shot2;

@@ -115,6 +115,7 @@ CastingSheet casting_sheet(const Design& d, const Json& molds, std::vector<Muscl
                          m.poisson_ratio == MaterialOptions{}.poisson_ratio && m.density == MaterialOptions{}.density;
   sheet.muscle_diameter = d.muscle.model.diameter;
   sheet.end_channel_diameter = d.mold.end_channel_diameter;
+  sheet.end_channel_length = d.mold.end_channel_length;
   sheet.cuts = std::move(cuts);
   sheet.pull = molds_pull(molds);
   sheet.shot1 = cast_shot(molds["shots"]["shot1"]);

@@ -37,6 +37,7 @@ CastingSheet sheet()
   s.density = s.silicone.density;
   s.muscle_diameter = 3e-3;
   s.end_channel_diameter = 4e-3;
+  s.end_channel_length = 5e-3;
   MuscleCut supplied{"m1", 0.110, 0.108, {}, {}, 0};
   supplied.start = {{0, 0, 0}, true, {-0.001, 0, 0}};
   supplied.end = {{0.1, 0, 0}, false, {0.1, 0.005, 0}};
@@ -97,7 +98,10 @@ TEST(CastingSheet, GivesEachMuscleItsCutAndItsEnds)
   const std::string guide = casting_guide(sheet());
   EXPECT_TRUE(has(guide, "Muscles (3.0 mm in diameter)"));
   EXPECT_TRUE(has(guide, "before you lay it into its groove fit its supply tube and seal its other end"));
-  EXPECT_TRUE(has(guide, "through a channel 4.0 mm wide"));
+  // shot 2's channel: a 4 mm socket 5 mm beyond the skin, then a hole as wide as the muscle, which
+  // the tube plugs (the sheet named the socket's 4 mm until session 45).
+  EXPECT_TRUE(has(guide, "through a hole 3.0 mm wide, past a socket 4.0 mm wide reaching 5.0 mm beyond the skin"));
+  EXPECT_TRUE(has(guide, "a tube of 3.0 mm outside diameter plugs the hole"));
   EXPECT_TRUE(has(guide, "m1: 108.0 mm. Fit the supply tube"));
   EXPECT_TRUE(has(guide, "to its first end, which leaves the body at (-1.0, 0.0, 0.0) mm"));
   EXPECT_TRUE(has(guide, "buried in the body at (100.0, 0.0, 0.0) mm"));
