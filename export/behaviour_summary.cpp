@@ -114,6 +114,18 @@ std::string full_turn_text(const Json& p)
   return text + ", the nearest to the angle of the pressures tried.";
 }
 
+/// The command that shows the full turn's figure (collide's "full_turn"): the robot as built at those
+/// pressures, the target's regions said as README.txt says them; empty without it.
+std::string full_turn_command(const Json& p, const std::string& as_built_command)
+{
+  if (full_turn_text(p).empty()) return {};
+  std::string command = as_built_command;
+  for (const auto& [fiber, kpa] : p["full_turn"]["pressures_kPa"].items())
+    if (kpa.is_number())
+      command += fmt::format(" --pressure {}={:.1f}", fiber, std::floor(10 * kpa.get<double>()) / 10);
+  return "  To see it turn so in the simulation, run from the design's folder:\n      " + command + "\n";
+}
+
 } // namespace
 
 std::vector<ReportTable> behaviour_tables(const Json& collide_report)
@@ -304,7 +316,7 @@ std::string what_to_measure(const Json& poses, double youngs_modulus, bool beyon
         beyond_max_pressure ? " (the higher is above [muscle] max_pressure for a muscle: a figure to compare, not a "
                               "pressure to drive it at)"
                             : "");
-    return wrapped(text, "  ", "  ") + "      " + as_built_command + "\n";
+    return wrapped(text, "  ", "  ") + "      " + as_built_command + "\n" + full_turn_command(p, as_built_command);
   }
   return wrapped(text, "  ", "  ");
 }

@@ -80,11 +80,12 @@ std::vector<Actuation> requested_actuations(const Design& d, const SimulateReque
   return all;
 }
 
-/// "pressures-flexor-300kPa": the pressures given on the command line, in their order, so that runs at
-/// other pressures write files of their own (until session 42 each overwrote deformed-pressures.vtu).
+/// "-flexor-300kPa": the pressures given on the command line, in their order, so that runs at other
+/// pressures write files of their own ("pressures-flexor-300kPa", "curl-flexor-300kPa-as-built"; until
+/// session 42 each overwrote deformed-pressures.vtu).
 std::string pressures_name(const std::vector<std::string>& given, const std::vector<Actuation>& actuations)
 {
-  std::string name = "pressures";
+  std::string name;
   for (const std::string& item : given) {
     const std::string fiber = item.substr(0, item.find('='));
     for (const Actuation& a : actuations)
@@ -93,11 +94,21 @@ std::string pressures_name(const std::vector<std::string>& given, const std::vec
   return name;
 }
 
+/// The fibers given a --pressure, in their order (requested_actuations has checked each "FIBER=kPa").
+std::vector<std::string> given_fibers(const SimulateRequest& request)
+{
+  std::vector<std::string> out;
+  for (const std::string& item : request.pressures) out.push_back(item.substr(0, item.find('=')));
+  return out;
+}
+
 /// --as-built: the routes of collide/fibers.json in place of the design's, and with a target its
-/// pressures there. InputError when the build folder was made from another body, when the file is
-/// missing or unreadable, or does not hold a fiber or the target the request names.
+/// pressures there, each fiber of `given` (its --pressure) at its own. InputError when the build folder
+/// was made from another body, when the file is missing or unreadable, or does not hold a fiber or the
+/// target the request names.
 std::vector<Actuation> as_built(const Design& d, const fs::path& build_dir, const Target* target,
-                                std::vector<Actuation> requested, std::string& said)
+                                std::vector<Actuation> requested, const std::vector<std::string>& given,
+                                std::string& said)
 {
   const fs::path path = build_dir / "collide" / "fibers.json";
   const auto refuse = [&](const std::string& message) {
@@ -156,18 +167,27 @@ std::vector<Actuation> as_built(const Design& d, const fs::path& build_dir, cons
                        target->name,
                        file.targets.empty() ? std::string("none") : fmt::format("{}", fmt::join(file.targets, ", ")),
                        elsewhere));
+  for (const std::string& name : given) route(name);
   std::vector<Actuation> out;
-  std::string pressures;
+  std::string pressures, changed;
   for (std::size_t k = 0; k < file.routing.routes.size(); ++k) {
     const Route& r = file.routing.routes[k];
-    const double p = file.routing.pressures(row - file.targets.begin(), static_cast<Eigen::Index>(k));
-    if (!(p >= 0 && p <= d.muscle.max_pressure))
+    double p = file.routing.pressures(row - file.targets.begin(), static_cast<Eigen::Index>(k));
+    if (std::find(given.begin(), given.end(), r.name) != given.end()) {
+      p = std::find_if(requested.begin(), requested.end(), [&](const Actuation& a) {
+            return a.fiber == r.name;
+          })->pressure;
+      changed += fmt::format("{}{} {:.0f} kPa", changed.empty() ? "" : ", ", r.name, p / units::kPa);
+    } else if (!(p >= 0 && p <= d.muscle.max_pressure))
       refuse(fmt::format("fiber {}: target {}'s pressure {:.0f} kPa is outside [0, {:.0f}] kPa ([muscle].max_pressure)",
                          r.name, target->name, p / units::kPa, d.muscle.max_pressure / units::kPa));
     out.push_back({r.name, r.points, r.tangents, p});
     pressures += fmt::format("{}{} {:.0f} kPa", pressures.empty() ? "" : ", ", r.name, p / units::kPa);
   }
-  said += fmt::format(", at target {}'s pressures there ({})", target->name, pressures);
+  said += changed.empty() ? fmt::format(", at target {}'s pressures there ({})", target->name, pressures)
+                          : fmt::format(", target {}'s regions at the pressures given ({}; the others at the "
+                                        "target's there: {})",
+                                        target->name, changed, pressures);
   return out;
 }
 
@@ -216,8 +236,10 @@ std::string compared_poses(const Design& d, const Target* target, const TetMesh&
 SimulateResult simulate(const Design& d, const Runner& runner, const fs::path& build_dir,
                         const SimulateRequest& request, const ProgressFactory& progress)
 {
-  if (!request.target.empty() && !request.pressures.empty())
-    bad(d, "--target", "give either --target or --pressure, not both");
+  if (!request.target.empty() && !request.pressures.empty() && !request.as_built)
+    bad(d, "--target",
+        "give either --target or --pressure, not both (with --as-built, both: the target's regions with its "
+        "pressures there, those given at theirs)");
   const Target* target = nullptr;
   for (const Target& t : d.targets)
     if (t.name == request.target) target = &t;
@@ -241,10 +263,12 @@ SimulateResult simulate(const Design& d, const Runner& runner, const fs::path& b
                     "(targets/{}.vtu); --as-built simulates the pressures found for it",
                     target->name, target->name));
   // A target's loads act on the body alone (as the targets stage makes its shape); pressures on the robot.
-  std::vector<Actuation> actuations = target ? std::vector<Actuation>{} : requested_actuations(d, request);
-  if (target && target->kind == TargetKind::fibers) actuations = target_actuations(d, *target);
+  std::vector<Actuation> actuations =
+      target && request.pressures.empty() ? std::vector<Actuation>{} : requested_actuations(d, request);
+  if (target && target->kind == TargetKind::fibers && !request.as_built) actuations = target_actuations(d, *target);
   std::string as_built_said;
-  if (request.as_built) actuations = as_built(d, build_dir, target, std::move(actuations), as_built_said);
+  if (request.as_built)
+    actuations = as_built(d, build_dir, target, std::move(actuations), given_fibers(request), as_built_said);
   // As built, a target is reached by the muscles alone: its forces or known fibers made its shape.
   const Target* load = request.as_built ? nullptr : target;
 
@@ -267,11 +291,11 @@ SimulateResult simulate(const Design& d, const Runner& runner, const fs::path& b
   }();
 
   SimulateResult result;
-  result.name = fmt::format("{}{}",
+  result.name = fmt::format("{}{}{}",
                             target                      ? target->name
                             : request.pressures.empty() ? std::string("unactuated")
-                                                        : pressures_name(request.pressures, actuations),
-                            request.as_built ? "-as-built" : "");
+                                                        : "pressures",
+                            pressures_name(request.pressures, actuations), request.as_built ? "-as-built" : "");
   result.muscles = actuations.empty() ? std::string("no muscle: the body under ") +
                                             (load ? "the target's loads, its weight and its held regions"
                                                   : "its weight and its held regions")

@@ -309,6 +309,23 @@ TEST_F(SimulateE2E, AsBuiltSimulatesTheRoutesAndPressuresTheMoldsWereMadeFor)
   const auto with_pressure = simulate("--as-built --pressure m1=150");
   ASSERT_EQ(with_pressure.exit_code, 0) << with_pressure.err;
   EXPECT_EQ(test::read_text(dir_ / "build" / "simulate" / "deformed-pressures-m1-150kPa-as-built.vtu"), vtu);
+  // The target's regions at other pressures (what README.txt's full turn names): the same robot at the
+  // file's 150 kPa, another at 200, each in its own file; without --as-built, refused.
+  const auto given = simulate("--as-built --target pull --pressure m1=150");
+  ASSERT_EQ(given.exit_code, 0) << given.err;
+  EXPECT_THAT(given.out, HasSubstr("target pull's regions at the pressures given (m1 150 kPa; the others at the "
+                                   "target's there: m1 150 kPa)"));
+  EXPECT_EQ(test::read_text(dir_ / "build" / "simulate" / "deformed-pull-m1-150kPa-as-built.vtu"), vtu);
+  const auto higher = simulate("--as-built --target pull --pressure m1=200");
+  ASSERT_EQ(higher.exit_code, 0) << higher.err;
+  EXPECT_THAT(higher.out, HasSubstr("load[1] (at (60.0, "));
+  const auto moved_mm = [](const std::string& out) {
+    const auto at = out.find("load[1]");
+    return std::stod(out.substr(out.find("moves ", at) + 6));
+  };
+  EXPECT_GT(moved_mm(higher.out), moved_mm(as_built.out) + 0.1);
+  EXPECT_THAT(simulate("--target pull --pressure m1=150").err,
+              HasSubstr("give either --target or --pressure, not both (with --as-built, both"));
 
   // The design given that route, simulated as a design is.
   std::string text = test::read_text(dir_ / "design.toml");

@@ -267,6 +267,8 @@ TEST(BehaviourSummary, APoseShortOfItsTurnSaysWhatPressuresTurnItAll)
   arm["asked_rotation_deg"] = 40;
   arm["rotation_about_asked_axis_deg"] = 28.0;
   arm["nodes"] = 25;
+  arm["sensitivity"]["rotation_about_asked_axis_deg"] = {
+      {"stiffer", 27.9}, {"softer", 28.1}, {"less_pressure", 25.2}, {"more_pressure", 30.9}};
   arm["full_turn"] = Json::parse(R"({"pressure_scale": 1.4227, "pressures_kPa": {"lift_px": 406.83, "lift_mx": 409.96},
                                     "off": [], "at_max_pressure": false, "max_pressure_kPa": 425,
                                     "rotation_about_asked_axis_deg": 39.977, "reached": true})");
@@ -280,6 +282,10 @@ TEST(BehaviourSummary, APoseShortOfItsTurnSaysWhatPressuresTurnItAll)
                          "pressures as the best balance of that turn and the tracking curves' positions. At 1.42 × "
                          "these pressures (lift_px 407 kPa, lift_mx 410 kPa) the simulation turns it 40.0°, at the "
                          "cost of the tracking curves' positions."));
+  // The command that shows it, at those pressures (to 0.1 kPa, rounded down: never above max_pressure).
+  EXPECT_THAT(what_to_measure(Json::array({arm}), 86.4e3, true, kAsBuilt),
+              testing::EndsWith("  To see it turn so in the simulation, run from the design's folder:\n      " +
+                                kAsBuilt + " --pressure lift_px=406.8 --pressure lift_mx=409.9\n"));
   // At max_pressure and still short: said, with what to do; a muscle of the target left off is named.
   Json full = arm["full_turn"];
   arm["full_turn"]["at_max_pressure"] = true;
