@@ -75,6 +75,19 @@ std::optional<std::pair<std::array<double, 4>, double>> variations(const Measure
   return std::pair{out, p["sensitivity"]["change_percent"].get<double>()};
 }
 
+/// m's figure with every muscle at 0 kPa, the body under its weight alone (collide's "unpressurized"):
+/// the first thing to compare on the cast robot; empty without it.
+std::string unpressurized_text(const Measure& m)
+{
+  const Json& p = *m.pose;
+  if (!p.contains("unpressurized") || !p["unpressurized"].is_object() || !p["unpressurized"].contains(m.band) ||
+      !p["unpressurized"][m.band].is_number())
+    return {};
+  return fmt::format(" Before you pressurize it (every muscle at 0 kPa), held as simulated, its weight alone {} it "
+                     "{:.1f}{} in the simulation: compare that first.",
+                     m.unit == std::string("°") ? "turns" : "moves", p["unpressurized"][m.band].get<double>(), m.unit);
+}
+
 /// What a pose region that turned short of its angle would take to turn it all (collide's "full_turn"):
 /// the pressures, and the turn the simulation reaches there; empty without it (or in a report that
 /// lacks a figure of it).
@@ -293,6 +306,7 @@ std::string what_to_measure(const Json& poses, double youngs_modulus, bool beyon
     text += fmt::format(" That is the best rigid fit of its {} nodes (the whole face); a point of it, such as a "
                         "tracking curve's end, may turn a few degrees more or less.",
                         p["nodes"].get<int>());
+  text += unpressurized_text(m);
   if (asked) text += full_turn_text(p);
   if (const auto varied = variations(m)) {
     const auto& [v, percent] = *varied;

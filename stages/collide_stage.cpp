@@ -259,11 +259,33 @@ std::optional<Json> full_turn(StageContext& ctx, DesignRouting& dr, const Routin
               {"reached", found->reached}};
 }
 
+/// The robot with every muscle at 0 kPa, under its weight and held as designed: one equilibrium for
+/// every target (a target's loads made its shape; the robot does not carry them), what a lab sees of
+/// the cast robot before it pressurizes it (a new user's 90 mm finger of Dragon Skin 10 turned its tip
+/// 19.3° so, of the 31.9° it turns at its pressure). None without gravity (the body stays at rest) or
+/// where no equilibrium is found.
+std::optional<Eigen::VectorXd> unpressurized(StageContext& ctx, DesignRouting& dr, const Routing& final)
+{
+  if (ctx.design.material.gravity.norm() == 0 || dr.problem->num_targets() == 0) return std::nullopt;
+  Routing rest = final;
+  rest.pressures.setZero();
+  try {
+    dr.problem->forget_states(); // from rest, as every other solve here
+    return dr.problem->equilibrium(rest, 0);
+  } catch (const Interrupted&) {
+    throw;
+  } catch (const std::runtime_error& e) {
+    ctx.log.warn("the robot unpressurized, under its weight: {}; its poses have no unpressurized figures", e.what());
+    return std::nullopt;
+  }
+}
+
 /// Target t's poses under `final` in deformation x, each with where it goes under kPoseVariations: the
 /// silicone stiffer and softer (`scaled`), every pressure lower and higher, each solved from rest as x
-/// was; none where a variation finds no equilibrium.
+/// was; none where a variation finds no equilibrium. With `rest` (unpressurized()), where each goes
+/// with every muscle at 0 kPa.
 Json poses_json(StageContext& ctx, DesignRouting& dr, std::array<ScaledStiffness, 2>& scaled, const Routing& final,
-                int t, const Eigen::VectorXd& x)
+                int t, const Eigen::VectorXd& x, const std::optional<Eigen::VectorXd>& rest)
 {
   const Design& d = ctx.design;
   const Target& target = d.targets[static_cast<std::size_t>(t)];
@@ -292,6 +314,15 @@ Json poses_json(StageContext& ctx, DesignRouting& dr, std::array<ScaledStiffness
     poses.push_back(varied[3].empty()
                         ? pose_report(reached[i])
                         : pose_report(reached[i], {varied[0][i], varied[1][i], varied[2][i], varied[3][i]}));
+  if (rest) {
+    const std::vector<ReachedPose> at_rest = reached_poses(d, target, *dr.sim, *rest, asked);
+    for (std::size_t i = 0; i < reached.size(); ++i) {
+      const ReachedPose& r = at_rest[i];
+      Json& u = poses[i]["unpressurized"] = {{"rotation_deg", r.motion.angle() / units::degree},
+                                             {"displacement_mm", r.displacement.norm() / units::mm}};
+      if (r.asked) u["rotation_about_asked_axis_deg"] = r.motion.angle_about(r.asked->axis) / units::degree;
+    }
+  }
   if (!varied[3].empty())
     for (std::size_t i = 0; i < reached.size(); ++i)
       if (auto turn = full_turn(ctx, dr, final, t, asked, i, reached[i], varied[2][i], varied[3][i]))
@@ -337,6 +368,7 @@ void simulate_targets(StageContext& ctx, const FiberClearance& measure, const Fi
   std::array<ScaledStiffness, 2> scaled{ScaledStiffness(dr, segments, 1 + kSensitivityChange),
                                         ScaledStiffness(dr, segments, 1 - kSensitivityChange)};
   Json targets = Json::object();
+  const std::optional<Eigen::VectorXd> rest = unpressurized(ctx, dr, final);
   for (int t = 0; t < problem.num_targets(); ++t) {
     const std::string& name = dr.target_names[t];
     write_deformed_target(ctx.output_dir / fmt::format("deformed-{}.vtu", name), dr, final, t, states[t]);
@@ -349,7 +381,7 @@ void simulate_targets(StageContext& ctx, const FiberClearance& measure, const Fi
     ctx.progress.update(
         off_at + (1 - off_at) * t / problem.num_targets(),
         fmt::format("target {}: the silicone and the pressures {:.0f} % off", name, 100 * kSensitivityChange));
-    targets[name]["poses"] = poses_json(ctx, dr, scaled, final, t, states[t]);
+    targets[name]["poses"] = poses_json(ctx, dr, scaled, final, t, states[t], rest);
     ctx.log.info("target {}: RMSE {:.3f} mm before, {:.3f} mm after ({:+.1f} %); max {:.3f} → {:.3f} mm on the "
                  "tracking curves; surface RMSE {:.3f} → {:.3f} mm",
                  name, before[t].rmse / units::mm, after[t].rmse / units::mm, change, before[t].max / units::mm,

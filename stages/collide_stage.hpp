@@ -35,8 +35,8 @@ public:
   /// re-optimization's objective); 19: the turn's error where a curve's orientation is tracked;
   /// 20: the exit ramp (a re-optimization's objective); 21: the ramp measured on the route as it is; 22: a straight
   /// route's bends; 23: a pose region short of its turn gets the pressures that turn it all (full_turn); 24: and
-  /// whether they do (reached), the target's muscles left off
-  int version() const override { return 24; }
+  /// whether they do (reached), the target's muscles left off; 25: each place unpressurized (its weight alone)
+  int version() const override { return 25; }
   void run(StageContext& ctx) const override;
 };
 

@@ -38,8 +38,9 @@ public:
   /// 25: README.txt: where the robot is held, the spacers under shot 1, tubes threaded through the upper half;
   /// report.html: a kept first guess said in the optimization table's title; 26: README.txt: what pressures turn a
   /// pose region short of its turn all the way (collide's full_turn); 27: the supply tube's hole as wide as the
-  /// muscle, a full turn short of the angle said so, the command that shows it
-  int version() const override { return 27; }
+  /// muscle, a full turn short of the angle said so, the command that shows it; 28: the figure to measure before
+  /// the robot is pressurized (its weight alone)
+  int version() const override { return 28; }
   void run(StageContext& ctx) const override;
 };
 

@@ -253,6 +253,19 @@ TEST_F(CollideE2E, APoseShortOfItsTurnSaysWhatPressureTurnsItAll)
   EXPECT_TRUE(full["off"].empty());
   EXPECT_NEAR(full["rotation_about_asked_axis_deg"].get<double>(), -25, 0.5); // kFullTurnTolerance: 2 %
   EXPECT_LT(full["pressures_kPa"]["m1"].get<double>(), 425);
+  // Unpressurized, the bar's weight turns the end as `simulate --as-built` does at 0 kPa (what a lab
+  // compares first, before it pressurizes the cast robot).
+  ASSERT_TRUE(pose.contains("unpressurized")) << pose.dump();
+  const double weight = pose["unpressurized"]["rotation_about_asked_axis_deg"].get<double>();
+  const auto at_zero = test::run_fibermold(
+      "simulate design.toml --as-built --target turn --pressure m1=0 --build-dir build", dir_.path());
+  ASSERT_EQ(at_zero.exit_code, 0) << at_zero.err;
+  const auto about = at_zero.out.find("° about the axis asked");
+  ASSERT_NE(about, std::string::npos) << at_zero.out;
+  const double simulated = std::stod(at_zero.out.substr(at_zero.out.rfind(' ', about - 1) + 1));
+  std::printf("unpressurized: %.2f° (simulate: %.1f°)\n", weight, simulated);
+  EXPECT_NEAR(weight, simulated, 0.051);
+  EXPECT_GT(weight, pose["rotation_about_asked_axis_deg"].get<double>()); // the muscle turns it toward -25°
   const auto optimized = json("optimize", "report.json")["targets"]["turn"]["pressure_kPa"]["m1"].get<double>();
   EXPECT_NEAR(full["pressures_kPa"]["m1"].get<double>(), full["pressure_scale"].get<double>() * optimized, 1e-6);
 

@@ -282,6 +282,13 @@ TEST(BehaviourSummary, APoseShortOfItsTurnSaysWhatPressuresTurnItAll)
                          "pressures as the best balance of that turn and the tracking curves' positions. At 1.42 × "
                          "these pressures (lift_px 407 kPa, lift_mx 410 kPa) the simulation turns it 40.0°, at the "
                          "cost of the tracking curves' positions."));
+  // Unpressurized, its weight alone (collide's "unpressurized"): compared first.
+  Json weighed = arm;
+  weighed["unpressurized"] = {{"rotation_deg", 6.2}, {"displacement_mm", 3.1}, {"rotation_about_asked_axis_deg", 6.1}};
+  EXPECT_THAT(flat(weighed), testing::HasSubstr("may turn a few degrees more or less. Before you pressurize it (every "
+                                                "muscle at 0 kPa), held as simulated, its weight alone turns it 6.1° "
+                                                "in the simulation: compare that first. It is asked to turn 40.0°"));
+  EXPECT_THAT(flat(arm), testing::Not(testing::HasSubstr("Before you pressurize it")));
   // The command that shows it, at those pressures (to 0.1 kPa, rounded down: never above max_pressure).
   EXPECT_THAT(what_to_measure(Json::array({arm}), 86.4e3, true, kAsBuilt),
               testing::EndsWith("  To see it turn so in the simulation, run from the design's folder:\n      " +
