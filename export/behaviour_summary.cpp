@@ -127,6 +127,21 @@ std::string full_turn_text(const Json& p)
   return text + ", the nearest to the angle of the pressures tried.";
 }
 
+/// report.html's cell for the full turn (collide's "full_turn"): "40.0° at 1.42 × (lift_px 407 kPa, …)".
+std::string full_turn_cell(const Json& p)
+{
+  if (full_turn_text(p).empty()) return "–";
+  const Json& f = p["full_turn"];
+  std::string pressures;
+  for (const auto& [fiber, kpa] : f["pressures_kPa"].items())
+    if (kpa.is_number())
+      pressures += fmt::format("{}{} {:.0f} kPa", pressures.empty() ? "" : ", ", fiber, kpa.get<double>());
+  const bool flagged = f.contains("at_max_pressure") && f["at_max_pressure"].is_boolean();
+  return fmt::format("{:.1f}° at {:.2f} × ({}){}", f["rotation_about_asked_axis_deg"].get<double>(),
+                     f["pressure_scale"].get<double>(), pressures,
+                     flagged && f["at_max_pressure"].get<bool>() ? ", max_pressure" : "");
+}
+
 /// The command that shows the full turn's figure (collide's "full_turn"): the robot as built at those
 /// pressures, the target's regions said as README.txt says them; empty without it.
 std::string full_turn_command(const Json& p, const std::string& as_built_command)
@@ -171,10 +186,10 @@ std::vector<ReportTable> behaviour_tables(const Json& collide_report)
     }
     out.push_back(std::move(targets));
     // README.txt's figure to measure on the cast robot, per target, and what it hinges on.
-    ReportTable check{
-        "Checking the cast robot: the figure to measure",
-        {"target", "figure", "simulated", "silicone stiffer", "silicone softer", "less pressure", "more pressure"},
-        {}};
+    ReportTable check{"Checking the cast robot: the figure to measure",
+                      {"target", "figure", "simulated", "silicone stiffer", "silicone softer", "less pressure",
+                       "more pressure", "unpressurized (its weight)", "the whole angle asked"},
+                      {}};
     for (const auto& [name, t] : report["targets"].items()) {
       const Json poses = t.value("poses", Json::array()); // m points into it
       const Measure m = measure_of(poses);
@@ -184,6 +199,12 @@ std::vector<ReportTable> behaviour_tables(const Json& collide_report)
       const auto varied = variations(m);
       for (std::size_t k = 0; k < kPoseVariations.size(); ++k)
         row.push_back(varied ? fmt::format("{:.1f}{}", varied->first[k], m.unit) : "–");
+      const Json& p = *m.pose;
+      row.push_back(p.contains("unpressurized") && p["unpressurized"].contains(m.band) &&
+                            p["unpressurized"][m.band].is_number()
+                        ? fmt::format("{:.1f}{}", p["unpressurized"][m.band].get<double>(), m.unit)
+                        : "–");
+      row.push_back(full_turn_cell(p));
       if (varied)
         check.title = fmt::format("Checking the cast robot: the figure to measure, and with the silicone's stiffness "
                                   "or the pressure {:g} % off",

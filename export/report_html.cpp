@@ -86,7 +86,8 @@ std::string table_html(const ReportTable& t)
   return out + "</table>\n";
 }
 
-/// An SVG line plot, 640 × 300 px, with five ticks per axis and a legend.
+/// An SVG line plot, 640 × 300 px, with about five ticks per axis at round values (nice_ticks; a log axis
+/// at five even steps of its exponent) and a legend.
 std::string plot_svg(const ReportPlot& p)
 {
   const std::array<std::string, 6> palette{"#1f77b4", "#d62728", "#2ca02c", "#9467bd", "#ff7f0e", "#17becf"};
@@ -108,13 +109,17 @@ std::string plot_svg(const ReportPlot& p)
       fmt::format("<h2>{}</h2>\n<svg class=\"plot\" xmlns=\"http://www.w3.org/2000/svg\" width=\"{}\" height=\"{}\">",
                   escaped(p.title), W, H);
   svg += fmt::format("<path d=\"M{0} {1}V{2}H{3}\" fill=\"none\" stroke=\"#444\"/>", L, T, H - B, W - R);
-  for (int k = 0; k <= 4; ++k) {
-    const double x = x0 + (x1 - x0) * k / 4, y = y0 + (y1 - y0) * k / 4;
+  for (const double x : nice_ticks(x0, x1))
     svg += fmt::format("<text x=\"{:.1f}\" y=\"{}\" font-size=\"11\" text-anchor=\"middle\">{:.4g}</text>", px(x),
                        H - B + 15, x);
+  std::vector<double> ys;
+  if (p.log_y)
+    for (int k = 0; k <= 4; ++k) ys.push_back(y0 + (y1 - y0) * k / 4);
+  else
+    ys = nice_ticks(y0, y1);
+  for (const double y : ys)
     svg += fmt::format("<text x=\"{}\" y=\"{:.1f}\" font-size=\"11\" text-anchor=\"end\">{:.3g}</text>", L - 5,
                        H - B - (y - y0) / (y1 - y0) * (H - B - T) + 4, p.log_y ? std::pow(10, y) : y);
-  }
   svg += fmt::format("<text x=\"{}\" y=\"{}\" font-size=\"12\" text-anchor=\"middle\">{}</text>", (L + W - R) / 2,
                      H - 8, escaped(p.x_label));
   svg += fmt::format(
@@ -258,6 +263,18 @@ constexpr const char* kViewer = R"JS(
 )JS";
 
 } // namespace
+
+std::vector<double> nice_ticks(double lo, double hi, int count)
+{
+  std::vector<double> out;
+  if (!(hi > lo) || !std::isfinite(lo) || !std::isfinite(hi) || count < 1) return {lo};
+  const double rough = (hi - lo) / count, power = std::pow(10, std::floor(std::log10(rough)));
+  const double unit = rough / power;
+  const double step = (unit < 1.5 ? 1 : unit < 3 ? 2 : unit < 7 ? 5 : 10) * power; // the nearest round step
+  // From the first multiple of step at or above lo, with a little room for rounding at either end.
+  for (double k = std::ceil(lo / step - 1e-9); k * step <= hi + 1e-9 * step; ++k) out.push_back(k * step + 0.0);
+  return out;
+}
 
 std::string report_html(const std::string& title, const std::vector<ReportMesh>& meshes,
                         const std::vector<ReportLine>& lines, const std::vector<ReportTable>& tables,

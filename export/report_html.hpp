@@ -36,6 +36,11 @@ struct ReportPlot {
   bool log_y = false;                                                       ///< y on a log scale (values > 0)
 };
 
+/// About `count` + 1 round values within [lo, hi], 1, 2 or 5 × 10^k apart, for a plot's axis
+/// (Heckbert, "Nice numbers for graph labels", Graphics Gems, 1990): iterations 0, 20, 40, 60, where
+/// quarters of the range labelled a 63-iteration run 15.75, 31.5, 47.25.
+std::vector<double> nice_ticks(double lo, double hi, int count = 4);
+
 struct ReportTable {
   std::string title;
   std::vector<std::string> header;

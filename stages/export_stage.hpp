@@ -39,8 +39,9 @@ public:
   /// report.html: a kept first guess said in the optimization table's title; 26: README.txt: what pressures turn a
   /// pose region short of its turn all the way (collide's full_turn); 27: the supply tube's hole as wide as the
   /// muscle, a full turn short of the angle said so, the command that shows it; 28: the figure to measure before
-  /// the robot is pressurized (its weight alone)
-  int version() const override { return 28; }
+  /// the robot is pressurized (its weight alone); 29: report.html: the plots' axes at round values, the check
+  /// table's figure unpressurized and at the whole angle
+  int version() const override { return 29; }
   void run(StageContext& ctx) const override;
 };
 

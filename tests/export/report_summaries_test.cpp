@@ -178,7 +178,17 @@ TEST(BehaviourSummary, TheReportGivesEachTargetsFigureToMeasureAndItsSensitivity
   EXPECT_EQ(t[1].header[2], "simulated");
   ASSERT_EQ(t[1].rows.size(), 1u);
   EXPECT_EQ(t[1].rows[0], (std::vector<std::string>{"bend", "pose[1]: turn about the axis asked", "19.5°", "19.0°",
-                                                    "20.0°", "17.2°", "21.8°"}));
+                                                    "20.0°", "17.2°", "21.8°", "–", "–"}));
+  // With its weight alone and the whole angle (collide's unpressurized and full_turn), as README.txt says them.
+  asked["unpressurized"] = {{"rotation_deg", 4.1}, {"displacement_mm", 2}, {"rotation_about_asked_axis_deg", 4.0}};
+  asked["full_turn"] = Json::parse(R"({"pressure_scale": 2.9, "pressures_kPa": {"m1": 425.0}, "off": ["m2"],
+                                      "at_max_pressure": true, "rotation_about_asked_axis_deg": 52.3,
+                                      "reached": false})");
+  report["targets"]["bend"]["poses"] = Json::array({pose("tip", 40, 45), asked});
+  const std::vector<ReportTable> with = behaviour_tables(report);
+  EXPECT_EQ(with[1].header.back(), "the whole angle asked");
+  EXPECT_EQ(with[1].rows[0][7], "4.0°");
+  EXPECT_EQ(with[1].rows[0][8], "52.3° at 2.90 × (m1 425 kPa), max_pressure");
 }
 
 TEST(BehaviourSummary, ReadmeGivesEachRoutesTightestBend)

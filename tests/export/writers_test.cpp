@@ -88,5 +88,20 @@ TEST(Report, PageCarriesTheMeshesInMillimetresAndTheTables)
   EXPECT_FLOAT_EQ(x1, 40.0F);
 }
 
+TEST(Report, PlotAxesAreLabelledAtRoundValues)
+{
+  // A 63-iteration run: 0, 20, 40, 60 (quarters of the range labelled it 15.75, 31.5, 47.25).
+  EXPECT_EQ(nice_ticks(1, 63), (std::vector<double>{20, 40, 60}));
+  EXPECT_EQ(nice_ticks(0, 63), (std::vector<double>{0, 20, 40, 60}));
+  EXPECT_EQ(nice_ticks(0, 227), (std::vector<double>{0, 50, 100, 150, 200}));
+  // Small and negative ranges (the labels print 4 significant figures).
+  const std::vector<double> small = nice_ticks(0.05, 0.43);
+  ASSERT_EQ(small.size(), 4U);
+  EXPECT_DOUBLE_EQ(small[0], 0.1);
+  EXPECT_DOUBLE_EQ(small[3], 0.4);
+  EXPECT_EQ(nice_ticks(-10, 10), (std::vector<double>{-10, -5, 0, 5, 10}));
+  EXPECT_EQ(nice_ticks(3, 3), (std::vector<double>{3})); // no range: the value
+}
+
 } // namespace
 } // namespace fibermold
