@@ -85,6 +85,11 @@ ReportTable optimization_table(const Json& report)
     for (const char* when : {"at the start", "of the first guess", "at the end"})
       t.header.push_back(fmt::format("turn's error {} (° RMS)", when));
   t.header.push_back("reached: 1 − end / start RMSE");
+  // Beside it, what the routes gained over the first guess at its own best pressures: "reached 81 %" alone
+  // read as the optimizer's doing where the pressures did most of it (a new user's finger: 8.37 mm at
+  // the start, 1.66 mm for the first guess at its best pressure, 1.59 mm at the end: 4 %).
+  const bool any_guess = !guesses.empty();
+  if (any_guess) t.header.push_back("the routes' gain: 1 − end / first guess RMSE");
   if (any_turn) t.header.push_back("turn reached");
   std::vector<std::string> fibers; // every target's report names every fiber's pressure
   const Json& first = targets.begin().value();
@@ -101,6 +106,13 @@ ReportTable optimization_table(const Json& report)
     if (any_orientation)
       for (const Json* j : {&start, &guess, &target}) row.push_back(number(*j, "orientation_rms_deg", 1));
     row.push_back(number(target, "reached_percent", 0, " %"));
+    if (any_guess) {
+      const bool both = guess.contains("rmse_mm") && guess["rmse_mm"].is_number() && target.contains("rmse_mm") &&
+                        target["rmse_mm"].is_number() && guess["rmse_mm"].get<double>() > 0;
+      row.push_back(
+          both ? fmt::format("{:.0f} %", 100 * (1 - target["rmse_mm"].get<double>() / guess["rmse_mm"].get<double>()))
+               : "–");
+    }
     if (any_turn) row.push_back(turns(target).empty() ? "–" : turns(target));
     for (const std::string& f : fibers)
       row.push_back(number(target.value("pressure_kPa", Json::object()), f.c_str(), 1));

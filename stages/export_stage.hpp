@@ -40,8 +40,9 @@ public:
   /// pose region short of its turn all the way (collide's full_turn); 27: the supply tube's hole as wide as the
   /// muscle, a full turn short of the angle said so, the command that shows it; 28: the figure to measure before
   /// the robot is pressurized (its weight alone); 29: report.html: the plots' axes at round values, the check
-  /// table's figure unpressurized and at the whole angle
-  int version() const override { return 29; }
+  /// table's figure unpressurized and at the whole angle; 30: the optimization table's gain over the first guess at
+  /// its best pressures
+  int version() const override { return 30; }
   void run(StageContext& ctx) const override;
 };
 
