@@ -134,7 +134,7 @@ std::optional<ReportPlot> optimization_history(const std::string& history_csv)
   };
   const auto iteration = column("iteration"), objective = column("objective"), distance = column("distance");
   if (std::max({iteration, objective, distance}) >= std::ssize(columns)) return std::nullopt;
-  ReportPlot plot{"Optimization", "iteration", "objective", {{"objective", {}}, {"distance term", {}}}, true};
+  ReportPlot plot{"Optimization", "iteration", "objective", {{"objective", {}}, {"distance term", {}}}, true, true};
   for (std::string line; std::getline(lines, line);) {
     std::vector<double> v;
     std::istringstream cells(line);

@@ -109,7 +109,7 @@ std::string plot_svg(const ReportPlot& p)
       fmt::format("<h2>{}</h2>\n<svg class=\"plot\" xmlns=\"http://www.w3.org/2000/svg\" width=\"{}\" height=\"{}\">",
                   escaped(p.title), W, H);
   svg += fmt::format("<path d=\"M{0} {1}V{2}H{3}\" fill=\"none\" stroke=\"#444\"/>", L, T, H - B, W - R);
-  for (const double x : nice_ticks(x0, x1))
+  for (const double x : nice_ticks(x0, x1, 4, p.whole_x ? 1 : 0))
     svg += fmt::format("<text x=\"{:.1f}\" y=\"{}\" font-size=\"11\" text-anchor=\"middle\">{:.4g}</text>", px(x),
                        H - B + 15, x);
   std::vector<double> ys;
@@ -264,13 +264,13 @@ constexpr const char* kViewer = R"JS(
 
 } // namespace
 
-std::vector<double> nice_ticks(double lo, double hi, int count)
+std::vector<double> nice_ticks(double lo, double hi, int count, double least_step)
 {
   std::vector<double> out;
   if (!(hi > lo) || !std::isfinite(lo) || !std::isfinite(hi) || count < 1) return {lo};
   const double rough = (hi - lo) / count, power = std::pow(10, std::floor(std::log10(rough)));
   const double unit = rough / power;
-  const double step = (unit < 1.5 ? 1 : unit < 3 ? 2 : unit < 7 ? 5 : 10) * power; // the nearest round step
+  const double step = std::max(least_step, (unit < 1.5 ? 1 : unit < 3 ? 2 : unit < 7 ? 5 : 10) * power); // rounded
   // From the first multiple of step at or above lo, with a little room for rounding at either end.
   for (double k = std::ceil(lo / step - 1e-9); k * step <= hi + 1e-9 * step; ++k) out.push_back(k * step + 0.0);
   return out;

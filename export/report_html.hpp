@@ -34,12 +34,14 @@ struct ReportPlot {
   std::string title, x_label, y_label;
   std::vector<std::pair<std::string, std::vector<Eigen::Vector2d>>> series; ///< name, (x, y) points
   bool log_y = false;                                                       ///< y on a log scale (values > 0)
+  bool whole_x = false; ///< x counts (iterations): its ticks whole numbers
 };
 
 /// About `count` + 1 round values within [lo, hi], 1, 2 or 5 × 10^k apart, for a plot's axis
 /// (Heckbert, "Nice numbers for graph labels", Graphics Gems, 1990): iterations 0, 20, 40, 60, where
 /// quarters of the range labelled a 63-iteration run 15.75, 31.5, 47.25.
-std::vector<double> nice_ticks(double lo, double hi, int count = 4);
+/// `least_step`: no closer than that (1 for a count: a 3-iteration run at 1, 2, 3, not 1, 1.5, …).
+std::vector<double> nice_ticks(double lo, double hi, int count = 4, double least_step = 0);
 
 struct ReportTable {
   std::string title;

@@ -94,13 +94,14 @@ TEST(ReportE2E, ShowsTheDeformedBodyTheErrorsAndTheOptimizationHistory)
   const auto& o = optimize["targets"]["s"];
   const auto& guess = optimize["first_guess"]["targets"]["s"];
   EXPECT_THAT(html, HasSubstr("Optimization: iteration limit after 3 iterations"));
-  EXPECT_THAT(html,
-              HasSubstr(fmt::format("<tr><td>s</td><td>{:.3f}</td><td>{:.3f}</td><td>{:.3f}</td><td>{:.1f}</td>"
-                                    "<td>{:.1f}</td><td>{:.1f}</td><td>{:.0f} %</td><td>{:.1f}</td></tr>",
-                                    o["start"]["rmse_mm"].get<double>(), guess["rmse_mm"].get<double>(),
-                                    o["rmse_mm"].get<double>(), o["start"]["orientation_rms_deg"].get<double>(),
-                                    guess["orientation_rms_deg"].get<double>(), o["orientation_rms_deg"].get<double>(),
-                                    o["reached_percent"].get<double>(), o["pressure_kPa"]["m1"].get<double>())));
+  EXPECT_THAT(html, HasSubstr(fmt::format(
+                        "<tr><td>s</td><td>{:.3f}</td><td>{:.3f}</td><td>{:.3f}</td><td>{:.1f}</td>"
+                        "<td>{:.1f}</td><td>{:.1f}</td><td>{:.0f} %</td><td>{:.0f} %</td><td>{:.1f}</td></tr>",
+                        o["start"]["rmse_mm"].get<double>(), guess["rmse_mm"].get<double>(), o["rmse_mm"].get<double>(),
+                        o["start"]["orientation_rms_deg"].get<double>(), guess["orientation_rms_deg"].get<double>(),
+                        o["orientation_rms_deg"].get<double>(), o["reached_percent"].get<double>(),
+                        100 * (1 - o["rmse_mm"].get<double>() / guess["rmse_mm"].get<double>()),
+                        o["pressure_kPa"]["m1"].get<double>())));
   // The turn's error is the angle between the turns reached and asked: under the largest turn anywhere.
   EXPECT_GT(o["orientation_rms_deg"].get<double>(), 0);
   EXPECT_LE(o["orientation_rms_deg"].get<double>(), o["orientation_max_deg"].get<double>());

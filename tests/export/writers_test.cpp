@@ -101,6 +101,9 @@ TEST(Report, PlotAxesAreLabelledAtRoundValues)
   EXPECT_DOUBLE_EQ(small[3], 0.4);
   EXPECT_EQ(nice_ticks(-10, 10), (std::vector<double>{-10, -5, 0, 5, 10}));
   EXPECT_EQ(nice_ticks(3, 3), (std::vector<double>{3})); // no range: the value
+  // Iterations are whole: a 3-iteration run at 1, 2, 3 (0.5 apart otherwise).
+  EXPECT_EQ(nice_ticks(1, 3), (std::vector<double>{1, 1.5, 2, 2.5, 3}));
+  EXPECT_EQ(nice_ticks(1, 3, 4, 1), (std::vector<double>{1, 2, 3}));
 }
 
 } // namespace
