@@ -2,6 +2,7 @@
 // (optimize/full_turn_search.hpp), on turns θ(s) known in closed form: the solves it makes, where it
 // stops, the cap at max_pressure, a negative angle, a turn that stops growing, a failed solve.
 #include <cmath>
+#include <optional>
 #include <stdexcept>
 
 #include <gtest/gtest.h>
@@ -21,14 +22,19 @@ struct Stiffening {
     ++solves;
     return c * std::pow(s, 1.5);
   }
+  /// The search for `angle` from the turns at 0.9 and 1.1 (collide's ±10 % pressures), up to `most`.
+  std::optional<FullTurn> search(double angle, double most)
+  {
+    return full_turn_search(angle, 0.9, c * std::pow(0.9, 1.5), 1.1, c * std::pow(1.1, 1.5), most,
+                            [&](double s) { return (*this)(s); });
+  }
 };
 
 TEST(FullTurnSearch, FindsTheScaleOfAGrowingTurnWithinTheTolerance)
 {
   // 28° at s = 1 and 40° asked: s* = (40/28)^(2/3) = 1.268.
   Stiffening turn{28};
-  const auto found = full_turn_search(40, 0.9, turn.c * std::pow(0.9, 1.5), 1.1, turn.c * std::pow(1.1, 1.5), 10,
-                                      [&](double s) { return turn(s); });
+  const auto found = turn.search(40, 10);
   ASSERT_TRUE(found);
   EXPECT_TRUE(found->reached);
   EXPECT_FALSE(found->at_most);
@@ -40,8 +46,7 @@ TEST(FullTurnSearch, FindsTheScaleOfAGrowingTurnWithinTheTolerance)
 TEST(FullTurnSearch, ANegativeAngleIsSearchedAlike)
 {
   Stiffening turn{-28};
-  const auto found = full_turn_search(-40, 0.9, turn.c * std::pow(0.9, 1.5), 1.1, turn.c * std::pow(1.1, 1.5), 10,
-                                      [&](double s) { return turn(s); });
+  const auto found = turn.search(-40, 10);
   ASSERT_TRUE(found);
   EXPECT_TRUE(found->reached);
   EXPECT_NEAR(found->turn, -40, 0.8);
@@ -51,8 +56,7 @@ TEST(FullTurnSearch, StopsAtTheMostAndSaysSo)
 {
   // The highest pressure may rise by 1.2 at most: θ(1.2) = 36.8° of the 40° asked.
   Stiffening turn{28};
-  const auto found = full_turn_search(40, 0.9, turn.c * std::pow(0.9, 1.5), 1.1, turn.c * std::pow(1.1, 1.5), 1.2,
-                                      [&](double s) { return turn(s); });
+  const auto found = turn.search(40, 1.2);
   ASSERT_TRUE(found);
   EXPECT_TRUE(found->at_most);
   EXPECT_FALSE(found->reached);
