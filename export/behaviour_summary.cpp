@@ -88,6 +88,16 @@ std::string unpressurized_text(const Measure& m)
                      m.unit == std::string("°") ? "turns" : "moves", p["unpressurized"][m.band].get<double>(), m.unit);
 }
 
+/// The full turn's pressures (collide's "full_turn" pressures_kPa): "lift_px 407 kPa, lift_mx 410 kPa".
+std::string full_turn_pressures(const Json& f)
+{
+  std::string pressures;
+  for (const auto& [fiber, kpa] : f["pressures_kPa"].items())
+    if (kpa.is_number())
+      pressures += fmt::format("{}{} {:.0f} kPa", pressures.empty() ? "" : ", ", fiber, kpa.get<double>());
+  return pressures;
+}
+
 /// What a pose region that turned short of its angle would take to turn it all (collide's "full_turn"):
 /// the pressures, and the turn the simulation reaches there; empty without it (or in a report that
 /// lacks a figure of it).
@@ -103,10 +113,8 @@ std::string full_turn_text(const Json& p)
   if (!number("pressure_scale") || !number("rotation_about_asked_axis_deg") || !f.contains("pressures_kPa") ||
       !f["pressures_kPa"].is_object())
     return {};
-  std::string pressures, off;
-  for (const auto& [fiber, kpa] : f["pressures_kPa"].items())
-    if (kpa.is_number())
-      pressures += fmt::format("{}{} {:.0f} kPa", pressures.empty() ? "" : ", ", fiber, kpa.get<double>());
+  const std::string pressures = full_turn_pressures(f);
+  std::string off;
   if (f.contains("off") && f["off"].is_array())
     for (const Json& fiber : f["off"])
       if (fiber.is_string()) off += (off.empty() ? "" : ", ") + fiber.get<std::string>();
@@ -132,10 +140,7 @@ std::string full_turn_cell(const Json& p)
 {
   if (full_turn_text(p).empty()) return "–";
   const Json& f = p["full_turn"];
-  std::string pressures;
-  for (const auto& [fiber, kpa] : f["pressures_kPa"].items())
-    if (kpa.is_number())
-      pressures += fmt::format("{}{} {:.0f} kPa", pressures.empty() ? "" : ", ", fiber, kpa.get<double>());
+  const std::string pressures = full_turn_pressures(f);
   const bool flagged = f.contains("at_max_pressure") && f["at_max_pressure"].is_boolean();
   return fmt::format("{:.1f}° at {:.2f} × ({}){}", f["rotation_about_asked_axis_deg"].get<double>(),
                      f["pressure_scale"].get<double>(), pressures,
