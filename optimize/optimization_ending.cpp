@@ -88,10 +88,15 @@ OptimizationEnding optimization_ending(const RoutingResult& result, const Actuat
   OptimizationEnding e;
   const Eigen::MatrixXd& p = result.routing.pressures;
   const double max_pressure = settings.max_pressure, margin = settings.pressure_margin * max_pressure;
+  // At the iteration limit the user's remedy is one key: say which (a new user's run ended there and the warning
+  // named no way on).
   if (!result.converged)
     e.warnings.push_back(
-        fmt::format("the optimizer stopped before converging ({}: {}); the routes are the best it found",
-                    choice_name(result.termination), result.message));
+        fmt::format("the optimizer stopped before converging ({}: {}); the routes are the best it found{}",
+                    choice_name(result.termination), result.message,
+                    result.termination == Termination::iteration_limit
+                        ? ". A longer run may do better: raise [optimize] max_iterations (the optimization starts over)"
+                        : ""));
   for (Eigen::Index t = 0; t < p.rows(); ++t) {
     // Every muscle of the target off: the optimized robot is the body unactuated, under its weight
     // and held as the design holds it (a forces target's loads only made its shape). Said once for the target, with

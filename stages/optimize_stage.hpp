@@ -49,7 +49,7 @@ public:
   /// measured on the route as it is (ρ, the distance from the end, not the starting arc); 23: a pose's region
   /// short of its turn (under 90 % of its angle) warned, with the muscles' pressures; the skin barrier's weight 0.1
   /// by default (was 1)
-  int version() const override { return 23; }
+  int version() const override { return 24; }
   void run(StageContext& ctx) const override;
 };
 

@@ -35,6 +35,15 @@ namespace {
   throw InputError(design_problem(d, key, message));
 }
 
+/// "flexor 300 kPa, extensor 0 kPa": the muscles' pressures as the run's lines give them.
+std::string pressure_list(const std::vector<Actuation>& actuations)
+{
+  std::string out;
+  for (const Actuation& a : actuations)
+    out += fmt::format("{}{} {:.0f} kPa", out.empty() ? "" : ", ", a.fiber, a.pressure / units::kPa);
+  return out;
+}
+
 /// Every [[fiber]] in the design's order, at its --pressure or, not given one, at 0 kPa: the cast
 /// robot holds every muscle, and one at rest stiffens the body all the same (a new user's 90 mm finger
 /// sagged 66.9 mm with its one muscle left out, 57.7 mm with it at 0 kPa; session 39).
@@ -168,26 +177,26 @@ std::vector<Actuation> as_built(const Design& d, const fs::path& build_dir, cons
                        file.targets.empty() ? std::string("none") : fmt::format("{}", fmt::join(file.targets, ", ")),
                        elsewhere));
   for (const std::string& name : given) route(name);
-  std::vector<Actuation> out;
-  std::string pressures, changed;
+  std::vector<Actuation> out, changed, kept;
   for (std::size_t k = 0; k < file.routing.routes.size(); ++k) {
     const Route& r = file.routing.routes[k];
     double p = file.routing.pressures(row - file.targets.begin(), static_cast<Eigen::Index>(k));
-    if (std::find(given.begin(), given.end(), r.name) != given.end()) {
+    const bool was_given = std::find(given.begin(), given.end(), r.name) != given.end();
+    if (was_given)
       p = std::find_if(requested.begin(), requested.end(), [&](const Actuation& a) {
             return a.fiber == r.name;
           })->pressure;
-      changed += fmt::format("{}{} {:.0f} kPa", changed.empty() ? "" : ", ", r.name, p / units::kPa);
-    } else if (!(p >= 0 && p <= d.muscle.max_pressure))
+    else if (!(p >= 0 && p <= d.muscle.max_pressure))
       refuse(fmt::format("fiber {}: target {}'s pressure {:.0f} kPa is outside [0, {:.0f}] kPa ([muscle].max_pressure)",
                          r.name, target->name, p / units::kPa, d.muscle.max_pressure / units::kPa));
     out.push_back({r.name, r.points, r.tangents, p});
-    pressures += fmt::format("{}{} {:.0f} kPa", pressures.empty() ? "" : ", ", r.name, p / units::kPa);
+    (was_given ? changed : kept).push_back(out.back());
   }
-  said += changed.empty() ? fmt::format(", at target {}'s pressures there ({})", target->name, pressures)
-                          : fmt::format(", target {}'s regions at the pressures given ({}; the others at the "
-                                        "target's there: {})",
-                                        target->name, changed, pressures);
+  if (changed.empty())
+    said += fmt::format(", at target {}'s pressures there ({})", target->name, pressure_list(out));
+  else
+    said += fmt::format(", target {}'s regions at the pressures given ({}{})", target->name, pressure_list(changed),
+                        kept.empty() ? "" : "; the others at the target's there: " + pressure_list(kept));
   return out;
 }
 
@@ -300,9 +309,7 @@ SimulateResult simulate(const Design& d, const Runner& runner, const fs::path& b
                                             (load ? "the target's loads, its weight and its held regions"
                                                   : "its weight and its held regions")
                                       : "muscles: ";
-  for (std::size_t k = 0; k < actuations.size(); ++k)
-    result.muscles +=
-        fmt::format("{}{} {:.0f} kPa", k ? ", " : "", actuations[k].fiber, actuations[k].pressure / units::kPa);
+  result.muscles += pressure_list(actuations);
   if (request.as_built)
     result.as_built =
         fmt::format("{}; [material] youngs_modulus {:.0f} Pa, poisson_ratio {:g}, density {:g} kg/m³", as_built_said,

@@ -81,12 +81,33 @@ TEST(OptimizationEnding, APoseTargetIsJudgedByItsTurnNotItsTrackingCurves)
       HasSubstr("pose[1] turned 30.0° of the 60.0° asked (50 %), pose[2] turned -10.0° of the -40.0° asked (25 %)"));
 }
 
+// Only a run cut short by the limit is told to raise it: a stalled one would stall again.
+TEST(OptimizationEnding, OnlyARunAtTheIterationLimitIsToldToRaiseIt)
+{
+  RoutingResult r;
+  r.routing.pressures = Eigen::MatrixXd::Constant(1, 1, 200e3);
+  r.converged = false;
+  r.termination = Termination::stalled;
+  r.message = "f fell by 1e-9 of itself over 10 iterations";
+  RoutingSettings s;
+  s.max_pressure = 425e3;
+  TargetErrors before, after;
+  before.rmse = 3e-3;
+  after.rmse = 0.5e-3;
+  const OptimizationEnding stalled =
+      optimization_ending(r, ActuatorMask::Constant(1, 1, true), s, {before}, {after}, {{}}, {"curl"}, {"flexor"});
+  ASSERT_EQ(stalled.warnings.size(), 1u);
+  EXPECT_THAT(stalled.warnings[0], HasSubstr("stopped before converging (stalled: f fell"));
+  EXPECT_THAT(stalled.warnings[0], Not(HasSubstr("max_iterations")));
+}
+
 TEST(OptimizationEnding, ATargetWithoutATurnIsJudgedByItsTrackingCurvesAndALimitIsNamed)
 {
   EXPECT_TRUE(ending(230e3, 3e-3, 0.9e-3, {}).warnings.empty()); // 70 % of the way
   const OptimizationEnding far = ending(424e3, 3e-3, 1.5e-3, {}, false);
   ASSERT_EQ(far.warnings.size(), 3u);
   EXPECT_THAT(far.warnings[0], HasSubstr("stopped before converging (iteration limit: test)"));
+  EXPECT_THAT(far.warnings[0], HasSubstr("raise [optimize] max_iterations"));
   EXPECT_THAT(far.warnings[1], HasSubstr("fiber flexor ends at 424.0 kPa, at its limit"));
   EXPECT_THAT(far.warnings[2],
               HasSubstr("far from reached: 50 % of the way (tracking-curve RMSE 3.00 → 1.50 mm); its muscles are at "
