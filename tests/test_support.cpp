@@ -7,6 +7,7 @@
 #include <fstream>
 #include <random>
 #include <regex>
+#include <set>
 #include <sstream>
 #include <stdexcept>
 
@@ -101,6 +102,24 @@ BrowserView open_in_browser(const fs::path& page, const fs::path& screenshot)
   if (code == 0 && !screenshot.empty())
     code = run_command(browser + "--window-size=1000,800 --screenshot='" + screenshot.string() + "' " + url).first;
   return {code, dom};
+}
+
+std::vector<std::string> blas_kernels()
+{
+  if (!std::filesystem::exists("/proc/cpuinfo")) return {};
+  std::set<std::string> flags;
+  std::istringstream lines(read_text("/proc/cpuinfo"));
+  for (std::string line; std::getline(lines, line);)
+    if (line.rfind("flags", 0) == 0) {
+      std::istringstream words(line.substr(line.find(':') + 1));
+      for (std::string word; words >> word;) flags.insert(word);
+      break;
+    }
+  if (!flags.contains("avx2")) return {};
+  std::vector<std::string> kernels{"Haswell", "Sandybridge"};
+  if (flags.contains("avx512f") && flags.contains("avx512bw") && flags.contains("avx512vl"))
+    kernels.push_back("SkylakeX");
+  return kernels;
 }
 
 } // namespace fibermold::test

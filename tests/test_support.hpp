@@ -5,6 +5,7 @@
 #include <map>
 #include <string>
 #include <utility>
+#include <vector>
 
 namespace fibermold::test {
 
@@ -36,6 +37,13 @@ struct CommandResult {
 /// `launcher` when given (e.g. "timeout -s INT 5").
 CommandResult run_fibermold(const std::string& arguments, const std::filesystem::path& cwd = {},
                             const std::string& launcher = {});
+
+/// The OpenBLAS kernels this CPU can run, to be chosen in a test's own environment
+/// (`env OPENBLAS_CORETYPE=<kernel>`): each rounds dgemm and dpotrf its own way, as other machines
+/// do. Haswell (AVX2) and Sandybridge (AVX) where the CPU has AVX2, and SkylakeX where it has
+/// AVX-512 (what OpenBLAS picks itself on the AMD EPYC this suite was written on); empty without
+/// AVX2 or /proc/cpuinfo.
+std::vector<std::string> blas_kernels();
 
 /// The bar of the end-to-end tests: 60 × 16 × 16 mm from x = 0, written as `bar.stl` into `dir`.
 void write_bar(const std::filesystem::path& dir);

@@ -2,6 +2,9 @@
 // moved apart to the clearance; a clear routing passes through untouched; a fixed end shared by
 // two fibers stops the stage; an optimized routing is simulated again before and after, and
 // optimized again when asked; [collide] edits rerun collide and what follows.
+#include <algorithm>
+#include <cstdio>
+
 #include <fmt/format.h>
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
@@ -225,17 +228,23 @@ TEST_F(CollideE2E, CollideEditsRerunCollideAndWhatFollows)
 /// 248 kPa turns it 25.0° (within 2 %; one secant step alone fell 20 % short on a variant of this bar:
 /// the turn grows faster than the pressure). Asking 60°, the muscle at max_pressure turns it 14.0°
 /// (the optimizer's route for that target differs): said so, at 425 kPa.
+/// The bar with a straight muscle 3 mm above its axis, its end asked to turn `angle` degrees about y.
+void write_turning_bar(const fs::path& dir, double angle)
+{
+  test::write_bar(dir);
+  test::write_text(dir / "design.toml",
+                   std::string(test::kBarDesign) + test::kBarTrackingCurve +
+                       "[[fiber]]\nname = \"m1\"\npoints = [[0, 0, 3], [20, 0, 3], [40, 0, 3], [60, 0, 3]]\n"
+                       "[[target]]\nname = \"turn\"\nkind = \"pose\"\n" +
+                       fmt::format("pose = [{{ box = {{ min = [59, -9, -9], max = [61, 9, 9] }}, axis = [0, 1, 0], "
+                                   "angle_deg = {}, about = [60, 0, 0] }}]\n[optimize]\nmax_iterations = 20\n",
+                                   angle));
+}
+
 TEST_F(CollideE2E, APoseShortOfItsTurnSaysWhatPressureTurnsItAll)
 {
-  test::write_bar(dir_.path());
   const auto pose_of = [&](double angle) {
-    test::write_text(dir_ / "design.toml",
-                     std::string(test::kBarDesign) + test::kBarTrackingCurve +
-                         "[[fiber]]\nname = \"m1\"\npoints = [[0, 0, 3], [20, 0, 3], [40, 0, 3], [60, 0, 3]]\n"
-                         "[[target]]\nname = \"turn\"\nkind = \"pose\"\n" +
-                         fmt::format("pose = [{{ box = {{ min = [59, -9, -9], max = [61, 9, 9] }}, axis = [0, 1, 0], "
-                                     "angle_deg = {}, about = [60, 0, 0] }}]\n[optimize]\nmax_iterations = 20\n",
-                                     angle));
+    write_turning_bar(dir_.path(), angle);
     const auto r = make();
     EXPECT_EQ(r.exit_code, 0) << r.err;
     return json("collide", "report.json")["targets"]["turn"]["poses"][0];
@@ -278,5 +287,39 @@ TEST_F(CollideE2E, APoseShortOfItsTurnSaysWhatPressureTurnsItAll)
   EXPECT_GT(pose["full_turn"]["rotation_about_asked_axis_deg"].get<double>(), -60);
 }
 
+/// What collide tells a lab to measure and to pressurize must not hinge on rounding: under each
+/// OpenBLAS kernel the CPU runs (each rounds the factorizations its own way, as other machines
+/// do), the bar above asked -25° gets the same verdicts and figures within their tolerances.
+TEST(CollideStage, TheFullTurnAndTheWeightsTurnAreAlikeUnderOtherBlasKernels)
+{
+  const std::vector<std::string> kernels = test::blas_kernels();
+  if (kernels.empty()) GTEST_SKIP() << "no AVX2 (or no /proc/cpuinfo to tell): OpenBLAS's Haswell kernels cannot run";
+  std::vector<double> turned, full, weight;
+  for (const std::string& kernel : kernels) {
+    test::TempDir dir;
+    write_turning_bar(dir.path(), -25);
+    const auto r = test::run_fibermold("make design.toml collide --build-dir build", dir.path(),
+                                       "env OPENBLAS_CORETYPE=" + kernel);
+    ASSERT_EQ(r.exit_code, 0) << kernel << ": " << r.err;
+    const auto pose = nlohmann::json::parse(
+        test::read_text(dir / "build" / "collide" / "report.json"))["targets"]["turn"]["poses"][0];
+    ASSERT_TRUE(pose.contains("full_turn") && pose.contains("unpressurized")) << kernel << ": " << pose.dump();
+    const auto& f = pose["full_turn"];
+    EXPECT_TRUE(f["reached"].get<bool>()) << kernel;
+    EXPECT_FALSE(f["at_max_pressure"].get<bool>()) << kernel;
+    turned.push_back(pose["rotation_about_asked_axis_deg"].get<double>());
+    full.push_back(f["pressures_kPa"]["m1"].get<double>());
+    weight.push_back(pose["unpressurized"]["rotation_about_asked_axis_deg"].get<double>());
+    std::printf("kernel %s: turned %.3f°, full turn at %.2f kPa (%.3f°), its weight alone %.4f°\n", kernel.c_str(),
+                turned.back(), full.back(), f["rotation_about_asked_axis_deg"].get<double>(), weight.back());
+  }
+  const auto spread = [](const std::vector<double>& v) {
+    const auto [lo, hi] = std::minmax_element(v.begin(), v.end());
+    return *hi - *lo;
+  };
+  EXPECT_LT(spread(turned), 0.05);
+  EXPECT_LT(spread(full), 0.02 * full.front());
+  EXPECT_LT(spread(weight), 0.005);
+}
 } // namespace
 } // namespace fibermold

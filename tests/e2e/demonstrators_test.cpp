@@ -9,7 +9,6 @@
 #include <filesystem>
 #include <map>
 #include <regex>
-#include <set>
 #include <sstream>
 #include <string>
 #include <utility>
@@ -221,21 +220,8 @@ TEST(Demonstrators, TwistingBarOptimizesAlikeUnderOtherBlasKernels)
   // 372, 0.6226, 0.821 mm. Before Levenberg-Marquardt forgot a secant term that claimed
   // convergence B alone did not (levenberg_marquardt.cpp), SkylakeX's run crawled on it to the
   // limit of 1000 at f 0.940.
-  if (!fs::exists("/proc/cpuinfo")) GTEST_SKIP() << "no /proc/cpuinfo to tell the CPU's instruction sets";
-  std::set<std::string> flags;
-  {
-    std::istringstream lines(test::read_text("/proc/cpuinfo"));
-    for (std::string line; std::getline(lines, line);)
-      if (line.rfind("flags", 0) == 0) {
-        std::istringstream words(line.substr(line.find(':') + 1));
-        for (std::string word; words >> word;) flags.insert(word);
-        break;
-      }
-  }
-  if (!flags.contains("avx2")) GTEST_SKIP() << "no AVX2: OpenBLAS's Haswell kernels cannot run";
-  std::vector<std::string> kernels{"Haswell", "Sandybridge"};
-  if (flags.contains("avx512f") && flags.contains("avx512bw") && flags.contains("avx512vl"))
-    kernels.push_back("SkylakeX");
+  const std::vector<std::string> kernels = test::blas_kernels();
+  if (kernels.empty()) GTEST_SKIP() << "no AVX2 (or no /proc/cpuinfo to tell): OpenBLAS's Haswell kernels cannot run";
   std::vector<double> objectives, errors;
   for (const std::string& kernel : kernels) {
     test::TempDir dir;
