@@ -1,9 +1,11 @@
 #include "export/casting_sheet.hpp"
 
 #include <algorithm>
+#include <array>
 #include <utility>
 
 #include <fmt/format.h>
+#include <fmt/ranges.h>
 
 #include "core/units.hpp"
 #include "core/wrapped_text.hpp"
@@ -111,8 +113,10 @@ std::string muscles_text(const CastingSheet& sheet)
                               "seal its other end (shot 2 buries both). A supply tube leaves shot 2's mold "
                               "through a hole {0:.1f} mm wide, past a socket {1:.1f} mm wide reaching {2:.1f} mm "
                               "beyond the skin, where the silicone closes around the muscle's end and the "
-                              "tube's fitting: a tube of {0:.1f} mm outside diameter plugs the hole while shot 2 "
-                              "is poured (wrap a thinner one with tape to that width).",
+                              "tube's fitting (join them with a fitting no wider than the socket, such as a "
+                              "barbed connector or a glued sleeve; a Luer fitting to the pressure supply goes on "
+                              "the tube's outer end, outside the mold): a tube of {0:.1f} mm outside diameter "
+                              "plugs the hole while shot 2 is poured (wrap a thinner one with tape to that width).",
                               sheet.muscle_diameter / units::mm, sheet.end_channel_diameter / units::mm,
                               sheet.end_channel_length / units::mm),
                   "", "");
@@ -125,28 +129,61 @@ std::string muscles_text(const CastingSheet& sheet)
       continue;
     }
     const MuscleEnd &supply = c.supply_end(), &sealed = c.sealed_end();
-    text += wrapped(
-        fmt::format(
-            "{}: {:.1f} mm. Fit the supply tube (e.g. with a Luer lock fitting) to its {} end, which leaves the "
-            "body at {}; seal its {} end, {}.",
-            c.name, c.length_inside / units::mm, *c.supply == 0 ? "first" : "last", format_mm(supply.skin_point),
-            *c.supply == 0 ? "last" : "first",
-            sealed.leaves_body ? "which leaves the body at " + format_mm(sealed.skin_point) +
-                                     ": plug that channel's outer hole for shot 2 (e.g. with a short piece of "
-                                     "tube) and trim the cast flush there"
-                               : "buried in the body at " + format_mm(sealed.at)),
-        "  ", "    ");
+    text += wrapped(fmt::format("{}: {:.1f} mm. Fit the supply tube to its {} end, which leaves the "
+                                "body at {}; seal its {} end, {}.",
+                                c.name, c.length_inside / units::mm, *c.supply == 0 ? "first" : "last",
+                                format_mm(supply.skin_point), *c.supply == 0 ? "last" : "first",
+                                sealed.leaves_body
+                                    ? "which leaves the body at " + format_mm(sealed.skin_point) +
+                                          ": plug that channel's outer hole for shot 2 (e.g. with a short piece of "
+                                          "tube) and trim the cast flush there"
+                                    : "buried in the body at " + format_mm(sealed.at)),
+                    "  ", "    ");
   }
   return text;
 }
 
 /// "Close the two halves on their keys and clamp them", with the screws when the mold has them.
-std::string clamp_text(const CastShot& shot)
+/// The metric bolt whose medium clearance hole (ISO 273) is the widest no wider than `hole` (m): "M3" for
+/// 3.4 mm; empty under M2's 2.4 mm.
+std::string bolt_for(double hole)
 {
-  return shot.screw_holes > 0
-             ? fmt::format("Close the two halves on their keys and bolt them through the {} screw holes",
-                           shot.screw_holes)
-             : std::string("Close the two halves on their keys and clamp them (spring clamps or rubber bands)");
+  static constexpr std::array<std::pair<double, const char*>, 7> kClearance{
+      {{2.4e-3, "M2"}, {2.9e-3, "M2.5"}, {3.4e-3, "M3"}, {4.5e-3, "M4"}, {5.5e-3, "M5"}, {6.6e-3, "M6"}, {9e-3, "M8"}}};
+  std::string bolt;
+  for (const auto& [clearance, name] : kClearance)
+    if (clearance <= hole * (1 + 1e-9)) bolt = name;
+  return bolt;
+}
+
+std::string clamp_text(const CastShot& shot, double screw_diameter)
+{
+  if (shot.screw_holes == 0) return "Close the two halves on their keys and clamp them (spring clamps or rubber bands)";
+  const std::string bolt = bolt_for(screw_diameter);
+  return fmt::format("Close the two halves on their keys and bolt them through the {} screw holes ({:.1f} mm{}: "
+                     "bolts long enough to pass both halves, with nuts)",
+                     shot.screw_holes, screw_diameter / units::mm, bolt.empty() ? "" : ", " + bolt);
+}
+
+/// The halves that stand thin deep ribs, to be printed solid; nothing where a draft tapers them.
+std::string ribs_text(const CastingSheet& sheet, const std::string& ext)
+{
+  if (sheet.draft) return "";
+  std::vector<std::string> parts;
+  for (const auto& [shot, name] : {std::pair{&sheet.shot1, "shot1"}, std::pair{&sheet.shot2, "shot2"}})
+    for (const auto& [ribs, half] : {std::pair{&shot->lower_ribs, "lower"}, std::pair{&shot->upper_ribs, "upper"}})
+      if (ribs->count > 0)
+        parts.push_back(fmt::format("{}-{}{} ({} rib{}, down to {:.1f} mm thick, up to {:.1f} mm deep)", name, half,
+                                    ext, ribs->count, ribs->count > 1 ? "s" : "", ribs->thinnest / units::mm,
+                                    ribs->deepest / units::mm));
+  if (parts.empty()) return "";
+  return wrapped(fmt::format("Print {} solid (100 % infill): {} thin deep ribs into the cavity, the mold's side of "
+                             "the body's narrow slots or gaps, which printed hollow may break, or tear the cast, as "
+                             "the half comes off: {}. Or set [mold] draft_deg (1–3°) to taper them "
+                             "(molds/report.json lists each).",
+                             parts.size() > 1 ? "these halves" : "this half",
+                             parts.size() > 1 ? "they stand" : "it stands", fmt::format("{}", fmt::join(parts, "; "))),
+                 "", "");
 }
 
 /// Which side of the body each half holds: the molds open along their pull.
@@ -175,18 +212,20 @@ std::string casting_guide(const CastingSheet& sheet)
   const char* plain = "The parts are not engraved ([mold] labels = false): tell them apart by their file names as "
                       "you take them off the printer; a sprue is the countersunk hole.";
   std::string text = fmt::format("fibermold mold parts for \"{}\"\n\n", sheet.design_name);
-  text += wrapped(fmt::format("Print every {} as it lies (each stands on its largest flat face; units mm), in PLA or "
-                              "PETG: platinum silicone can fail to cure against some printed resins (test a resin "
-                              "with a small pour first).",
+  text += wrapped(fmt::format("Print every mold part (the {}s named shot1-… and shot2-…) as it lies (each stands on "
+                              "its largest flat face; units mm), in PLA or PETG: platinum silicone can fail to cure "
+                              "against some printed resins (test a resin with a small pour first).",
                               FORMAT),
                   "", "");
+  text += ribs_text(sheet, ext);
   text += wrapped(sheet.labels ? engraved : plain, "", "") + halves_text(sheet.pull) + "\n";
   text += silicone_text(sheet) + muscles_text(sheet);
   text += fmt::format("\nShot 1, the grooved body: shot1-lower{} and shot1-upper{}.\n", ext, ext);
-  text += step(1, clamp_text(one) + ". Stand the mold upright: lower half down, the sprue hole underneath, the vents "
-                                    "on top, the mold raised on two spacers (blocks or books) clear of the sprue so "
-                                    "that the dispenser's nozzle reaches it. A sprue is the countersunk hole (its seat "
-                                    "takes the dispenser's nozzle); the vents are plain.");
+  text += step(1, clamp_text(one, sheet.screw_diameter) +
+                      ". Stand the mold upright: lower half down, the sprue hole underneath, the vents "
+                      "on top, the mold raised on two spacers (blocks or books) clear of the sprue so "
+                      "that the dispenser's nozzle reaches it. A sprue is the countersunk hole (its seat "
+                      "takes the dispenser's nozzle); the vents are plain.");
   text += step(2, fmt::format("Inject about {:.1f} mL ({:.1f} g) of silicone through {} from below, slowly, until "
                               "silicone comes out of {}; then plug the sprue.",
                               one.volume / units::mL, one.mass / units::gram, sprue_holes(one.sprues),
@@ -203,7 +242,7 @@ std::string casting_guide(const CastingSheet& sheet)
   text += step(5, "Put the grooved body with its muscles into the lower half, grooves up, and route the supply tubes "
                   "out through the channels at the fibers' ends (where a channel runs up through the upper half rather "
                   "than along the parting plane, thread its tube through it as you lower the half on). " +
-                      clamp_text(two) + ".");
+                      clamp_text(two, sheet.screw_diameter) + ".");
   text += step(6, fmt::format("Stand the mold upright as in shot 1. In this shot the sprue comes in from the TOP of "
                               "the upper half, straight over the lowest point of the grooves: the cured body lies "
                               "below them, so they cannot be filled from below. Inject about {:.1f} mL ({:.1f} g) of "

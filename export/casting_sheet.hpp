@@ -16,6 +16,12 @@
 namespace fibermold {
 
 /// One shot of the molds (molds/report.json's "shots").
+/// A mold half's thin deep ribs (molds/report.json's thin_ribs): how many, the thinnest, the deepest (m).
+struct HalfRibs {
+  int count = 0;
+  double thinnest = 0, deepest = 0;
+};
+
 struct CastShot {
   double volume = 0;                ///< m³ of silicone the cavity takes
   double mass = 0;                  ///< kg of it
@@ -25,6 +31,7 @@ struct CastShot {
   double reached = 0;               ///< fraction of the cavity the simulated fill reaches
   double trapped_air = 0;           ///< m³ the simulated fill traps
   double trapped_air_tolerance = 0; ///< m³ a shot may trap (the part checks' limit)
+  HalfRibs lower_ribs, upper_ribs;  ///< thin deep ribs each half stands into the cavity
 };
 
 struct CastingSheet {
@@ -39,6 +46,8 @@ struct CastingSheet {
   /// m: shot 2's channel where a supply tube leaves the body, a socket end_channel_diameter wide reaching
   /// end_channel_length beyond the skin, then a hole muscle_diameter wide out through the wall
   double end_channel_diameter = 0, end_channel_length = 0;
+  double screw_diameter = 0; ///< m: the screw holes' width
+  bool draft = false;        ///< [mold] draft_deg > 0: the ribs are tapered
   std::vector<MuscleCut> cuts;
   Eigen::Vector3d pull = Eigen::Vector3d::UnitZ(); ///< the molds open along it
   CastShot shot1, shot2;

@@ -95,6 +95,14 @@ CastShot cast_shot(const Json& shot)
   c.reached = fill["reachable_percent"].get<double>() / 100;
   c.trapped_air = fill["trapped_air_mm3"].get<double>() * units::mm3;
   c.trapped_air_tolerance = fill["trapped_air_tolerance_mm3"].get<double>() * units::mm3;
+  for (const Json& rib : shot.value("thin_ribs", Json::array())) {
+    HalfRibs& r = rib["half"].get<std::string>() == "upper" ? c.upper_ribs : c.lower_ribs;
+    const double thickness = rib["thickness_mm"].get<double>() * units::mm,
+                 depth = rib["depth_mm"].get<double>() * units::mm;
+    r.thinnest = r.count == 0 ? thickness : std::min(r.thinnest, thickness);
+    r.deepest = std::max(r.deepest, depth);
+    ++r.count;
+  }
   return c;
 }
 
@@ -116,6 +124,8 @@ CastingSheet casting_sheet(const Design& d, const Json& molds, std::vector<Muscl
   sheet.muscle_diameter = d.muscle.model.diameter;
   sheet.end_channel_diameter = d.mold.end_channel_diameter;
   sheet.end_channel_length = d.mold.end_channel_length;
+  sheet.screw_diameter = d.mold.block.screw_diameter;
+  sheet.draft = d.mold.draft_deg > 0;
   sheet.cuts = std::move(cuts);
   sheet.pull = molds_pull(molds);
   sheet.shot1 = cast_shot(molds["shots"]["shot1"]);

@@ -15,12 +15,21 @@ public:
   std::vector<std::string> upstream() const override { return {"mesh", "targets", "optimize", "collide", "molds"}; }
   /// The report shows the tracking curves and names the targets; README.txt gives the silicone (material), the
   /// muscles' diameter and max pressure, feeds each muscle from its end nearest the mount (fixed) through its end
-  /// channel (mold.end_channel_diameter: the supply tube's width).
+  /// channel (mold.end_channel_diameter and end_channel_length: the socket the supply tube's fitting sits in).
   std::vector<std::string> design_keys() const override
   {
-    return {"design.name", "export",      "material",
-            "fixed",       "muscle",      "tracking_curve",
-            "target",      "mold.labels", "mold.end_channel_diameter"};
+    return {"design.name",
+            "export",
+            "material",
+            "fixed",
+            "muscle",
+            "tracking_curve",
+            "target",
+            "mold.labels",
+            "mold.end_channel_diameter",
+            "mold.end_channel_length",
+            "mold.screw_diameter",
+            "mold.draft_deg"};
   }
   /// 2: the fill in the manifest and README.txt, parts' transforms; 3: no timings in report.html; 4: the optimization
   /// table and the warnings banner; 5: each target drawn beside the robot, the turns reached; 6: the bend radius
@@ -41,8 +50,10 @@ public:
   /// muscle, a full turn short of the angle said so, the command that shows it; 28: the figure to measure before
   /// the robot is pressurized (its weight alone); 29: report.html: the plots' axes at round values, the check
   /// table's figure unpressurized and at the whole angle; 30: the optimization table's gain over the first guess at
-  /// its best pressures
-  int version() const override { return 30; }
+  /// its best pressures; 31: the socket's length in README.txt read from the design (it read an undeclared key: NaN);
+  /// 32: the halves with thin deep ribs printed solid, the screw holes' bolts, the muscle–tube joint, only the mold
+  /// parts printed as they lie
+  int version() const override { return 32; }
   void run(StageContext& ctx) const override;
 };
 

@@ -115,6 +115,9 @@ TEST_F(MoldsE2E, HandRoutedBarBecomesFourCheckedParts)
   EXPECT_THAT(sheet, HasSubstr("to its first end, which leaves the body at (0.0, 0.0, 0.0) mm; seal its last end, "
                                "which leaves the body at (60.0, 0.0, 0.0) mm"));
   EXPECT_THAT(test::read_text(out("report.html")), HasSubstr(fmt::format("<tr><td>m1</td><td>{}</td>", cut[1].str())));
+  // The socket the supply tube's fitting sits in, at the default [mold] end_channel_length (session 45's sheet
+  // said "nan mm": export read the key without declaring it).
+  EXPECT_THAT(sheet, HasSubstr("past a socket 4.0 mm wide reaching 5.0 mm beyond the skin"));
 
   // Each part's transform takes its body-frame mesh (molds/) onto the printed one (export/).
   for (const auto& p : manifest["parts"]) {

@@ -38,6 +38,7 @@ CastingSheet sheet()
   s.muscle_diameter = 3e-3;
   s.end_channel_diameter = 4e-3;
   s.end_channel_length = 5e-3;
+  s.screw_diameter = 3.4e-3;
   MuscleCut supplied{"m1", 0.110, 0.108, {}, {}, 0};
   supplied.start = {{0, 0, 0}, true, {-0.001, 0, 0}};
   supplied.end = {{0.1, 0, 0}, false, {0.1, 0.005, 0}};
@@ -81,7 +82,8 @@ TEST(CastingSheet, MixesTwentyPercentMoreOrTheLeastBatchAScaleWeighs)
 TEST(CastingSheet, SaysHowToCloseEachMoldAndNamesItsHoles)
 {
   const std::string guide = casting_guide(sheet());
-  EXPECT_TRUE(has(guide, "bolt them through the 4 screw holes"));
+  EXPECT_TRUE(has(guide, "bolt them through the 4 screw holes (3.4 mm, M3: bolts long enough to pass both halves, "
+                         "with nuts)"));
   EXPECT_TRUE(has(guide, "clamp them (spring clamps or rubber bands)"));
   EXPECT_TRUE(has(guide, "through the sprue hole from below"));
   EXPECT_TRUE(has(guide, "every one of the 3 vents"));
@@ -91,6 +93,37 @@ TEST(CastingSheet, SaysHowToCloseEachMoldAndNamesItsHoles)
   EXPECT_TRUE(has(guide, "vacuum-degas it (the data sheet recommends it)"));
   EXPECT_TRUE(has(guide, "Let it cure (5 h)"));
   EXPECT_TRUE(has(guide, "shot1-lower.stl"));
+}
+
+// A new user's finger with 2 mm notches: the molds' log warned 13 times per shot of thin deep ribs to print
+// solid, and README.txt, which the person at the printer reads, said "print every STL as it lies".
+TEST(CastingSheet, HalvesWithThinDeepRibsArePrintedSolidUnlessADraftTapersThem)
+{
+  CastingSheet s = sheet();
+  EXPECT_FALSE(has(casting_guide(s), "solid"));
+  s.shot1.lower_ribs = {13, 1.9e-3, 12e-3};
+  std::string guide = casting_guide(s);
+  EXPECT_TRUE(has(guide, "Print this half solid (100 % infill): it stands thin deep ribs into the cavity"));
+  EXPECT_TRUE(has(guide, ": shot1-lower.stl (13 ribs, down to 1.9 mm thick, up to 12.0 mm deep). Or set [mold] "
+                         "draft_deg (1–3°) to taper them"));
+  s.shot2.upper_ribs = {1, 2.4e-3, 6e-3};
+  guide = casting_guide(s);
+  EXPECT_TRUE(has(guide, "Print these halves solid (100 % infill): they stand"));
+  EXPECT_TRUE(has(guide, "12.0 mm deep); shot2-upper.stl (1 rib, down to 2.4 mm thick, up to 6.0 mm deep)"));
+  s.draft = true;
+  EXPECT_FALSE(has(casting_guide(s), "solid"));
+  // Only the mold parts are printed as they lie: deformed-<target>.stl is for comparing.
+  EXPECT_TRUE(has(guide, "Print every mold part (the STLs named shot1-… and shot2-…) as it lies"));
+}
+
+// The muscle's end and the tube's joint sit in the socket: a Luer fitting, wider than it, does not.
+TEST(CastingSheet, TheMuscleAndItsTubeJoinWithinTheSocket)
+{
+  const std::string guide = casting_guide(sheet());
+  EXPECT_TRUE(has(guide,
+                  "join them with a fitting no wider than the socket, such as a barbed connector or a glued "
+                  "sleeve; a Luer fitting to the pressure supply goes on the tube's outer end, outside the mold"));
+  EXPECT_TRUE(has(guide, "m1: 108.0 mm. Fit the supply tube to its first end, which leaves the body"));
 }
 
 TEST(CastingSheet, GivesEachMuscleItsCutAndItsEnds)
