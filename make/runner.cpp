@@ -22,6 +22,7 @@
 #include "design/did_you_mean.hpp"
 #include "make/build_lock.hpp"
 #include "make/content_hash.hpp"
+#include "make/unset_values.hpp"
 
 #ifndef FIBERMOLD_VERSION
 #define FIBERMOLD_VERSION "unknown"
@@ -357,6 +358,13 @@ StageRun Runner::run_stage(const Stage& stage, const Design& design, const fs::p
     const Design view = design_view(design, stage.design_keys_used(design));
     StageContext ctx{view, build_dir, staging, p, log};
     stage.run(ctx);
+    // No output holds a value nobody computed (unset_values.hpp): a NaN in a sentence is a bug, said as one.
+    for (const fs::path& file : files_under(staging))
+      if (const auto unset = unset_value_in(staging / file))
+        throw std::runtime_error(fmt::format(
+            "wrote a value it did not compute (NaN, an infinity or a JSON null) into {}, {}. This is a bug in "
+            "fibermold: please report it with the design file. None of the stage's outputs were kept",
+            file.string(), *unset));
     p.update(1.0, "done");
   } catch (const std::exception& e) {
     const bool interrupted = dynamic_cast<const Interrupted*>(&e) != nullptr;

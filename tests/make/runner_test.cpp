@@ -343,6 +343,31 @@ TEST_F(RunnerTest, FailedStageKeepsPreviousOutputsByteIdenticalAndStaysStale)
   EXPECT_THAT(output("molds"), HasSubstr("[mold].wall=6"));
 }
 
+// A stage that writes a value it did not compute (here a JSON null, what nlohmann writes for a NaN)
+// fails as a bug, naming the file and line, and none of its outputs replace the previous ones.
+TEST_F(RunnerTest, AStageThatWritesANanOrNullFailsAndKeepsNothing)
+{
+  const Runner r = runner();
+  make(r);
+  const std::string before = output("molds");
+  edit("wall = 4.0", "wall = 6.0");
+  hooks_["molds"] = [](StageContext& ctx) {
+    test::write_text(ctx.output_dir / "report.json", "{\n  \"wall_mm\": 6.0,\n  \"volume_mL\": null\n}\n");
+  };
+  try {
+    make(r);
+    FAIL() << "expected StageFailed";
+  } catch (const StageFailed& e) {
+    EXPECT_EQ(e.stage(), "molds");
+    EXPECT_THAT(e.what(), HasSubstr("wrote a value it did not compute (NaN, an infinity or a JSON null) into "
+                                    "report.json, line 3: "));
+    EXPECT_THAT(e.what(), HasSubstr("This is a bug in fibermold"));
+  }
+  EXPECT_EQ(output("molds"), before);
+  EXPECT_FALSE(fs::exists(build_ / "molds" / "report.json"));
+  EXPECT_EQ(stale(r).at("molds"), "last run failed or was interrupted");
+}
+
 TEST_F(RunnerTest, InterruptedStageKeepsPreviousOutputsAndStaysStale)
 {
   const Runner r = runner();
