@@ -178,14 +178,16 @@ int run_simulate(const Design& design, const Runner& runner, const fs::path& bui
   return kExitDone;
 }
 
-/// The design's values that read as written in another unit (unlikely_values.hpp), as warnings.
-void warn_unlikely_values(const Design& design, bool to_log)
+/// The design's values that read as written in another unit (unlikely_values.hpp), as warnings; returns them.
+std::vector<Diagnostic> warn_unlikely_values(const Design& design, bool to_log)
 {
-  for (const Diagnostic& w : unlikely_values(design))
+  std::vector<Diagnostic> unlikely = unlikely_values(design);
+  for (const Diagnostic& w : unlikely)
     if (to_log)
       spdlog::warn("{}", w.to_string());
     else
       fmt::print("warning: {}\n", w.to_string());
+  return unlikely;
 }
 
 int run_check(const Design& design)
@@ -229,8 +231,21 @@ int run_make(const Design& design, const Runner& runner, const MakeOptions& opti
   return kExitDone;
 }
 
-/// The exit code for what a command threw, told on stderr.
-int report_failure(const std::exception_ptr& error)
+/// A stage that fails on a design warned of a value in another unit most likely fails on it (a new user's
+/// modulus in kPa: warned at the start, then "did not reach equilibrium" 20 s later, the warning scrolled away).
+void repeat_unlikely_values(const std::vector<Diagnostic>& unlikely)
+{
+  if (unlikely.empty()) return;
+  fmt::print(stderr,
+             "fibermold: the design has {} that read{} as written in another unit, which can cause such a failure: "
+             "check {} first\n",
+             unlikely.size() == 1 ? "a value" : "values", unlikely.size() == 1 ? "s" : "",
+             unlikely.size() == 1 ? "it" : "them");
+  for (const Diagnostic& w : unlikely) fmt::print(stderr, "  {}\n", w.to_string());
+}
+
+/// The exit code for what a command threw, told on stderr; a failed stage with the design's `unlikely` values again.
+int report_failure(const std::exception_ptr& error, const std::vector<Diagnostic>& unlikely)
 {
   try {
     std::rethrow_exception(error);
@@ -238,6 +253,7 @@ int report_failure(const std::exception_ptr& error)
     return report_input_error(e);
   } catch (const StageFailed& e) {
     fmt::print(stderr, "fibermold: stage {} failed: {}\n  log: {}\n", e.stage(), e.what(), e.log().string());
+    repeat_unlikely_values(unlikely);
     return kExitStageFailed;
   } catch (const BuildLocked& e) {
     fmt::print(stderr, "fibermold: {}\n", e.what());
@@ -286,7 +302,8 @@ int fibermold_main(int argc, char** argv)
              "DESIGN defaults to the bundled demo, " FIBERMOLD_DEFAULT_DESIGN ".");
 
   std::vector<std::string> words;
-  std::string build_dir_option;
+  std::vector<Diagnostic> unlikely; // the design's values in another unit, said again if a stage fails
+  std::string build_dir_option, target;
   bool force = false;
 
   CLI::App* make = app.add_subcommand("make", "Run what is stale, up to STAGE (default: every stage)");
@@ -306,7 +323,6 @@ int fibermold_main(int argc, char** argv)
   CLI::App* check = app.add_subcommand("check", "Validate the design file and its files; run nothing");
   check->add_option("DESIGN", words, "[DESIGN]")->expected(0, 1);
 
-  std::string target;
   std::vector<std::string> pressures;
   CLI::App* simulate = app.add_subcommand("simulate", "Forward simulation of a design only");
   simulate->add_option("DESIGN", words, "DESIGN")->expected(0, 1);
@@ -344,7 +360,7 @@ int fibermold_main(int argc, char** argv)
         split_arguments(words, FIBERMOLD_DEFAULT_DESIGN,
                         check->parsed() || simulate->parsed() ? std::vector<std::string>{} : runner.stage_names());
     const Design design = load_design(args.design);
-    if (simulate->parsed() || make->parsed()) warn_unlikely_values(design, true);
+    if (simulate->parsed() || make->parsed()) unlikely = warn_unlikely_values(design, true);
     if (simulate->parsed())
       return run_simulate(design, runner, build_dir_for(design, build_dir_option),
                           {target, pressures, refine, as_built});
@@ -371,7 +387,7 @@ int fibermold_main(int argc, char** argv)
     }
     return run_make(design, runner, {build_dir, args.stages, force});
   } catch (...) {
-    return report_failure(std::current_exception());
+    return report_failure(std::current_exception(), unlikely);
   }
 }
 

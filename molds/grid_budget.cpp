@@ -28,6 +28,17 @@ GridEstimate estimate_grids(const SurfaceMesh& body, double voxel, double radius
   return {6 * area / (voxel * voxel), (size.array() / cell + 3).prod()};
 }
 
+namespace {
+
+/// `v` rounded up at two significant figures: a voxel said as "0.34 mm or more" must itself pass.
+double round_up_2g(double v)
+{
+  const double step = std::pow(10.0, std::floor(std::log10(v)) - 1);
+  return std::ceil(v / step * (1 - 1e-12)) * step;
+}
+
+} // namespace
+
 std::optional<std::string> grid_budget_problem(const GridEstimate& e, double voxel)
 {
   if (e.band_voxels > kMaxBandVoxels)
@@ -36,7 +47,7 @@ std::optional<std::string> grid_budget_problem(const GridEstimate& e, double vox
                        "that carve in minutes; raise [mold].voxel to {:.2g} mm or more (or check the muscle's diameter "
                        "and [design].units)",
                        voxel / units::mm, e.band_voxels / 1e6, kMaxBandVoxels / 1e6,
-                       voxel * std::sqrt(e.band_voxels / kMaxBandVoxels) / units::mm);
+                       round_up_2g(voxel * std::sqrt(e.band_voxels / kMaxBandVoxels) / units::mm));
   if (e.fill_voxels > kMaxFillVoxels)
     return fmt::format(
         "the fill simulation would sample the body on about {:.3g} million voxels, more than {:.0f} million; raise "

@@ -18,6 +18,7 @@ namespace fibermold {
 namespace {
 
 using ::testing::HasSubstr;
+using ::testing::Not;
 namespace fs = std::filesystem;
 
 // A 60 × 60 × 20 mm block held at x = 0; "a" runs along x, "b" across it, 1 mm above: the same
@@ -112,6 +113,16 @@ TEST_F(CollideE2E, ImpossibleClearanceStopsTheStage)
   EXPECT_THAT(r.err, HasSubstr("fibers a and b have fixed end points 0.00 mm apart, at (0.00, 0.00, -0.50) mm"));
   EXPECT_FALSE(fs::exists(dir_ / "build" / "collide" / "fibers.json"));
   EXPECT_THAT(status(), HasSubstr("collide   stale"));
+  EXPECT_THAT(r.err, Not(HasSubstr("another unit")));
+  // A stage that fails on a design with a value in another unit says that value again after the failure,
+  // where a user reads (a new user's modulus in kPa failed a stage 20 s after its warning had scrolled away).
+  design(routing + "[optimize]\nenabled = false\n[muscle]\nmin_bend_radius = 5\n[material]\ndensity = 1.07\n");
+  r = make();
+  EXPECT_EQ(r.exit_code, 1);
+  EXPECT_THAT(r.err, ::testing::ContainsRegex(
+                         "log: [^\n]*collide.log\nfibermold: the design has a value that reads as written in another "
+                         "unit, which can cause such a failure: check it first\n  [^\n]*design.toml:[0-9]+:[0-9]+: "
+                         "\\[material\\].density: 1.07 kg/m³ is lighter than any silicone"));
 
   design("[[fiber]]\nname = \"a\"\npoints = [[0, 0, 0], [30, 0, -14], [60, 0, 0]]\n[optimize]\nenabled = false\n");
   r = make();
