@@ -1,5 +1,6 @@
 #include "sweep/sweep_summary.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 #include <optional>
@@ -27,10 +28,18 @@ std::optional<Json> json_file(const fs::path& file)
   }
 }
 
-/// One case's row: column → value (numbers as numbers, absent cells absent).
+/// One case's row: column → value (numbers as numbers, words as words, absent cells absent).
 struct Row {
   std::map<std::string, double> numbers;
+  std::map<std::string, std::string> texts; ///< "optimizer": how it stopped; "report": the case's report.html
 };
+
+/// An axis value as a person reads it: a TOML string without its quotes ("dragon-skin-10", not '"dragon-skin-10"').
+std::string shown(const std::string& toml)
+{
+  const bool quoted = toml.size() >= 2 && (toml.front() == '"' || toml.front() == '\'') && toml.back() == toml.front();
+  return quoted ? toml.substr(1, toml.size() - 2) : toml;
+}
 
 std::string csv_cell(std::string s)
 {
@@ -90,18 +99,32 @@ std::string scatter(const std::string& x_name, const std::vector<double>& x, con
 
 namespace {
 
-/// The summary's table: a row per case, its columns, and the best case per target.
+/// The summary's table: a row per case, its columns, and the best cases per target.
 struct Summary {
   std::vector<std::string> targets, pressure_columns, columns;
   std::vector<Row> rows;
-  std::map<std::string, std::size_t> best; ///< per target: the case of least RMSE after collide
+  /// per target: the cases of least RMSE after collide (several where they tie: cases that share an optimization)
+  std::map<std::string, std::vector<std::size_t>> best;
 
+  bool is_best(const std::string& target, std::size_t i) const
+  {
+    const auto b = best.find(target);
+    return b != best.end() && std::find(b->second.begin(), b->second.end(), i) != b->second.end();
+  }
   std::string best_for(std::size_t i) const
   {
     std::string s;
-    for (const auto& [t, b] : best)
-      if (b == i) s += (s.empty() ? "" : " ") + t;
+    for (const auto& [t, cases] : best)
+      if (is_best(t, i)) s += (s.empty() ? "" : " ") + t;
     return s;
+  }
+  /// A cell as text: a number at 6 significant figures, a word as it is, else empty.
+  std::string cell(std::size_t i, const std::string& column) const
+  {
+    const Row& r = rows[i];
+    if (const auto n = r.numbers.find(column); n != r.numbers.end()) return number(n->second);
+    if (const auto t = r.texts.find(column); t != r.texts.end()) return t->second;
+    return {};
   }
 };
 
@@ -131,7 +154,18 @@ Row case_row(const SweepPlan& plan, const fs::path& dir, Summary& s)
         // The turn's error, where a tracking curve's orientation is tracked: a twist shows there.
         if (t["after"].contains("orientation_rms_deg") && t["after"]["orientation_rms_deg"].is_number())
           row.numbers[name + " turn RMS deg"] = t["after"]["orientation_rms_deg"].get<double>();
+        // A pose target's figure: how much of its angle its least-turned region turned (a new user's sweep
+        // over max_pressure marked best on RMSE the case that turned 36.6° of 45°, not the one at 38.4°).
+        for (const Json& pose : t.value("poses", Json::array()))
+          if (pose.contains("rotation_reached_percent") && pose["rotation_reached_percent"].is_number()) {
+            const double reached = pose["rotation_reached_percent"].get<double>();
+            const auto [at, added] = row.numbers.try_emplace(name + " turn reached %", reached);
+            if (!added) at->second = std::min(at->second, reached);
+          }
       }
+    if (const auto report = json_file(dir / "optimize" / "report.json");
+        built("optimize") && report && (*report)["termination"].is_string())
+      row.texts["optimizer"] = (*report)["termination"].get<std::string>();
     if (const auto fibers = json_file(dir / "collide" / "fibers.json"); built("collide") && fibers)
       for (const Json& f : (*fibers)["fibers"])
         for (const auto& [target, kpa] : f["pressure_kPa"].items()) {
@@ -151,6 +185,8 @@ Row case_row(const SweepPlan& plan, const fs::path& dir, Summary& s)
   for (const std::string& stage : plan.stages)
     if (const auto stamp = json_file(Runner::stamp_path(dir, stage)); stamp && (*stamp)["seconds"].is_number())
       row.numbers[stage + " s"] = (*stamp)["seconds"].get<double>();
+  if (std::error_code ec; built("export") && fs::exists(dir / "export" / "report.html", ec))
+    row.texts["report"] = (fs::path("cases") / dir.filename() / "export" / "report.html").generic_string();
   return row;
 }
 
@@ -159,18 +195,22 @@ Summary summarize(const SweepPlan& plan, const fs::path& build_dir)
   Summary s;
   for (const SweepCase& c : plan.cases) s.rows.push_back(case_row(plan, plan.case_dir(build_dir, c.id), s));
   for (const std::string& t : s.targets)
-    s.columns.insert(s.columns.end(), {t + " RMSE mm", t + " max mm", t + " turn RMS deg"});
+    s.columns.insert(s.columns.end(), {t + " RMSE mm", t + " max mm", t + " turn RMS deg", t + " turn reached %"});
   s.columns.insert(s.columns.end(), s.pressure_columns.begin(), s.pressure_columns.end());
-  s.columns.insert(s.columns.end(), {"silicone mL", "mold parts"});
+  s.columns.insert(s.columns.end(), {"optimizer", "silicone mL", "mold parts"});
   for (const std::string& stage : plan.stages) s.columns.push_back(stage + " s");
+  s.columns.push_back("report");
   std::erase_if(s.columns, [&](const std::string& col) {
-    return std::none_of(s.rows.begin(), s.rows.end(), [&](const Row& r) { return r.numbers.contains(col); });
+    return std::none_of(s.rows.begin(), s.rows.end(),
+                        [&](const Row& r) { return r.numbers.contains(col) || r.texts.contains(col); });
   });
   for (const std::string& t : s.targets) {
     double least = HUGE_VAL;
+    for (const Row& r : s.rows)
+      if (auto it = r.numbers.find(t + " RMSE mm"); it != r.numbers.end()) least = std::min(least, it->second);
     for (std::size_t i = 0; i < s.rows.size(); ++i)
-      if (auto it = s.rows[i].numbers.find(t + " RMSE mm"); it != s.rows[i].numbers.end() && it->second < least)
-        least = it->second, s.best[t] = i;
+      if (auto it = s.rows[i].numbers.find(t + " RMSE mm"); it != s.rows[i].numbers.end() && it->second == least)
+        s.best[t].push_back(i);
   }
   return s;
 }
@@ -183,11 +223,8 @@ std::string summary_csv(const SweepPlan& plan, const Summary& s)
   csv += ",best for\n";
   for (std::size_t i = 0; i < s.rows.size(); ++i) {
     csv += plan.cases[i].id;
-    for (const std::string& v : plan.cases[i].values) csv.append(",").append(csv_cell(v));
-    for (const std::string& col : s.columns) {
-      const auto it = s.rows[i].numbers.find(col);
-      csv.append(",").append(it == s.rows[i].numbers.end() ? std::string() : number(it->second));
-    }
+    for (const std::string& v : plan.cases[i].values) csv.append(",").append(csv_cell(shown(v)));
+    for (const std::string& col : s.columns) csv.append(",").append(csv_cell(s.cell(i, col)));
     csv.append(",").append(csv_cell(s.best_for(i))).append("\n");
   }
   return csv;
@@ -220,21 +257,25 @@ std::string summary_html(const SweepPlan& plan, const Summary& s)
       "padding:3px 8px;text-align:right}th{background:#f3f3f3}td.best{background:#d9f2d9;font-weight:bold}"
       "td.text{text-align:left;font-family:monospace}</style></head><body>\n";
   html += fmt::format(
-      "<h1>Sweep {}</h1><p>{} case(s) from <code>{}</code>. The best case per target (least RMSE after collide) is "
-      "marked green.</p>\n<table><tr><th>case</th>",
+      "<h1>Sweep {}</h1><p>{} case(s) from <code>{}</code>. The best cases per target (least RMSE after collide) "
+      "are marked green; <em>turn reached %</em> is the share of a pose target's angle that its least-turned region "
+      "turned, and <em>optimizer</em> how the optimization ended (README.txt of the case says what to do where it "
+      "did not converge).</p>\n<table><tr><th>case</th>",
       html_escape(plan.name), plan.cases.size(), html_escape(plan.sweep_file.string()));
   for (const std::string& a : plan.axes) html += "<th>" + html_escape(a) + "</th>";
   for (const std::string& col : s.columns) html += "<th>" + html_escape(col) + "</th>";
   html += "</tr>\n";
   for (std::size_t i = 0; i < s.rows.size(); ++i) {
     html += "<tr><td class=\"text\">" + plan.cases[i].id + "</td>";
-    for (const std::string& v : plan.cases[i].values) html += "<td class=\"text\">" + html_escape(v) + "</td>";
+    for (const std::string& v : plan.cases[i].values) html += "<td class=\"text\">" + html_escape(shown(v)) + "</td>";
     for (const std::string& col : s.columns) {
-      const auto it = s.rows[i].numbers.find(col);
-      const bool is_best = std::any_of(s.best.begin(), s.best.end(),
-                                       [&](const auto& b) { return b.second == i && col == b.first + " RMSE mm"; });
-      html += std::string(is_best ? "<td class=\"best\">" : "<td>") +
-              (it == s.rows[i].numbers.end() ? "" : number(it->second)) + "</td>";
+      const bool is_best = std::any_of(s.targets.begin(), s.targets.end(),
+                                       [&](const std::string& t) { return col == t + " RMSE mm" && s.is_best(t, i); });
+      const std::string cell = html_escape(s.cell(i, col));
+      html += std::string(is_best                         ? "<td class=\"best\">"
+                          : s.rows[i].texts.contains(col) ? "<td class=\"text\">"
+                                                          : "<td>") +
+              (col == "report" && !cell.empty() ? "<a href=\"" + cell + "\">report.html</a>" : cell) + "</td>";
     }
     html += "</tr>\n";
   }

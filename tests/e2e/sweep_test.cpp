@@ -92,15 +92,22 @@ TEST_F(SweepE2E, SixCasesOptimizeOncePerDistinctOptimizationInput)
   std::string header, line;
   std::getline(lines, header);
   EXPECT_THAT(header, HasSubstr("case,mold.wall,optimize.max_iterations,s RMSE mm,s max mm,s turn RMS deg,m1 s kPa,"
-                                "silicone mL,mold parts,"));
+                                "optimizer,silicone mL,mold parts,"));
+  EXPECT_TRUE(header.ends_with(",report,best for")) << header;
   int rows = 0, best = 0;
   while (std::getline(lines, line)) {
     ++rows;
     best += line.ends_with(",s") ? 1 : 0;
+    // How each optimization ended, and the case's own report beside it.
+    EXPECT_THAT(line, ::testing::ContainsRegex(",(converged|stalled|iteration limit|line search failed),"));
+    EXPECT_THAT(line, ::testing::ContainsRegex(",cases/[0-9a-f]{10}/export/report.html,"));
   }
   EXPECT_EQ(rows, 6);
-  EXPECT_EQ(best, 1);
-  EXPECT_THAT(test::read_text(build / "summary.html"), HasSubstr("<svg"));
+  // The three walls of the better optimization share its routes and its RMSE: each is best.
+  EXPECT_EQ(best, 3);
+  const std::string html = test::read_text(build / "summary.html");
+  EXPECT_THAT(html, HasSubstr("<svg"));
+  EXPECT_THAT(html, ::testing::ContainsRegex("<a href=\"cases/[0-9a-f]{10}/export/report.html\">report.html</a>"));
 
   // Nothing is stale: nothing runs. A new wall, put first, builds molds and export for its two
   // cases only: the optimizations stay with the cases that built them.
