@@ -247,6 +247,22 @@ std::vector<std::string> part_label_texts(const std::string& design, const std::
   return texts;
 }
 
+Eigen::Vector3d block_margin(const MoldBlockOptions& o)
+{
+  const double key_room = o.keys > 0 ? o.key_diameter + 2 * o.key_clearance + 2 * o.min_wall : 0;
+  const double screw_room = o.screw_holes > 0 ? o.screw_diameter + 2 * o.min_wall : 0;
+  const double side = std::max({o.wall, key_room, screw_room});
+  return {side, side, o.wall};
+}
+
+Eigen::Vector3d least_half_size(const SurfaceMesh& cavity, const Eigen::Vector3d& pull, const MoldBlockOptions& o)
+{
+  const SurfaceMesh local = transformed(cavity, to_local(pull));
+  const Eigen::Vector3d block = local.vertices.colwise().maxCoeff().transpose() -
+                                local.vertices.colwise().minCoeff().transpose() + 2 * block_margin(o);
+  return {block.x(), block.y(), block.z() / 2};
+}
+
 Mold make_mold(const SurfaceMesh& cavity_world, const Parting& parting, const std::vector<Channel>& channels,
                const MoldBlockOptions& o, const std::string& shot, const Ports* ports, const PartLabels* labels)
 {
@@ -254,10 +270,8 @@ Mold make_mold(const SurfaceMesh& cavity_world, const Parting& parting, const st
   const SurfaceMesh cavity = transformed(cavity_world, R);
   const double h = (R * parting.point).z();
   const Eigen::Vector3d lo = cavity.vertices.colwise().minCoeff(), hi = cavity.vertices.colwise().maxCoeff();
-  const double key_room = o.keys > 0 ? o.key_diameter + 2 * o.key_clearance + 2 * o.min_wall : 0;
-  const double screw_room = o.screw_holes > 0 ? o.screw_diameter + 2 * o.min_wall : 0;
-  const double side = std::max({o.wall, key_room, screw_room});
-  const Eigen::Vector3d grow(side, side, o.wall);
+  const Eigen::Vector3d grow = block_margin(o);
+  const double side = grow.x();
   const Eigen::Vector3d box_lo = lo - grow, box_hi = hi + grow;
   SurfaceMesh block = mesh_difference(box_solid(box_lo, box_hi), cavity);
 

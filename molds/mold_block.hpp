@@ -68,6 +68,16 @@ struct Mold {
   double label_seconds = 0; ///< s, placing and cutting the parts' labels
 };
 
+/// The margin make_mold grows a cavity's bounding box by, in the frame where the pull is +z: across the pull the
+/// wall, or the room the keys and screw holes take in the rim, whichever is more; along it the wall.
+Eigen::Vector3d block_margin(const MoldBlockOptions& options);
+
+/// The least size of the larger half that make_mold cuts around `cavity` opened along `pull` (in the frame where
+/// the pull is +z): the block's width and depth, and half its height (the halves share it however the parting
+/// plane divides it). A half of this size that fits no printer orientation will not fit as made either.
+Eigen::Vector3d least_half_size(const SurfaceMesh& cavity, const Eigen::Vector3d& pull,
+                                const MoldBlockOptions& options);
+
 /// The sprues and vents are `ports`, or without them the cavity's own (cavity_ports: a sprue from
 /// below at the lowest flat spot, `options.vents` vents along the top). Throws std::runtime_error
 /// when a boolean fails or the cavity has no spot for its sprue.

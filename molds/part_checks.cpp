@@ -16,12 +16,12 @@
 
 namespace fibermold {
 
-namespace {
-
 std::string mm3(const Eigen::Vector3d& v)
 {
   return fmt::format("{:.1f} × {:.1f} × {:.1f} mm", v.x() / units::mm, v.y() / units::mm, v.z() / units::mm);
 }
+
+namespace {
 
 /// How far a ray from inside a part goes to the opposite side of the wall: the first surface it
 /// leaves through, unless it leaves through a face more than 53° off its direction (cos = 0.6). That
@@ -107,6 +107,23 @@ SurfaceMesh as_written(SurfaceMesh m)
 
 } // namespace
 
+std::optional<Eigen::Vector3i> printer_orientation(const Eigen::Vector3d& size, const Eigen::Vector3d& printer)
+{
+  // The 6 axis-aligned orientations: which part axis goes along the printer's x, y, z; the lowest
+  // build height among those that fit.
+  std::array<int, 3> axes{0, 1, 2};
+  double best = HUGE_VAL;
+  std::optional<Eigen::Vector3i> out;
+  do {
+    const Eigen::Vector3d s(size[axes[0]], size[axes[1]], size[axes[2]]);
+    if ((s.array() <= printer.array()).all() && s.z() < best) {
+      best = s.z();
+      out = Eigen::Vector3i(axes[0], axes[1], axes[2]);
+    }
+  } while (std::next_permutation(axes.begin(), axes.end()));
+  return out;
+}
+
 PartCheck check_part(const SurfaceMesh& part, double min_wall, const Eigen::Vector3d& printer)
 {
   PartCheck out;
@@ -117,18 +134,9 @@ PartCheck check_part(const SurfaceMesh& part, double min_wall, const Eigen::Vect
   const SurfaceMesh written = as_written(part);
   out.volume = signed_volume(written);
   out.size = written.vertices.colwise().maxCoeff() - written.vertices.colwise().minCoeff();
-  // The 6 axis-aligned orientations: which part axis goes along the printer's x, y, z; the lowest
-  // build height among those that fit.
-  std::array<int, 3> axes{0, 1, 2};
-  double best = HUGE_VAL;
-  do {
-    const Eigen::Vector3d s(out.size[axes[0]], out.size[axes[1]], out.size[axes[2]]);
-    if ((s.array() <= printer.array()).all() && s.z() < best) {
-      best = s.z();
-      out.orientation = {axes[0], axes[1], axes[2]};
-      out.fits = true;
-    }
-  } while (std::next_permutation(axes.begin(), axes.end()));
+  const auto orientation = printer_orientation(out.size, printer);
+  out.fits = orientation.has_value();
+  if (orientation) out.orientation = *orientation;
   if (!out.fits)
     out.problems.push_back(fmt::format("is {} and does not fit the printer's {} in any of the 6 orientations",
                                        mm3(out.size), mm3(printer)));

@@ -4,6 +4,7 @@
 // printer's minimum (rays cast inward from each face, part_checks.cpp), and a fit in the printer's build volume
 // in one of the 6 axis-aligned orientations.
 
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -27,5 +28,12 @@ struct PartCheck {
 };
 
 PartCheck check_part(const SurfaceMesh& part, double min_wall, const Eigen::Vector3d& printer_volume);
+
+/// Which part axis goes along the printer's x, y, z for a box of `size` to fit `printer_volume`, of the 6
+/// axis-aligned orientations the one of lowest build height; none when none fits.
+std::optional<Eigen::Vector3i> printer_orientation(const Eigen::Vector3d& size, const Eigen::Vector3d& printer_volume);
+
+/// "250.0 × 210.0 × 210.0 mm".
+std::string mm3(const Eigen::Vector3d& v);
 
 } // namespace fibermold

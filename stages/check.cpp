@@ -34,6 +34,7 @@ DesignSurfaceCheck check_design_surface(const Design& design)
   std::vector<std::vector<Eigen::Vector3d>> fibers;
   for (const Fiber& f : design.fibers) fibers.push_back(f.points);
   require_mold_grids(design, surface, fibers);
+  require_molds_fit_printer(design, surface);
   // The fibers against the skin the optimizer will see: the mesh's (remeshed, when it is).
   require_optimizable(design, SurfaceDistance(meshed.surface.vertices, meshed.surface.faces));
   require_bend_radius(design, starting_routing(design).routes, "the starting route");

@@ -14,6 +14,8 @@
 #include "mesh/surface_distance.hpp"
 #include "mesh/tet_mesh.hpp"
 #include "molds/grid_budget.hpp"
+#include "molds/mold_block.hpp"
+#include "molds/part_checks.hpp"
 #include "molds/two_shot_molds.hpp"
 #include "sim/hermite_spline.hpp"
 #include "stages/design_simulation.hpp"
@@ -210,6 +212,23 @@ void require_mold_grids(const Design& d, const SurfaceMesh& body,
     bad(d, "[mold].voxel", *problem);
 }
 
+void require_molds_fit_printer(const Design& d, const SurfaceMesh& body)
+{
+  MoldBlockOptions block = d.mold.block;
+  block.min_wall = d.export_.min_wall; // as two_shot_molds gives make_mold
+  SurfaceMesh cavity = body;
+  cavity.vertices *= d.mold.shrink > 0 ? 1 / (1 - d.mold.shrink) : 1.0; // the size, about any centre
+  const Eigen::Vector3d half = least_half_size(cavity, d.mold.pull, block);
+  if (printer_orientation(half, d.export_.printer_volume)) return;
+  const Eigen::Vector3d size = body.vertices.colwise().maxCoeff() - body.vertices.colwise().minCoeff();
+  bad(d, "[export].printer_volume",
+      fmt::format("the molds' larger half will be at least {} (the block around the body, {} in the design's "
+                  "frame, grown by [mold] wall and the rim the keys take, half its height along [mold] pull), "
+                  "which fits the printer's {} in none of the 6 orientations: check [design].units, scale the "
+                  "body down, or give the printer_volume of a larger printer",
+                  mm3(half), mm3(size), mm3(d.export_.printer_volume)));
+}
+
 std::vector<std::vector<Eigen::Vector3d>> require_grooves_fit(const Design& d, const SurfaceDistance& skin,
                                                               const std::vector<Route>& routes,
                                                               const std::vector<ExitStretches>& exits)
@@ -295,6 +314,7 @@ void MoldsStage::run(StageContext& ctx) const
   job.exits = exit_stretches(d, skin, routes);
   const std::vector<std::vector<Eigen::Vector3d>> lines = require_grooves_fit(d, skin, routes, job.exits);
   require_mold_grids(d, job.body, lines);
+  require_molds_fit_printer(d, job.body);
   MoldOptions made = m;
   Json senses = Json::array();
   if (!m.parting) made.pull = pull_sense(ctx, job, lines, skin, senses);

@@ -20,6 +20,10 @@ namespace fibermold {
 /// polylines `fibers` (molds/grid_budget.hpp), before any carving; `check` asks it too.
 void require_mold_grids(const Design& d, const SurfaceMesh& body,
                         const std::vector<std::vector<Eigen::Vector3d>>& fibers);
+/// Refuses (InputError on [export].printer_volume) a body whose molds' larger half, at its least (the block
+/// around the body grown by the shrink, the wall and the rim, half its height), fits the printer in no
+/// orientation: found before the optimizer runs, not after the molds are carved; `check` asks it too.
+void require_molds_fit_printer(const Design& d, const SurfaceMesh& body);
 /// InputError at the fiber when a route's groove does not fit inside the body (molds' rule:
 /// groove_problem) off its `exits` (one per route); the routes' lines as the molds sample them.
 std::vector<std::vector<Eigen::Vector3d>> require_grooves_fit(const Design& d, const SurfaceDistance& skin,

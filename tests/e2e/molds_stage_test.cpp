@@ -18,6 +18,7 @@
 #include "mesh/surface_distance.hpp"
 #include "mesh/surface_import.hpp"
 #include "mesh/tet_mesh.hpp"
+#include "primitives.hpp"
 #include "test_support.hpp"
 
 namespace fibermold {
@@ -530,6 +531,36 @@ TEST_F(MoldsE2E, SigtermWhileCarvingStopsWithinASecond)
   EXPECT_FALSE(fs::exists(dir_ / "build" / "molds" / "report.json")) << "no output that looks complete";
   // The lock went with the process: the next make takes it (the mesh is fresh: nothing runs).
   EXPECT_EQ(test::run_fibermold("make design.toml mesh --build-dir build", dir_.path()).exit_code, 0);
+}
+
+/// A body whose molds cannot fit the printer is refused by check, before the optimizer runs, not by
+/// the molds stage after it (a new user's body in centimetres read as millimetres passed check as
+/// 900 mm long). A 230 mm bar's block, 246.8 mm with the default wall and keys' rim, fits the default
+/// 250 mm printer; a 300 mm bar's cannot in any orientation.
+TEST(MoldsForesight, MoldsThatFitNoPrinterOrientationAreRefusedByCheck)
+{
+  for (const double length : {230.0, 300.0}) {
+    test::TempDir dir;
+    test::write_ascii_stl(dir / "long.stl", test::box({0, -0.01, -0.01}, {length * 1e-3, 0.01, 0.01}));
+    test::write_text(dir / "design.toml",
+                     "[design]\nname = \"long\"\nsurface = \"long.stl\"\n[mesh]\nedge_length = 8\n[[fixed]]\n"
+                     "box = { min = [-1, -11, -11], max = [0.5, 11, 11] }\n[[fiber]]\nname = \"m1\"\n" +
+                         fmt::format("points = [[0, 0, 3], [{0}, 0, 3], [{1}, 0, 3]]\n[optimize]\nenabled = false\n",
+                                     length / 2, length));
+    const auto r = test::run_fibermold("check design.toml", dir.path());
+    if (length < 250) {
+      EXPECT_EQ(r.exit_code, 0) << r.err;
+      continue;
+    }
+    EXPECT_EQ(r.exit_code, 2);
+    EXPECT_THAT(r.err, HasSubstr("design.toml: [export].printer_volume: the molds' larger half will be at least "
+                                 "316.8 × 36.8 × 14.0 mm (the block around the body, 300.0 × 20.0 × 20.0 mm"));
+    EXPECT_THAT(r.err, HasSubstr("fits the printer's 250.0 × 210.0 × 210.0 mm in none of the 6 orientations"));
+    // Given a printer that takes it, it passes.
+    test::write_text(dir / "design.toml",
+                     test::read_text(dir / "design.toml") + "[export]\nprinter_volume = [350, 300, 300]\n");
+    EXPECT_EQ(test::run_fibermold("check design.toml", dir.path()).exit_code, 0);
+  }
 }
 
 } // namespace
