@@ -278,6 +278,10 @@ TEST_F(MeshStageE2E, AClosedInternalCavityIsRefusedByCheckAndMake)
   const auto checked = test::run_fibermold("check design.toml", dir_.path());
   EXPECT_EQ(checked.exit_code, 2) << checked.err;
   EXPECT_THAT(checked.err, HasSubstr(message));
+  // Opening it through a small inlet does not make it castable (a new user's 4 × 3 mm inlet into a
+  // 65 × 8 × 7 mm chamber): the advice says how wide.
+  EXPECT_THAT(checked.err, HasSubstr("open it through the skin as wide as it is across, so that a mold half forms it "
+                                     "as a pocket (a narrower inlet leaves a core that no half can pull out)"));
   expect_rejected(message);
 }
 
