@@ -227,9 +227,10 @@ TEST(BehaviourSummary, WhatToMeasureIsTheTurnAskedElseTheLargestTurnElseTheLarge
   };
   // The largest move when nothing turns 5°: 9 mm and its sensitivity.
   const std::string moved = what_to_measure(Json::array({pose("a", 3, 4.9), pose("b", 9, 1)}), 86.4e3, false, kAsBuilt);
-  EXPECT_THAT(moved, testing::StartsWith(
-                         "  Measure b's move: 9.0 mm in the simulation. With the least certain inputs 10 % off:"));
+  EXPECT_THAT(moved, testing::StartsWith("  Measure b's move: 9.0 mm in the simulation. To measure it, photograph"));
   const std::string flat = std::regex_replace(moved, std::regex("\n  "), " "); // unwrapped
+  EXPECT_THAT(flat, testing::HasSubstr("To measure it, photograph the robot at rest and pressurized beside a ruler, "
+                                       "the camera held still. With the least certain inputs 10 % off:"));
   for (const char* figure : {"5.0 mm and 6.0 mm with the silicone 10 % stiffer and softer than [material] "
                              "youngs_modulus = 86400 Pa",
                              "7.0 mm and 8.0 mm with every pressure 10 % lower and higher"})
@@ -261,6 +262,9 @@ TEST(BehaviourSummary, WhatToMeasureIsTheTurnAskedElseTheLargestTurnElseTheLarge
   const std::string fitted =
       std::regex_replace(what_to_measure(Json::array({region}), 86.4e3, true, kAsBuilt), std::regex("\n  "), " ");
   EXPECT_THAT(fitted, testing::HasSubstr("That is the best rigid fit of its 16 nodes (the whole face)"));
+  EXPECT_THAT(fitted, testing::HasSubstr("To measure it, photograph the robot at rest and pressurized from along that "
+                                         "axis, the camera held still, and take the angle between the same straight "
+                                         "edge there in the two photographs."));
   EXPECT_THAT(fitted, testing::HasSubstr("lower and higher (the higher is above [muscle] max_pressure for a muscle"));
   EXPECT_THAT(flat, testing::Not(testing::HasSubstr("max_pressure")));
   // Nothing worth measuring: nothing said.
@@ -269,7 +273,8 @@ TEST(BehaviourSummary, WhatToMeasureIsTheTurnAskedElseTheLargestTurnElseTheLarge
   Json bare = pose("a", 3, 0);
   bare.erase("sensitivity");
   EXPECT_EQ(what_to_measure(Json::array({bare}), 86.4e3, false, kAsBuilt),
-            "  Measure a's move: 3.0 mm in the simulation.\n");
+            "  Measure a's move: 3.0 mm in the simulation. To measure it, photograph the robot at rest and\n"
+            "  pressurized beside a ruler, the camera held still.\n");
 }
 
 TEST(BehaviourSummary, APoseShortOfItsTurnSaysWhatPressuresTurnItAll)
