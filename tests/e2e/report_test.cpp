@@ -216,8 +216,8 @@ TEST(ReportE2E, ShowsTheDeformedBodyTheErrorsAndTheOptimizationHistory)
   ASSERT_TRUE(std::regex_search(
       unwrapped, measure,
       std::regex(
-          R"(^Measure (.+?)'s (turn|move)[^:]*: ([0-9.]+)(°| mm) in the simulation\. To measure it, [^.]*\. Before you )"
-          R"(pressurize it \(every muscle at 0 kPa\), held as simulated, its weight alone (?:turns|moves) it )"
+          R"(^Measure (.+?)'s (turn|move)[^:]*: ([0-9.]+)(°| mm) in the simulation\. To measure it, [^.]*\. )"
+          R"(Before you pressurize it \(every muscle at 0 kPa\), held as simulated, its weight alone (?:turns|moves) it )"
           R"(([0-9.]+)(?:°| mm) in the simulation: compare that first\. With the least certain inputs 10 % off:)")))
       << unwrapped;
   bool measured = false;
