@@ -217,8 +217,8 @@ TEST(ReportE2E, ShowsTheDeformedBodyTheErrorsAndTheOptimizationHistory)
       unwrapped, measure,
       std::regex(
           R"(^Measure (.+?)'s (turn|move)[^:]*: ([0-9.]+)(°| mm) in the simulation\. To measure it, [^.]*\. )"
-          R"(Before you pressurize it \(every muscle at 0 kPa\), held as simulated, its weight alone (?:turns|moves) it )"
-          R"(([0-9.]+)(?:°| mm) in the simulation: compare that first\. With the least certain inputs 10 % off:)")))
+          R"(Before you pressurize it \(every muscle at 0 kPa\), held as simulated, its weight alone )"
+          R"((?:turns|moves) it ([0-9.]+)(?:°| mm) in the simulation: compare that first\. With the least certain inputs 10 % off:)")))
       << unwrapped;
   bool measured = false;
   for (const auto& pose : s["poses"]) {
