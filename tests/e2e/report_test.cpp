@@ -215,10 +215,10 @@ TEST(ReportE2E, ShowsTheDeformedBodyTheErrorsAndTheOptimizationHistory)
   std::smatch measure;
   ASSERT_TRUE(std::regex_search(
       unwrapped, measure,
-      std::regex(
-          R"(^Measure (.+?)'s (turn|move)[^:]*: ([0-9.]+)(°| mm) in the simulation\. To measure it, [^.]*\. )"
-          R"(Before you pressurize it \(every muscle at 0 kPa\), held as simulated, its weight alone )"
-          R"((?:turns|moves) it ([0-9.]+)(?:°| mm) in the simulation: compare that first\. With the least certain inputs 10 % off:)")))
+      std::regex(R"(^Measure (.+?)'s (turn|move)[^:]*: ([0-9.]+)(°| mm) in the simulation\. To measure it, [^.]*\. )"
+                 R"(Before you pressurize it \(every muscle at 0 kPa\), held as simulated, its weight alone )"
+                 R"((?:turns|moves) it ([0-9.]+)(?:°| mm) in the simulation: compare that first\. )"
+                 R"(With the least certain inputs 10 % off:)")))
       << unwrapped;
   bool measured = false;
   for (const auto& pose : s["poses"]) {
