@@ -235,8 +235,12 @@ std::string casting_guide(const CastingSheet& sheet)
   text += step(4, "Trim the cast's sprue and vent stubs flush with its skin: shot 2's cavity is the body's own shape "
                   "and has no room for them.");
   text += '\n';
+  // The simulation put the muscle at the groove's bottom; shot 2's silicone, denser than a muscle holding air,
+  // would lift it toward the skin while it cures unless it is held there.
   text += wrapped("Lay each muscle into its groove, resting on the groove's bottom, its ends and supply tubes "
-                  "along the grooves' ends.",
+                  "along the grooves' ends, and tack it there with dots of silicone adhesive (such as Smooth-On "
+                  "Sil-Poxy) every 2 to 3 cm, cured before shot 2: a muscle holding air is lighter than liquid "
+                  "silicone and would float up the groove, off the route simulated.",
                   "", "");
   text += fmt::format("\nShot 2, the overmold: shot2-lower{} and shot2-upper{}.\n", ext, ext);
   text += step(5, "Put the grooved body with its muscles into the lower half, grooves up, and route the supply tubes "

@@ -52,8 +52,9 @@ public:
   /// table's figure unpressurized and at the whole angle; 30: the optimization table's gain over the first guess at
   /// its best pressures; 31: the socket's length in README.txt read from the design (it read an undeclared key: NaN);
   /// 32: the halves with thin deep ribs printed solid, the screw holes' bolts, the muscle–tube joint, only the mold
-  /// parts printed as they lie; 33: how to measure the figure (photographs along the axis, or beside a ruler)
-  int version() const override { return 33; }
+  /// parts printed as they lie; 33: how to measure the figure (photographs along the axis, or beside a ruler); 34:
+  /// the muscles tacked to the grooves' bottoms before shot 2
+  int version() const override { return 34; }
   void run(StageContext& ctx) const override;
 };
 

@@ -443,10 +443,13 @@ TEST_F(MoldsE2E, EndChannelsTooNearEachOtherAreNamedWithTheFix)
 
 TEST_F(MoldsE2E, BadInputsStopWithoutWritingParts)
 {
+  // Molds that cannot fit the printer are refused before carving (exit 2; until session 46 after it, exit 1).
   design("[export]\nprinter_volume = [50, 50, 50]\n");
   auto r = make();
-  EXPECT_EQ(r.exit_code, 1);
-  EXPECT_THAT(r.err, HasSubstr("does not fit the printer's 50.0 × 50.0 × 50.0 mm in any of the 6 orientations"));
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_THAT(r.err, HasSubstr("[export].printer_volume: the molds' larger half will be at least 76.8 × 32.8 × 12.0 "
+                               "mm"));
+  EXPECT_THAT(r.err, HasSubstr("which fits the printer's 50.0 × 50.0 × 50.0 mm in none of the 6 orientations"));
   EXPECT_FALSE(fs::exists(dir_ / "build" / "molds" / "shot1-lower.stl"));
   EXPECT_FALSE(fs::exists(out("manifest.json")));
 

@@ -124,6 +124,9 @@ TEST(CastingSheet, TheMuscleAndItsTubeJoinWithinTheSocket)
                   "join them with a fitting no wider than the socket, such as a barbed connector or a glued "
                   "sleeve; a Luer fitting to the pressure supply goes on the tube's outer end, outside the mold"));
   EXPECT_TRUE(has(guide, "m1: 108.0 mm. Fit the supply tube to its first end, which leaves the body"));
+  // Held at the groove's bottom while shot 2 cures: it would float otherwise.
+  EXPECT_TRUE(has(guide, "and tack it there with dots of silicone adhesive (such as Smooth-On Sil-Poxy) every 2 to "
+                         "3 cm, cured before shot 2: a muscle holding air is lighter than liquid silicone"));
 }
 
 TEST(CastingSheet, GivesEachMuscleItsCutAndItsEnds)

@@ -31,6 +31,25 @@ TEST(PartChecks, ThinPlateIsFoundAtItsThickness)
   EXPECT_NE(c.problems[0].find("has a wall of 0.60 mm"), std::string::npos) << c.problems[0];
 }
 
+// A part fits the printer in the axis-aligned orientation of least build height, or is refused naming both sizes.
+TEST(PartChecks, APartFitsThePrinterLowestOrNotAtAll)
+{
+  const SurfaceMesh bar = box_solid({0, 0, 0}, {80 * mm, 30 * mm, 10 * mm});
+  const PartCheck small = check_part(bar, 1 * mm, Eigen::Vector3d(0.05, 0.05, 0.05));
+  ASSERT_EQ(small.problems.size(), 1u);
+  EXPECT_EQ(small.problems[0],
+            "is 80.0 × 30.0 × 10.0 mm and does not fit the printer's 50.0 × 50.0 × 50.0 mm in any of "
+            "the 6 orientations");
+  EXPECT_FALSE(small.fits);
+  // Stood on its end it would fit a 40 × 40 × 90 mm printer too, but lying down it builds 10 mm high.
+  const PartCheck fits = check_part(bar, 1 * mm, Eigen::Vector3d(0.09, 0.04, 0.09));
+  EXPECT_TRUE(fits.ok()) << fits.problems.front();
+  EXPECT_EQ(fits.orientation, Eigen::Vector3i(0, 1, 2));
+  EXPECT_EQ(printer_orientation(Eigen::Vector3d(0.08, 0.03, 0.01), Eigen::Vector3d(0.04, 0.04, 0.09)),
+            Eigen::Vector3i(1, 2, 0)); // only on its end
+  EXPECT_FALSE(printer_orientation(Eigen::Vector3d(0.08, 0.03, 0.01), Eigen::Vector3d(0.07, 0.07, 0.07)));
+}
+
 TEST(PartChecks, WedgeIsFoundWhereItThinsOut)
 {
   // A ramp from 10 mm high at x = 0 down to 0.5 mm at x = 20 mm (a 25° wedge), faces 0.5 mm long: the
