@@ -359,11 +359,13 @@ StageRun Runner::run_stage(const Stage& stage, const Design& design, const fs::p
     StageContext ctx{view, build_dir, staging, p, log};
     stage.run(ctx);
     // No output holds a value nobody computed (unset_values.hpp): a NaN in a sentence is a bug, said as one.
+    const std::vector<std::string> own = own_text(design, build_dir);
     for (const fs::path& file : files_under(staging))
-      if (const auto unset = unset_value_in(staging / file))
+      if (const auto unset = unset_value_in(staging / file, own))
         throw std::runtime_error(fmt::format(
-            "wrote a value it did not compute (NaN, an infinity or a JSON null) into {}, {}. This is a bug in "
-            "fibermold: please report it with the design file. None of the stage's outputs were kept",
+            "wrote a value it did not compute (NaN, an infinity, a JSON null or a design value it did not declare) "
+            "into {}, {}. This is a bug in fibermold: please report it with the design file. None of the stage's "
+            "outputs were kept",
             file.string(), *unset));
     p.update(1.0, "done");
   } catch (const std::exception& e) {

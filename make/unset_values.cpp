@@ -33,26 +33,53 @@ std::string where(std::string_view text, std::size_t at, std::size_t length)
                      to < line_end ? "…" : "");
 }
 
+/// Whether [at, end) lies in a run of 40 or more base64 characters (report.html's meshes): encoded data,
+/// whose letters spell words by chance (about once in 10⁹ bytes), not text.
+bool in_encoded_run(std::string_view text, std::size_t at, std::size_t end)
+{
+  const auto encoded = [](char c) {
+    return std::isalnum(static_cast<unsigned char>(c)) || c == '+' || c == '/' || c == '=';
+  };
+  std::size_t from = at, to = end;
+  while (from > 0 && encoded(text[from - 1])) --from;
+  while (to < text.size() && encoded(text[to])) ++to;
+  return to - from >= 40;
+}
+
+/// Whether the word at `at` is inside one of `own` (a name or path the user chose: "/afs/inf.ed.ac.uk/…",
+/// a fiber named "inf-1") where it stands in `text`.
+bool in_own_text(std::string_view text, std::size_t at, std::string_view word, const std::vector<std::string>& own)
+{
+  for (const std::string& s : own)
+    for (std::size_t k = s.find(word); k != std::string::npos; k = s.find(word, k + 1))
+      if (k <= at && text.substr(at - k, s.size()) == s) return true;
+  return false;
+}
+
 } // namespace
 
-std::optional<std::string> unset_value(std::string_view text, bool json_null)
+std::optional<std::string> unset_value(std::string_view text, bool json_null, const std::vector<std::string>& own)
 {
-  // A design value the stage read without declaring it (undeclared_value.hpp): its text or its int.
+  // A design value the stage read without declaring it (undeclared_value.hpp): its text (report.html escapes
+  // its '<') or its int; then what fmt prints for a NaN or an infinity, and nlohmann for a NaN in JSON.
   const std::string undeclared = undeclared_text(""), undeclared_int = std::to_string(kUndeclaredInt);
-  for (const std::string_view marker :
-       {std::string_view(undeclared).substr(0, undeclared.size() - 1), std::string_view(undeclared_int)})
-    if (const std::size_t at = text.find(marker); at != std::string_view::npos) return where(text, at, marker.size());
-  static constexpr std::array<std::string_view, 3> kWords{"nan", "inf", "null"};
-  for (std::size_t w = 0; w < (json_null ? 3u : 2u); ++w)
-    for (std::size_t at = text.find(kWords[w]); at != std::string_view::npos; at = text.find(kWords[w], at + 1)) {
-      const std::size_t end = at + kWords[w].size();
-      if ((at == 0 || !word_character(text[at - 1])) && (end == text.size() || !word_character(text[end])))
-        return where(text, at, kWords[w].size());
+  const std::string marker = undeclared.substr(0, undeclared.size() - 1), escaped = "&lt;" + marker.substr(1);
+  const std::array<std::pair<std::string_view, bool>, 6> patterns{
+      {{marker, false}, {escaped, false}, {undeclared_int, false}, {"nan", true}, {"inf", true}, {"null", true}}};
+  for (const auto& [pattern, word] : patterns) {
+    if (pattern == "null" && !json_null) continue;
+    for (std::size_t at = text.find(pattern); at != std::string_view::npos; at = text.find(pattern, at + 1)) {
+      const std::size_t end = at + pattern.size();
+      if (word && ((at > 0 && word_character(text[at - 1])) || (end < text.size() && word_character(text[end]))))
+        continue;
+      if (word && (in_encoded_run(text, at, end) || in_own_text(text, at, pattern, own))) continue;
+      return where(text, at, pattern.size());
     }
+  }
   return std::nullopt;
 }
 
-std::optional<std::string> unset_value_in(const std::filesystem::path& file)
+std::optional<std::string> unset_value_in(const std::filesystem::path& file, const std::vector<std::string>& own)
 {
   const std::string ext = file.extension().string();
   static constexpr std::array<std::string_view, 6> kText{".json", ".txt", ".html", ".csv", ".vtu", ".obj"};
@@ -60,7 +87,26 @@ std::optional<std::string> unset_value_in(const std::filesystem::path& file)
   std::ifstream in(file, std::ios::binary);
   std::ostringstream text;
   text << in.rdbuf();
-  return unset_value(text.str(), ext == ".json");
+  return unset_value(text.str(), ext == ".json", own);
+}
+
+std::vector<std::string> own_text(const Design& d, const std::filesystem::path& build_dir)
+{
+  std::vector<std::string> out{d.design.name, build_dir.string(), std::filesystem::absolute(build_dir).string()};
+  for (const std::filesystem::path& p : {d.file, d.design.surface}) {
+    out.push_back(p.string());
+    out.push_back(p.filename().string());
+    out.push_back(p.parent_path().string());
+  }
+  for (const Fiber& f : d.fibers) out.push_back(f.name);
+  for (const TrackingCurve& c : d.tracking_curves) out.push_back(c.name);
+  for (const FixedRegion& f : d.fixed) out.push_back(f.name);
+  for (const Target& t : d.targets) {
+    out.push_back(t.name);
+    out.push_back(t.surface.string());
+  }
+  std::erase_if(out, [](const std::string& s) { return s.empty(); });
+  return out;
 }
 
 } // namespace fibermold

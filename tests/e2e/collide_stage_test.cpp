@@ -332,5 +332,28 @@ TEST(CollideStage, TheFullTurnAndTheWeightsTurnAreAlikeUnderOtherBlasKernels)
   EXPECT_LT(spread(full), 0.02 * full.front());
   EXPECT_LT(spread(weight), 0.005);
 }
+/// The runner refuses outputs that hold "nan", "inf" or a JSON null (make/unset_values.hpp), but not
+/// where a user's own names and paths hold them: a design "inf-nan" on inf.stl, a muscle "null", built
+/// into a folder "null", goes through every stage to its molds and README.txt.
+TEST(UnsetValuesE2E, NamesAndPathsThatSpellTheWordsBuildEveryStage)
+{
+  test::TempDir dir;
+  write_turning_bar(dir.path(), -25);
+  fs::rename(dir / "bar.stl", dir / "inf.stl");
+  std::string text = test::read_text(dir / "design.toml");
+  for (const auto& [from, to] : {std::pair<std::string, std::string>{"name = \"bar\"", "name = \"inf-nan\""},
+                                 {"surface = \"bar.stl\"", "surface = \"inf.stl\""},
+                                 {"name = \"m1\"", "name = \"null\""},
+                                 {"max_iterations = 20", "max_iterations = 3"}}) {
+    ASSERT_NE(text.find(from), std::string::npos) << from;
+    text.replace(text.find(from), from.size(), to);
+  }
+  test::write_text(dir / "design.toml", text);
+  const auto r = test::run_fibermold("make design.toml --build-dir null", dir.path());
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_THAT(test::read_text(dir / "null" / "export" / "README.txt"), HasSubstr("mold parts for \"inf-nan\""));
+  EXPECT_THAT(test::read_text(dir / "null" / "mesh" / "report.json"), HasSubstr("inf.stl"));
+}
+
 } // namespace
 } // namespace fibermold

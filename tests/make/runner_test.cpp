@@ -359,8 +359,8 @@ TEST_F(RunnerTest, AStageThatWritesANanOrNullFailsAndKeepsNothing)
     FAIL() << "expected StageFailed";
   } catch (const StageFailed& e) {
     EXPECT_EQ(e.stage(), "molds");
-    EXPECT_THAT(e.what(), HasSubstr("wrote a value it did not compute (NaN, an infinity or a JSON null) into "
-                                    "report.json, line 3: "));
+    EXPECT_THAT(e.what(), HasSubstr("wrote a value it did not compute (NaN, an infinity, a JSON null or a design "
+                                    "value it did not declare) into report.json, line 3: "));
     EXPECT_THAT(e.what(), HasSubstr("This is a bug in fibermold"));
   }
   EXPECT_EQ(output("molds"), before);
