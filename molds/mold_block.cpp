@@ -257,10 +257,14 @@ Eigen::Vector3d block_margin(const MoldBlockOptions& o)
 
 Eigen::Vector3d least_half_size(const SurfaceMesh& cavity, const Eigen::Vector3d& pull, const MoldBlockOptions& o)
 {
-  const SurfaceMesh local = transformed(cavity, to_local(pull));
+  const Eigen::Matrix3d R = to_local(pull);
+  const SurfaceMesh local = transformed(cavity, R);
   const Eigen::Vector3d block = local.vertices.colwise().maxCoeff().transpose() -
                                 local.vertices.colwise().minCoeff().transpose() + 2 * block_margin(o);
-  return {block.x(), block.y(), block.z() / 2};
+  // The half is a box of the block's width and depth and at least half its height in the pull's frame; the parts
+  // are checked in the design's frame, where that box's extent along axis i is Σ_j |Rᵀ_ij| · size_j (a pull off the
+  // design's axes turns it: a 260 mm bar along (1, 0, -1) pulled along (1, 0, 1) has halves 205.6 mm across).
+  return R.transpose().cwiseAbs() * Eigen::Vector3d(block.x(), block.y(), block.z() / 2);
 }
 
 Mold make_mold(const SurfaceMesh& cavity_world, const Parting& parting, const std::vector<Channel>& channels,

@@ -72,9 +72,10 @@ struct Mold {
 /// wall, or the room the keys and screw holes take in the rim, whichever is more; along it the wall.
 Eigen::Vector3d block_margin(const MoldBlockOptions& options);
 
-/// The least size of the larger half that make_mold cuts around `cavity` opened along `pull` (in the frame where
-/// the pull is +z): the block's width and depth, and half its height (the halves share it however the parting
-/// plane divides it). A half of this size that fits no printer orientation will not fit as made either.
+/// The least size of the larger half that make_mold cuts around `cavity` opened along `pull`, as the parts are
+/// checked (their bounding box in the design's frame): the box of the block's width and depth and half its height
+/// in the pull's frame (the halves share the height however the parting plane divides it), turned back. A half of
+/// this size that fits no printer orientation will not fit as made either.
 Eigen::Vector3d least_half_size(const SurfaceMesh& cavity, const Eigen::Vector3d& pull,
                                 const MoldBlockOptions& options);
 

@@ -48,6 +48,9 @@ struct MoldOptions {
   double draft_deg = 0;                ///< degrees
   double shrink = 0;                   ///< linear shrink of the silicone, fraction
   bool labels = true;                  ///< engrave each part's name and "IN" beside its sprues (part_label.hpp)
+
+  /// Shrink compensation: how much the cavities are scaled up, so that the cured silicone shrinks to size.
+  double shrink_growth() const { return shrink > 0 ? 1 / (1 - shrink) : 1.0; }
 };
 
 } // namespace fibermold

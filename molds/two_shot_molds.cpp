@@ -105,7 +105,7 @@ public:
     }
     out_.pull = pull_;
     // Shrink compensation: cavities (and channel starts) scaled up about the body's centre.
-    out_.grow = m.shrink > 0 ? 1 / (1 - m.shrink) : 1.0;
+    out_.grow = m.shrink_growth();
     out_.centre = job.body.vertices.colwise().mean().transpose();
     for (Channel& c : channels_) c.start = out_.scaled(c.start);
     g3_ = out_.grow * out_.grow * out_.grow;

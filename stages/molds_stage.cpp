@@ -217,7 +217,7 @@ void require_molds_fit_printer(const Design& d, const SurfaceMesh& body)
   MoldBlockOptions block = d.mold.block;
   block.min_wall = d.export_.min_wall; // as two_shot_molds gives make_mold
   SurfaceMesh cavity = body;
-  cavity.vertices *= d.mold.shrink > 0 ? 1 / (1 - d.mold.shrink) : 1.0; // the size, about any centre
+  cavity.vertices *= d.mold.shrink_growth(); // its size (about any centre)
   const Eigen::Vector3d half = least_half_size(cavity, d.mold.pull, block);
   if (printer_orientation(half, d.export_.printer_volume)) return;
   const Eigen::Vector3d size = body.vertices.colwise().maxCoeff() - body.vertices.colwise().minCoeff();

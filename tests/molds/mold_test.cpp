@@ -2,6 +2,7 @@
 // body's volume, both shots' parts, their checks, and the parts put back together.
 #include <cmath>
 
+#include <Eigen/Geometry>
 #include <gtest/gtest.h>
 
 #include "mesh/surface_check.hpp"
@@ -33,6 +34,29 @@ void expect_parts_ok(const Mold& mold)
     EXPECT_GE(c.min_thickness, 1 * mm) << p.name;
     EXPECT_TRUE(c.fits) << p.name;
   }
+}
+
+// The printer fit foreseen before carving (stages' require_molds_fit_printer) is a lower bound on the
+// parts as checked: their bounding box in the design's frame. A 260 × 20 × 20 mm bar pulled along z has
+// halves at least 276.8 × 36.8 × 14.0 mm (8.4 mm of rim for the keys, a 4 mm wall); turned 45° about y
+// and pulled along (1, 0, 1), the same halves stand 205.6 mm across x and z, and fit a 250 × 210 × 210
+// mm printer that the untilted ones do not (a review found the first version measured in the pull's frame).
+TEST(Molds, TheLeastHalfIsMeasuredAsThePartsAreChecked)
+{
+  const SurfaceMesh bar = box_solid({-0.13, -0.01, -0.01}, {0.13, 0.01, 0.01});
+  const MoldBlockOptions o;
+  const Eigen::Vector3d printer(0.25, 0.21, 0.21);
+  const Eigen::Vector3d along_z = least_half_size(bar, Eigen::Vector3d::UnitZ(), o);
+  EXPECT_TRUE(along_z.isApprox(Eigen::Vector3d(0.2768, 0.0368, 0.014), 1e-9)) << along_z.transpose();
+  EXPECT_FALSE(printer_orientation(along_z, printer));
+  SurfaceMesh turned = bar;
+  turned.vertices =
+      (turned.vertices * Eigen::AngleAxisd(M_PI / 4, Eigen::Vector3d::UnitY()).toRotationMatrix().transpose()).eval();
+  const Eigen::Vector3d tilted = least_half_size(turned, Eigen::Vector3d(1, 0, 1).normalized(), o);
+  EXPECT_NEAR(tilted.x(), (0.2768 + 0.014) / std::sqrt(2.0), 1e-9);
+  EXPECT_NEAR(tilted.y(), 0.0368, 1e-9);
+  EXPECT_NEAR(tilted.z(), (0.2768 + 0.014) / std::sqrt(2.0), 1e-9);
+  EXPECT_TRUE(printer_orientation(tilted, printer));
 }
 
 TEST(Molds, GrooveShotOfABoxWithAStraightFiber)
