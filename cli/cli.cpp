@@ -261,8 +261,9 @@ int report_failure(const std::exception_ptr& error, const std::vector<Diagnostic
   } catch (const Interrupted&) {
     fmt::print(stderr, "fibermold: interrupted; the stage that was running is stale, its previous outputs kept\n");
     return kExitInterrupted;
-  } catch (const std::exception& e) {
+  } catch (const std::exception& e) { // `simulate`'s "did not reach equilibrium" among them
     fmt::print(stderr, "fibermold: error: {}\n", e.what());
+    repeat_unlikely_values(unlikely);
     return kExitStageFailed;
   }
 }

@@ -328,15 +328,16 @@ std::string what_to_measure(const Json& poses, double youngs_modulus, bool beyon
                                                                      : " about the axis asked";
   std::string text = fmt::format("Measure {}'s {}{}{}: {:.1f}{} in the simulation.", p["place"].get<std::string>(),
                                  asked ? "turn" : m.what, at, about, m.value, m.unit);
-  // How, with what a lab has (a new user asked): the turn seen along its axis, the move against a ruler.
-  text += m.unit == std::string("°")
-              ? " To measure it, photograph the robot at rest and pressurized from along that axis, the camera held "
-                "still, and take the angle between the same straight edge there in the two photographs."
-              : " To measure it, photograph the robot at rest and pressurized beside a ruler, the camera held still.";
   if (m.unit == std::string("°") && p.contains("nodes") && p["nodes"].is_number())
     text += fmt::format(" That is the best rigid fit of its {} nodes (the whole face); a point of it, such as a "
                         "tracking curve's end, may turn a few degrees more or less.",
                         p["nodes"].get<int>());
+  // How, with what a lab has (a new user asked): the turn seen along its axis, the move from square to it.
+  text += m.unit == std::string("°")
+              ? " To measure it, photograph the robot at rest and pressurized from along that axis, the camera held "
+                "still, and take the angle between the same straight edge there in the two photographs."
+              : " To measure it, photograph the robot at rest and pressurized from the side, square to the move, "
+                "beside a ruler, the camera held still.";
   text += unpressurized_text(m);
   if (asked) text += full_turn_text(p);
   if (const auto varied = variations(m)) {

@@ -143,19 +143,29 @@ std::string muscles_text(const CastingSheet& sheet)
   return text;
 }
 
-/// "Close the two halves on their keys and clamp them", with the screws when the mold has them.
-/// The metric bolt whose medium clearance hole (ISO 273) is the widest no wider than `hole` (m): "M3" for
-/// 3.4 mm; empty under M2's 2.4 mm.
+/// The metric bolt a hole of width `hole` (m) takes, by ISO 273: the largest whose medium clearance hole is no
+/// wider than it, while it is no wider than that bolt's coarse one ("M3" for 3.4 mm; none for 2 mm, under M2's
+/// 2.4 mm, nor for 20 mm, past M8's 10 mm).
 std::string bolt_for(double hole)
 {
-  static constexpr std::array<std::pair<double, const char*>, 7> kClearance{
-      {{2.4e-3, "M2"}, {2.9e-3, "M2.5"}, {3.4e-3, "M3"}, {4.5e-3, "M4"}, {5.5e-3, "M5"}, {6.6e-3, "M6"}, {9e-3, "M8"}}};
+  struct Clearance {
+    double medium, coarse;
+    const char* bolt;
+  };
+  static constexpr std::array<Clearance, 7> kIso273{{{2.4e-3, 2.6e-3, "M2"},
+                                                     {2.9e-3, 3.1e-3, "M2.5"},
+                                                     {3.4e-3, 3.6e-3, "M3"},
+                                                     {4.5e-3, 4.8e-3, "M4"},
+                                                     {5.5e-3, 5.8e-3, "M5"},
+                                                     {6.6e-3, 7.0e-3, "M6"},
+                                                     {9.0e-3, 10.0e-3, "M8"}}};
   std::string bolt;
-  for (const auto& [clearance, name] : kClearance)
-    if (clearance <= hole * (1 + 1e-9)) bolt = name;
+  for (const Clearance& c : kIso273)
+    if (c.medium <= hole * (1 + 1e-9)) bolt = hole <= c.coarse * (1 + 1e-9) ? c.bolt : "";
   return bolt;
 }
 
+/// "Close the two halves on their keys and clamp them", with the screws when the mold has them.
 std::string clamp_text(const CastShot& shot, double screw_diameter)
 {
   if (shot.screw_holes == 0) return "Close the two halves on their keys and clamp them (spring clamps or rubber bands)";
@@ -177,12 +187,12 @@ std::string ribs_text(const CastingSheet& sheet, const std::string& ext)
                                     ext, ribs->count, ribs->count > 1 ? "s" : "", ribs->thinnest / units::mm,
                                     ribs->deepest / units::mm));
   if (parts.empty()) return "";
-  return wrapped(fmt::format("Print {} solid (100 % infill): {} thin deep ribs into the cavity, the mold's side of "
-                             "the body's narrow slots or gaps, which printed hollow may break, or tear the cast, as "
-                             "the half comes off: {}. Or set [mold] draft_deg (1–3°) to taper them "
+  return wrapped(fmt::format("Print {} solid (100 % infill): {} thin deep ribs standing into the cavity, the mold's "
+                             "side of the body's narrow slots or gaps, which printed hollow may break, or tear the "
+                             "cast, as the half comes off: {}. Or set [mold] draft_deg (1–3°) to taper them "
                              "(molds/report.json lists each).",
-                             parts.size() > 1 ? "these halves" : "this half",
-                             parts.size() > 1 ? "they stand" : "it stands", fmt::format("{}", fmt::join(parts, "; "))),
+                             parts.size() > 1 ? "these halves" : "this half", parts.size() > 1 ? "they have" : "it has",
+                             fmt::format("{}", fmt::join(parts, "; "))),
                  "", "");
 }
 
@@ -238,8 +248,9 @@ std::string casting_guide(const CastingSheet& sheet)
   // The simulation put the muscle at the groove's bottom; shot 2's silicone, denser than a muscle holding air,
   // would lift it toward the skin while it cures unless it is held there.
   text += wrapped("Lay each muscle into its groove, resting on the groove's bottom, its ends and supply tubes "
-                  "along the grooves' ends, and tack it there with dots of silicone adhesive (such as Smooth-On "
-                  "Sil-Poxy) every 2 to 3 cm, cured before shot 2: a muscle holding air is lighter than liquid "
+                  "along the grooves' ends, and tack it there every 2 to 3 cm with small dots of silicone adhesive "
+                  "(such as Smooth-On Sil-Poxy) between the muscle and the groove's wall, not under it (a dot under "
+                  "it lifts it off the route), cured before shot 2: a muscle holding air is lighter than liquid "
                   "silicone and would float up the groove, off the route simulated.",
                   "", "");
   text += fmt::format("\nShot 2, the overmold: shot2-lower{} and shot2-upper{}.\n", ext, ext);

@@ -15,13 +15,13 @@
 
 namespace fibermold {
 
-/// One shot of the molds (molds/report.json's "shots").
 /// A mold half's thin deep ribs (molds/report.json's thin_ribs): how many, the thinnest, the deepest (m).
 struct HalfRibs {
   int count = 0;
   double thinnest = 0, deepest = 0;
 };
 
+/// One shot of the molds (molds/report.json's "shots").
 struct CastShot {
   double volume = 0;                ///< m³ of silicone the cavity takes
   double mass = 0;                  ///< kg of it

@@ -26,9 +26,11 @@ void require_castable(const SurfaceCheck& check, const SurfaceMesh& surface)
         {surface.source, 0, 0, "",
          fmt::format("surface {} has a closed internal cavity of {:.4g} mm³ around ({:.1f}, {:.1f}, {:.1f}) mm: a "
                      "two-part mold cannot cast it (the void would need a core to hold it, which fibermold does "
-                     "not make). Fill it; or open it through the skin as wide as it is across, so that a mold "
-                     "half forms it as a pocket (a narrower inlet leaves a core that no half can pull out); or make "
-                     "the chamber otherwise (a wax or soluble core, or the body cast in two parts and bonded)",
+                     "not make). Fill it; or open it through the skin toward [mold] pull, as wide as it is across, "
+                     "so that a mold half forms it as a pocket (a narrower inlet, or one to the side, leaves a core "
+                     "that no half can pull out), and close it after casting (bond on a cap) if it must hold air; "
+                     "or make the chamber otherwise (a wax or soluble core, or the body cast in two parts and "
+                     "bonded)",
                      surface.source.filename().string(), c.volume / units::mm3, c.centre.x() / units::mm,
                      c.centre.y() / units::mm, c.centre.z() / units::mm)});
   if (!diagnostics.empty()) throw InputError(std::move(diagnostics));

@@ -186,7 +186,7 @@ Row case_row(const SweepPlan& plan, const fs::path& dir, Summary& s)
     if (const auto stamp = json_file(Runner::stamp_path(dir, stage)); stamp && (*stamp)["seconds"].is_number())
       row.numbers[stage + " s"] = (*stamp)["seconds"].get<double>();
   if (std::error_code ec; built("export") && fs::exists(dir / "export" / "report.html", ec))
-    row.texts["report"] = (fs::path("cases") / dir.filename() / "export" / "report.html").generic_string();
+    row.texts["report"] = (plan.case_dir({}, dir.filename().string()) / "export" / "report.html").generic_string();
   return row;
 }
 

@@ -41,8 +41,9 @@ CommandResult run_fibermold(const std::string& arguments, const std::filesystem:
 /// The OpenBLAS kernels this CPU can run, to be chosen in a test's own environment
 /// (`env OPENBLAS_CORETYPE=<kernel>`): each rounds dgemm and dpotrf its own way, as other machines
 /// do. Haswell (AVX2) and Sandybridge (AVX) where the CPU has AVX2, and SkylakeX where it has
-/// AVX-512 (what OpenBLAS picks itself on the AMD EPYC this suite was written on); empty without
-/// AVX2 or /proc/cpuinfo.
+/// AVX-512 (what OpenBLAS picks itself on the AMD EPYC this suite was written on), each kept only
+/// where fibermold's OpenBLAS says it took it (OPENBLAS_VERBOSE=2: "Core: Haswell"); empty when
+/// fewer than two are left (no AVX2, no /proc/cpuinfo, an OpenBLAS that ignores the choice).
 std::vector<std::string> blas_kernels();
 
 /// The bar of the end-to-end tests: 60 × 16 × 16 mm from x = 0, written as `bar.stl` into `dir`.

@@ -280,8 +280,9 @@ TEST_F(MeshStageE2E, AClosedInternalCavityIsRefusedByCheckAndMake)
   EXPECT_THAT(checked.err, HasSubstr(message));
   // Opening it through a small inlet does not make it castable (a new user's 4 × 3 mm inlet into a
   // 65 × 8 × 7 mm chamber): the advice says how wide.
-  EXPECT_THAT(checked.err, HasSubstr("open it through the skin as wide as it is across, so that a mold half forms it "
-                                     "as a pocket (a narrower inlet leaves a core that no half can pull out)"));
+  EXPECT_THAT(checked.err, HasSubstr("open it through the skin toward [mold] pull, as wide as it is across, so that a "
+                                     "mold half forms it as a pocket (a narrower inlet, or one to the side, leaves a "
+                                     "core that no half can pull out)"));
   expect_rejected(message);
 }
 

@@ -99,7 +99,8 @@ TEST_F(SweepE2E, SixCasesOptimizeOncePerDistinctOptimizationInput)
     ++rows;
     best += line.ends_with(",s") ? 1 : 0;
     // How each optimization ended, and the case's own report beside it.
-    EXPECT_THAT(line, ::testing::ContainsRegex(",(converged|stalled|iteration limit|line search failed),"));
+    EXPECT_THAT(line, ::testing::ContainsRegex(
+                          ",(gradient tolerance met|converged|stalled|line search failed|iteration limit),"));
     EXPECT_THAT(line, ::testing::ContainsRegex(",cases/[0-9a-f]{10}/export/report.html,"));
   }
   EXPECT_EQ(rows, 6);

@@ -84,6 +84,12 @@ TEST(CastingSheet, SaysHowToCloseEachMoldAndNamesItsHoles)
   const std::string guide = casting_guide(sheet());
   EXPECT_TRUE(has(guide, "bolt them through the 4 screw holes (3.4 mm, M3: bolts long enough to pass both halves, "
                          "with nuts)"));
+  // A hole no metric bolt's clearance is: its width alone.
+  CastingSheet wide = sheet();
+  wide.screw_diameter = 20e-3;
+  EXPECT_TRUE(has(casting_guide(wide), "bolt them through the 4 screw holes (20.0 mm: bolts long enough"));
+  wide.screw_diameter = 4.5e-3;
+  EXPECT_TRUE(has(casting_guide(wide), "bolt them through the 4 screw holes (4.5 mm, M4: bolts"));
   EXPECT_TRUE(has(guide, "clamp them (spring clamps or rubber bands)"));
   EXPECT_TRUE(has(guide, "through the sprue hole from below"));
   EXPECT_TRUE(has(guide, "every one of the 3 vents"));
@@ -103,12 +109,12 @@ TEST(CastingSheet, HalvesWithThinDeepRibsArePrintedSolidUnlessADraftTapersThem)
   EXPECT_FALSE(has(casting_guide(s), "solid"));
   s.shot1.lower_ribs = {13, 1.9e-3, 12e-3};
   std::string guide = casting_guide(s);
-  EXPECT_TRUE(has(guide, "Print this half solid (100 % infill): it stands thin deep ribs into the cavity"));
+  EXPECT_TRUE(has(guide, "Print this half solid (100 % infill): it has thin deep ribs standing into the cavity"));
   EXPECT_TRUE(has(guide, ": shot1-lower.stl (13 ribs, down to 1.9 mm thick, up to 12.0 mm deep). Or set [mold] "
                          "draft_deg (1–3°) to taper them"));
   s.shot2.upper_ribs = {1, 2.4e-3, 6e-3};
   guide = casting_guide(s);
-  EXPECT_TRUE(has(guide, "Print these halves solid (100 % infill): they stand"));
+  EXPECT_TRUE(has(guide, "Print these halves solid (100 % infill): they have"));
   EXPECT_TRUE(has(guide, "12.0 mm deep); shot2-upper.stl (1 rib, down to 2.4 mm thick, up to 6.0 mm deep)"));
   s.draft = true;
   EXPECT_FALSE(has(casting_guide(s), "solid"));
@@ -125,8 +131,10 @@ TEST(CastingSheet, TheMuscleAndItsTubeJoinWithinTheSocket)
                   "sleeve; a Luer fitting to the pressure supply goes on the tube's outer end, outside the mold"));
   EXPECT_TRUE(has(guide, "m1: 108.0 mm. Fit the supply tube to its first end, which leaves the body"));
   // Held at the groove's bottom while shot 2 cures: it would float otherwise.
-  EXPECT_TRUE(has(guide, "and tack it there with dots of silicone adhesive (such as Smooth-On Sil-Poxy) every 2 to "
-                         "3 cm, cured before shot 2: a muscle holding air is lighter than liquid silicone"));
+  EXPECT_TRUE(has(guide,
+                  "and tack it there every 2 to 3 cm with small dots of silicone adhesive (such as Smooth-On "
+                  "Sil-Poxy) between the muscle and the groove's wall, not under it (a dot under it lifts it off "
+                  "the route), cured before shot 2: a muscle holding air is lighter than liquid silicone"));
 }
 
 TEST(CastingSheet, GivesEachMuscleItsCutAndItsEnds)

@@ -229,8 +229,9 @@ TEST(BehaviourSummary, WhatToMeasureIsTheTurnAskedElseTheLargestTurnElseTheLarge
   const std::string moved = what_to_measure(Json::array({pose("a", 3, 4.9), pose("b", 9, 1)}), 86.4e3, false, kAsBuilt);
   EXPECT_THAT(moved, testing::StartsWith("  Measure b's move: 9.0 mm in the simulation. To measure it, photograph"));
   const std::string flat = std::regex_replace(moved, std::regex("\n  "), " "); // unwrapped
-  EXPECT_THAT(flat, testing::HasSubstr("To measure it, photograph the robot at rest and pressurized beside a ruler, "
-                                       "the camera held still. With the least certain inputs 10 % off:"));
+  EXPECT_THAT(flat, testing::HasSubstr("To measure it, photograph the robot at rest and pressurized from the side, "
+                                       "square to the move, beside a ruler, the camera held still. With the least "
+                                       "certain inputs 10 % off:"));
   for (const char* figure : {"5.0 mm and 6.0 mm with the silicone 10 % stiffer and softer than [material] "
                              "youngs_modulus = 86400 Pa",
                              "7.0 mm and 8.0 mm with every pressure 10 % lower and higher"})
@@ -274,7 +275,7 @@ TEST(BehaviourSummary, WhatToMeasureIsTheTurnAskedElseTheLargestTurnElseTheLarge
   bare.erase("sensitivity");
   EXPECT_EQ(what_to_measure(Json::array({bare}), 86.4e3, false, kAsBuilt),
             "  Measure a's move: 3.0 mm in the simulation. To measure it, photograph the robot at rest and\n"
-            "  pressurized beside a ruler, the camera held still.\n");
+            "  pressurized from the side, square to the move, beside a ruler, the camera held still.\n");
 }
 
 TEST(BehaviourSummary, APoseShortOfItsTurnSaysWhatPressuresTurnItAll)
@@ -294,16 +295,15 @@ TEST(BehaviourSummary, APoseShortOfItsTurnSaysWhatPressuresTurnItAll)
     return std::regex_replace(what_to_measure(Json::array({p}), 86.4e3, true, kAsBuilt), std::regex("\n  "), " ");
   };
   // After the sentence on the region's fit, which is about the figure measured.
-  EXPECT_THAT(
-      flat(arm),
-      testing::HasSubstr("may turn a few degrees more or less. It is asked to turn 40.0°: the optimizer chose these "
-                         "pressures as the best balance of that turn and the tracking curves' positions. At 1.42 × "
-                         "these pressures (lift_px 407 kPa, lift_mx 410 kPa) the simulation turns it 40.0°, at the "
-                         "cost of the tracking curves' positions."));
+  EXPECT_THAT(flat(arm), testing::HasSubstr(
+                             "in the two photographs. It is asked to turn 40.0°: the optimizer chose these "
+                             "pressures as the best balance of that turn and the tracking curves' positions. At 1.42 × "
+                             "these pressures (lift_px 407 kPa, lift_mx 410 kPa) the simulation turns it 40.0°, at the "
+                             "cost of the tracking curves' positions."));
   // Unpressurized, its weight alone (collide's "unpressurized"): compared first.
   Json weighed = arm;
   weighed["unpressurized"] = {{"rotation_deg", 6.2}, {"displacement_mm", 3.1}, {"rotation_about_asked_axis_deg", 6.1}};
-  EXPECT_THAT(flat(weighed), testing::HasSubstr("may turn a few degrees more or less. Before you pressurize it (every "
+  EXPECT_THAT(flat(weighed), testing::HasSubstr("in the two photographs. Before you pressurize it (every "
                                                 "muscle at 0 kPa), held as simulated, its weight alone turns it 6.1° "
                                                 "in the simulation: compare that first. It is asked to turn 40.0°"));
   EXPECT_THAT(flat(arm), testing::Not(testing::HasSubstr("Before you pressurize it")));
