@@ -13,4 +13,9 @@ std::string format_mm(const Eigen::Vector3d& p)
   return fmt::format("({:.1f}, {:.1f}, {:.1f}) mm", tenth(p.x()), tenth(p.y()), tenth(p.z()));
 }
 
+std::string format_size_mm(const Eigen::Vector3d& size)
+{
+  return fmt::format("{:.1f} × {:.1f} × {:.1f} mm", size.x() / units::mm, size.y() / units::mm, size.z() / units::mm);
+}
+
 } // namespace fibermold

@@ -22,5 +22,7 @@ namespace fibermold {
 
 /// A point for a message or a log: "(x, y, z) mm", to a tenth of a millimetre.
 std::string format_mm(const Eigen::Vector3d& p);
+/// A box's size for a message: "250.0 × 210.0 × 210.0 mm".
+std::string format_size_mm(const Eigen::Vector3d& size);
 
 } // namespace fibermold

@@ -16,11 +16,6 @@
 
 namespace fibermold {
 
-std::string mm3(const Eigen::Vector3d& v)
-{
-  return fmt::format("{:.1f} × {:.1f} × {:.1f} mm", v.x() / units::mm, v.y() / units::mm, v.z() / units::mm);
-}
-
 namespace {
 
 /// How far a ray from inside a part goes to the opposite side of the wall: the first surface it
@@ -139,7 +134,7 @@ PartCheck check_part(const SurfaceMesh& part, double min_wall, const Eigen::Vect
   if (orientation) out.orientation = *orientation;
   if (!out.fits)
     out.problems.push_back(fmt::format("is {} and does not fit the printer's {} in any of the 6 orientations",
-                                       mm3(out.size), mm3(printer)));
+                                       format_size_mm(out.size), format_size_mm(printer)));
   if (!surface.ok()) return out; // the rest needs a valid solid
   if (const int shells = count_shells(part); shells != 1)
     out.problems.push_back(fmt::format("is {} separate pieces or has a closed void, not one solid", shells));

@@ -33,7 +33,4 @@ PartCheck check_part(const SurfaceMesh& part, double min_wall, const Eigen::Vect
 /// axis-aligned orientations the one of lowest build height; none when none fits.
 std::optional<Eigen::Vector3i> printer_orientation(const Eigen::Vector3d& size, const Eigen::Vector3d& printer_volume);
 
-/// "250.0 × 210.0 × 210.0 mm".
-std::string mm3(const Eigen::Vector3d& v);
-
 } // namespace fibermold

@@ -226,7 +226,7 @@ void require_molds_fit_printer(const Design& d, const SurfaceMesh& body)
                   "frame, grown by [mold] wall and the rim the keys take, half its height along [mold] pull), "
                   "which fits the printer's {} in none of the 6 orientations: check [design].units, scale the "
                   "body down, or give the printer_volume of a larger printer",
-                  mm3(half), mm3(size), mm3(d.export_.printer_volume)));
+                  format_size_mm(half), format_size_mm(size), format_size_mm(d.export_.printer_volume)));
 }
 
 std::vector<std::vector<Eigen::Vector3d>> require_grooves_fit(const Design& d, const SurfaceDistance& skin,
