@@ -23,3 +23,4 @@ list(APPEND CMAKE_MODULE_PATH /usr/lib/${CMAKE_LIBRARY_ARCHITECTURE}/cmake/OpenV
 find_package(OpenVDB REQUIRED)
 
 find_package(CGAL REQUIRED)
+find_package(Boost 1.74 REQUIRED) # headers only: Boost.Graph's Cuthill–McKee ordering (sim/band_ordering.cpp)

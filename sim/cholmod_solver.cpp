@@ -7,6 +7,8 @@
 
 #include <Eigen/CholmodSupport>
 
+#include "sim/band_ordering.hpp"
+
 namespace fibermold {
 
 namespace {
@@ -19,9 +21,9 @@ namespace {
 /// spinning after each call takes a core from the assembly (session 9; the twisting bar optimized
 /// in 12.6 s with two, 9.9 s with one). A larger one runs on two, also on a one-core machine (the
 /// same rounding; there the threads take turns): the gripper finger at 3.4 mm (n = 11,652,
-/// 18.9 Gflop) factorizes in 0.33 s instead of 0.55 s. The examples' bodies at their own meshes
-/// stay on one thread (the recovery bar's 1.0 Gflop is the largest), except the gripper finger's
-/// (4.9 Gflop). A user's OPENBLAS_NUM_THREADS is left alone; another BLAS is not touched. The
+/// 18.9 Gflop in AMD's ordering) factorized in 0.33 s instead of 0.55 s in session 34. The
+/// examples' bodies at their own meshes stay on one thread, except the gripper finger's (3.8 Gflop
+/// in the band ordering). A user's OPENBLAS_NUM_THREADS is left alone; another BLAS is not touched. The
 /// kernel OpenBLAS picks for the CPU (OPENBLAS_CORETYPE) still rounds its own way:
 /// docs/optimize.md, "The same design on other machines", gives what that moves.
 constexpr double kTwoThreadFlops = 2e9;
@@ -51,19 +53,54 @@ void no_openmp_regions()
   }();
   if (set) set(0);
 }
+
+/// CHOLMOD's supernodal Cholesky through Eigen, which also analyzes in an ordering given
+/// (cholmod_analyze_p with CHOLMOD_GIVEN): CHOLMOD then permutes and solves as with its own.
+class SupernodalLLT : public Eigen::CholmodSupernodalLLT<Eigen::SparseMatrix<double>, Eigen::Upper> {
+public:
+  SupernodalLLT() { cholmod().print = 0; } // "not positive definite" is an answer here, not an error to print
+
+  /// order[k]: the row of A placed k-th.
+  void analyze_pattern_in(const Eigen::SparseMatrix<double>& A, std::vector<int> order)
+  {
+    if (m_cholmodFactor) cholmod_free_factor(&m_cholmodFactor, &cholmod());
+    cholmod_sparse view = Eigen::viewAsCholmod(A.selfadjointView<Eigen::Upper>());
+    cholmod().nmethods = 1;
+    cholmod().method[0].ordering = CHOLMOD_GIVEN;
+    m_cholmodFactor = cholmod_analyze_p(&view, order.data(), nullptr, 0, &cholmod());
+    m_isInitialized = true;
+    m_info = m_cholmodFactor ? Eigen::Success : Eigen::NumericalIssue;
+    m_analysisIsOk = m_cholmodFactor != nullptr;
+    m_factorizationIsOk = false;
+  }
+};
 } // namespace
 
 struct CholmodSolver::Impl {
-  Eigen::CholmodSupernodalLLT<Eigen::SparseMatrix<double>, Eigen::Upper> llt;
+  std::unique_ptr<SupernodalLLT> llt = std::make_unique<SupernodalLLT>();
   std::vector<int> outer, inner; ///< the pattern last analyzed
   int threads = 1;               ///< BLAS threads for that pattern's factor (kTwoThreadFlops)
+  bool band = false;             ///< that pattern is factorized in the band ordering
+
+  void analyze(const Eigen::SparseMatrix<double>& A);
 };
 
-CholmodSolver::CholmodSolver() : impl_(std::make_unique<Impl>())
+void CholmodSolver::Impl::analyze(const Eigen::SparseMatrix<double>& A)
 {
-  blas_threads(1);
-  impl_->llt.cholmod().print = 0; // "not positive definite" is an answer here, not an error to print
+  // CHOLMOD's own choice (AMD, or METIS where AMD fills much) and the band ordering: the one whose
+  // factorization counts fewer operations is kept. The choice is the pattern's, so the same on
+  // every machine.
+  band = false;
+  llt = std::make_unique<SupernodalLLT>();
+  llt->analyzePattern(A);
+  auto banded = std::make_unique<SupernodalLLT>();
+  banded->analyze_pattern_in(A, band_ordering(A));
+  if (!(banded->info() == Eigen::Success && banded->cholmod().fl < llt->cholmod().fl)) return;
+  llt = std::move(banded);
+  band = true;
 }
+
+CholmodSolver::CholmodSolver() : impl_(std::make_unique<Impl>()) { blas_threads(1); }
 CholmodSolver::~CholmodSolver() = default;
 
 bool CholmodSolver::factorize(const Eigen::SparseMatrix<double>& A, double shift)
@@ -74,30 +111,32 @@ bool CholmodSolver::factorize(const Eigen::SparseMatrix<double>& A, double shift
                     std::equal(impl_->outer.begin(), impl_->outer.end(), A.outerIndexPtr()) &&
                     std::equal(impl_->inner.begin(), impl_->inner.end(), A.innerIndexPtr());
   if (!same) {
-    impl_->llt.analyzePattern(A);
+    impl_->analyze(A);
     impl_->outer.assign(A.outerIndexPtr(), A.outerIndexPtr() + n + 1);
     impl_->inner.assign(A.innerIndexPtr(), A.innerIndexPtr() + A.nonZeros());
     ++analyses_;
-    impl_->threads = impl_->llt.cholmod().fl >= kTwoThreadFlops ? 2 : 1; // the analysis's flop count
+    impl_->threads = impl_->llt->cholmod().fl >= kTwoThreadFlops ? 2 : 1; // the analysis's flop count
   }
   blas_threads(impl_->threads);
-  impl_->llt.setShift(shift);
-  impl_->llt.factorize(A);
-  return impl_->llt.info() == Eigen::Success;
+  impl_->llt->setShift(shift);
+  impl_->llt->factorize(A);
+  return impl_->llt->info() == Eigen::Success;
 }
 
-double CholmodSolver::flops() const { return impl_->llt.cholmod().fl; }
+double CholmodSolver::flops() const { return impl_->llt->cholmod().fl; }
+
+bool CholmodSolver::band_ordered() const { return impl_->band; }
 
 Eigen::VectorXd CholmodSolver::solve(const Eigen::VectorXd& b) const
 {
   blas_threads(impl_->threads); // another solver may have factorized since
-  return impl_->llt.solve(b);
+  return impl_->llt->solve(b);
 }
 
 Eigen::MatrixXd CholmodSolver::solve(const Eigen::MatrixXd& B) const
 {
   blas_threads(impl_->threads);
-  return impl_->llt.solve(B);
+  return impl_->llt->solve(B);
 }
 
 } // namespace fibermold

@@ -27,6 +27,8 @@ public:
   /// The floating-point operations of one factorization of the pattern last analyzed (CHOLMOD's
   /// count), which sets the BLAS threads it runs on (cholmod_solver.cpp, kTwoThreadFlops).
   double flops() const;
+  /// Whether the pattern last analyzed is factorized in the band ordering (band_ordering.hpp).
+  bool band_ordered() const;
 
 private:
   struct Impl;

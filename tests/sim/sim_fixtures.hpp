@@ -4,6 +4,8 @@
 #include <cmath>
 #include <vector>
 
+#include <Eigen/Sparse>
+
 #include "mesh/tetrahedralize.hpp"
 #include "primitives.hpp"
 
@@ -43,6 +45,34 @@ inline std::vector<Eigen::Vector3d> helix_points(double length, double radius, d
   }
   points.emplace_back(length, 0, 0);
   return points;
+}
+
+/// A stiffness-like matrix as wide as an MLS body's: 3 DoFs per node of an nx × ny × nz grid, each
+/// node coupled to every node within `reach` grid steps, diagonally dominant.
+inline Eigen::SparseMatrix<double> wide_stencil_matrix(int nx, int ny, int nz, int reach = 2)
+{
+  const auto node = [&](int i, int j, int k) { return (k * ny + j) * nx + i; };
+  std::vector<Eigen::Triplet<double>> entries;
+  for (int k = 0; k < nz; ++k)
+    for (int j = 0; j < ny; ++j)
+      for (int i = 0; i < nx; ++i)
+        for (int dk = -reach; dk <= reach; ++dk)
+          for (int dj = -reach; dj <= reach; ++dj)
+            for (int di = -reach; di <= reach; ++di) {
+              const int a = i + di, b = j + dj, c = k + dk;
+              if (a < 0 || b < 0 || c < 0 || a >= nx || b >= ny || c >= nz) continue;
+              const int p = node(i, j, k), q = node(a, b, c);
+              if (q < p) continue; // the upper triangle
+              for (int r = 0; r < 3; ++r)
+                for (int s = 0; s < 3; ++s) {
+                  if (p == q && s < r) continue;
+                  const double v = p == q ? (r == s ? 200.0 : 0.3) : -1.0 / (1 + di * di + dj * dj + dk * dk + r + s);
+                  entries.emplace_back(3 * p + r, 3 * q + s, v);
+                }
+            }
+  Eigen::SparseMatrix<double> A(3 * nx * ny * nz, 3 * nx * ny * nz);
+  A.setFromTriplets(entries.begin(), entries.end());
+  return A;
 }
 
 } // namespace fibermold::test

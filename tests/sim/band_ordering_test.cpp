@@ -1,0 +1,90 @@
+// band_ordering: a permutation that keeps each node's coordinates together and numbers a long body
+// along its length, whatever its nodes' numbering.
+#include "sim/band_ordering.hpp"
+
+#include <algorithm>
+#include <numeric>
+#include <random>
+
+#include <gtest/gtest.h>
+
+#include "sim_fixtures.hpp"
+
+namespace fibermold {
+namespace {
+
+/// A with its nodes (3 coordinates each) renumbered: node i becomes node_of[i].
+Eigen::SparseMatrix<double> renumbered(const Eigen::SparseMatrix<double>& A, const std::vector<int>& node_of)
+{
+  Eigen::PermutationMatrix<Eigen::Dynamic, Eigen::Dynamic, int> P(A.rows());
+  for (std::size_t i = 0; i < node_of.size(); ++i)
+    for (int r = 0; r < 3; ++r) P.indices()[static_cast<Eigen::Index>(3 * i) + r] = 3 * node_of[i] + r;
+  Eigen::SparseMatrix<double> upper(A.rows(), A.cols());
+  upper.selfadjointView<Eigen::Upper>() = A.selfadjointView<Eigen::Upper>().twistedBy(P);
+  return upper;
+}
+
+/// The largest distance of an entry from the diagonal with the rows in `order`.
+int bandwidth(const Eigen::SparseMatrix<double>& upper, const std::vector<int>& order)
+{
+  std::vector<int> position(order.size());
+  for (std::size_t k = 0; k < order.size(); ++k) position[static_cast<std::size_t>(order[k])] = static_cast<int>(k);
+  int width = 0;
+  for (int j = 0; j < upper.outerSize(); ++j)
+    for (Eigen::SparseMatrix<double>::InnerIterator it(upper, j); it; ++it)
+      width = std::max(width,
+                       std::abs(position[static_cast<std::size_t>(it.row())] - position[static_cast<std::size_t>(j)]));
+  return width;
+}
+
+TEST(BandOrdering, NumbersAShuffledLongBodyAlongItsLengthAndKeepsEachNodeWhole)
+{
+  // 3 × 3 × 40 nodes, each coupled to every node within two grid steps. Numbered slice by slice
+  // along the bar, its bandwidth is 3 (2 · 9 + 2 · 3 + 2) + 2 = 80.
+  const Eigen::SparseMatrix<double> grid = test::wide_stencil_matrix(3, 3, 40);
+  std::vector<int> identity(grid.rows());
+  std::iota(identity.begin(), identity.end(), 0);
+  ASSERT_EQ(bandwidth(grid, identity), 80);
+  std::vector<int> node_of(360);
+  std::iota(node_of.begin(), node_of.end(), 0);
+  std::shuffle(node_of.begin(), node_of.end(), std::mt19937(7));
+  const Eigen::SparseMatrix<double> shuffled = renumbered(grid, node_of);
+  EXPECT_GT(bandwidth(shuffled, identity), 900);
+
+  const std::vector<int> order = band_ordering(shuffled);
+  ASSERT_EQ(order.size(), 1080u);
+  std::vector<int> sorted = order;
+  std::sort(sorted.begin(), sorted.end());
+  EXPECT_EQ(sorted, identity);
+  for (std::size_t k = 0; k < order.size(); k += 3) {
+    EXPECT_EQ(order[k] % 3, 0) << k;
+    EXPECT_EQ(order[k + 1], order[k] + 1) << k;
+    EXPECT_EQ(order[k + 2], order[k] + 2) << k;
+  }
+  // Breadth-first levels of a bar whose nodes reach two slices: two slices (54 rows) each, and an
+  // entry spans at most from one level to the next.
+  EXPECT_LE(bandwidth(shuffled, order), 2 * 54);
+}
+
+TEST(BandOrdering, OrdersEveryComponentOfADisconnectedMatrix)
+{
+  // Two bars side by side, not coupled, and a lone node coupled to nothing.
+  const Eigen::SparseMatrix<double> bar = test::wide_stencil_matrix(2, 2, 10);
+  const Eigen::Index n = bar.rows();
+  Eigen::SparseMatrix<double> both(2 * n + 3, 2 * n + 3);
+  std::vector<Eigen::Triplet<double>> entries;
+  for (int j = 0; j < bar.outerSize(); ++j)
+    for (Eigen::SparseMatrix<double>::InnerIterator it(bar, j); it; ++it) {
+      entries.emplace_back(it.row(), j, it.value());
+      entries.emplace_back(it.row() + n, j + n, it.value());
+    }
+  for (Eigen::Index i = 2 * n; i < 2 * n + 3; ++i) entries.emplace_back(i, i, 1.0);
+  both.setFromTriplets(entries.begin(), entries.end());
+  std::vector<int> order = band_ordering(both);
+  ASSERT_EQ(order.size(), static_cast<std::size_t>(2 * n + 3));
+  std::sort(order.begin(), order.end());
+  for (std::size_t k = 0; k < order.size(); ++k) EXPECT_EQ(order[k], static_cast<int>(k));
+}
+
+} // namespace
+} // namespace fibermold
