@@ -9,20 +9,39 @@ namespace fibermold {
 
 std::vector<int> band_ordering(const Eigen::SparseMatrix<double>& upper)
 {
-  // The whole symmetric pattern, each column's rows ascending (the transpose sorts them).
-  const Eigen::SparseMatrix<double> whole = upper.selfadjointView<Eigen::Upper>();
-  const Eigen::SparseMatrix<double> full = whole.transpose();
-  const auto n = static_cast<int>(full.outerSize());
+  // The whole symmetric pattern with the diagonal, as indices only (a copy of the matrix in
+  // doubles would take as much memory as the factor's values of a large body), each column's rows
+  // sorted.
+  const auto n = static_cast<int>(upper.outerSize());
   if (n == 0) return {};
-  const int* outer = full.outerIndexPtr();
-  const int* inner = full.innerIndexPtr();
+  std::vector<int> outer(static_cast<std::size_t>(n) + 1, 0);
+  for (int j = 0; j < n; ++j)
+    for (Eigen::SparseMatrix<double>::InnerIterator it(upper, j); it; ++it)
+      if (it.row() < j) {
+        ++outer[static_cast<std::size_t>(it.row()) + 1];
+        ++outer[static_cast<std::size_t>(j) + 1];
+      }
+  for (int j = 0; j < n; ++j) outer[static_cast<std::size_t>(j) + 1] += outer[static_cast<std::size_t>(j)] + 1;
+  std::vector<int> inner(static_cast<std::size_t>(outer.back()));
+  std::vector<int> fill(outer.begin(), outer.end() - 1);
+  for (int j = 0; j < n; ++j) {
+    for (Eigen::SparseMatrix<double>::InnerIterator it(upper, j); it; ++it)
+      if (const auto i = static_cast<int>(it.row()); i < j) {
+        inner[static_cast<std::size_t>(fill[static_cast<std::size_t>(j)]++)] = i;
+        inner[static_cast<std::size_t>(fill[static_cast<std::size_t>(i)]++)] = j;
+      }
+    inner[static_cast<std::size_t>(fill[static_cast<std::size_t>(j)]++)] = j;
+  }
+  const auto column = [&](int j) { return inner.begin() + outer[static_cast<std::size_t>(j)]; };
+  for (int j = 0; j < n; ++j) std::sort(column(j), column(j + 1));
   // Consecutive columns with the same pattern (a node's three coordinates) are one vertex: the
   // ordering keeps them together, and the graph is 9× smaller (Boost's ordering of the gripper
   // finger's scalar graph took 1.0 s).
   std::vector<int> vertex(static_cast<std::size_t>(n)), first{0};
   for (int j = 1; j < n; ++j) {
-    const bool same = outer[j + 1] - outer[j] == outer[j] - outer[j - 1] &&
-                      std::equal(inner + outer[j], inner + outer[j + 1], inner + outer[j - 1]);
+    const bool same = outer[static_cast<std::size_t>(j) + 1] - outer[static_cast<std::size_t>(j)] ==
+                          outer[static_cast<std::size_t>(j)] - outer[static_cast<std::size_t>(j) - 1] &&
+                      std::equal(column(j), column(j + 1), column(j - 1));
     if (!same) first.push_back(j);
     vertex[static_cast<std::size_t>(j)] = static_cast<int>(first.size()) - 1;
   }
@@ -31,7 +50,7 @@ std::vector<int> band_ordering(const Eigen::SparseMatrix<double>& upper)
   std::vector<std::size_t> sources, targets;
   for (std::size_t v = 0; v < vertices; ++v) {
     const int j = first[v];
-    for (int k = outer[j]; k < outer[j + 1]; ++k)
+    for (int k = outer[static_cast<std::size_t>(j)]; k < outer[static_cast<std::size_t>(j) + 1]; ++k)
       if (const auto w = static_cast<std::size_t>(vertex[static_cast<std::size_t>(inner[k])]);
           w != v && (targets.empty() || sources.back() != v || targets.back() != w)) {
         sources.push_back(v);

@@ -3,7 +3,7 @@
 // 1969; George 1971), from Boost.Graph. On a long body whose Hessian couples each node with every
 // node within a few edge lengths, it numbers the nodes along the body, and the Cholesky factor of
 // the reordered matrix is a band about one cross-section's couplings wide: fewer operations than
-// minimum degree finds there (the gripper finger at 3.4 mm: 12.6 Gflop against AMD's 18.9), in
+// minimum degree finds there (the gripper finger at 3.4 mm: 12.4 Gflop against AMD's 18.9), in
 // large dense supernodes that BLAS runs fast. cholmod_solver.cpp compares the two per pattern.
 
 #include <vector>

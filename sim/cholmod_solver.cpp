@@ -68,6 +68,7 @@ public:
     cholmod().nmethods = 1;
     cholmod().method[0].ordering = CHOLMOD_GIVEN;
     m_cholmodFactor = cholmod_analyze_p(&view, order.data(), nullptr, 0, &cholmod());
+    cholmod().nmethods = 0; // CHOLMOD's default again (method[0] is the given ordering there too)
     m_isInitialized = true;
     m_info = m_cholmodFactor ? Eigen::Success : Eigen::NumericalIssue;
     m_analysisIsOk = m_cholmodFactor != nullptr;
@@ -89,7 +90,8 @@ void CholmodSolver::Impl::analyze(const Eigen::SparseMatrix<double>& A)
 {
   // CHOLMOD's own choice (AMD, or METIS where AMD fills much) and the band ordering: the one whose
   // factorization counts fewer operations is kept. The choice is the pattern's, so the same on
-  // every machine.
+  // every machine that runs the same build (Boost breaks ties between equal degrees by an
+  // unstable sort: another standard library may order them otherwise).
   band = false;
   llt = std::make_unique<SupernodalLLT>();
   llt->analyzePattern(A);

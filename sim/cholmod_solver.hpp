@@ -15,7 +15,8 @@ public:
   CholmodSolver(const CholmodSolver&) = delete;
   CholmodSolver& operator=(const CholmodSolver&) = delete;
 
-  /// Factorizes A + shift·I (A symmetric; its upper triangle is read).
+  /// Factorizes A + shift·I (A symmetric; its upper triangle is read, each column's rows ascending
+  /// as CHOLMOD takes them from Eigen).
   /// Analyzes the pattern on the first call and whenever A's pattern differs from the last one.
   /// Returns false when A + shift·I is not positive definite.
   bool factorize(const Eigen::SparseMatrix<double>& A, double shift = 0);

@@ -13,17 +13,6 @@
 namespace fibermold {
 namespace {
 
-/// A with its nodes (3 coordinates each) renumbered: node i becomes node_of[i].
-Eigen::SparseMatrix<double> renumbered(const Eigen::SparseMatrix<double>& A, const std::vector<int>& node_of)
-{
-  Eigen::PermutationMatrix<Eigen::Dynamic, Eigen::Dynamic, int> P(A.rows());
-  for (std::size_t i = 0; i < node_of.size(); ++i)
-    for (int r = 0; r < 3; ++r) P.indices()[static_cast<Eigen::Index>(3 * i) + r] = 3 * node_of[i] + r;
-  Eigen::SparseMatrix<double> upper(A.rows(), A.cols());
-  upper.selfadjointView<Eigen::Upper>() = A.selfadjointView<Eigen::Upper>().twistedBy(P);
-  return upper;
-}
-
 /// The largest distance of an entry from the diagonal with the rows in `order`.
 int bandwidth(const Eigen::SparseMatrix<double>& upper, const std::vector<int>& order)
 {
@@ -48,7 +37,7 @@ TEST(BandOrdering, NumbersAShuffledLongBodyAlongItsLengthAndKeepsEachNodeWhole)
   std::vector<int> node_of(360);
   std::iota(node_of.begin(), node_of.end(), 0);
   std::shuffle(node_of.begin(), node_of.end(), std::mt19937(7));
-  const Eigen::SparseMatrix<double> shuffled = renumbered(grid, node_of);
+  const Eigen::SparseMatrix<double> shuffled = test::renumbered(grid, node_of);
   EXPECT_GT(bandwidth(shuffled, identity), 900);
 
   const std::vector<int> order = band_ordering(shuffled);
@@ -61,8 +50,8 @@ TEST(BandOrdering, NumbersAShuffledLongBodyAlongItsLengthAndKeepsEachNodeWhole)
     EXPECT_EQ(order[k + 1], order[k] + 1) << k;
     EXPECT_EQ(order[k + 2], order[k] + 2) << k;
   }
-  // Breadth-first levels of a bar whose nodes reach two slices: two slices (54 rows) each, and an
-  // entry spans at most from one level to the next.
+  // Breadth-first levels of a bar whose nodes reach two slices: two slices (54 rows) each but the
+  // first (three), and an entry spans at most from one level to the next.
   EXPECT_LE(bandwidth(shuffled, order), 2 * 54);
 }
 
@@ -80,10 +69,19 @@ TEST(BandOrdering, OrdersEveryComponentOfADisconnectedMatrix)
     }
   for (Eigen::Index i = 2 * n; i < 2 * n + 3; ++i) entries.emplace_back(i, i, 1.0);
   both.setFromTriplets(entries.begin(), entries.end());
-  std::vector<int> order = band_ordering(both);
+  const std::vector<int> order = band_ordering(both);
   ASSERT_EQ(order.size(), static_cast<std::size_t>(2 * n + 3));
-  std::sort(order.begin(), order.end());
-  for (std::size_t k = 0; k < order.size(); ++k) EXPECT_EQ(order[k], static_cast<int>(k));
+  std::vector<int> sorted = order;
+  std::sort(sorted.begin(), sorted.end());
+  for (std::size_t k = 0; k < sorted.size(); ++k) EXPECT_EQ(sorted[k], static_cast<int>(k));
+  // Each bar comes out in one piece: its rows are n consecutive places of the ordering.
+  for (const Eigen::Index first : {Eigen::Index{0}, n}) {
+    std::vector<int> places;
+    for (std::size_t k = 0; k < order.size(); ++k)
+      if (order[k] >= first && order[k] < first + n) places.push_back(static_cast<int>(k));
+    ASSERT_EQ(static_cast<Eigen::Index>(places.size()), n);
+    EXPECT_EQ(places.back() - places.front() + 1, n) << "the bar from row " << first;
+  }
 }
 
 } // namespace

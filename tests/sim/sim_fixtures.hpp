@@ -75,4 +75,17 @@ inline Eigen::SparseMatrix<double> wide_stencil_matrix(int nx, int ny, int nz, i
   return A;
 }
 
+/// A with its nodes (3 coordinates each) renumbered: node i becomes node_of[i].
+inline Eigen::SparseMatrix<double> renumbered(const Eigen::SparseMatrix<double>& A, const std::vector<int>& node_of)
+{
+  Eigen::PermutationMatrix<Eigen::Dynamic, Eigen::Dynamic, int> P(A.rows());
+  for (std::size_t i = 0; i < node_of.size(); ++i)
+    for (int r = 0; r < 3; ++r) P.indices()[static_cast<Eigen::Index>(3 * i) + r] = 3 * node_of[i] + r;
+  Eigen::SparseMatrix<double> upper(A.rows(), A.cols());
+  upper.selfadjointView<Eigen::Upper>() = A.selfadjointView<Eigen::Upper>().twistedBy(P);
+  // Each column's rows ascending, as CHOLMOD reads them through Eigen (the transposes sort them).
+  const Eigen::SparseMatrix<double, Eigen::RowMajor> rows = upper;
+  return Eigen::SparseMatrix<double>(rows);
+}
+
 } // namespace fibermold::test
