@@ -192,7 +192,8 @@ struct Design {
   /// e.g. "mold.wall" → "4.0", "fiber.m1.points" → "[[0, 0, 0], ...]". The runner hashes these to
   /// decide which stages are stale and names the key that changed.
   std::map<std::string, std::string> values;
-  /// Where each key given was written: "[mold].voxel" → {line, column}; a key left at its default is absent.
+  /// Where each key given was written: "[mold].voxel" → {line, column}, and each point of a list of
+  /// points: "[fiber.m1].points[2]" (counted from 1); a key left at its default is absent.
   std::map<std::string, std::pair<int, int>> places;
 };
 

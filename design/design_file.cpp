@@ -13,6 +13,7 @@
 #include "core/input_error.hpp"
 #include "core/units.hpp"
 #include "design/did_you_mean.hpp"
+#include "design/unclosed_bracket.hpp"
 #include "molds/silicone_presets.hpp"
 
 namespace fibermold {
@@ -335,7 +336,9 @@ public:
     }
     bool ok = true;
     for (const toml::node& element : *a) {
-      auto p = read_vec3(&element, fmt::format("{}[{}]", key, points.size() + 1), unit, kMaxCoordinate);
+      const std::string entry = fmt::format("{}[{}]", key, points.size() + 1);
+      ctx_.sources[key_name(entry)] = element.source(); // a later problem with one point names its place
+      auto p = read_vec3(&element, entry, unit, kMaxCoordinate);
       ok = ok && p.has_value();
       points.push_back(p.value_or(Vec3::Zero()));
     }
@@ -1047,7 +1050,15 @@ Design parse(std::string_view text, const fs::path& path)
   try {
     root = toml::parse(text, file.string());
   } catch (const toml::parse_error& e) {
-    ctx.error(e.source(), "", fmt::format("not valid TOML: {}", e.description()));
+    std::string message = fmt::format("not valid TOML: {}", e.description());
+    // A list or inline table without its closing bracket is found where the next thing starts,
+    // often the next line: name the line that opened it.
+    if (e.description().find("closing") != std::string_view::npos)
+      if (const auto open = unclosed_bracket(
+              text, {static_cast<int>(e.source().begin.line), static_cast<int>(e.source().begin.column)}))
+        message += fmt::format(" (the {} opened at line {}, column {} is not closed)",
+                               open->bracket == '[' ? "list" : "inline table", open->at.line, open->at.column);
+    ctx.error(e.source(), "", message);
     throw InputError(std::move(ctx.problems));
   }
   Design d = read_root(ctx, root, file);

@@ -37,7 +37,7 @@ DesignSurfaceCheck check_design_surface(const Design& design)
   require_molds_fit_printer(design, surface);
   // The fibers against the skin the optimizer will see: the mesh's (remeshed, when it is).
   require_optimizable(design, SurfaceDistance(meshed.surface.vertices, meshed.surface.faces));
-  require_bend_radius(design, starting_routing(design).routes, "the starting route");
+  require_bend_radius(design, starting_routing(design).routes, "the starting route", true);
   require_regions_reach_the_body(design, surface);
   for (const Target& t : design.targets)
     if (t.kind == TargetKind::surface) read_target_surface(design, t, surface.num_vertices(), surface.faces);

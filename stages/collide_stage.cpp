@@ -107,7 +107,7 @@ std::vector<TargetErrors> errors_under(RoutingProblem& problem, DesignRouting& d
 void require_bend_radius_after_moving(const Design& d, const std::vector<Route>& routes, std::string_view whose)
 {
   try {
-    require_bend_radius(d, routes, whose);
+    require_bend_radius(d, routes, whose, false);
   } catch (const InputError& e) {
     const Diagnostic& said = e.diagnostics().front();
     throw std::runtime_error(fmt::format("{}: {}{}", said.key, said.message, kSmoothnessAdvice));

@@ -168,6 +168,15 @@ Eigen::VectorXd target_forces(const Design& d, const Target& t, const Simulation
   return f;
 }
 
+std::string points_key(const std::string& section, const std::vector<Eigen::Vector3d>& points,
+                       const std::function<bool(const Eigen::Vector3d&)>& inside)
+{
+  std::vector<std::size_t> outside;
+  for (std::size_t k = 0; k < points.size(); ++k)
+    if (!inside(points[k])) outside.push_back(k + 1);
+  return outside.size() == 1 ? fmt::format("{}.points[{}]", section, outside.front()) : section + ".points";
+}
+
 std::string leaves_the_body(const std::string& what, const std::vector<Eigen::Vector3d>& points,
                             const Eigen::Vector3d& where, const std::function<bool(const Eigen::Vector3d&)>& inside,
                             const std::function<double(const Eigen::Vector3d&)>& depth, const SkinDistance* need)
@@ -208,10 +217,11 @@ void require_inside(const Design& d, const Actuation& fiber, const TetMesh& mesh
     const SurfaceMesh skin = boundary_surface(mesh, mesh.nodes);
     const SurfaceDistance distance(skin.vertices, skin.faces);
     const SkinDistance need = skin_distance(d);
-    bad(d, fmt::format("[fiber.{}]", fiber.fiber),
+    const auto inside = [&](const Eigen::Vector3d& q) { return inside_body(locator, q); };
+    bad(d, points_key(fmt::format("[fiber.{}]", fiber.fiber), fiber.points, inside),
         leaves_the_body(
-            "fiber", fiber.points, p, [&](const Eigen::Vector3d& q) { return inside_body(locator, q); },
-            [&](const Eigen::Vector3d& q) { return distance.closest(q).distance; }, &need));
+            "fiber", fiber.points, p, inside, [&](const Eigen::Vector3d& q) { return distance.closest(q).distance; },
+            &need));
   }
 }
 
@@ -244,7 +254,7 @@ std::vector<const MuscleEnergy*> add_muscles(Simulation& sim, const Design& d, c
     const FiberSegments segments = segments_at(spline, t);
     for (std::size_t j = 0; j < segments.vectors.size(); ++j)
       if (!(segments.vectors[j].norm() > 1e-9))
-        bad(d, fmt::format("[fiber.{}]", a.fiber),
+        bad(d, fmt::format("[fiber.{}].points", a.fiber),
             fmt::format("the fiber has no length near {} (repeated points?)", format_mm(segments.centres[j])));
     require_inside(d, a, sim.mesh(), locator, spline, segments);
     auto muscle = std::make_unique<MuscleEnergy>(sim.basis(), model, std::move(spline), std::move(t), a.pressure);

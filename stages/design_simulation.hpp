@@ -51,6 +51,12 @@ std::string leaves_the_body(const std::string& what, const std::vector<Eigen::Ve
                             const std::function<double(const Eigen::Vector3d&)>& depth = {},
                             const SkinDistance* need = nullptr);
 
+/// The design key of a fiber's or a tracking curve's `points` that leave the body: the one point
+/// outside when just one is ("[fiber.m1].points[3]", counted from 1), else the list
+/// ("[fiber.m1].points"). `section`: "[fiber.m1]".
+std::string points_key(const std::string& section, const std::vector<Eigen::Vector3d>& points,
+                       const std::function<bool(const Eigen::Vector3d&)>& inside);
+
 /// The fibers and pressures of a `kind = "fibers"` target.
 std::vector<Actuation> target_actuations(const Design& d, const Target& t);
 

@@ -309,7 +309,7 @@ void MoldsStage::run(StageContext& ctx) const
   if (routes.size() != d.fibers.size())
     throw std::runtime_error(fmt::format("collide/fibers.json has {} fibers, the design {}: run collide again",
                                          routes.size(), d.fibers.size()));
-  require_bend_radius(d, routes, "the route as collide left it");
+  require_bend_radius(d, routes, "the route as collide left it", false);
   for (const Route& r : routes) job.fibers.push_back(mold_fiber(r, mold_line_step(m)));
   job.exits = exit_stretches(d, skin, routes);
   const std::vector<std::vector<Eigen::Vector3d>> lines = require_grooves_fit(d, skin, routes, job.exits);

@@ -421,7 +421,7 @@ void require_start_inside(const Design& d, RoutingProblem& problem, const Routin
   if (const int f = problem.exit_violation(start, exit); f >= 0)
     bad(d, fmt::format("[fiber.{}]", d.fibers[f].name), leaves_along_the_skin(d, exit));
   // The start may differ from the [[fiber]] routes: fibers closer than the clearance are moved apart.
-  require_bend_radius(d, start.routes, "the starting route, as moved apart from the other fibers,");
+  require_bend_radius(d, start.routes, "the starting route, as moved apart from the other fibers,", false);
 }
 
 /// An interrupted run's best design and history, kept beside the outputs (which stay as they were).
@@ -454,11 +454,13 @@ void require_optimizable(const Design& d, const SurfaceDistance& skin)
   for (const Fiber& f : d.fibers) {
     const HermiteSpline s(f.points, f.tangents);
     for (const Eigen::Vector3d& c : split_into_segments(s, segment_count(s, d.muscle.segments_per_length)).centres)
-      if (!skin.closest(c).inside)
-        bad(d, fmt::format("[fiber.{}]", f.name),
+      if (!skin.closest(c).inside) {
+        const auto inside = [&](const Eigen::Vector3d& q) { return skin.holds(q, 1e-6); };
+        bad(d, points_key(fmt::format("[fiber.{}]", f.name), f.points, inside),
             leaves_the_body(
-                "fiber", f.points, c, [&](const Eigen::Vector3d& q) { return skin.holds(q, 1e-6); },
-                [&](const Eigen::Vector3d& q) { return skin.closest(q).distance; }, &need));
+                "fiber", f.points, c, inside, [&](const Eigen::Vector3d& q) { return skin.closest(q).distance; },
+                &need));
+      }
   }
   const Routing start = starting_routing(d);
   const RoutingSettings settings = routing_settings(d);
@@ -467,9 +469,9 @@ void require_optimizable(const Design& d, const SurfaceDistance& skin)
     const HermiteSpline route(start.routes[f].points, start.routes[f].tangents);
     Eigen::Vector3d where;
     if (const double closest = barrier.closest_approach(route, where); closest <= settings.skin_distance)
-      bad(d, fmt::format("[fiber.{}]", d.fibers[f].name), too_near_the_skin(d, closest, where));
+      bad(d, fmt::format("[fiber.{}].points", d.fibers[f].name), too_near_the_skin(d, closest, where));
     if (const auto e = barrier.exit_shortfall(route))
-      bad(d, fmt::format("[fiber.{}]", d.fibers[f].name), leaves_along_the_skin(d, *e));
+      bad(d, fmt::format("[fiber.{}].points", d.fibers[f].name), leaves_along_the_skin(d, *e));
   }
   tracking_samples(d, skin);
 }
@@ -479,7 +481,7 @@ void OptimizeStage::run(StageContext& ctx) const
   const Design& d = ctx.design;
   const auto started = Clock::now();
   const std::vector<std::string> names = target_names(d);
-  require_bend_radius(d, starting_routing(d).routes, "the starting route");
+  require_bend_radius(d, starting_routing(d).routes, "the starting route", true);
   if (!d.optimize.enabled) {
     write_file_atomic(ctx.output_dir / "fibers.json", fibers_json({starting_routing(d), names, false}));
     write_json_atomic(ctx.output_dir / "report.json", nlohmann::ordered_json{{"optimized", false}});

@@ -23,7 +23,7 @@ std::vector<TrackingSamples> tracking_samples(const Design& d, const SurfaceDist
     const auto in_body = [&](const Eigen::Vector3d& p) { return skin.holds(p, 1e-6); };
     for (const Eigen::Vector3d& q : curves.back().points)
       if (!in_body(q))
-        throw InputError(design_problem(d, fmt::format("[tracking_curve.{}]", c.name),
+        throw InputError(design_problem(d, points_key(fmt::format("[tracking_curve.{}]", c.name), c.points, in_body),
                                         leaves_the_body("curve", c.points, q, in_body)));
   }
   return curves;
@@ -48,7 +48,7 @@ RoutingProblem& DesignRouting::start(const Routing& routing)
   return *problem;
 }
 
-void require_bend_radius(const Design& d, const std::vector<Route>& routes, std::string_view whose)
+void require_bend_radius(const Design& d, const std::vector<Route>& routes, std::string_view whose, bool as_drawn)
 {
   const double limit = d.muscle.min_bend_radius;
   if (!(limit > 0)) return;
@@ -56,7 +56,7 @@ void require_bend_radius(const Design& d, const std::vector<Route>& routes, std:
     const SmallestBend b = smallest_bend(HermiteSpline(r.points, r.tangents));
     if (b.radius > limit) continue;
     throw InputError(
-        design_problem(d, fmt::format("[fiber.{}]", r.name),
+        design_problem(d, fmt::format("[fiber.{}]{}", r.name, as_drawn ? ".points" : ""),
                        fmt::format("{} bends with a radius of {:.2f} mm at {}, {:.1f} mm along it, tighter than "
                                    "[muscle] min_bend_radius = {:g} mm "
                                    "(short by {:.2f} mm): spread its control points or straighten its tangents there, "

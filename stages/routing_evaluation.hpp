@@ -89,7 +89,9 @@ OptimizationStart optimization_start(const Design& d, const SurfaceDistance& ski
 
 /// InputError at the first route that bends tighter than [muscle] min_bend_radius anywhere along
 /// it (bend_radius.hpp): where, by how much, and what to do. `whose`: "the starting route", ….
-void require_bend_radius(const Design& d, const std::vector<Route>& routes, std::string_view whose);
+/// `as_drawn`: the routes are the [[fiber]] routes as the design file gives them, and the error
+/// is placed at their points; else at the fiber.
+void require_bend_radius(const Design& d, const std::vector<Route>& routes, std::string_view whose, bool as_drawn);
 /// Each route's smallest bend radius and where, for the reports: {fiber: {min_bend_radius_mm,
 /// at_mm, along_mm}}; a straight route's is {straight: true} (its radius infinite).
 nlohmann::ordered_json bends_json(const std::vector<Route>& routes);

@@ -1,6 +1,8 @@
 #include "design/design_file.hpp"
 
+#include <algorithm>
 #include <cmath>
+#include <cstring>
 #include <regex>
 #include <sstream>
 
@@ -159,6 +161,12 @@ TEST_F(DesignFileTest, InvalidTomlNamesTheLine)
 {
   EXPECT_THAT(problem("[design]\nsurface = \"body.stl\"\nname = \n"), HasSubstr(":3:"));
   EXPECT_THAT(problem("[design]\nsurface = \"body.stl\"\nname = \n"), HasSubstr("not valid TOML"));
+  // A list without its "]": the parser stops on the next line; the message names the line that opened it.
+  const std::string unclosed =
+      std::string(kMinimal) + "[[fiber]]\nname = \"m1\"\npoints = [[0, 0, 0], [9, 0, 0]\n[mold]\n";
+  const int fiber_line = static_cast<int>(std::count(kMinimal, kMinimal + std::strlen(kMinimal), '\n')) + 3;
+  EXPECT_THAT(problem(unclosed),
+              HasSubstr(fmt::format("(the list opened at line {}, column 10 is not closed)", fiber_line)));
 }
 
 TEST_F(DesignFileTest, TargetsAreCheckedByKind)

@@ -125,7 +125,8 @@ TEST(FuzzE2E, CheckRefusesWhatOptimizeWouldRefuse)
   const auto out = test::run_fibermold("check design.toml", dir.path());
   EXPECT_EQ(out.exit_code, 2) << out.out << out.err;
   EXPECT_THAT(out.err, ::testing::ContainsRegex(
-                           "design\\.toml:[0-9]+:[0-9]+: \\[tracking_curve\\.centre\\]: the curve leaves the body at"));
+                           "design\\.toml:[0-9]+:[0-9]+: \\[tracking_curve\\.centre\\]\\.points\\[2\\]: the curve "
+                           "leaves the body at"));
 }
 
 /// The rule on the designs users start from: mutants of each example's design (made cheap: coarse

@@ -328,7 +328,7 @@ TEST_F(OptimizeE2E, CheckOptimizeCollideAndMoldsKeepFibersFromTheSkinByOneRule)
   at(8 - 1.52);
   const auto refused = test::run_fibermold("check design.toml", dir_.path());
   EXPECT_EQ(refused.exit_code, 2) << refused.out << refused.err;
-  EXPECT_THAT(refused.err, HasSubstr("[fiber.m1]: the starting route passes 1.520 mm from the skin"));
+  EXPECT_THAT(refused.err, HasSubstr("[fiber.m1].points: the starting route passes 1.520 mm from the skin"));
   EXPECT_THAT(refused.err,
               HasSubstr("more than 1.800 mm inside ([muscle] diameter/2 = 1 mm + [mold] groove_clearance = 0.3 mm + "
                         "[mold] min_silicone = 0.5 mm, what the groove needs): move the route more than 0.280 mm"));
@@ -350,10 +350,11 @@ TEST_F(OptimizeE2E, AFiberTooNearTheSkinIsRefusedByCheckWithTheFix)
   const auto checked = test::run_fibermold("check design.toml", dir_.path());
   EXPECT_EQ(checked.exit_code, 2) << checked.err;
   EXPECT_THAT(checked.err,
-              ContainsRegex("design.toml:[0-9]+:[0-9]+: \\[fiber.m1\\]: the starting route passes 1\\.[0-9]{3} mm from "
-                            "the skin at \\([0-9.]+, 6\\.[0-9], -?[0-9.]+\\) mm, where the optimizer keeps a fiber's "
-                            "centre line more than 2\\.500 mm inside \\(\\[muscle\\] diameter/2 = 1\\.5 mm \\+ "
-                            "\\[collide\\] clearance = 1 mm\\): move the route more than 1\\.000 mm inward there"));
+              ContainsRegex(
+                  "design.toml:[0-9]+:[0-9]+: \\[fiber.m1\\]\\.points: the starting route passes 1\\.[0-9]{3} mm from "
+                  "the skin at \\([0-9.]+, 6\\.[0-9], -?[0-9.]+\\) mm, where the optimizer keeps a fiber's "
+                  "centre line more than 2\\.500 mm inside \\(\\[muscle\\] diameter/2 = 1\\.5 mm \\+ "
+                  "\\[collide\\] clearance = 1 mm\\): move the route more than 1\\.000 mm inward there"));
   EXPECT_FALSE(fs::exists(dir_ / "build"));
 }
 
@@ -369,11 +370,12 @@ TEST_F(OptimizeE2E, AFiberLeavingTheBodyAlongTheSkinIsRefusedByCheck)
   test::write_text(dir_ / "design.toml", text);
   const auto along = test::run_fibermold("check design.toml", dir_.path());
   EXPECT_EQ(along.exit_code, 2) << along.err;
-  EXPECT_THAT(along.err, ContainsRegex("\\[fiber.m1\\]: the starting route leaves the body along the skin, not into "
-                                       "it: at \\(0\\.[0-9], -3\\.[0-9], 0\\.0\\) mm, 0\\.[0-9] mm from its "
-                                       "end on the skin, it is 0\\.[0-9]{3} mm from the skin, where a route is kept "
-                                       "more than 0\\.[0-9]{3} mm inside \\(rising to 2\\.500 mm at 8\\.0 mm from the "
-                                       "end: a route leaving a flat face within 72° of its normal clears it\\)"));
+  EXPECT_THAT(along.err,
+              ContainsRegex("\\[fiber.m1\\]\\.points: the starting route leaves the body along the skin, not into "
+                            "it: at \\(0\\.[0-9], -3\\.[0-9], 0\\.0\\) mm, 0\\.[0-9] mm from its "
+                            "end on the skin, it is 0\\.[0-9]{3} mm from the skin, where a route is kept "
+                            "more than 0\\.[0-9]{3} mm inside \\(rising to 2\\.500 mm at 8\\.0 mm from the "
+                            "end: a route leaving a flat face within 72° of its normal clears it\\)"));
   text.replace(text.find("[[3.5, 20, 0]"), 13, "[[20, 3.5, 0]");
   test::write_text(dir_ / "design.toml", text);
   const auto square = test::run_fibermold("check design.toml", dir_.path());
@@ -394,7 +396,8 @@ TEST_F(OptimizeE2E, ARouteBentTighterThanTheMuscleTakesIsRefused)
   EXPECT_EQ(checked.exit_code, 2) << checked.err;
   EXPECT_THAT(
       checked.err,
-      ContainsRegex("design.toml:[0-9]+:[0-9]+: \\[fiber.m1\\]: the starting route bends with a radius of 0\\.[0-9]{2} "
+      ContainsRegex("design.toml:[0-9]+:[0-9]+: \\[fiber.m1\\]\\.points: the starting route bends with a radius of "
+                    "0\\.[0-9]{2} "
                     "mm at \\((2[0-9])\\.[0-9], [0-9.]+, 0\\.0\\) mm, [0-9.]+ mm along it, tighter than \\[muscle\\] "
                     "min_bend_radius = 6 mm"));
   test::write_text(dir_ / "design.toml", text + "[optimize]\nenabled = false\n");
@@ -424,8 +427,10 @@ TEST_F(OptimizeE2E, BadInputsAreNamed)
   design("[[tracking_curve]]\nname = \"out\"\npoints = [[0, 0, 0], [60, 0, 12]]\n");
   r = make();
   EXPECT_EQ(r.exit_code, 2);
-  EXPECT_THAT(r.err, ::testing::ContainsRegex(
-                         "design\\.toml:[0-9]+:[0-9]+: \\[tracking_curve\\.out\\]: the curve leaves the body at"));
+  EXPECT_THAT(r.err,
+              ::testing::ContainsRegex(
+                  "design\\.toml:[0-9]+:[0-9]+: \\[tracking_curve\\.out\\]\\.points\\[2\\]: the curve leaves the "
+                  "body at"));
   // Which of its points to move: the second; the first, on the skin, is in.
   EXPECT_THAT(r.err, HasSubstr("of its 2 points, point 2 (60.0, 0.0, 12.0) mm lies outside: move it inside the body"));
   // Unnamed, it is found by its default name, at its line all the same.
@@ -434,7 +439,8 @@ TEST_F(OptimizeE2E, BadInputsAreNamed)
   EXPECT_EQ(r.exit_code, 2);
   EXPECT_THAT(r.err,
               ::testing::ContainsRegex(
-                  "design\\.toml:[0-9]+:[0-9]+: \\[tracking_curve\\.curve[0-9]\\]: the curve leaves the body at"));
+                  "design\\.toml:[0-9]+:[0-9]+: \\[tracking_curve\\.curve[0-9]\\]\\.points\\[2\\]: the curve leaves "
+                  "the body at"));
 }
 
 TEST_F(OptimizeE2E, InterruptKeepsTheBestDesignSoFar)

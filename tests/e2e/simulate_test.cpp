@@ -192,7 +192,8 @@ TEST_F(SimulateE2E, FiberOutsideTheBody)
   design("[[fixed]]\nbox = { min = [-1, -9, -9], max = [0.5, 9, 9] }\n", "[[0, 0, 0], [30, 20, 0], [60, 0, 0]]");
   const auto r = simulate("--pressure m1=100");
   EXPECT_EQ(r.exit_code, 2);
-  EXPECT_THAT(r.err, HasSubstr("[fiber.m1]: the fiber leaves the body at ("));
+  // At the point to move: line 12 is `points = [[0, 0, 0], [30, 20, 0], ...`, its second point at column 22.
+  EXPECT_THAT(r.err, HasSubstr("design.toml:12:22: [fiber.m1].points[2]: the fiber leaves the body at ("));
   // Which of the points the user gave to move, counted as they count them.
   EXPECT_THAT(r.err, HasSubstr("of its 3 points, point 2 (30.0, 20.0, 0.0) mm lies outside: move it inside the body"));
   // All points inside (the bar is ±8 mm in z), the middle one 3 mm from the skin (more than the 2.5
@@ -229,7 +230,7 @@ TEST_F(SimulateE2E, BadLoadsAndFibersAreRefused)
   design(fixed, "[[30, 0, 0], [30, 0, 0]]");
   auto r = simulate("--pressure m1=100");
   EXPECT_EQ(r.exit_code, 2);
-  EXPECT_THAT(r.err, HasSubstr("[fiber.m1]: the fiber has no length"));
+  EXPECT_THAT(r.err, HasSubstr("design.toml:12:10: [fiber.m1].points: the fiber has no length"));
 
   design();
   r = simulate("--pressure m1=100 --pressure m1=200");
