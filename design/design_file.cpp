@@ -1051,13 +1051,22 @@ Design parse(std::string_view text, const fs::path& path)
     root = toml::parse(text, file.string());
   } catch (const toml::parse_error& e) {
     std::string message = fmt::format("not valid TOML: {}", e.description());
-    // A list or inline table without its closing bracket is found where the next thing starts,
-    // often the next line: name the line that opened it.
-    if (e.description().find("closing") != std::string_view::npos)
+    // A list or inline table short of a comma or its closing bracket is found where the next thing
+    // starts, often a line or more below: name where it was opened.
+    const std::string_view what = e.description();
+    const bool at_end = what.find("end-of-file") != std::string_view::npos &&
+                        (what.find("parsing array") != std::string_view::npos ||
+                         what.find("parsing inline table") != std::string_view::npos);
+    if (at_end || what.find("expected comma or closing") != std::string_view::npos)
       if (const auto open = unclosed_bracket(
-              text, {static_cast<int>(e.source().begin.line), static_cast<int>(e.source().begin.column)}))
-        message += fmt::format(" (the {} opened at line {}, column {} is not closed)",
-                               open->bracket == '[' ? "list" : "inline table", open->at.line, open->at.column);
+              text, {static_cast<int>(e.source().begin.line), static_cast<int>(e.source().begin.column)})) {
+        const bool list = open->bracket == '[';
+        message += fmt::format(" (the {} opened at line {}, column {} ", list ? "list" : "inline table", open->at.line,
+                               open->at.column);
+        message += at_end ? fmt::format("is never closed: its '{}' is missing)", list ? ']' : '}')
+                          : fmt::format("is still open here: a ',' between its {} or its closing '{}' is missing)",
+                                        list ? "entries" : "keys", list ? ']' : '}');
+      }
     ctx.error(e.source(), "", message);
     throw InputError(std::move(ctx.problems));
   }

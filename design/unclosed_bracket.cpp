@@ -1,5 +1,6 @@
 #include "design/unclosed_bracket.hpp"
 
+#include <algorithm>
 #include <vector>
 
 namespace fibermold {
@@ -19,13 +20,19 @@ std::optional<OpenBracket> unclosed_bracket(std::string_view text, TextPlace bef
       }
     }
   };
-  std::size_t i = 0;
+  std::size_t i = text.starts_with("\xEF\xBB\xBF") ? 3 : 0; // a byte-order mark, which the parser skips
   while (i < text.size() && !reached()) {
     const std::string_view rest = text.substr(i);
-    if (rest.starts_with("\"\"\"") || rest.starts_with("'''")) { // a multi-line string, to its closing quotes
-      const std::string_view quotes = rest.substr(0, 3);
-      const std::size_t close = rest.find(quotes, 3);
-      advance(i, close == std::string_view::npos ? rest.size() : close + 3);
+    if (rest.starts_with("\"\"\"") || rest.starts_with("'''")) {
+      // A multi-line string: in a basic one (""") a backslash escapes the next character; it closes
+      // at three quotes, and up to two more right after them are its own last characters.
+      const char quote = rest.front();
+      std::size_t k = 3;
+      while (k < rest.size() && !rest.substr(k).starts_with(rest.substr(0, 3)))
+        k += quote == '"' && rest[k] == '\\' ? 2 : 1;
+      k = std::min(k + 3, rest.size());
+      for (int extra = 0; extra < 2 && k < rest.size() && rest[k] == quote; ++extra) ++k;
+      advance(i, k);
     } else if (rest.front() == '"' || rest.front() == '\'') { // a string on one line; "\"" escapes a quote
       std::size_t k = 1;
       while (k < rest.size() && rest[k] != rest.front() && rest[k] != '\n')

@@ -218,7 +218,8 @@ void require_inside(const Design& d, const Actuation& fiber, const TetMesh& mesh
     const SurfaceDistance distance(skin.vertices, skin.faces);
     const SkinDistance need = skin_distance(d);
     const auto inside = [&](const Eigen::Vector3d& q) { return inside_body(locator, q); };
-    bad(d, points_key(fmt::format("[fiber.{}]", fiber.fiber), fiber.points, inside),
+    const std::string section = fmt::format("[fiber.{}]", fiber.fiber);
+    bad(d, fiber.as_drawn ? points_key(section, fiber.points, inside) : section,
         leaves_the_body(
             "fiber", fiber.points, p, inside, [&](const Eigen::Vector3d& q) { return distance.closest(q).distance; },
             &need));
@@ -235,7 +236,7 @@ std::vector<Actuation> target_actuations(const Design& d, const Target& t)
     for (const Fiber& fb : d.fibers)
       if (fb.name == a.name) f = &fb;
     if (a.points.empty())
-      out.push_back({a.name, f->points, f->tangents, a.pressure});
+      out.push_back({a.name, f->points, f->tangents, a.pressure, true});
     else
       out.push_back({a.name, a.points, {}, a.pressure});
   }
@@ -254,7 +255,7 @@ std::vector<const MuscleEnergy*> add_muscles(Simulation& sim, const Design& d, c
     const FiberSegments segments = segments_at(spline, t);
     for (std::size_t j = 0; j < segments.vectors.size(); ++j)
       if (!(segments.vectors[j].norm() > 1e-9))
-        bad(d, fmt::format("[fiber.{}].points", a.fiber),
+        bad(d, fmt::format("[fiber.{}]{}", a.fiber, a.as_drawn ? ".points" : ""),
             fmt::format("the fiber has no length near {} (repeated points?)", format_mm(segments.centres[j])));
     require_inside(d, a, sim.mesh(), locator, spline, segments);
     auto muscle = std::make_unique<MuscleEnergy>(sim.basis(), model, std::move(spline), std::move(t), a.pressure);

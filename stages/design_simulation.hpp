@@ -22,6 +22,9 @@ struct Actuation {
   std::string fiber;
   std::vector<Eigen::Vector3d> points, tangents;
   double pressure;
+  /// The points are the [[fiber]]'s as the design file draws them (not a target's own, or a route
+  /// moved by optimize or collide): a problem with them is placed at their `points`.
+  bool as_drawn = false;
 };
 
 /// Basis, material, gravity and (when `held`) the [[fixed]] regions as node lists. Throws

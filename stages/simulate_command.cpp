@@ -79,12 +79,12 @@ std::vector<Actuation> requested_actuations(const Design& d, const SimulateReque
                       d.muscle.max_pressure / units::kPa));
     if (std::any_of(out.begin(), out.end(), [&](const Actuation& a) { return a.fiber == name; }))
       bad(d, "--pressure", fmt::format("{} is given twice", name));
-    out.push_back({name, f->points, f->tangents, kpa * units::kPa});
+    out.push_back({name, f->points, f->tangents, kpa * units::kPa, true});
   }
   std::vector<Actuation> all;
   for (const Fiber& f : d.fibers) {
     const auto given = std::find_if(out.begin(), out.end(), [&](const Actuation& a) { return a.fiber == f.name; });
-    all.push_back(given != out.end() ? *given : Actuation{f.name, f.points, f.tangents, 0.0});
+    all.push_back(given != out.end() ? *given : Actuation{f.name, f.points, f.tangents, 0.0, true});
   }
   return all;
 }

@@ -162,11 +162,18 @@ TEST_F(DesignFileTest, InvalidTomlNamesTheLine)
   EXPECT_THAT(problem("[design]\nsurface = \"body.stl\"\nname = \n"), HasSubstr(":3:"));
   EXPECT_THAT(problem("[design]\nsurface = \"body.stl\"\nname = \n"), HasSubstr("not valid TOML"));
   // A list without its "]": the parser stops on the next line; the message names the line that opened it.
-  const std::string unclosed =
-      std::string(kMinimal) + "[[fiber]]\nname = \"m1\"\npoints = [[0, 0, 0], [9, 0, 0]\n[mold]\n";
-  const int fiber_line = static_cast<int>(std::count(kMinimal, kMinimal + std::strlen(kMinimal), '\n')) + 3;
-  EXPECT_THAT(problem(unclosed),
-              HasSubstr(fmt::format("(the list opened at line {}, column 10 is not closed)", fiber_line)));
+  const std::string fiber = std::string(kMinimal) + "[[fiber]]\nname = \"m1\"\npoints = ";
+  const int points_line = static_cast<int>(std::count(kMinimal, kMinimal + std::strlen(kMinimal), '\n')) + 3;
+  const std::string opened = fmt::format("(the list opened at line {}, column 10 ", points_line);
+  EXPECT_THAT(problem(fiber + "[[0, 0, 0], [9, 0, 0]\n[mold]\n"),
+              HasSubstr(opened + "is still open here: a ',' between its entries or its closing ']' is missing)"));
+  // A comma missing between two points on lines of their own: the same words, which name both fixes.
+  EXPECT_THAT(problem(fiber + "[[0, 0, 0],\n  [5, 0, 0]\n  [9, 0, 0]]\n"), HasSubstr(opened + "is still open here"));
+  // Left open at the end of the file.
+  EXPECT_THAT(problem(fiber + "[[0, 0, 0], [9, 0, 0]\n"), HasSubstr(opened + "is never closed: its ']' is missing)"));
+  // A dangling comma or an empty entry is no unclosed list: no such words.
+  EXPECT_THAT(problem(fiber + "[[0, 0, 0],, [9, 0, 0]]\n"), Not(HasSubstr("opened at")));
+  EXPECT_THAT(problem(std::string(kMinimal) + "[mold]\nbox = { wall = 4, }\n"), Not(HasSubstr("opened at")));
 }
 
 TEST_F(DesignFileTest, TargetsAreCheckedByKind)

@@ -19,26 +19,43 @@ TEST(UnclosedBracket, FindsTheListThatLacksItsBracketOnAnEarlierLine)
   EXPECT_EQ(open->bracket, '[');
 }
 
-TEST(UnclosedBracket, SkipsBracketsInStringsAndCommentsAndCountsCharactersNotBytes)
+TEST(UnclosedBracket, BracketsInStringsAndCommentsNeitherOpenNorClose)
 {
-  // "[" in a basic string (with an escaped quote), a literal string, a multi-line string and a
-  // comment does not open anything; "×" is one column though two bytes.
-  const std::string text = "name = \"a \\\" [b\"  # [ not this\nnote = 'c ['\nmore = \"\"\"\n[\n\"\"\"\n"
-                           "load = [{ box = { min = [0, 0, 0], max = [1, 1, 1] }, force = [0, 0, -1] }\n"
-                           "x = 1 # ×\n";
-  const auto open = unclosed_bracket(text, {7, 1});
+  // Each line's string or comment holds a "]" that would close the list opened on line 1 if it
+  // counted, and a "[" that would be the innermost open one: a basic string with escaped quotes, a
+  // literal string, a multi-line basic string with an escaped quote and four closing quotes, a
+  // multi-line literal string, a comment.
+  const std::string text = "load = [\n"
+                           "  \"a \\\" ] [\", # ] [\n"
+                           "  'b ] [',\n"
+                           "  \"\"\"c \\\"\"\" ] [\n] [\"\"\"\",\n"
+                           "  '''d ] [''',\n"
+                           "  1\n"
+                           "x = 2\n";
+  const auto open = unclosed_bracket(text, {8, 1});
   ASSERT_TRUE(open.has_value());
-  EXPECT_EQ(open->at.line, 6);
+  EXPECT_EQ(open->at.line, 1);
   EXPECT_EQ(open->at.column, 8);
-  EXPECT_EQ(open->bracket, '[');
-  // Within the list, after the box closes and before the load's table does (at "force"): that table.
-  const auto inner = unclosed_bracket(text, {6, 55});
+  // Closed, the list leaves nothing open.
+  EXPECT_FALSE(unclosed_bracket(text + "]\n", {9, 5}).has_value());
+}
+
+TEST(UnclosedBracket, NamesTheInnermostOpenTableAndCountsCharactersNotBytes)
+{
+  const std::string load = "load = [{ box = { min = [0, 0, 0], max = [1, 1, 1] }, force = [0, 0, -1] }\n";
+  // At "force" (column 55), after the box closes: the load's inline table, opened at column 9.
+  const auto inner = unclosed_bracket(load, {1, 55});
   ASSERT_TRUE(inner.has_value());
   EXPECT_EQ(inner->at.column, 9);
   EXPECT_EQ(inner->bracket, '{');
-  // "×" counts one column: the "#" after it is at column 7.
-  EXPECT_FALSE(unclosed_bracket("a = \"×\" [\n", {1, 9}).has_value());
-  EXPECT_TRUE(unclosed_bracket("a = \"×\" [\n", {1, 10}).has_value());
+  // "×" is two bytes and one column, as the parser counts: the "[" after it is at column 9. A
+  // byte-order mark before it counts nothing.
+  for (const std::string prefix : {"", "\xEF\xBB\xBF"}) {
+    EXPECT_FALSE(unclosed_bracket(prefix + "a = \"×\" [\n", {1, 9}).has_value());
+    const auto open = unclosed_bracket(prefix + "a = \"×\" [\n", {1, 10});
+    ASSERT_TRUE(open.has_value());
+    EXPECT_EQ(open->at.column, 9);
+  }
 }
 
 TEST(UnclosedBracket, NothingWhereEveryBracketIsClosed)

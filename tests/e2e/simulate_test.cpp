@@ -216,6 +216,21 @@ TEST_F(SimulateE2E, FiberOutsideTheBody)
   EXPECT_THAT(skin.err, Not(HasSubstr("bulges out")));
 }
 
+TEST_F(SimulateE2E, ATargetsOwnRouteOutsideTheBodyIsPlacedAtTheFiberNotAtTheDrawnPoints)
+{
+  // The [[fiber]] as drawn is inside; the target's own route for it is not. The drawn points are
+  // not what to move, so the error names the fiber, as for a route the optimizer or collide moved.
+  design();
+  test::write_text(dir_ / "design.toml",
+                   test::read_text(dir_ / "design.toml") +
+                       "[[target]]\nname = \"made\"\nkind = \"fibers\"\n"
+                       "fibers = [{ name = \"m1\", pressure = 100, points = [[0, 0, 0], [30, 20, 0], [60, 0, 0]] }]\n");
+  const auto r = simulate("--target made");
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_THAT(r.err, HasSubstr("[fiber.m1]: the fiber leaves the body at ("));
+  EXPECT_THAT(r.err, HasSubstr("point 2 (30.0, 20.0, 0.0) mm lies outside"));
+}
+
 TEST_F(SimulateE2E, FixedRegionThatCatchesNoNode)
 {
   design("[[fixed]]\nname = \"clamp\"\nbox = { min = [100, -9, -9], max = [110, 9, 9] }\n");
