@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <tuple>
 #include <vector>
 
 #include <Eigen/Geometry>
@@ -57,56 +58,107 @@ double arc_length_to(const HermiteSpline& s, double t)
   return length;
 }
 
-/// The largest κ of span k between scan points lo and hi (u ∈ [0, 1]), by golden-section search
-/// to 1e-9 of the span, starting from the scan's value κ₀ at u₀. Returns u, κ.
-std::pair<double, double> refine_peak(const HermiteSpline& spline, int k, double lo, double hi, double u0, double k0)
+/// κ at `per_span` + 1 evenly spaced parameters of span k.
+std::vector<double> span_scan(const HermiteSpline& spline, int k, int per_span)
 {
+  std::vector<double> kappa(static_cast<std::size_t>(per_span) + 1);
+  for (int i = 0; i <= per_span; ++i)
+    kappa[static_cast<std::size_t>(i)] = span_curvature(spline, k, double(i) / per_span);
+  return kappa;
+}
+
+/// The extremum of κ (the largest for `sign` +1, the smallest for −1) of span k between lo and hi
+/// (u ∈ [0, 1]), by golden-section search to 1e-9 of the span, starting from the scan's κ₀ at u₀.
+/// Returns u, κ.
+std::pair<double, double> refine_extremum(const HermiteSpline& spline, int k, int sign, double lo, double hi, double u0,
+                                          double k0)
+{
+  const auto f = [&](double u) { return sign * span_curvature(spline, k, u); };
   const double g = (std::sqrt(5.0) - 1) / 2;
   double x1 = hi - g * (hi - lo), x2 = lo + g * (hi - lo);
-  double f1 = span_curvature(spline, k, x1), f2 = span_curvature(spline, k, x2);
+  double f1 = f(x1), f2 = f(x2);
   while (hi - lo > 1e-9) {
     if (f1 > f2) {
       hi = x2, x2 = x1, f2 = f1;
       x1 = hi - g * (hi - lo);
-      f1 = span_curvature(spline, k, x1);
+      f1 = f(x1);
     } else {
       lo = x1, x1 = x2, f1 = f2;
       x2 = lo + g * (hi - lo);
-      f2 = span_curvature(spline, k, x2);
+      f2 = f(x2);
     }
   }
-  if (const double mid = (lo + hi) / 2, k_mid = span_curvature(spline, k, mid); k_mid > k0) return {mid, k_mid};
+  if (const double mid = (lo + hi) / 2, f_mid = f(mid); f_mid > sign * k0) return {mid, sign * f_mid};
   return {u0, k0};
 }
 
-/// Where span k bends tightest: κ scanned at `per_span` + 1 parameters, and every local maximum of
-/// the scan within kPeakShare of its largest refined (refine_peak); the largest refined wins.
-/// Refining the scan's largest alone made the barrier jump where two peaks of nearly equal height
-/// swap places in the scan (on the twisting bar by 4.6e-5 of an objective of 0.648, which then
-/// rejected every step, however short). Returns u ∈ [0, 1], κ.
+/// A local extremum of κ along a span: u ∈ [0, 1], κ, and its weight in the bend barrier: +1 for
+/// a maximum (a span's end included), −1 for a minimum between two maxima.
+struct SpanExtremum {
+  double u, kappa;
+  int sign;
+};
+
+/// The maxima and the minima between them of κ along span k, alternating, a maximum first and
+/// last: from the scan `kappa` (span_scan), a rise or fall under 1e-9 of the span's scale (its
+/// largest κ, or 1 / its length if larger) taken as level, so that round-off on a straight span or
+/// a circular arc makes no extrema. A minimum at a span's end is left out (its weight is 0). The
+/// extrema whose scanned κ reaches `refine_above`, and the largest, are refined (refine_extremum)
+/// between their scan neighbours: two nearly equal bends are found wherever the scan falls on
+/// them.
+std::vector<SpanExtremum> span_extrema(const HermiteSpline& spline, int k, const std::vector<double>& kappa,
+                                       double refine_above)
+{
+  const int n = static_cast<int>(kappa.size()) - 1;
+  const auto at = [&](int i) { return kappa[static_cast<std::size_t>(i)]; };
+  const int largest = static_cast<int>(std::max_element(kappa.begin(), kappa.end()) - kappa.begin());
+  const double level = 1e-9 * std::max(at(largest), 1 / std::max(spline.span_length(k), 1e-300));
+  std::vector<std::pair<int, int>> found; // scan index, sign
+  int candidate = 0, trend = 0;
+  for (int i = 1; i <= n; ++i) {
+    const double rise = at(i) - at(candidate);
+    if (trend == 0) { // level from the span's start so far: a minimum there is an end's
+      if (rise < -level)
+        found.emplace_back(candidate, +1), trend = -1, candidate = i;
+      else if (rise > level)
+        trend = +1, candidate = i;
+      else if (rise > 0)
+        candidate = i;
+    } else if (trend > 0) {
+      if (rise > 0)
+        candidate = i;
+      else if (rise < -level)
+        found.emplace_back(candidate, +1), trend = -1, candidate = i;
+    } else {
+      if (rise < 0)
+        candidate = i;
+      else if (rise > level)
+        found.emplace_back(candidate, -1), trend = +1, candidate = i;
+    }
+  }
+  if (trend >= 0) found.emplace_back(candidate, +1); // else the span ends in a minimum: left out
+  std::vector<SpanExtremum> out;
+  for (const auto& [i, sign] : found) {
+    SpanExtremum e{i / double(n), at(i), sign};
+    if (at(i) >= refine_above || i == largest) {
+      const double lo = std::max(0, i - 1) / double(n), hi = std::min(n, i + 1) / double(n);
+      std::tie(e.u, e.kappa) = refine_extremum(spline, k, sign, lo, hi, e.u, e.kappa);
+    }
+    out.push_back(e);
+  }
+  return out;
+}
+
+/// Where span k bends tightest: the largest of its refined maxima (span_extrema, those within
+/// kPeakShare of the scan's largest refined). Returns u ∈ [0, 1], κ.
 std::pair<double, double> span_tightest(const HermiteSpline& spline, int k, int per_span)
 {
   constexpr double kPeakShare = 0.8;
-  constexpr int kMostPeaks = 3; // the highest; a straight span's round-off has peaks everywhere
-  std::vector<double> kappa(per_span + 1);
-  for (int i = 0; i <= per_span; ++i) kappa[i] = span_curvature(spline, k, double(i) / per_span);
-  const double k_max = *std::max_element(kappa.begin(), kappa.end());
-  std::vector<int> peaks;
-  for (int i = 0; i <= per_span; ++i)
-    if ((i == 0 || kappa[i] > kappa[i - 1]) && (i == per_span || kappa[i] >= kappa[i + 1]) &&
-        kappa[i] >= kPeakShare * k_max)
-      peaks.push_back(i);
-  if (peaks.empty()) // a constant κ (a straight span, a circular arc)
-    peaks.push_back(static_cast<int>(std::max_element(kappa.begin(), kappa.end()) - kappa.begin()));
-  std::stable_sort(peaks.begin(), peaks.end(), [&](int a, int b) { return kappa[a] > kappa[b]; });
-  if (peaks.size() > kMostPeaks) peaks.resize(kMostPeaks);
+  const std::vector<double> kappa = span_scan(spline, k, per_span);
   std::pair<double, double> best{0, -1};
-  for (int i : peaks) {
-    const double lo = std::max(0, i - 1) / double(per_span), hi = std::min(per_span, i + 1) / double(per_span);
-    if (const auto refined = refine_peak(spline, k, lo, hi, i / double(per_span), kappa[i]);
-        refined.second > best.second)
-      best = refined;
-  }
+  for (const SpanExtremum& e :
+       span_extrema(spline, k, kappa, kPeakShare * *std::max_element(kappa.begin(), kappa.end())))
+    if (e.sign > 0 && e.kappa > best.second) best = {e.u, e.kappa};
   return best;
 }
 
@@ -139,22 +191,25 @@ BendBarrier::BendBarrier(double min_radius, double band, int per_span)
 {
 }
 
-std::vector<double> BendBarrier::sample_parameters(const HermiteSpline& spline, int k) const
+std::vector<BendBarrier::Sample> BendBarrier::samples(const HermiteSpline& spline, int k) const
 {
-  std::vector<double> u;
-  for (int i = 0; i <= per_span_; ++i) u.push_back(double(i) / per_span_);
-  u.push_back(span_tightest(spline, k, kTightestScan).first);
-  return u;
+  std::vector<Sample> out;
+  for (int i = 0; i <= per_span_; ++i) out.push_back({double(i) / per_span_, 1});
+  // Every extremum that can reach the band is refined; those under half its edge add 0 anyway.
+  const double refine_above = 0.5 * (1 - band_) / min_radius_;
+  for (const SpanExtremum& e : span_extrema(spline, k, span_scan(spline, k, kTightestScan), refine_above))
+    out.push_back({e.u, double(e.sign)});
+  return out;
 }
 
 double BendBarrier::value(const HermiteSpline& spline) const
 {
   double B = 0;
   for (int k = 0; k < spline.spans(); ++k)
-    for (double u : sample_parameters(spline, k)) {
-      const double kappa = span_curvature(spline, k, u);
-      B += barrier(1 - min_radius_ * kappa, band_); // +∞ at or under the smallest radius
-      if (!std::isfinite(B)) return HUGE_VAL;
+    for (const Sample& s : samples(spline, k)) {
+      const double b = barrier(1 - min_radius_ * span_curvature(spline, k, s.u), band_);
+      if (!std::isfinite(b)) return HUGE_VAL; // at or under the smallest radius
+      B += s.weight * b;
     }
   return B;
 }
@@ -165,15 +220,15 @@ FiberParameterGradient BendBarrier::gradient(const HermiteSpline& spline) const
   g.points.assign(spline.points().size(), Eigen::Vector3d::Zero());
   g.tangents.assign(spline.points().size(), Eigen::Vector3d::Zero());
   for (int k = 0; k < spline.spans(); ++k)
-    for (double u : sample_parameters(spline, k)) {
-      const SpanDerivatives d = span_derivatives(spline, k, u);
+    for (const Sample& s : samples(spline, k)) {
+      const SpanDerivatives d = span_derivatives(spline, k, s.u);
       const double kappa = curvature_of(d.a, d.b), h = 1 - min_radius_ * kappa;
       if (h >= band_ || h <= 0) continue;
       // ∂b/∂κ = −R b'(h);  κ = |c| / |a|³, c = a × b:
       //   ∂κ/∂a = (b × c) / (|c| |a|³) − 3 |c| a / |a|⁵,   ∂κ/∂b = (c × a) / (|c| |a|³)
       const Eigen::Vector3d c = d.a.cross(d.b);
       const double nc = c.norm(), na = d.a.norm(), na3 = na * na * na;
-      const double by_kappa = -min_radius_ * barrier_gradient(h, band_);
+      const double by_kappa = -s.weight * min_radius_ * barrier_gradient(h, band_);
       const Eigen::Vector3d by_a = by_kappa * (d.b.cross(c) / (nc * na3) - 3 * nc * d.a / (na3 * na * na));
       const Eigen::Vector3d by_b = by_kappa * c.cross(d.a) / (nc * na3);
       Eigen::Vector3d* out[4] = {&g.points[k], &g.tangents[k], &g.points[k + 1], &g.tangents[k + 1]};

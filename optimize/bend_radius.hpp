@@ -2,15 +2,20 @@
 // The bend radius of a fiber's centre line and the barrier that keeps it above the muscle's
 // smallest: the curvature of a space curve p(t),
 //   κ = |p' × p''| / |p'|³,   bend radius r = 1/κ,
-// and, with R the smallest bend radius the muscle takes ([muscle] min_bend_radius),
-//   B_bend = Σ_k b(1 − R κ(t_k), ĥ),
-// b the IPC log barrier (barrier.hpp) at the spline parameters t_k: fixed samples, and in each span
-// the parameter where it bends tightest (smallest_bend's search): +∞ exactly where the bend radius
-// anywhere reaches R, zero where it is above R / (1 − ĥ) (1.11 R). At that moving sample ∂κ/∂t = 0
-// (or it sits on a span's end), so its derivative at fixed t is the whole derivative (envelope
-// theorem). The barrier thus rises smoothly to the constraint instead of meeting it between two
-// samples as a wall a minimizer's step cannot see coming. A cusp (p' = 0) or a loop has an
-// unbounded curvature, so two control points that bunch into a near-cusp meet the barrier too.
+// and, with R the smallest bend radius the muscle takes ([muscle] min_bend_radius), h = 1 − R κ,
+//   B_bend = Σ_k b(h(t_k), ĥ) + Σ_spans [ Σ_maxima b(h(t_max), ĥ) − Σ_minima b(h(t_min), ĥ) ],
+// b the IPC log barrier (barrier.hpp), t_k fixed samples (per_span + 1 per span), and in each span
+// the local maxima of κ (its ends included where κ falls from them) and the local minima between
+// them. The bracket is ½ (∫|d b(h(t))/dt| dt + b at the span's two ends): the barrier's total
+// variation along the span. With one peak it is that peak's b, with several at least the largest's,
+// so B is +∞ exactly where the bend radius anywhere reaches R and zero where it is above
+// R / (1 − ĥ) (1.11 R). It is smooth where two peaks of nearly equal height swap (a max over them
+// is kinked there: a minimizer's smooth model then keeps predicting a decrease across the kink),
+// and continuous where a peak and a dip are born together (their b are equal). At each extremum
+// ∂κ/∂t = 0 (or it sits on a span's end), so its derivative at fixed t is the whole derivative
+// (envelope theorem). The barrier thus rises smoothly to the constraint instead of meeting it
+// between two samples as a wall a minimizer's step cannot see coming. A cusp (p' = 0) or a loop has
+// an unbounded curvature, so two control points that bunch into a near-cusp meet the barrier too.
 
 #include <vector>
 
@@ -43,12 +48,16 @@ public:
   /// The barrier acts where the radius is under R / (1 − ĥ): 1.11 R.
   static constexpr double kBand = 0.1;
   static constexpr int kSamplesPerSpan = 24;
-  /// The scan that finds each span's tightest point (then refined by golden section).
+  /// The scan that finds each span's extrema of κ (then refined by golden section).
   static constexpr int kTightestScan = 64;
 
 private:
-  /// Span k's sample parameters u ∈ [0, 1]: per_span + 1 fixed ones and the tightest point.
-  std::vector<double> sample_parameters(const HermiteSpline& spline, int k) const;
+  struct Sample {
+    double u;      ///< ∈ [0, 1] on its span
+    double weight; ///< 1, or −1 at a minimum of κ between two maxima
+  };
+  /// Span k's samples: per_span + 1 fixed ones and its extrema of κ.
+  std::vector<Sample> samples(const HermiteSpline& spline, int k) const;
 
   double min_radius_, band_;
   int per_span_;
@@ -61,8 +70,9 @@ struct SmallestBend {
   Eigen::Vector3d where = Eigen::Vector3d::Zero();
   double arc_length = 0; ///< m from the first point
 };
-/// The smallest bend radius along the spline: κ scanned at `per_span` parameters per span, the
-/// largest refined by golden-section search between its neighbours (to 1e-9 of a span).
+/// The smallest bend radius along the spline: κ scanned at `per_span` parameters per span, each
+/// peak within 80 % of a span's highest refined by golden-section search between its neighbours
+/// (to 1e-9 of a span), the largest kept.
 SmallestBend smallest_bend(const HermiteSpline& spline, int per_span = BendBarrier::kTightestScan);
 
 } // namespace fibermold

@@ -219,7 +219,10 @@ TEST(Demonstrators, TwistingBarOptimizesAlikeUnderOtherBlasKernels)
   // 406 iterations, f 0.6418, tracking RMSE 0.819 mm; Sandybridge 345, 0.6368, 0.806 mm; SkylakeX
   // 372, 0.6226, 0.821 mm. Before Levenberg-Marquardt forgot a secant term that claimed
   // convergence B alone did not (levenberg_marquardt.cpp), SkylakeX's run crawled on it to the
-  // limit of 1000 at f 0.940.
+  // limit of 1000 at f 0.940. Session 49 (the bend barrier smooth where two bends swap, Sloan's
+  // ordering; 30 s): 286, 304 and 306 iterations, f 0.5698 and RMSE 0.745 mm under all three. Under
+  // Sloan's rounding with the barrier's sample at the tightest bend alone, Haswell's run stalled
+  // at 471 on that sample's kink.
   const std::vector<std::string> kernels = test::blas_kernels();
   if (kernels.empty()) GTEST_SKIP() << "OpenBLAS takes no two kernels here (no AVX2, or it ignores OPENBLAS_CORETYPE)";
   std::vector<double> objectives, errors;

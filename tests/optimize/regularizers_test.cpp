@@ -115,6 +115,49 @@ TEST(BendRadius, TheTighterOfTwoNearlyEqualBendsIsFoundWhereverTheScanFallsOnThe
   EXPECT_GT(swaps, 0); // the sweep does cross from one bend to the other
 }
 
+TEST(BendRadius, BarrierIsSmoothWhereTwoNearlyEqualBendsSwap)
+{
+  // The span of the test above, its two bends in the barrier's band: as the end's tangent turns
+  // through the swap, the barrier's gradient turns smoothly. A sample at the tighter bend alone
+  // (the barrier then a max over the two) made it jump from one bend's gradient to the other's, a
+  // kink a smooth model keeps predicting a decrease across. Each step (5e-8 of turn) changes the
+  // gradient by 2.2e-4 of itself; the sample at the tighter bend alone changed it by 1.7e-4 to
+  // 2.5e-4, and by 0.30 at the swap.
+  const auto spline = [](double turn) {
+    return HermiteSpline({{0, 0, 0}, {0.05, 0, 0}},
+                         {Eigen::Vector3d(0.065, 0.05, 0), Eigen::Vector3d(0.035, turn, 0.002)});
+  };
+  const double R = 0.97 * smallest_bend(spline(-0.011365)).radius;
+  const BendBarrier barrier(R);
+  const auto stacked_gradient = [&](double turn) {
+    const FiberParameterGradient g = barrier.gradient(spline(turn));
+    return test::stacked({g.points, g.tangents});
+  };
+  int swaps = 0;
+  double first_where = -1, largest_change = 0;
+  Eigen::VectorXd previous = stacked_gradient(-0.01137);
+  for (int i = 1; i <= 200; ++i) {
+    const double turn = -0.01137 + 1e-5 * i / 200;
+    const Eigen::VectorXd g = stacked_gradient(turn);
+    ASSERT_GT(g.norm(), 0);
+    largest_change = std::max(largest_change, (g - previous).norm() / g.norm());
+    previous = g;
+    const double where = smallest_bend(spline(turn)).t;
+    if (first_where < 0) first_where = where;
+    swaps += std::abs(where - first_where) > 0.25;
+  }
+  EXPECT_GT(swaps, 0); // the sweep does cross from one bend to the other
+  EXPECT_LT(largest_change, 1e-3);
+  // And at the swap the gradient is the finite differences' of the barrier.
+  const HermiteSpline s = spline(-0.011365);
+  const test::ScalarFunction f = [&](const Eigen::VectorXd& v) {
+    const auto lists = test::unstacked(v, {2, 2});
+    return barrier.value(HermiteSpline(lists[0], lists[1]));
+  };
+  EXPECT_TRUE(test::matches_fd(stacked_gradient(-0.011365),
+                               test::fd_gradient(f, test::stacked({s.points(), s.tangents()}), 1e-9)));
+}
+
 TEST(BendRadius, BarrierIsInfiniteAtTheRadiusAndZeroFarAboveIt)
 {
   const HermiteSpline arc = quarter_circle(0.02);

@@ -26,6 +26,25 @@ int bandwidth(const Eigen::SparseMatrix<double>& upper, const std::vector<int>& 
   return width;
 }
 
+/// The envelope (profile) with the rows in `order`: for each row, the distance from its first
+/// entry left of the diagonal to the diagonal, summed: the entries a profile (skyline) factor holds.
+long long envelope(const Eigen::SparseMatrix<double>& upper, const std::vector<int>& order)
+{
+  std::vector<int> position(order.size());
+  for (std::size_t k = 0; k < order.size(); ++k) position[static_cast<std::size_t>(order[k])] = static_cast<int>(k);
+  std::vector<int> first(order.size());
+  std::iota(first.begin(), first.end(), 0);
+  for (int j = 0; j < upper.outerSize(); ++j)
+    for (Eigen::SparseMatrix<double>::InnerIterator it(upper, j); it; ++it) {
+      const int a = position[static_cast<std::size_t>(it.row())], b = position[static_cast<std::size_t>(j)];
+      int& row_first = first[static_cast<std::size_t>(std::max(a, b))];
+      row_first = std::min(row_first, std::min(a, b));
+    }
+  long long sum = 0;
+  for (std::size_t k = 0; k < first.size(); ++k) sum += static_cast<long long>(k) - first[k];
+  return sum;
+}
+
 TEST(BandOrdering, NumbersAShuffledLongBodyAlongItsLengthAndKeepsEachNodeWhole)
 {
   // 3 × 3 × 40 nodes, each coupled to every node within two grid steps. Numbered slice by slice
@@ -50,9 +69,27 @@ TEST(BandOrdering, NumbersAShuffledLongBodyAlongItsLengthAndKeepsEachNodeWhole)
     EXPECT_EQ(order[k + 1], order[k] + 1) << k;
     EXPECT_EQ(order[k + 2], order[k] + 2) << k;
   }
-  // Breadth-first levels of a bar whose nodes reach two slices: two slices (54 rows) each but the
-  // first (three), and an entry spans at most from one level to the next.
-  EXPECT_LE(bandwidth(shuffled, order), 2 * 54);
+  // Along the bar: an entry spans at most a few slices (27 rows each; numbered slice by slice,
+  // 80 rows), and the profile is no larger than slice by slice's.
+  EXPECT_LE(bandwidth(shuffled, order), 6 * 27);
+  EXPECT_LE(envelope(shuffled, order), envelope(grid, identity));
+}
+
+TEST(BandOrdering, AWideBodysProfileIsSmallerThanSliceBySlice)
+{
+  // 8 × 6 × 30 nodes reaching three steps, shuffled: Sloan's numbering holds fewer profile entries
+  // than numbering slice by slice does (a front that grows and shrinks within each slice).
+  const Eigen::SparseMatrix<double> grid = test::wide_stencil_matrix(8, 6, 30, 3);
+  std::vector<int> identity(grid.rows());
+  std::iota(identity.begin(), identity.end(), 0);
+  std::vector<int> node_of(8 * 6 * 30);
+  std::iota(node_of.begin(), node_of.end(), 0);
+  std::shuffle(node_of.begin(), node_of.end(), std::mt19937(11));
+  const Eigen::SparseMatrix<double> shuffled = test::renumbered(grid, node_of);
+  const long long sloan = envelope(shuffled, band_ordering(shuffled)), slices = envelope(grid, identity);
+  EXPECT_LT(sloan, slices);
+  RecordProperty("envelope_sloan", std::to_string(sloan));
+  RecordProperty("envelope_slice_by_slice", std::to_string(slices));
 }
 
 TEST(BandOrdering, OrdersEveryComponentOfADisconnectedMatrix)
