@@ -38,6 +38,26 @@ void blas_threads(int threads)
   if (set) set(threads);
 }
 
+/// OpenBLAS's worker threads spin on sched_yield for about 0.1 s after each threaded call before
+/// they sleep (2^28 cycles, OPENBLAS_THREAD_TIMEOUT, read once when the library loads). On 2 cores
+/// that spinning took a core from the assembly that follows a factorization: the gripper finger at
+/// 3.4 mm, `bench/finger_speed` (session 49), 0.181 s per assembly with the workers left spinning,
+/// 0.157 s with OPENBLAS_THREAD_TIMEOUT=4 (16 cycles), the factorization 0.261 and 0.259 s. So after a
+/// two-thread factorization or solve the workers are stopped, as OpenBLAS itself stops them before
+/// a fork (blas_thread_shutdown_); its next threaded call starts them again (tens of µs). The split
+/// of the work, and so the rounding, is the thread count's, not the pool's. Never while another
+/// thread is in BLAS: fibermold calls BLAS (through CHOLMOD) from one thread at a time. A user's
+/// OPENBLAS_NUM_THREADS or OPENBLAS_THREAD_TIMEOUT leaves the workers alone.
+void stop_blas_workers()
+{
+  using Shutdown = int (*)();
+  static const Shutdown shutdown = []() -> Shutdown {
+    if (std::getenv("OPENBLAS_NUM_THREADS") || std::getenv("OPENBLAS_THREAD_TIMEOUT")) return nullptr;
+    return reinterpret_cast<Shutdown>(dlsym(RTLD_DEFAULT, "blas_thread_shutdown_"));
+  }();
+  if (shutdown) shutdown();
+}
+
 /// Debian's CHOLMOD is built with OpenMP and asks for 4 threads (CHOLMOD_OMP_NUM_THREADS, fixed
 /// when the library was built) in the loops that copy A and the updates into each supernode: many
 /// short parallel regions per factorization. On 2 cores the extra threads take turns through futex
@@ -122,6 +142,7 @@ bool CholmodSolver::factorize(const Eigen::SparseMatrix<double>& A, double shift
   blas_threads(impl_->threads);
   impl_->llt->setShift(shift);
   impl_->llt->factorize(A);
+  if (impl_->threads > 1) stop_blas_workers();
   return impl_->llt->info() == Eigen::Success;
 }
 
@@ -132,13 +153,17 @@ bool CholmodSolver::band_ordered() const { return impl_->band; }
 Eigen::VectorXd CholmodSolver::solve(const Eigen::VectorXd& b) const
 {
   blas_threads(impl_->threads); // another solver may have factorized since
-  return impl_->llt->solve(b);
+  Eigen::VectorXd x = impl_->llt->solve(b);
+  if (impl_->threads > 1) stop_blas_workers();
+  return x;
 }
 
 Eigen::MatrixXd CholmodSolver::solve(const Eigen::MatrixXd& B) const
 {
   blas_threads(impl_->threads);
-  return impl_->llt->solve(B);
+  Eigen::MatrixXd X = impl_->llt->solve(B);
+  if (impl_->threads > 1) stop_blas_workers();
+  return X;
 }
 
 } // namespace fibermold
