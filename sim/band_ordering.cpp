@@ -114,6 +114,11 @@ std::vector<int> band_ordering(const Eigen::SparseMatrix<double>& upper)
   const auto index = boost::get(boost::vertex_index, graph);
   for (Vertex seed = 0; seed < vertices; ++seed) {
     if (placed[seed]) continue;
+    if (boost::out_degree(seed, graph) == 0) { // coupled to nothing: Boost's ordering would sweep every vertex for it
+      sequence.push_back(seed);
+      placed[seed] = true;
+      continue;
+    }
     const auto [start, end] = pseudo_peripheral_pair(graph, seed, distance);
     const std::size_t before = sequence.size();
     boost::sloan_ordering(graph, start, end, std::back_inserter(sequence),

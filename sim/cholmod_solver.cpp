@@ -1,6 +1,7 @@
 #include "sim/cholmod_solver.hpp"
 
 #include <algorithm>
+#include <atomic>
 #include <cstdlib>
 
 #include <dlfcn.h>
@@ -28,14 +29,27 @@ namespace {
 /// docs/optimize.md, "The same design on other machines", gives what that moves.
 constexpr double kTwoThreadFlops = 2e9;
 
-void blas_threads(int threads)
+using SetThreads = void (*)(int);
+
+/// OpenBLAS's openblas_set_num_threads; null for another BLAS or under a user's OPENBLAS_NUM_THREADS.
+SetThreads openblas_set_threads()
 {
-  using SetThreads = void (*)(int);
   static const SetThreads set = []() -> SetThreads {
     if (std::getenv("OPENBLAS_NUM_THREADS")) return nullptr;
     return reinterpret_cast<SetThreads>(dlsym(RTLD_DEFAULT, "openblas_set_num_threads"));
   }();
-  if (set) set(threads);
+  return set;
+}
+
+/// The count blas_threads last set (0: none yet). Setting OpenBLAS's count starts its workers again
+/// where they were stopped (stop_blas_workers), so a count already set is not set again.
+std::atomic<int> blas_threads_set{0};
+
+void blas_threads(int threads)
+{
+  const SetThreads set = openblas_set_threads();
+  if (!set || blas_threads_set.exchange(threads) == threads) return;
+  set(threads);
 }
 
 /// OpenBLAS's worker threads spin on sched_yield for about 0.1 s after each threaded call before
@@ -44,18 +58,27 @@ void blas_threads(int threads)
 /// 3.4 mm, `bench/finger_speed` (session 49), 0.181 s per assembly with the workers left spinning,
 /// 0.157 s with OPENBLAS_THREAD_TIMEOUT=4 (16 cycles), the factorization 0.261 and 0.259 s. So after a
 /// two-thread factorization or solve the workers are stopped, as OpenBLAS itself stops them before
-/// a fork (blas_thread_shutdown_); its next threaded call starts them again (tens of µs). The split
-/// of the work, and so the rounding, is the thread count's, not the pool's. Never while another
-/// thread is in BLAS: fibermold calls BLAS (through CHOLMOD) from one thread at a time. A user's
-/// OPENBLAS_NUM_THREADS or OPENBLAS_THREAD_TIMEOUT leaves the workers alone.
+/// a fork (blas_thread_shutdown_); its next threaded call, or a count set, starts them again (tens
+/// of µs, and up to a few ms of the next call). The count is set to 1 first, while the pool runs.
+/// Only where OpenBLAS's pool is at most 2 threads (its count of the cores it may use): a larger
+/// pool would start all its workers again at each call, all but one to spin with nothing to do,
+/// and there a spinning worker takes one core of many. The split of the work, and so the rounding,
+/// is the thread count's, not the pool's. Never while another thread is in BLAS: fibermold calls
+/// BLAS (through CHOLMOD) from one thread at a time. A user's OPENBLAS_NUM_THREADS or
+/// OPENBLAS_THREAD_TIMEOUT leaves the workers alone.
 void stop_blas_workers()
 {
   using Shutdown = int (*)();
+  using Count = int (*)();
   static const Shutdown shutdown = []() -> Shutdown {
-    if (std::getenv("OPENBLAS_NUM_THREADS") || std::getenv("OPENBLAS_THREAD_TIMEOUT")) return nullptr;
+    if (!openblas_set_threads() || std::getenv("OPENBLAS_THREAD_TIMEOUT")) return nullptr;
+    const auto cores = reinterpret_cast<Count>(dlsym(RTLD_DEFAULT, "openblas_get_num_procs"));
+    if (!cores || cores() > 2) return nullptr;
     return reinterpret_cast<Shutdown>(dlsym(RTLD_DEFAULT, "blas_thread_shutdown_"));
   }();
-  if (shutdown) shutdown();
+  if (!shutdown) return;
+  blas_threads(1);
+  shutdown();
 }
 
 /// Debian's CHOLMOD is built with OpenMP and asks for 4 threads (CHOLMOD_OMP_NUM_THREADS, fixed
@@ -110,8 +133,7 @@ void CholmodSolver::Impl::analyze(const Eigen::SparseMatrix<double>& A)
 {
   // CHOLMOD's own choice (AMD, or METIS where AMD fills much) and the band ordering: the one whose
   // factorization counts fewer operations is kept. The choice is the pattern's, so the same on
-  // every machine that runs the same build (Boost breaks ties between equal degrees by an
-  // unstable sort: another standard library may order them otherwise).
+  // every machine that runs the same build.
   band = false;
   llt = std::make_unique<SupernodalLLT>();
   llt->analyzePattern(A);

@@ -158,6 +158,48 @@ TEST(BendRadius, BarrierIsSmoothWhereTwoNearlyEqualBendsSwap)
                                test::fd_gradient(f, test::stacked({s.points(), s.tangents()}), 1e-9)));
 }
 
+TEST(BendRadius, BarrierIsEachSpansPeaksLessItsDipsWithinTheBand)
+{
+  // A cubic Hermite quarter circle bends within 5 % of its radius, its κ rising and falling along
+  // each span: with R at 0.99 of its tightest radius every point is in the band, dips too. The
+  // barrier is the fixed samples' sum plus, per span, b at each maximum of κ (an end where κ
+  // falls from it) less b at each minimum between two, as a scan 300× denser finds them.
+  const HermiteSpline arc = quarter_circle(0.02);
+  const double R = 0.99 * smallest_bend(arc).radius;
+  const BendBarrier bend(R);
+  const auto b = [&](double kappa) { return barrier(1 - R * kappa, BendBarrier::kBand); };
+  double expected = 0;
+  int dips = 0;
+  for (int k = 0; k < arc.spans(); ++k) {
+    // κ on span k's own side at its end (p'' jumps at a knot).
+    const auto on_span = [&](double u) { return curvature(arc, k + std::min(u, 1 - 1e-12)); };
+    for (int i = 0; i <= BendBarrier::kSamplesPerSpan; ++i)
+      expected += b(on_span(double(i) / BendBarrier::kSamplesPerSpan));
+    constexpr int n = 20000;
+    std::vector<double> kappa(n + 1);
+    for (int i = 0; i <= n; ++i) kappa[i] = on_span(double(i) / n);
+    for (int i = 0; i <= n; ++i) {
+      const bool above_left = i == 0 || kappa[i] > kappa[i - 1], above_right = i == n || kappa[i] >= kappa[i + 1];
+      const bool below_left = i > 0 && kappa[i] < kappa[i - 1], below_right = i < n && kappa[i] <= kappa[i + 1];
+      if (above_left && above_right) expected += b(kappa[i]);
+      if (below_left && below_right) {
+        expected -= b(kappa[i]);
+        dips += b(kappa[i]) > 0;
+      }
+    }
+  }
+  ASSERT_GT(dips, 0); // dips inside the band: their weight −1 counts
+  EXPECT_NEAR(bend.value(arc), expected, 1e-6 * expected);
+  // And its gradient is the finite differences'.
+  const test::ScalarFunction f = [&](const Eigen::VectorXd& v) {
+    const auto lists = test::unstacked(v, {3, 3});
+    return bend.value(HermiteSpline(lists[0], lists[1]));
+  };
+  const FiberParameterGradient g = bend.gradient(arc);
+  EXPECT_TRUE(test::matches_fd(test::stacked({g.points, g.tangents}),
+                               test::fd_gradient(f, test::stacked({arc.points(), arc.tangents()}), 1e-9)));
+}
+
 TEST(BendRadius, BarrierIsInfiniteAtTheRadiusAndZeroFarAboveIt)
 {
   const HermiteSpline arc = quarter_circle(0.02);
